@@ -1,0 +1,67 @@
+//! The `ksmcmc` command-line tool: a thin front end over the library.
+//!
+//! Exit codes: 0 success, 1 the work failed (bad map, unreadable file), 2 the command line is
+//! wrong.
+
+mod args;
+mod info;
+mod render;
+mod synth;
+
+use std::process::ExitCode;
+
+const USAGE: &str = "\
+ksmcmc: semantic floor plans from occupancy grids by knowledge-supervised MCMC
+
+Usage:
+  ksmcmc info MAP                          size and cell classes of a map
+  ksmcmc render MAP [--world world.json] --out out.png
+                                           draw a classified map, optionally with a world over it
+  ksmcmc synth --seed N --out DIR [options]
+                                           generate a synthetic floor plan with ground truth
+  ksmcmc help                              this text
+
+MAP is a PGM (P2/P5, 8 or 16 bits), a PNG of any colour type, or a ROS map.yaml.
+Run `ksmcmc COMMAND --help` for a command's options.
+";
+
+fn main() -> ExitCode {
+    // Bugs must not print a Rust backtrace at users; say what happened and where to report it.
+    std::panic::set_hook(Box::new(|info| {
+        eprintln!("ksmcmc: internal error (this is a bug, please report it): {info}");
+    }));
+    let mut argv = std::env::args_os().skip(1);
+    let Some(command) = argv.next() else {
+        eprint!("{USAGE}");
+        return ExitCode::from(2);
+    };
+    let rest: Vec<_> = argv.collect();
+    let result = match command.to_str() {
+        Some("info") => info::run(rest),
+        Some("render") => render::run(rest),
+        Some("synth") => synth::run(rest),
+        Some("help" | "--help" | "-h") => {
+            print!("{USAGE}");
+            Ok(())
+        }
+        Some("--version" | "-V") => {
+            println!("ksmcmc {}", env!("CARGO_PKG_VERSION"));
+            Ok(())
+        }
+        _ => Err(args::CliError::Usage(format!(
+            "unknown command {:?}; run `ksmcmc help` for the list",
+            command.to_string_lossy()
+        ))),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(args::CliError::Usage(m)) => {
+            eprintln!("ksmcmc: {m}");
+            ExitCode::from(2)
+        }
+        Err(args::CliError::Failed(m)) => {
+            eprintln!("ksmcmc: {m}");
+            ExitCode::from(1)
+        }
+    }
+}

@@ -1,0 +1,8 @@
+//! Semantic floor plans: the world `W = {U, T, R}` and the synthetic generator.
+//!
+//! A [`World`] is what the chain samples and what every exporter writes; `world.json` is its
+//! serialised form (schema in [`world`]).
+
+pub mod world;
+
+pub use world::{Door, Frame, Rect, Unit, UnitType, World, WorldError, WORLD_FORMAT};

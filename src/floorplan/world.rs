@@ -1,0 +1,354 @@
+//! The semantic world `W = {U, T, R}` (section 3.4): units, their types, doors, object cells.
+//!
+//! A [`Unit`] is an axis-aligned rectangle of cells in the *world frame*; its outermost ring of
+//! cells is its four walls and the inside is its free space (eq. 3.8). Maps whose walls are not
+//! parallel to the image axes are explained in a rotated world frame, described by [`Frame`], so
+//! that units stay upright rectangles there.
+//!
+//! # `world.json`
+//!
+//! A world serialises to JSON as below (field order as written; unknown fields are refused so
+//! that typos are caught). Coordinates are cells in the world frame, `x` right, `y` down.
+//!
+//! ```json
+//! {
+//!   "format": "ksmcmc-world/1",
+//!   "frame": { "angle": 0.0, "world_size": [120, 80], "map_size": [120, 80] },
+//!   "units": [ { "id": 1, "x": 10, "y": 10, "w": 30, "h": 20, "type": "room" } ],
+//!   "doors": [ { "id": 1, "units": [1, 2], "x0": 39, "y0": 14, "x1": 39, "y1": 18 } ],
+//!   "object_cells": [[12, 14], [12, 15]]
+//! }
+//! ```
+//!
+//! * `frame.angle`: radians; a world point `p` lies at map point
+//!   `c_map + R(angle) (p - c_world)`, where the `c` are the centres of the two grids.
+//! * `units[].type`: `room`, `corridor`, `hall`, `other` or `unknown` (not yet typed).
+//! * `doors[]`: a run of cells from `(x0, y0)` to `(x1, y1)` inclusive, horizontal or vertical,
+//!   joining the two units named by id.
+//! * `object_cells`: unknown map cells inside units (furniture), optional.
+
+use serde::{Deserialize, Serialize};
+
+/// The format tag written into every `world.json`.
+pub const WORLD_FORMAT: &str = "ksmcmc-world/1";
+
+/// The semantic type of a unit (the query predicates of Tab. 3.3).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum UnitType {
+    /// An office, lab or other enclosed room.
+    Room,
+    /// A long, narrow unit connecting others.
+    Corridor,
+    /// A large open area.
+    Hall,
+    /// Anything else (stairwells, shafts, small storage).
+    Other,
+    /// Not typed yet (before knowledge processing).
+    #[default]
+    Unknown,
+}
+
+impl UnitType {
+    /// All types, in a fixed order.
+    pub const ALL: [UnitType; 5] =
+        [UnitType::Room, UnitType::Corridor, UnitType::Hall, UnitType::Other, UnitType::Unknown];
+
+    /// The lowercase name used in JSON and labels.
+    pub fn name(self) -> &'static str {
+        match self {
+            UnitType::Room => "room",
+            UnitType::Corridor => "corridor",
+            UnitType::Hall => "hall",
+            UnitType::Other => "other",
+            UnitType::Unknown => "unknown",
+        }
+    }
+}
+
+/// An axis-aligned rectangle of cells: columns `x .. x + w`, rows `y .. y + h`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub struct Rect {
+    /// Leftmost column.
+    pub x: i32,
+    /// Top row.
+    pub y: i32,
+    /// Width in cells.
+    pub w: i32,
+    /// Height in cells.
+    pub h: i32,
+}
+
+impl Rect {
+    /// A rectangle from its top-left cell and size.
+    pub fn new(x: i32, y: i32, w: i32, h: i32) -> Self {
+        Rect { x, y, w, h }
+    }
+
+    /// One past the rightmost column.
+    pub fn right(&self) -> i32 {
+        self.x + self.w
+    }
+
+    /// One past the bottom row.
+    pub fn bottom(&self) -> i32 {
+        self.y + self.h
+    }
+
+    /// Number of cells covered.
+    pub fn area(&self) -> i64 {
+        self.w.max(0) as i64 * self.h.max(0) as i64
+    }
+
+    /// Whether cell `(x, y)` is inside.
+    pub fn contains(&self, x: i32, y: i32) -> bool {
+        x >= self.x && x < self.right() && y >= self.y && y < self.bottom()
+    }
+
+    /// Whether cell `(x, y)` is on the outer ring (a wall cell, eq. 3.8's `S_w`).
+    pub fn on_border(&self, x: i32, y: i32) -> bool {
+        self.contains(x, y) && (x == self.x || y == self.y || x == self.right() - 1 || y == self.bottom() - 1)
+    }
+
+    /// The centre in cell coordinates (cell centres at `+0.5`).
+    pub fn center(&self) -> (f64, f64) {
+        (self.x as f64 + self.w as f64 / 2.0, self.y as f64 + self.h as f64 / 2.0)
+    }
+
+    /// The overlap of two rectangles, if any.
+    pub fn intersection(&self, o: &Rect) -> Option<Rect> {
+        let x0 = self.x.max(o.x);
+        let y0 = self.y.max(o.y);
+        let x1 = self.right().min(o.right());
+        let y1 = self.bottom().min(o.bottom());
+        (x0 < x1 && y0 < y1).then(|| Rect::new(x0, y0, x1 - x0, y1 - y0))
+    }
+}
+
+/// One unit: a rectangle enclosed by four walls, with a type.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Unit {
+    /// Identifier, unique within the world, 1-based in exported files.
+    pub id: u32,
+    /// Leftmost column.
+    pub x: i32,
+    /// Top row.
+    pub y: i32,
+    /// Width in cells (at least 3: two walls and free space).
+    pub w: i32,
+    /// Height in cells.
+    pub h: i32,
+    /// The unit's type.
+    #[serde(rename = "type", default)]
+    pub kind: UnitType,
+}
+
+impl Unit {
+    /// The unit's rectangle.
+    pub fn rect(&self) -> Rect {
+        Rect::new(self.x, self.y, self.w, self.h)
+    }
+}
+
+/// A door: a straight run of cells in a wall joining two units.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Door {
+    /// Identifier, unique within the world.
+    pub id: u32,
+    /// Ids of the two units it joins.
+    pub units: [u32; 2],
+    /// First cell, column.
+    pub x0: i32,
+    /// First cell, row.
+    pub y0: i32,
+    /// Last cell (inclusive), column.
+    pub x1: i32,
+    /// Last cell (inclusive), row.
+    pub y1: i32,
+}
+
+impl Door {
+    /// Number of cells in the door.
+    pub fn len(&self) -> i32 {
+        (self.x1 - self.x0).abs().max((self.y1 - self.y0).abs()) + 1
+    }
+
+    /// Doors always hold at least one cell.
+    pub fn is_empty(&self) -> bool {
+        false
+    }
+
+    /// The door's cells, first to last.
+    pub fn cells(&self) -> impl Iterator<Item = (i32, i32)> + '_ {
+        let n = self.len();
+        let dx = (self.x1 - self.x0).signum();
+        let dy = (self.y1 - self.y0).signum();
+        (0..n).map(move |i| (self.x0 + i * dx, self.y0 + i * dy))
+    }
+}
+
+/// How the world frame sits on the map.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Frame {
+    /// Rotation from the world frame to the map, radians, counter-clockwise in image terms
+    /// (x right, y down).
+    pub angle: f64,
+    /// Width and height of the world-frame grid, cells.
+    pub world_size: [u32; 2],
+    /// Width and height of the map, cells.
+    pub map_size: [u32; 2],
+}
+
+impl Frame {
+    /// The identity frame for a map of the given size.
+    pub fn identity(width: u32, height: u32) -> Self {
+        Frame { angle: 0.0, world_size: [width, height], map_size: [width, height] }
+    }
+
+    /// Whether world cells are map cells.
+    pub fn is_identity(&self) -> bool {
+        self.angle == 0.0 && self.world_size == self.map_size
+    }
+
+    /// Maps a world-frame point (cell units, continuous) to map coordinates.
+    pub fn to_map(&self, x: f64, y: f64) -> (f64, f64) {
+        let (s, c) = self.angle.sin_cos();
+        let (wx, wy) = (x - self.world_size[0] as f64 / 2.0, y - self.world_size[1] as f64 / 2.0);
+        (
+            self.map_size[0] as f64 / 2.0 + c * wx - s * wy,
+            self.map_size[1] as f64 / 2.0 + s * wx + c * wy,
+        )
+    }
+
+    /// Maps a map point to the world frame (the inverse of [`Frame::to_map`]).
+    pub fn to_world(&self, x: f64, y: f64) -> (f64, f64) {
+        let (s, c) = self.angle.sin_cos();
+        let (mx, my) = (x - self.map_size[0] as f64 / 2.0, y - self.map_size[1] as f64 / 2.0);
+        (
+            self.world_size[0] as f64 / 2.0 + c * mx + s * my,
+            self.world_size[1] as f64 / 2.0 - s * mx + c * my,
+        )
+    }
+}
+
+/// A semantic world: the explanation of one map.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct World {
+    /// Always [`WORLD_FORMAT`].
+    pub format: String,
+    /// How the world frame sits on the map.
+    pub frame: Frame,
+    /// The units.
+    pub units: Vec<Unit>,
+    /// The doors.
+    #[serde(default)]
+    pub doors: Vec<Door>,
+    /// Unknown map cells inside units (furniture and clutter), world frame.
+    #[serde(default)]
+    pub object_cells: Vec<[i32; 2]>,
+}
+
+/// Why a `world.json` was refused.
+#[derive(Debug, Clone, PartialEq)]
+pub struct WorldError(pub String);
+
+impl std::fmt::Display for WorldError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}", self.0)
+    }
+}
+
+impl std::error::Error for WorldError {}
+
+impl World {
+    /// An empty world on a map of the given size, upright.
+    pub fn empty(width: u32, height: u32) -> Self {
+        World {
+            format: WORLD_FORMAT.to_string(),
+            frame: Frame::identity(width, height),
+            units: Vec::new(),
+            doors: Vec::new(),
+            object_cells: Vec::new(),
+        }
+    }
+
+    /// The unit with the given id.
+    pub fn unit(&self, id: u32) -> Option<&Unit> {
+        self.units.iter().find(|u| u.id == id)
+    }
+
+    /// Pretty JSON text.
+    pub fn to_json(&self) -> String {
+        serde_json::to_string_pretty(self).expect("a world always serialises")
+    }
+
+    /// Parses and validates `world.json` text.
+    ///
+    /// ```
+    /// use ksmcmc::floorplan::World;
+    /// let mut w = World::empty(20, 10);
+    /// w.units.push(ksmcmc::floorplan::Unit { id: 1, x: 0, y: 0, w: 5, h: 5, kind: Default::default() });
+    /// let back = World::from_json(&w.to_json()).unwrap();
+    /// assert_eq!(back, w);
+    /// assert!(World::from_json("{").is_err());
+    /// ```
+    pub fn from_json(text: &str) -> Result<World, WorldError> {
+        let w: World = serde_json::from_str(text).map_err(|e| WorldError(format!("world.json: {e}")))?;
+        w.validate()?;
+        Ok(w)
+    }
+
+    /// Checks the format tag, frame, unit geometry and door references.
+    pub fn validate(&self) -> Result<(), WorldError> {
+        let bad = |m: String| Err(WorldError(m));
+        if self.format != WORLD_FORMAT {
+            return bad(format!("world.json: format is {:?}, expected {WORLD_FORMAT:?}", self.format));
+        }
+        let f = &self.frame;
+        if !f.angle.is_finite() || f.world_size.contains(&0) || f.map_size.contains(&0) {
+            return bad("world.json: the frame needs a finite angle and non-zero sizes".into());
+        }
+        let [ww, wh] = [f.world_size[0] as i64, f.world_size[1] as i64];
+        let mut ids = std::collections::HashSet::new();
+        for u in &self.units {
+            if !ids.insert(u.id) {
+                return bad(format!("world.json: unit id {} appears twice", u.id));
+            }
+            if u.w < 1 || u.h < 1 {
+                return bad(format!("world.json: unit {} has size {}x{}", u.id, u.w, u.h));
+            }
+            let (x0, y0) = (u.x as i64, u.y as i64);
+            if x0 < 0 || y0 < 0 || x0 + u.w as i64 > ww || y0 + u.h as i64 > wh {
+                return bad(format!(
+                    "world.json: unit {} ({}x{} at {},{}) lies outside the {}x{} world",
+                    u.id, u.w, u.h, u.x, u.y, ww, wh
+                ));
+            }
+        }
+        for d in &self.doors {
+            for id in d.units {
+                if !ids.contains(&id) {
+                    return bad(format!("world.json: door {} names unit {id}, which does not exist", d.id));
+                }
+            }
+            if d.x0 != d.x1 && d.y0 != d.y1 {
+                return bad(format!("world.json: door {} is neither horizontal nor vertical", d.id));
+            }
+            for (x, y) in [(d.x0, d.y0), (d.x1, d.y1)] {
+                if x < 0 || y < 0 || x as i64 >= ww || y as i64 >= wh {
+                    return bad(format!("world.json: door {} has a cell ({x},{y}) outside the world", d.id));
+                }
+            }
+        }
+        for c in &self.object_cells {
+            if c[0] < 0 || c[1] < 0 || c[0] as i64 >= ww || c[1] as i64 >= wh {
+                return bad(format!("world.json: object cell ({},{}) lies outside the world", c[0], c[1]));
+            }
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,274 @@
+//! Occupancy grids: loading, classification (eq. 3.7) and writing.
+//!
+//! A map arrives as a PGM (P2 or P5, 8 or 16 bits), a PNG of any colour type, or a ROS
+//! map_server pair (`map.yaml` naming the image). Loading decodes it to a gray [`Raster`],
+//! then a [`Classifier`] turns every pixel into a [`Cell`]: occupied, unknown or free. Plain
+//! images use the intensity thresholds of eq. 3.7 ([`Classifier::default`]); a `map.yaml` brings
+//! map_server's own rule and thresholds.
+//!
+//! Nothing here trusts the input: sizes are checked against [`Limits`] before any pixel buffer
+//! is allocated, and every failure is a [`MapError`] that says what to fix.
+//!
+//! ```
+//! use ksmcmc::grid::{Cell, OccupancyMap};
+//!
+//! let map = OccupancyMap::from_bytes(b"P2\n2 2\n255\n0 255\n205 255\n").unwrap();
+//! assert_eq!(map.classified().at(0, 0), &Cell::Occupied);
+//! assert_eq!(map.classified().at(0, 1), &Cell::Unknown);
+//! assert_eq!(map.count(Cell::Free), 2);
+//!
+//! // Bad input is an error with a message, never a panic.
+//! let err = OccupancyMap::from_bytes(b"P5\n0 10\n255\n").unwrap_err();
+//! assert!(err.to_string().contains("0x10"));
+//! ```
+
+mod classify;
+mod error;
+pub mod pgm;
+pub mod png;
+mod raster;
+mod ros;
+
+pub use classify::{Cell, Classifier};
+pub use error::MapError;
+pub use raster::{Grid, Raster};
+pub use ros::{MapYaml, Mode};
+
+use error::describe_start;
+
+/// Resource limits for loading maps.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Limits {
+    /// The largest number of cells a map may have. The default, 2^25 (about 33.5 million,
+    /// e.g. 8192 x 4096), covers building-scale maps at 5 cm with room to spare while keeping
+    /// a hostile header from asking for gigabytes (a map costs about 3 bytes per cell).
+    pub max_cells: usize,
+}
+
+/// The default cell limit; see [`Limits::max_cells`].
+pub const DEFAULT_MAX_CELLS: usize = 1 << 25;
+
+impl Default for Limits {
+    fn default() -> Self {
+        Limits { max_cells: DEFAULT_MAX_CELLS }
+    }
+}
+
+impl Limits {
+    /// Checks a declared size, returning it as `usize`s.
+    pub fn check(&self, width: u64, height: u64) -> Result<(usize, usize), MapError> {
+        if width == 0 || height == 0 {
+            return Err(MapError::Empty { width, height });
+        }
+        let cells = (width as u128) * (height as u128);
+        if cells > self.max_cells as u128 {
+            return Err(MapError::TooLarge { width, height, limit: self.max_cells });
+        }
+        Ok((width as usize, height as usize))
+    }
+}
+
+/// The image formats a map can arrive in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ImageFormat {
+    /// Netpbm gray map, P2 or P5.
+    Pgm,
+    /// Portable Network Graphics.
+    Png,
+}
+
+impl ImageFormat {
+    /// Recognises the format from the first bytes.
+    pub fn sniff(bytes: &[u8]) -> Result<ImageFormat, MapError> {
+        if bytes.starts_with(b"\x89PNG\r\n\x1a\n") {
+            return Ok(ImageFormat::Png);
+        }
+        if bytes.len() >= 2 && (bytes.starts_with(b"P5") || bytes.starts_with(b"P2")) {
+            return Ok(ImageFormat::Pgm);
+        }
+        if bytes.len() >= 2 && bytes[0] == b'P' && matches!(bytes[1], b'1' | b'3' | b'4' | b'6') {
+            return Err(MapError::UnknownFormat {
+                start: format!(
+                    "{} (a Netpbm bitmap or colour image; save the map as a grayscale PGM or as PNG)",
+                    describe_start(bytes)
+                ),
+            });
+        }
+        if let Ok(text) = std::str::from_utf8(&bytes[..bytes.len().min(4096)]) {
+            if text.lines().any(|l| l.trim_start().starts_with("image:")) {
+                return Err(MapError::UnknownFormat {
+                    start: format!(
+                        "{} (this is a map.yaml: load it together with the image it names)",
+                        describe_start(bytes)
+                    ),
+                });
+            }
+        }
+        Err(MapError::UnknownFormat { start: describe_start(bytes) })
+    }
+}
+
+/// Decodes a PGM or PNG into a raster, whichever the bytes are.
+pub fn decode_image(bytes: &[u8], limits: &Limits) -> Result<Raster, MapError> {
+    match ImageFormat::sniff(bytes)? {
+        ImageFormat::Pgm => pgm::decode(bytes, limits),
+        ImageFormat::Png => png::decode(bytes, limits),
+    }
+}
+
+/// An occupancy grid map: the decoded image, its metadata and its classified cells.
+#[derive(Debug, Clone, PartialEq)]
+pub struct OccupancyMap {
+    raster: Raster,
+    yaml: MapYaml,
+    classifier: Classifier,
+    classified: Grid<Cell>,
+}
+
+impl OccupancyMap {
+    /// Loads a PGM or PNG from memory with the default classifier and limits.
+    pub fn from_bytes(bytes: &[u8]) -> Result<Self, MapError> {
+        Self::from_image_bytes(bytes, Classifier::default(), &Limits::default())
+    }
+
+    /// Loads a PGM or PNG from memory with the given classifier and limits.
+    pub fn from_image_bytes(bytes: &[u8], classifier: Classifier, limits: &Limits) -> Result<Self, MapError> {
+        classifier.validate()?;
+        let raster = decode_image(bytes, limits)?;
+        Ok(Self::from_raster(raster, MapYaml::for_image("map.pgm"), classifier))
+    }
+
+    /// Loads a ROS map_server pair from the YAML text and the bytes of the image it names.
+    pub fn from_yaml_and_image(yaml_text: &str, image: &[u8], limits: &Limits) -> Result<Self, MapError> {
+        let yaml = MapYaml::parse(yaml_text)?;
+        let classifier = Classifier::from_yaml(&yaml);
+        classifier.validate()?;
+        let raster = decode_image(image, limits)?;
+        Ok(Self::from_raster(raster, yaml, classifier))
+    }
+
+    /// Wraps an already decoded raster.
+    pub fn from_raster(raster: Raster, yaml: MapYaml, classifier: Classifier) -> Self {
+        let classified = classifier.classify_raster(&raster);
+        OccupancyMap { raster, yaml, classifier, classified }
+    }
+
+    /// A map made directly from classes, e.g. one a person painted. Its raster is the
+    /// conventional rendering (occupied 0, unknown 205, free 254 of 255).
+    pub fn from_classified(classified: Grid<Cell>) -> Self {
+        let gray = classified.map(|c| gray_of(*c) as u16 * 257);
+        OccupancyMap {
+            raster: Raster { gray, alpha: None },
+            yaml: MapYaml::for_image("map.pgm"),
+            classifier: Classifier::MapServer {
+                negate: false,
+                occupied_thresh: 0.65,
+                free_thresh: 0.196,
+                mode: Mode::Trinary,
+            },
+            classified,
+        }
+    }
+
+    /// Loads a map file: a `.yaml`/`.yml` map_server description (with the image it names,
+    /// relative to the YAML's folder), or a PGM/PNG image.
+    #[cfg(not(target_arch = "wasm32"))]
+    pub fn load(path: &std::path::Path, limits: &Limits) -> Result<Self, MapError> {
+        let io = |p: &std::path::Path, e: std::io::Error| MapError::Io { path: p.display().to_string(), message: e.to_string() };
+        let bytes = std::fs::read(path).map_err(|e| io(path, e))?;
+        let is_yaml = matches!(path.extension().and_then(|e| e.to_str()), Some("yaml" | "yml"));
+        if !is_yaml {
+            return Self::from_image_bytes(&bytes, Classifier::default(), limits);
+        }
+        let text = std::str::from_utf8(&bytes).map_err(|e| MapError::NotUtf8 {
+            what: path.display().to_string(),
+            offset: e.valid_up_to(),
+        })?;
+        let yaml = MapYaml::parse(text)?;
+        let image_path = path.parent().unwrap_or(std::path::Path::new(".")).join(&yaml.image);
+        let image = match std::fs::read(&image_path) {
+            Ok(b) => b,
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+                return Err(MapError::MissingImage {
+                    path: image_path.display().to_string(),
+                    yaml: path.display().to_string(),
+                })
+            }
+            Err(e) => return Err(io(&image_path, e)),
+        };
+        Self::from_yaml_and_image(text, &image, limits)
+    }
+
+    /// Reclassifies every cell with another rule.
+    pub fn set_classifier(&mut self, classifier: Classifier) -> Result<(), MapError> {
+        classifier.validate()?;
+        self.classifier = classifier;
+        self.classified = classifier.classify_raster(&self.raster);
+        Ok(())
+    }
+
+    /// Map width in cells.
+    pub fn width(&self) -> usize {
+        self.classified.width()
+    }
+
+    /// Map height in cells.
+    pub fn height(&self) -> usize {
+        self.classified.height()
+    }
+
+    /// The classified cells `C_M` of eq. 3.7.
+    pub fn classified(&self) -> &Grid<Cell> {
+        &self.classified
+    }
+
+    /// The decoded image.
+    pub fn raster(&self) -> &Raster {
+        &self.raster
+    }
+
+    /// Resolution, origin and thresholds (defaults for plain images).
+    pub fn yaml(&self) -> &MapYaml {
+        &self.yaml
+    }
+
+    /// The rule in force.
+    pub fn classifier(&self) -> &Classifier {
+        &self.classifier
+    }
+
+    /// How many cells have class `c`.
+    pub fn count(&self, c: Cell) -> usize {
+        self.classified.cells().iter().filter(|&&x| x == c).count()
+    }
+
+    /// The classified map as an 8-bit binary PGM in the ROS convention (occupied 0, unknown 205,
+    /// free 254), which map_server reads back to the same classes with the YAML of
+    /// [`OccupancyMap::to_yaml`].
+    pub fn to_pgm(&self) -> Vec<u8> {
+        let samples: Vec<u8> = self.classified.cells().iter().map(|&c| gray_of(c)).collect();
+        pgm::encode_u8(self.width(), self.height(), &samples)
+    }
+
+    /// The `map.yaml` for [`OccupancyMap::to_pgm`] saved as `image_name`.
+    pub fn to_yaml(&self, image_name: &str) -> String {
+        MapYaml {
+            image: image_name.to_string(),
+            negate: false,
+            occupied_thresh: 0.65,
+            free_thresh: 0.196,
+            mode: Mode::Trinary,
+            ..self.yaml.clone()
+        }
+        .to_text()
+    }
+}
+
+/// The ROS gray level of a class: occupied 0, unknown 205, free 254.
+pub fn gray_of(c: Cell) -> u8 {
+    match c {
+        Cell::Occupied => 0,
+        Cell::Unknown => 205,
+        Cell::Free => 254,
+    }
+}

@@ -1,0 +1,231 @@
+//! The ROS map_server description file, `map.yaml`.
+//!
+//! gmapping, slam_toolbox and Cartographer users save a map as an image plus a YAML file such as
+//!
+//! ```yaml
+//! image: office.pgm
+//! resolution: 0.050000
+//! origin: [-12.2, -8.4, 0.0]
+//! negate: 0
+//! occupied_thresh: 0.65
+//! free_thresh: 0.196
+//! mode: trinary   # optional: trinary (default), scale or raw
+//! ```
+//!
+//! The format used in practice is flat `key: value` lines, so this module reads exactly that
+//! (comments, quoted strings and `[a, b, c]` lists included) and says which line is wrong,
+//! instead of pulling in a general YAML library for ten keys.
+
+use super::error::MapError;
+
+/// How map_server turns pixel values into occupancy (`mode:` in the YAML).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Mode {
+    /// Occupied above `occupied_thresh`, free below `free_thresh`, unknown between.
+    Trinary,
+    /// As trinary, but values between the thresholds are graded; for three classes they are
+    /// unknown as in trinary.
+    Scale,
+    /// The pixel value is the occupancy in percent (0 free, 100 occupied); above 100 is unknown.
+    Raw,
+}
+
+/// The contents of a `map.yaml`.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct MapYaml {
+    /// The image file, relative to the YAML file's folder unless absolute.
+    pub image: String,
+    /// Metres per cell.
+    pub resolution: f64,
+    /// Pose of the lower-left pixel in the map frame: x, y (metres), yaw (radians).
+    pub origin: [f64; 3],
+    /// Whether white means occupied instead of free.
+    pub negate: bool,
+    /// Occupancy probability above which a cell is occupied.
+    pub occupied_thresh: f64,
+    /// Occupancy probability below which a cell is free.
+    pub free_thresh: f64,
+    /// How pixel values become occupancy.
+    pub mode: Mode,
+}
+
+impl MapYaml {
+    /// The description map_server gives a map with no YAML: 5 cm cells at the origin, default
+    /// thresholds.
+    pub fn for_image(image: &str) -> Self {
+        MapYaml {
+            image: image.to_string(),
+            resolution: 0.05,
+            origin: [0.0, 0.0, 0.0],
+            negate: false,
+            occupied_thresh: 0.65,
+            free_thresh: 0.196,
+            mode: Mode::Trinary,
+        }
+    }
+
+    /// Parses the text of a `map.yaml`.
+    ///
+    /// ```
+    /// use ksmcmc::grid::MapYaml;
+    /// let y = MapYaml::parse("image: m.pgm\nresolution: 0.05\norigin: [-1, -2.5, 0]\n").unwrap();
+    /// assert_eq!(y.image, "m.pgm");
+    /// assert_eq!(y.origin, [-1.0, -2.5, 0.0]);
+    /// assert!(MapYaml::parse("image: m.pgm\n").unwrap_err().to_string().contains("resolution"));
+    /// ```
+    pub fn parse(text: &str) -> Result<Self, MapError> {
+        let mut image = None;
+        let mut resolution = None;
+        let mut origin = None;
+        let mut negate = false;
+        let mut occupied_thresh = 0.65;
+        let mut free_thresh = 0.196;
+        let mut mode = Mode::Trinary;
+        for (i, raw) in text.lines().enumerate() {
+            let line_no = i + 1;
+            let err = |message: String| MapError::Yaml { line: line_no, message };
+            let line = strip_comment(raw).trim();
+            if line.is_empty() || line == "---" {
+                continue;
+            }
+            let Some((key, value)) = line.split_once(':') else {
+                return Err(err(format!("expected `key: value`, found {line:?}")));
+            };
+            let key = key.trim();
+            let value = unquote(value.trim());
+            match key {
+                "image" => {
+                    if value.is_empty() {
+                        return Err(err("`image:` is empty; name the map's PGM or PNG file".into()));
+                    }
+                    image = Some(value.to_string())
+                }
+                "resolution" => {
+                    let r = number(value).map_err(|m| err(format!("resolution: {m}")))?;
+                    if !(r > 0.0 && r.is_finite()) {
+                        return Err(err(format!("resolution must be a positive number of metres per cell, not {r}")));
+                    }
+                    resolution = Some(r)
+                }
+                "origin" => origin = Some(triple(value).map_err(|m| err(format!("origin: {m}")))?),
+                "negate" => {
+                    negate = match value {
+                        "0" | "false" | "False" => false,
+                        "1" | "true" | "True" => true,
+                        _ => return Err(err(format!("negate must be 0 or 1, not {value:?}"))),
+                    }
+                }
+                "occupied_thresh" => {
+                    occupied_thresh = probability(value).map_err(|m| err(format!("occupied_thresh: {m}")))?
+                }
+                "free_thresh" => {
+                    free_thresh = probability(value).map_err(|m| err(format!("free_thresh: {m}")))?
+                }
+                "mode" => {
+                    mode = match value {
+                        "trinary" => Mode::Trinary,
+                        "scale" => Mode::Scale,
+                        "raw" => Mode::Raw,
+                        _ => return Err(err(format!("mode must be trinary, scale or raw, not {value:?}"))),
+                    }
+                }
+                // Other keys (e.g. Nav2's extra fields) are harmless; ignore them as map_server does.
+                _ => {}
+            }
+        }
+        let missing = |k: &str| MapError::Yaml { line: 0, message: format!("the required key `{k}:` is missing") };
+        let yaml = MapYaml {
+            image: image.ok_or_else(|| missing("image"))?,
+            resolution: resolution.ok_or_else(|| missing("resolution"))?,
+            origin: origin.ok_or_else(|| missing("origin"))?,
+            negate,
+            occupied_thresh,
+            free_thresh,
+            mode,
+        };
+        if yaml.free_thresh >= yaml.occupied_thresh {
+            return Err(MapError::Yaml {
+                line: 0,
+                message: format!(
+                    "free_thresh ({}) must be below occupied_thresh ({})",
+                    yaml.free_thresh, yaml.occupied_thresh
+                ),
+            });
+        }
+        Ok(yaml)
+    }
+
+    /// Writes the YAML text map_server reads.
+    pub fn to_text(&self) -> String {
+        let mode = match self.mode {
+            Mode::Trinary => "trinary",
+            Mode::Scale => "scale",
+            Mode::Raw => "raw",
+        };
+        format!(
+            "image: {}\nmode: {mode}\nresolution: {}\norigin: [{}, {}, {}]\nnegate: {}\noccupied_thresh: {}\nfree_thresh: {}\n",
+            self.image,
+            self.resolution,
+            self.origin[0],
+            self.origin[1],
+            self.origin[2],
+            u8::from(self.negate),
+            self.occupied_thresh,
+            self.free_thresh
+        )
+    }
+}
+
+fn strip_comment(line: &str) -> &str {
+    // A `#` inside quotes is not a comment.
+    let mut quote = None;
+    for (i, c) in line.char_indices() {
+        match (quote, c) {
+            (None, '"' | '\'') => quote = Some(c),
+            (Some(q), c) if c == q => quote = None,
+            (None, '#') => return &line[..i],
+            _ => {}
+        }
+    }
+    line
+}
+
+fn unquote(v: &str) -> &str {
+    let b = v.as_bytes();
+    if b.len() >= 2 && (b[0] == b'"' || b[0] == b'\'') && b[b.len() - 1] == b[0] {
+        &v[1..v.len() - 1]
+    } else {
+        v
+    }
+}
+
+fn number(v: &str) -> Result<f64, String> {
+    let x: f64 = v.parse().map_err(|_| format!("{v:?} is not a number"))?;
+    if x.is_finite() {
+        Ok(x)
+    } else {
+        Err(format!("{v:?} is not a finite number"))
+    }
+}
+
+fn probability(v: &str) -> Result<f64, String> {
+    let p = number(v)?;
+    if (0.0..=1.0).contains(&p) {
+        Ok(p)
+    } else {
+        Err(format!("{p} is not a probability between 0 and 1"))
+    }
+}
+
+fn triple(v: &str) -> Result<[f64; 3], String> {
+    let inner = v
+        .strip_prefix('[')
+        .and_then(|s| s.strip_suffix(']'))
+        .ok_or_else(|| format!("expected a list like [x, y, yaw], found {v:?}"))?;
+    let parts: Vec<&str> = inner.split(',').map(str::trim).collect();
+    if parts.len() != 3 {
+        return Err(format!("expected three numbers [x, y, yaw], found {}", parts.len()));
+    }
+    Ok([number(parts[0])?, number(parts[1])?, number(parts[2])?])
+}

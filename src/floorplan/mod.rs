@@ -3,6 +3,7 @@
 //! A [`World`] is what the chain samples and what every exporter writes; `world.json` is its
 //! serialised form (schema in [`world`]).
 
+pub mod synth;
 pub mod world;
 
 pub use world::{Door, Frame, Rect, Unit, UnitType, World, WorldError, WORLD_FORMAT};

@@ -215,7 +215,7 @@ impl Frame {
 
     /// Maps a world-frame point (cell units, continuous) to map coordinates.
     pub fn to_map(&self, x: f64, y: f64) -> (f64, f64) {
-        let (s, c) = self.angle.sin_cos();
+        let (s, c) = (libm::sin(self.angle), libm::cos(self.angle));
         let (wx, wy) = (x - self.world_size[0] as f64 / 2.0, y - self.world_size[1] as f64 / 2.0);
         (
             self.map_size[0] as f64 / 2.0 + c * wx - s * wy,
@@ -225,7 +225,7 @@ impl Frame {
 
     /// Maps a map point to the world frame (the inverse of [`Frame::to_map`]).
     pub fn to_world(&self, x: f64, y: f64) -> (f64, f64) {
-        let (s, c) = self.angle.sin_cos();
+        let (s, c) = (libm::sin(self.angle), libm::cos(self.angle));
         let (mx, my) = (x - self.map_size[0] as f64 / 2.0, y - self.map_size[1] as f64 / 2.0);
         (
             self.world_size[0] as f64 / 2.0 + c * mx + s * my,

@@ -35,3 +35,30 @@ pub fn to_rgba(pixmap: &Pixmap) -> Vec<u8> {
     }
     out
 }
+
+/// How to draw a map and world.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RenderOptions {
+    /// Output pixels per map cell (1 = one pixel per cell).
+    pub scale: u32,
+    /// Draw each unit's type and id at its centre.
+    pub labels: bool,
+}
+
+impl Default for RenderOptions {
+    fn default() -> Self {
+        RenderOptions { scale: 1, labels: true }
+    }
+}
+
+/// Draws the classified map and, if given, a world over it (placeholder: world drawing is being
+/// written).
+pub fn render(classified: &Grid<Cell>, world: Option<&crate::floorplan::World>, options: &RenderOptions) -> Pixmap {
+    let _ = (world, options);
+    draw_map(classified)
+}
+
+/// Encodes a pixmap as PNG bytes (placeholder).
+pub fn encode_png(pixmap: &Pixmap) -> Vec<u8> {
+    pixmap.encode_png().unwrap_or_default()
+}

@@ -33,7 +33,9 @@ use serde::{Deserialize, Serialize};
 pub const WORLD_FORMAT: &str = "ksmcmc-world/1";
 
 /// The semantic type of a unit (the query predicates of Tab. 3.3).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize, Default)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize, Default,
+)]
 #[serde(rename_all = "lowercase")]
 pub enum UnitType {
     /// An office, lab or other enclosed room.
@@ -51,8 +53,13 @@ pub enum UnitType {
 
 impl UnitType {
     /// All types, in a fixed order.
-    pub const ALL: [UnitType; 5] =
-        [UnitType::Room, UnitType::Corridor, UnitType::Hall, UnitType::Other, UnitType::Unknown];
+    pub const ALL: [UnitType; 5] = [
+        UnitType::Room,
+        UnitType::Corridor,
+        UnitType::Hall,
+        UnitType::Other,
+        UnitType::Unknown,
+    ];
 
     /// The lowercase name used in JSON and labels.
     pub fn name(self) -> &'static str {
@@ -107,12 +114,16 @@ impl Rect {
 
     /// Whether cell `(x, y)` is on the outer ring (a wall cell, eq. 3.8's `S_w`).
     pub fn on_border(&self, x: i32, y: i32) -> bool {
-        self.contains(x, y) && (x == self.x || y == self.y || x == self.right() - 1 || y == self.bottom() - 1)
+        self.contains(x, y)
+            && (x == self.x || y == self.y || x == self.right() - 1 || y == self.bottom() - 1)
     }
 
     /// The centre in cell coordinates (cell centres at `+0.5`).
     pub fn center(&self) -> (f64, f64) {
-        (self.x as f64 + self.w as f64 / 2.0, self.y as f64 + self.h as f64 / 2.0)
+        (
+            self.x as f64 + self.w as f64 / 2.0,
+            self.y as f64 + self.h as f64 / 2.0,
+        )
     }
 
     /// The overlap of two rectangles, if any.
@@ -205,7 +216,11 @@ pub struct Frame {
 impl Frame {
     /// The identity frame for a map of the given size.
     pub fn identity(width: u32, height: u32) -> Self {
-        Frame { angle: 0.0, world_size: [width, height], map_size: [width, height] }
+        Frame {
+            angle: 0.0,
+            world_size: [width, height],
+            map_size: [width, height],
+        }
     }
 
     /// Whether world cells are map cells.
@@ -216,7 +231,10 @@ impl Frame {
     /// Maps a world-frame point (cell units, continuous) to map coordinates.
     pub fn to_map(&self, x: f64, y: f64) -> (f64, f64) {
         let (s, c) = (libm::sin(self.angle), libm::cos(self.angle));
-        let (wx, wy) = (x - self.world_size[0] as f64 / 2.0, y - self.world_size[1] as f64 / 2.0);
+        let (wx, wy) = (
+            x - self.world_size[0] as f64 / 2.0,
+            y - self.world_size[1] as f64 / 2.0,
+        );
         (
             self.map_size[0] as f64 / 2.0 + c * wx - s * wy,
             self.map_size[1] as f64 / 2.0 + s * wx + c * wy,
@@ -226,7 +244,10 @@ impl Frame {
     /// Maps a map point to the world frame (the inverse of [`Frame::to_map`]).
     pub fn to_world(&self, x: f64, y: f64) -> (f64, f64) {
         let (s, c) = (libm::sin(self.angle), libm::cos(self.angle));
-        let (mx, my) = (x - self.map_size[0] as f64 / 2.0, y - self.map_size[1] as f64 / 2.0);
+        let (mx, my) = (
+            x - self.map_size[0] as f64 / 2.0,
+            y - self.map_size[1] as f64 / 2.0,
+        );
         (
             self.world_size[0] as f64 / 2.0 + c * mx + s * my,
             self.world_size[1] as f64 / 2.0 - s * mx + c * my,
@@ -297,7 +318,8 @@ impl World {
     /// assert!(World::from_json("{").is_err());
     /// ```
     pub fn from_json(text: &str) -> Result<World, WorldError> {
-        let w: World = serde_json::from_str(text).map_err(|e| WorldError(format!("world.json: {e}")))?;
+        let w: World =
+            serde_json::from_str(text).map_err(|e| WorldError(format!("world.json: {e}")))?;
         w.validate()?;
         Ok(w)
     }
@@ -306,7 +328,10 @@ impl World {
     pub fn validate(&self) -> Result<(), WorldError> {
         let bad = |m: String| Err(WorldError(m));
         if self.format != WORLD_FORMAT {
-            return bad(format!("world.json: format is {:?}, expected {WORLD_FORMAT:?}", self.format));
+            return bad(format!(
+                "world.json: format is {:?}, expected {WORLD_FORMAT:?}",
+                self.format
+            ));
         }
         let f = &self.frame;
         if !f.angle.is_finite() || f.world_size.contains(&0) || f.map_size.contains(&0) {
@@ -319,7 +344,10 @@ impl World {
                 return bad(format!("world.json: unit id {} appears twice", u.id));
             }
             if u.w < 1 || u.h < 1 {
-                return bad(format!("world.json: unit {} has size {}x{}", u.id, u.w, u.h));
+                return bad(format!(
+                    "world.json: unit {} has size {}x{}",
+                    u.id, u.w, u.h
+                ));
             }
             let (x0, y0) = (u.x as i64, u.y as i64);
             if x0 < 0 || y0 < 0 || x0 + u.w as i64 > ww || y0 + u.h as i64 > wh {
@@ -332,21 +360,33 @@ impl World {
         for d in &self.doors {
             for id in d.units {
                 if !ids.contains(&id) {
-                    return bad(format!("world.json: door {} names unit {id}, which does not exist", d.id));
+                    return bad(format!(
+                        "world.json: door {} names unit {id}, which does not exist",
+                        d.id
+                    ));
                 }
             }
             if d.x0 != d.x1 && d.y0 != d.y1 {
-                return bad(format!("world.json: door {} is neither horizontal nor vertical", d.id));
+                return bad(format!(
+                    "world.json: door {} is neither horizontal nor vertical",
+                    d.id
+                ));
             }
             for (x, y) in [(d.x0, d.y0), (d.x1, d.y1)] {
                 if x < 0 || y < 0 || x as i64 >= ww || y as i64 >= wh {
-                    return bad(format!("world.json: door {} has a cell ({x},{y}) outside the world", d.id));
+                    return bad(format!(
+                        "world.json: door {} has a cell ({x},{y}) outside the world",
+                        d.id
+                    ));
                 }
             }
         }
         for c in &self.object_cells {
             if c[0] < 0 || c[1] < 0 || c[0] as i64 >= ww || c[1] as i64 >= wh {
-                return bad(format!("world.json: object cell ({},{}) lies outside the world", c[0], c[1]));
+                return bad(format!(
+                    "world.json: object cell ({},{}) lies outside the world",
+                    c[0], c[1]
+                ));
             }
         }
         Ok(())

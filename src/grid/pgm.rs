@@ -60,7 +60,11 @@ pub fn decode(bytes: &[u8], limits: &Limits) -> Result<Raster, MapError> {
                 u16::from_be_bytes([data[2 * i], data[2 * i + 1]]) as u32
             };
             if v as u64 > maxval {
-                return Err(MapError::SampleOutOfRange { index: i, value: v, maxval: maxval as u32 });
+                return Err(MapError::SampleOutOfRange {
+                    index: i,
+                    value: v,
+                    maxval: maxval as u32,
+                });
             }
             cells.push(scale(v));
         }
@@ -78,7 +82,13 @@ pub fn decode(bytes: &[u8], limits: &Limits) -> Result<Raster, MapError> {
                         maxval: maxval as u32,
                     })
                 }
-                None => return Err(MapError::Truncated { format: "PGM", expected: n, found: i }),
+                None => {
+                    return Err(MapError::Truncated {
+                        format: "PGM",
+                        expected: n,
+                        found: i,
+                    })
+                }
             }
         }
     }
@@ -151,7 +161,9 @@ impl Parser<'_> {
         let start = self.pos;
         let mut v: u64 = 0;
         while !self.at_end() && self.peek().is_ascii_digit() {
-            v = v.saturating_mul(10).saturating_add((self.peek() - b'0') as u64);
+            v = v
+                .saturating_mul(10)
+                .saturating_add((self.peek() - b'0') as u64);
             self.pos += 1;
         }
         if self.pos == start {
@@ -159,7 +171,11 @@ impl Parser<'_> {
             return Err(MapError::BadPgmHeader {
                 message: format!(
                     "expected a decimal number at byte {start}, found {}",
-                    if c.is_ascii_graphic() { format!("'{}'", c as char) } else { format!("byte 0x{c:02x}") }
+                    if c.is_ascii_graphic() {
+                        format!("'{}'", c as char)
+                    } else {
+                        format!("byte 0x{c:02x}")
+                    }
                 ),
             });
         }

@@ -12,7 +12,9 @@ use super::Limits;
 pub fn decode(bytes: &[u8], limits: &Limits) -> Result<Raster, MapError> {
     let mut decoder = png::Decoder::new_with_limits(
         bytes,
-        png::Limits { bytes: limits.max_cells.saturating_mul(8) },
+        png::Limits {
+            bytes: limits.max_cells.saturating_mul(8),
+        },
     );
     // Expand palettes and low bit depths to 8 bits and tRNS chunks to an alpha channel.
     decoder.set_transformations(png::Transformations::EXPAND);
@@ -42,7 +44,9 @@ pub fn decode(bytes: &[u8], limits: &Limits) -> Result<Raster, MapError> {
         png::ColorType::Rgb => (true, false),
         png::ColorType::Rgba => (true, true),
         png::ColorType::Indexed => {
-            return Err(MapError::Png { message: "palette was not expanded".into() })
+            return Err(MapError::Png {
+                message: "palette was not expanded".into(),
+            })
         }
     };
     let mut gray = Vec::with_capacity(w * h);
@@ -52,7 +56,9 @@ pub fn decode(bytes: &[u8], limits: &Limits) -> Result<Raster, MapError> {
         for x in 0..w {
             let base = x * channels;
             let g = if has_color {
-                let sum = sample(row, base) as u32 + sample(row, base + 1) as u32 + sample(row, base + 2) as u32;
+                let sum = sample(row, base) as u32
+                    + sample(row, base + 1) as u32
+                    + sample(row, base + 2) as u32;
                 ((sum + 1) / 3) as u16
             } else {
                 sample(row, base)
@@ -79,6 +85,8 @@ fn png_error(e: png::DecodingError) -> MapError {
         png::DecodingError::LimitsExceeded => MapError::Png {
             message: "the decoded image would exceed the memory limit for maps".into(),
         },
-        other => MapError::Png { message: other.to_string() },
+        other => MapError::Png {
+            message: other.to_string(),
+        },
     }
 }

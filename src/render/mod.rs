@@ -47,13 +47,20 @@ pub struct RenderOptions {
 
 impl Default for RenderOptions {
     fn default() -> Self {
-        RenderOptions { scale: 1, labels: true }
+        RenderOptions {
+            scale: 1,
+            labels: true,
+        }
     }
 }
 
 /// Draws the classified map and, if given, a world over it (placeholder: world drawing is being
 /// written).
-pub fn render(classified: &Grid<Cell>, world: Option<&crate::floorplan::World>, options: &RenderOptions) -> Pixmap {
+pub fn render(
+    classified: &Grid<Cell>,
+    world: Option<&crate::floorplan::World>,
+    options: &RenderOptions,
+) -> Pixmap {
     let _ = (world, options);
     draw_map(classified)
 }

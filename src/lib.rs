@@ -34,7 +34,9 @@
 
 pub mod floorplan;
 pub mod grid;
+pub mod mcmc;
 pub mod render;
+pub mod vision;
 
 #[cfg(target_arch = "wasm32")]
 pub mod wasm;

@@ -3,7 +3,14 @@
 //! A [`World`] is what the chain samples and what every exporter writes; `world.json` is its
 //! serialised form (schema in [`world`]).
 
+pub mod chain;
+pub mod explain;
+pub mod kernels;
+pub mod metrics;
+pub mod posterior;
+pub mod state;
 pub mod synth;
 pub mod world;
 
+pub use chain::{Chain, ChainConfig, ChainError, DetectorConfig, OutputConfig};
 pub use world::{Door, Frame, Rect, Unit, UnitType, World, WorldError, WORLD_FORMAT};

@@ -23,8 +23,8 @@
 //! * `frame.angle`: radians; a world point `p` lies at map point
 //!   `c_map + R(angle) (p - c_world)`, where the `c` are the centres of the two grids.
 //! * `units[].type`: `room`, `corridor`, `hall`, `other` or `unknown` (not yet typed).
-//! * `doors[]`: a run of cells from `(x0, y0)` to `(x1, y1)` inclusive, horizontal or vertical,
-//!   joining the two units named by id.
+//! * `doors[]`: the rectangle of cells from `(x0, y0)` to `(x1, y1)` inclusive, through the wall
+//!   between the two units named by id (a straight run of cells where they share a thin wall).
 //! * `object_cells`: unknown map cells inside units (furniture), optional.
 
 use serde::{Deserialize, Serialize};
@@ -162,7 +162,8 @@ impl Unit {
     }
 }
 
-/// A door: a straight run of cells in a wall joining two units.
+/// A door: a rectangle of cells through the wall(s) between two units, from one unit's wall to
+/// the other's, predicted free. For units sharing a one-cell wall it is a straight run of cells.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Door {
@@ -181,9 +182,16 @@ pub struct Door {
 }
 
 impl Door {
-    /// Number of cells in the door.
+    /// The door's width along the wall, in cells (the longer side of its rectangle).
     pub fn len(&self) -> i32 {
         (self.x1 - self.x0).abs().max((self.y1 - self.y0).abs()) + 1
+    }
+
+    /// The door's rectangle.
+    pub fn rect(&self) -> Rect {
+        let (x0, x1) = (self.x0.min(self.x1), self.x0.max(self.x1));
+        let (y0, y1) = (self.y0.min(self.y1), self.y0.max(self.y1));
+        Rect::new(x0, y0, x1 - x0 + 1, y1 - y0 + 1)
     }
 
     /// Doors always hold at least one cell.
@@ -191,12 +199,10 @@ impl Door {
         false
     }
 
-    /// The door's cells, first to last.
+    /// The door's cells, row by row.
     pub fn cells(&self) -> impl Iterator<Item = (i32, i32)> + '_ {
-        let n = self.len();
-        let dx = (self.x1 - self.x0).signum();
-        let dy = (self.y1 - self.y0).signum();
-        (0..n).map(move |i| (self.x0 + i * dx, self.y0 + i * dy))
+        let r = self.rect();
+        (r.y..r.bottom()).flat_map(move |y| (r.x..r.right()).map(move |x| (x, y)))
     }
 }
 

@@ -1,0 +1,488 @@
+//! The data-driven Markov chain (Algorithm 1): propose with a kernel chosen by the schedule
+//! (Tab. 3.2), accept by Metropolis-Hastings (eq. 3.9), remember the best world.
+//!
+//! The chain is built for a browser frame loop: [`Chain::step`] runs a fixed number of
+//! iterations, [`Chain::run_for`] runs until a time budget is spent (the caller supplies the
+//! clock, so the same code runs natively and in WebAssembly), and the current world, the best
+//! (MAP) world, the trace and the last accepted worlds can be read at any time.
+//!
+//! ```
+//! use ksmcmc::floorplan::{Chain, ChainConfig};
+//! use ksmcmc::grid::{Cell, Grid, OccupancyMap};
+//!
+//! // A 30 x 20 room: walls around free space.
+//! let mut g = Grid::new(30, 20, Cell::Free);
+//! for x in 0..30 { *g.at_mut(x, 0) = Cell::Occupied; *g.at_mut(x, 19) = Cell::Occupied; }
+//! for y in 0..20 { *g.at_mut(0, y) = Cell::Occupied; *g.at_mut(29, y) = Cell::Occupied; }
+//! let map = OccupancyMap::from_classified(g);
+//! let mut chain = Chain::new(&map, ChainConfig::default(), 1).unwrap();
+//! chain.step(300);
+//! let best = chain.best_world();
+//! assert_eq!(best.units.len(), 1);
+//! assert!(chain.best_prediction_rate() > 0.99);
+//! ```
+
+use super::explain::Explanation;
+use super::kernels::{Candidates, KernelConfig, Proposer};
+use super::posterior::{Posterior, PosteriorConfig};
+use super::state::{DoorLimits, DoorSpec, State};
+use super::world::{Door, Frame, Rect, Unit, World, WORLD_FORMAT};
+use crate::grid::{Cell, Grid, OccupancyMap};
+use crate::mcmc::{accept, Cumulative, Kernel, Ring, Rng, Schedule, Trace, TracePoint};
+use crate::vision;
+use serde::{Deserialize, Serialize};
+
+/// Bottom-up detectors feeding the chain.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct DetectorConfig {
+    /// The wall-based unit detector.
+    pub walls: vision::walls::WallConfig,
+    /// Iteration after which the free-space unit detector runs (4000 in the dissertation).
+    pub free_space_start: u64,
+    /// How often (iterations) it runs after that.
+    pub free_space_every: u64,
+    /// Smallest unexplained free component it proposes, in cells.
+    pub free_space_min_cells: usize,
+    /// Map rotation in degrees; `None` estimates the dominant wall orientation.
+    pub rotation_deg: Option<f64>,
+}
+
+impl Default for DetectorConfig {
+    fn default() -> Self {
+        DetectorConfig {
+            walls: Default::default(),
+            free_space_start: 4000,
+            free_space_every: 500,
+            free_space_min_cells: 60,
+            rotation_deg: None,
+        }
+    }
+}
+
+/// Everything that configures a chain. Every field has a documented default; JSON with any
+/// subset of fields deserialises onto the defaults.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[serde(default)]
+pub struct ChainConfig {
+    /// The posterior (sensor table, overlap penalty, temperature).
+    pub posterior: PosteriorConfig,
+    /// Kernel selection probabilities by iteration (Tab. 3.2).
+    pub schedule: Schedule,
+    /// Proposal distributions.
+    pub kernels: KernelConfig,
+    /// Door geometry.
+    pub doors: DoorLimits,
+    /// Detectors.
+    pub detectors: DetectorConfig,
+    /// Output bookkeeping.
+    pub output: OutputConfig,
+}
+
+/// What the chain records for display.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct OutputConfig {
+    /// How many recent accepted worlds to keep (the posterior cloud).
+    pub samples: usize,
+    /// Record a trace point every this many iterations.
+    pub trace_every: u64,
+    /// Window (proposals) of the acceptance rate.
+    pub acceptance_window: usize,
+}
+
+impl Default for OutputConfig {
+    fn default() -> Self {
+        OutputConfig { samples: 1000, trace_every: 100, acceptance_window: 500 }
+    }
+}
+
+impl ChainConfig {
+    /// Checks every number, naming the field at fault.
+    pub fn validate(&self) -> Result<(), ChainError> {
+        let bad = |m: String| Err(ChainError::Config(m));
+        self.posterior.validate().or_else(|m| bad(format!("posterior: {m}")))?;
+        self.schedule.validate().or_else(|m| bad(format!("schedule: {m}")))?;
+        self.kernels.validate().or_else(|m| bad(format!("kernels: {m}")))?;
+        let d = &self.doors;
+        if d.min_len < 1 || d.max_len < d.min_len || d.max_gap < 0 || d.max_gap > 100 {
+            return bad(format!(
+                "doors: need 1 <= min_len <= max_len and 0 <= max_gap <= 100, got {} / {} / {}",
+                d.min_len, d.max_len, d.max_gap
+            ));
+        }
+        let w = &self.detectors.walls;
+        if w.min_segment < 2 || w.max_gap < 0 || !(w.min_wall_weight.is_finite() && (0.0..=1.0).contains(&w.min_wall_weight)) {
+            return bad("detectors.walls: min_segment >= 2, max_gap >= 0, min_wall_weight in [0, 1]".into());
+        }
+        if self.detectors.free_space_every == 0 {
+            return bad("detectors.free_space_every must be at least 1".into());
+        }
+        if let Some(r) = self.detectors.rotation_deg {
+            if !r.is_finite() {
+                return bad(format!("detectors.rotation_deg {r} is not a number"));
+            }
+        }
+        if self.output.samples > 100_000 || self.output.trace_every == 0 || self.output.acceptance_window == 0 {
+            return bad("output: samples <= 100000, trace_every >= 1, acceptance_window >= 1".into());
+        }
+        Ok(())
+    }
+}
+
+/// Why a chain could not start.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ChainError {
+    /// A configuration value is unusable.
+    Config(String),
+    /// The map cannot be explained (too small, no free space).
+    Map(String),
+}
+
+impl std::fmt::Display for ChainError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            ChainError::Config(m) => write!(f, "invalid chain configuration: {m}"),
+            ChainError::Map(m) => write!(f, "cannot explain this map: {m}"),
+        }
+    }
+}
+
+impl std::error::Error for ChainError {}
+
+/// A snapshot of units and doors.
+#[derive(Debug, Clone, Default)]
+struct Snapshot {
+    units: Vec<Unit>,
+    doors: Vec<DoorSpec>,
+}
+
+/// A running data-driven MCMC chain over semantic worlds of one map.
+#[derive(Debug, Clone)]
+pub struct Chain {
+    config: ChainConfig,
+    frame: Frame,
+    world_map: Grid<Cell>,
+    map: Grid<Cell>,
+    state: State,
+    proposer: Proposer,
+    posterior: Posterior,
+    rng: Rng,
+    seed: u64,
+    iteration: u64,
+    log_target: f64,
+    best: Snapshot,
+    best_log_posterior: f64,
+    best_iteration: u64,
+    trace: Trace,
+    samples: Ring<Vec<Rect>>,
+    phase_tables: Vec<Cumulative>,
+    phase_index: usize,
+}
+
+impl Chain {
+    /// A chain for `map`: estimates the map's orientation (unless configured), runs the
+    /// wall-based detector, and starts from the empty world.
+    pub fn new(map: &OccupancyMap, config: ChainConfig, seed: u64) -> Result<Chain, ChainError> {
+        config.validate()?;
+        let classified = map.classified();
+        let min = config.kernels.min_side as usize;
+        if classified.width() < min || classified.height() < min {
+            return Err(ChainError::Map(format!(
+                "the map is {}x{} cells, smaller than the smallest unit ({min}x{min}); \
+                 units need two walls and free space between them",
+                classified.width(),
+                classified.height()
+            )));
+        }
+        if map.count(Cell::Free) == 0 {
+            return Err(ChainError::Map(
+                "the map has no free cells, so there is no space to explain; check the \
+                 classification thresholds (is the image inverted? try negate)"
+                    .into(),
+            ));
+        }
+        let angle = match config.detectors.rotation_deg {
+            Some(deg) => deg.to_radians(),
+            None => {
+                let a = vision::orientation::dominant_angle(classified);
+                // Below half a degree the resampling would only blur the map.
+                if a.abs() < 0.5f64.to_radians() {
+                    0.0
+                } else {
+                    a
+                }
+            }
+        };
+        let (world_map, frame) = vision::orientation::to_world_frame(classified, angle);
+        let candidates = Candidates::new(vision::walls::candidates(&world_map, config.kernels.min_side, &config.detectors.walls));
+        Ok(Self::with_parts(config, frame, world_map, classified.clone(), candidates, seed))
+    }
+
+    /// A chain on an upright world-frame map with an explicit ADD candidate pool (no detectors,
+    /// no rotation): for tests, teaching pages and callers with their own detectors.
+    pub fn with_candidates(map: &Grid<Cell>, config: ChainConfig, candidates: Vec<(Rect, f64)>, seed: u64) -> Result<Chain, ChainError> {
+        config.validate()?;
+        let frame = Frame::identity(map.width() as u32, map.height() as u32);
+        Ok(Self::with_parts(config, frame, map.clone(), map.clone(), Candidates::new(candidates), seed))
+    }
+
+    fn with_parts(config: ChainConfig, frame: Frame, world_map: Grid<Cell>, map: Grid<Cell>, candidates: Candidates, seed: u64) -> Chain {
+        let state = State::new(&world_map, config.doors);
+        let proposer = Proposer::new(config.kernels, candidates, state.width(), state.height());
+        let posterior = Posterior::new(&config.posterior);
+        let log_target = posterior.log_target(&state.explanation);
+        let phase_tables = config.schedule.phases.iter().map(|p| Cumulative::new(p.weights.0)).collect();
+        let best_log_posterior = posterior.log_posterior(&state.explanation);
+        Chain {
+            trace: Trace::new(config.output.acceptance_window, config.output.trace_every),
+            samples: Ring::new(config.output.samples),
+            config,
+            frame,
+            world_map,
+            map,
+            state,
+            proposer,
+            posterior,
+            rng: Rng::seed(seed),
+            seed,
+            iteration: 0,
+            log_target,
+            best: Snapshot::default(),
+            best_log_posterior,
+            best_iteration: 0,
+            phase_tables,
+            phase_index: 0,
+        }
+    }
+
+    /// The seed the chain started from.
+    pub fn seed(&self) -> u64 {
+        self.seed
+    }
+
+    /// The configuration.
+    pub fn config(&self) -> &ChainConfig {
+        &self.config
+    }
+
+    /// Iterations run so far.
+    pub fn iteration(&self) -> u64 {
+        self.iteration
+    }
+
+    /// How the world frame sits on the map.
+    pub fn frame(&self) -> &Frame {
+        &self.frame
+    }
+
+    /// The classified map in the world frame.
+    pub fn world_map(&self) -> &Grid<Cell> {
+        &self.world_map
+    }
+
+    /// The ADD candidates the detectors found.
+    pub fn candidates(&self) -> &Candidates {
+        &self.proposer.candidates
+    }
+
+    /// The chain's bookkeeping of the current world.
+    pub fn explanation(&self) -> &Explanation {
+        &self.state.explanation
+    }
+
+    /// `log p(W|M)` of the current world (untempered, up to a constant).
+    pub fn log_posterior(&self) -> f64 {
+        self.posterior.log_posterior(&self.state.explanation)
+    }
+
+    /// The best log posterior seen.
+    pub fn best_log_posterior(&self) -> f64 {
+        self.best_log_posterior
+    }
+
+    /// Iteration at which the best world was found.
+    pub fn best_iteration(&self) -> u64 {
+        self.best_iteration
+    }
+
+    /// `K(W, M)` of the current world in the world frame (eq. 3.39).
+    pub fn prediction_rate(&self) -> f64 {
+        self.state.explanation.prediction_rate()
+    }
+
+    /// `K(W, M)` of the best world on the original map (eq. 3.39).
+    pub fn best_prediction_rate(&self) -> f64 {
+        super::metrics::prediction_rate(&self.map, &self.best_world())
+    }
+
+    /// Statistics of the run.
+    pub fn trace(&self) -> &Trace {
+        &self.trace
+    }
+
+    /// Current units, in slot order.
+    pub fn units(&self) -> &[Unit] {
+        &self.state.units
+    }
+
+    /// The last accepted worlds' unit rectangles (world frame), oldest first.
+    pub fn samples(&self) -> impl Iterator<Item = &Vec<Rect>> {
+        self.samples.iter()
+    }
+
+    /// The current world.
+    pub fn world(&self) -> World {
+        self.export(&self.state.units, &self.state.doors)
+    }
+
+    /// The best (maximum a posteriori) world found so far.
+    pub fn best_world(&self) -> World {
+        self.export(&self.best.units, &self.best.doors)
+    }
+
+    fn export(&self, units: &[Unit], doors: &[DoorSpec]) -> World {
+        let mut w = World::empty(self.frame.map_size[0], self.frame.map_size[1]);
+        w.format = WORLD_FORMAT.to_string();
+        w.frame = self.frame;
+        w.units = units.iter().enumerate().map(|(k, u)| Unit { id: k as u32 + 1, ..*u }).collect();
+        let new_id = |id: u32| units.iter().position(|u| u.id == id).map(|k| k as u32 + 1);
+        let rect_of = |id: u32| units.iter().find(|u| u.id == id).map(|u| u.rect());
+        for (k, d) in doors.iter().enumerate() {
+            let (Some(lo), Some(hi), Some(a), Some(b)) = (rect_of(d.lo), rect_of(d.hi), new_id(d.lo), new_id(d.hi)) else {
+                continue;
+            };
+            if let Some(r) = super::state::door_rect(lo, hi, d, &self.config.doors) {
+                w.doors.push(Door { id: k as u32 + 1, units: [a, b], x0: r.x, y0: r.y, x1: r.right() - 1, y1: r.bottom() - 1 });
+            }
+        }
+        // Object cells: unknown map cells inside a unit's free space (furniture, clutter).
+        for u in units {
+            for y in u.y + 1..u.y + u.h - 1 {
+                for x in u.x + 1..u.x + u.w - 1 {
+                    if *self.world_map.at(x as usize, y as usize) == Cell::Unknown {
+                        w.object_cells.push([x, y]);
+                    }
+                }
+            }
+        }
+        w.object_cells.sort_unstable();
+        w.object_cells.dedup();
+        w
+    }
+
+    fn refresh_free_space(&mut self) {
+        let rects = vision::freespace::unexplained(&self.state.explanation, self.config.detectors.free_space_min_cells);
+        let min = self.config.kernels.min_side;
+        let items: Vec<(Rect, f64)> = rects
+            .into_iter()
+            .filter(|r| r.w >= min && r.h >= min)
+            .map(|r| (r, self.state.unit_weight(r).max(0.2)))
+            .collect();
+        self.proposer.candidates.extend(items);
+    }
+
+    fn current_weights(&mut self) -> usize {
+        let phases = &self.config.schedule.phases;
+        while self.phase_index + 1 < phases.len() && phases[self.phase_index].until.is_some_and(|u| self.iteration > u) {
+            self.phase_index += 1;
+        }
+        self.phase_index
+    }
+
+    /// Runs `n` iterations.
+    pub fn step(&mut self, n: u64) {
+        for _ in 0..n {
+            self.iterate();
+        }
+    }
+
+    /// Runs iterations until `budget_ms` milliseconds have passed by `now` (a clock in
+    /// milliseconds, e.g. `performance.now()` in a browser), checking the clock every 64
+    /// iterations. Returns the number of iterations run.
+    pub fn run_for(&mut self, budget_ms: f64, now: &mut dyn FnMut() -> f64) -> u64 {
+        let start = now();
+        let mut done = 0;
+        loop {
+            self.step(64);
+            done += 64;
+            if !(now() - start < budget_ms) {
+                return done;
+            }
+        }
+    }
+
+    /// Runs iterations for a wall-clock duration (native only).
+    #[cfg(not(target_arch = "wasm32"))]
+    pub fn run_for_duration(&mut self, budget: std::time::Duration) -> u64 {
+        let t0 = std::time::Instant::now();
+        self.run_for(budget.as_secs_f64() * 1000.0, &mut || t0.elapsed().as_secs_f64() * 1000.0)
+    }
+
+    fn iterate(&mut self) {
+        self.iteration += 1;
+        let d = &self.config.detectors;
+        if self.iteration >= d.free_space_start && (self.iteration - d.free_space_start) % d.free_space_every == 0 {
+            self.refresh_free_space();
+        }
+        let phase = self.current_weights();
+        let table = &self.phase_tables[phase];
+        let Some(k) = table.draw(&mut self.rng) else { return };
+        let kernel = Kernel::ALL[k];
+        let phi_fwd = table.probability(kernel.index());
+        let phi_rev = table.probability(kernel.reverse().index());
+        let accepted = self.try_kernel(kernel, phi_fwd, phi_rev);
+        self.trace.record(kernel, accepted);
+        if self.iteration % self.trace.every == 0 {
+            let point = TracePoint {
+                iteration: self.iteration,
+                log_posterior: self.log_posterior(),
+                acceptance: self.trace.acceptance(),
+                size: self.state.units.len() as u32,
+            };
+            self.trace.points.push(point);
+        }
+    }
+
+    fn try_kernel(&mut self, kernel: Kernel, phi_fwd: f64, phi_rev: f64) -> bool {
+        let Some((mv, q_fwd)) = self.proposer.propose(kernel, &self.state, &mut self.rng) else { return false };
+        let k = &self.config.kernels;
+        if q_fwd <= 0.0 || phi_rev <= 0.0 || !self.state.is_valid(&mv, k.min_side, k.max_units) {
+            return false;
+        }
+        let (undo, generation, next_id) = self.state.apply(&mv);
+        let q_rev = self.proposer.reverse_q(&mv, &undo, &self.state);
+        let new_target = self.posterior.log_target(&self.state.explanation);
+        let log_ratio = new_target - self.log_target + libm::log(phi_rev * q_rev) - libm::log(phi_fwd * q_fwd);
+        if q_rev > 0.0 && accept(log_ratio, &mut self.rng) {
+            self.log_target = new_target;
+            let lp = self.posterior.log_posterior(&self.state.explanation);
+            if lp > self.best_log_posterior {
+                self.best_log_posterior = lp;
+                self.best_iteration = self.iteration;
+                self.best.units.clone_from(&self.state.units);
+                self.best.doors.clone_from(&self.state.doors);
+            }
+            if self.config.output.samples > 0 {
+                let mut rects = Vec::with_capacity(self.state.units.len());
+                rects.extend(self.state.units.iter().map(|u| u.rect()));
+                self.samples.push(rects);
+            }
+            true
+        } else {
+            self.state.undo(undo, generation, next_id);
+            false
+        }
+    }
+
+    /// Checks the incremental bookkeeping against a full recomputation (for tests).
+    pub fn check_consistency(&self) -> bool {
+        let (units, doors) = self.state.rects();
+        self.state.explanation.same_as(&Explanation::recompute(&self.world_map, &units, &doors))
+    }
+
+    /// The current world's units and doors as internal records (for tests and the wasm layer).
+    pub fn current_rects(&self) -> (Vec<Rect>, Vec<Rect>) {
+        self.state.rects()
+    }
+}

@@ -1,0 +1,509 @@
+//! The chain's world state: units and doors over an [`Explanation`], changed by [`Move`]s that
+//! can be undone exactly.
+//!
+//! A proposal is checked first ([`State::is_valid`]), applied, scored, and then either kept or
+//! undone. Undo restores the state bit for bit (unit order and ids included), so a rejected
+//! proposal leaves no trace and the chain stays deterministic.
+
+use super::explain::{AreaCounts, Explanation};
+use super::world::{Rect, Unit, UnitType};
+use crate::grid::{Cell, Grid};
+
+/// Which way a door crosses the wall(s) between its two units.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Axis {
+    /// `lo` lies left of `hi`; the door crosses vertical walls and spans rows.
+    Horizontal,
+    /// `lo` lies above `hi`; the door crosses horizontal walls and spans columns.
+    Vertical,
+}
+
+/// A door between two units, by unit id; its rectangle follows the units' walls.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct DoorSpec {
+    /// The left (or upper) unit's id.
+    pub lo: u32,
+    /// The right (or lower) unit's id.
+    pub hi: u32,
+    /// Orientation.
+    pub axis: Axis,
+    /// First row (or column) of the opening.
+    pub start: i32,
+    /// Last row (or column) of the opening, inclusive.
+    pub end: i32,
+}
+
+/// Geometry limits for doors, in cells.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(default)]
+pub struct DoorLimits {
+    /// Shortest door.
+    pub min_len: i32,
+    /// Longest door.
+    pub max_len: i32,
+    /// Largest distance between the two walls a door crosses (wall thickness).
+    pub max_gap: i32,
+}
+
+impl Default for DoorLimits {
+    /// 0.5 - 2.0 m doors through walls up to 0.5 m thick, at 5 cm per cell.
+    fn default() -> Self {
+        DoorLimits { min_len: 10, max_len: 40, max_gap: 10 }
+    }
+}
+
+/// The interior range two facing units share along their walls, if they face each other.
+pub fn facing(lo: Rect, hi: Rect, axis: Axis, max_gap: i32) -> Option<(i32, i32)> {
+    let (wall_lo, wall_hi, a0, a1, b0, b1) = match axis {
+        Axis::Horizontal => (lo.right() - 1, hi.x, lo.y, lo.bottom(), hi.y, hi.bottom()),
+        Axis::Vertical => (lo.bottom() - 1, hi.y, lo.x, lo.right(), hi.x, hi.right()),
+    };
+    if wall_hi < wall_lo || wall_hi - wall_lo > max_gap {
+        return None;
+    }
+    // Interior rows (or columns) of both: exclude each unit's corner cells.
+    let s = (a0 + 1).max(b0 + 1);
+    let e = (a1 - 2).min(b1 - 2);
+    (s <= e).then_some((s, e))
+}
+
+/// The rectangle of a door between `lo` and `hi`, or `None` if they no longer face each other
+/// over the door's span.
+pub fn door_rect(lo: Rect, hi: Rect, d: &DoorSpec, limits: &DoorLimits) -> Option<Rect> {
+    let (s, e) = facing(lo, hi, d.axis, limits.max_gap)?;
+    let len = d.end - d.start + 1;
+    if d.start < s || d.end > e || len < limits.min_len || len > limits.max_len {
+        return None;
+    }
+    Some(match d.axis {
+        Axis::Horizontal => Rect::new(lo.right() - 1, d.start, hi.x - lo.right() + 2, len),
+        Axis::Vertical => Rect::new(d.start, lo.bottom() - 1, len, hi.y - lo.bottom() + 2),
+    })
+}
+
+/// A proposed change to the world.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Move {
+    /// Add a unit with this rectangle.
+    Add(Rect),
+    /// Remove the unit at this index.
+    Remove(usize),
+    /// Replace the unit at `index` by two units.
+    Split {
+        /// The unit split.
+        index: usize,
+        /// The part that keeps the unit's slot.
+        first: Rect,
+        /// The part appended.
+        second: Rect,
+    },
+    /// Replace units `i` and `j` by one unit.
+    Merge {
+        /// First unit (its slot receives the merged unit).
+        i: usize,
+        /// Second unit (removed).
+        j: usize,
+        /// The merged rectangle.
+        merged: Rect,
+    },
+    /// Move walls of one unit (SHRINK or DILATE).
+    Reshape {
+        /// The unit.
+        index: usize,
+        /// Its new rectangle.
+        rect: Rect,
+    },
+    /// Re-partition two units (INTERCHANGE).
+    Repartition {
+        /// First unit.
+        i: usize,
+        /// Second unit.
+        j: usize,
+        /// New rectangle of unit `i`.
+        a: Rect,
+        /// New rectangle of unit `j`.
+        b: Rect,
+    },
+    /// Add a door.
+    Allocate(DoorSpec),
+    /// Remove the door at this index.
+    Delete(usize),
+}
+
+/// What is needed to undo an applied move.
+#[derive(Debug, Clone)]
+pub enum Undo {
+    /// Pop the last unit.
+    Added,
+    /// Put `unit` back at `index`.
+    Removed {
+        /// Where it was.
+        index: usize,
+        /// The unit.
+        unit: Unit,
+    },
+    /// Restore units (index, old unit) and truncate to `len` units.
+    Replaced {
+        /// Old units by slot.
+        old: [(usize, Unit); 2],
+        /// How many old entries are meaningful.
+        count: usize,
+        /// Unit count before the move.
+        len: usize,
+    },
+    /// Undo a MERGE of units `i` and `j`.
+    Merged {
+        /// Slot of the first unit.
+        i: usize,
+        /// Slot the second unit was removed from.
+        j: usize,
+        /// The first unit.
+        ui: Unit,
+        /// The second unit.
+        uj: Unit,
+    },
+    /// Pop the last door.
+    Allocated,
+    /// Put a door back.
+    Deleted {
+        /// Where it was.
+        index: usize,
+        /// The door.
+        door: DoorSpec,
+    },
+}
+
+/// Units, doors and their explanation of the map.
+#[derive(Debug, Clone)]
+pub struct State {
+    /// The incremental likelihood bookkeeping.
+    pub explanation: Explanation,
+    occupied: AreaCounts,
+    free: AreaCounts,
+    /// The units, in slot order.
+    pub units: Vec<Unit>,
+    /// The doors.
+    pub doors: Vec<DoorSpec>,
+    /// Next unit id.
+    pub next_id: u32,
+    /// Changes whenever unit geometry changes (restored on undo), for caches.
+    pub generation: u64,
+    generation_counter: u64,
+    /// Door geometry limits.
+    pub door_limits: DoorLimits,
+    width: i32,
+    height: i32,
+}
+
+impl State {
+    /// An empty world over a world-frame classified map.
+    pub fn new(map: &Grid<Cell>, door_limits: DoorLimits) -> Self {
+        State {
+            explanation: Explanation::new(map),
+            occupied: AreaCounts::new(map, Cell::Occupied),
+            free: AreaCounts::new(map, Cell::Free),
+            units: Vec::new(),
+            doors: Vec::new(),
+            next_id: 1,
+            generation: 0,
+            generation_counter: 0,
+            door_limits,
+            width: map.width() as i32,
+            height: map.height() as i32,
+        }
+    }
+
+    /// Grid width.
+    pub fn width(&self) -> i32 {
+        self.width
+    }
+
+    /// Grid height.
+    pub fn height(&self) -> i32 {
+        self.height
+    }
+
+    /// Occupied cells inside a rectangle.
+    pub fn occupied_in(&self, r: Rect) -> u32 {
+        self.occupied.count(r)
+    }
+
+    /// Free cells inside a rectangle.
+    pub fn free_in(&self, r: Rect) -> u32 {
+        self.free.count(r)
+    }
+
+    /// Wall weights `ω_w` of eq. 3.11 for the four walls (left, right, top, bottom): the share
+    /// of each wall's cells that are occupied in the map (eqs. 3.12 - 3.14).
+    pub fn wall_weights(&self, r: Rect) -> [f64; 4] {
+        let walls = [
+            Rect::new(r.x, r.y, 1, r.h),
+            Rect::new(r.right() - 1, r.y, 1, r.h),
+            Rect::new(r.x, r.y, r.w, 1),
+            Rect::new(r.x, r.bottom() - 1, r.w, 1),
+        ];
+        walls.map(|w| self.occupied.count(w) as f64 / w.area().max(1) as f64)
+    }
+
+    /// The unit weight `ω_r` of eq. 3.10: its weakest wall.
+    pub fn unit_weight(&self, r: Rect) -> f64 {
+        self.wall_weights(r).into_iter().fold(f64::INFINITY, f64::min)
+    }
+
+    /// Index of the unit with id `id`.
+    pub fn index_of(&self, id: u32) -> Option<usize> {
+        self.units.iter().position(|u| u.id == id)
+    }
+
+    /// Whether a unit has a door.
+    pub fn has_door(&self, id: u32) -> bool {
+        self.doors.iter().any(|d| d.lo == id || d.hi == id)
+    }
+
+    /// The rectangle of a door in the current world.
+    pub fn door_rect_of(&self, d: &DoorSpec) -> Option<Rect> {
+        let lo = self.units[self.index_of(d.lo)?].rect();
+        let hi = self.units[self.index_of(d.hi)?].rect();
+        door_rect(lo, hi, d, &self.door_limits)
+    }
+
+    fn rect_ok(&self, r: Rect, min_side: i32) -> bool {
+        r.w >= min_side && r.h >= min_side && r.x >= 0 && r.y >= 0 && r.right() <= self.width && r.bottom() <= self.height
+    }
+
+    fn duplicate(&self, r: Rect, except: &[usize]) -> bool {
+        self.units.iter().enumerate().any(|(k, u)| !except.contains(&k) && u.rect() == r)
+    }
+
+    /// Whether applying `m` gives a valid world: units inside the grid, at least `min_side`
+    /// cells on each side, no two identical, at most `max_units`, units with doors changed only
+    /// in ways that keep every door between facing walls, doors not overlapping.
+    pub fn is_valid(&self, m: &Move, min_side: i32, max_units: usize) -> bool {
+        match *m {
+            Move::Add(r) => self.units.len() < max_units && self.rect_ok(r, min_side) && !self.duplicate(r, &[]),
+            Move::Remove(i) => i < self.units.len() && !self.has_door(self.units[i].id),
+            Move::Split { index, first, second } => {
+                index < self.units.len()
+                    && self.units.len() < max_units
+                    && !self.has_door(self.units[index].id)
+                    && self.rect_ok(first, min_side)
+                    && self.rect_ok(second, min_side)
+                    && !self.duplicate(first, &[index])
+                    && !self.duplicate(second, &[index])
+            }
+            Move::Merge { i, j, merged } => {
+                i != j
+                    && i.max(j) < self.units.len()
+                    && !self.has_door(self.units[i].id)
+                    && !self.has_door(self.units[j].id)
+                    && self.rect_ok(merged, min_side)
+                    && !self.duplicate(merged, &[i, j])
+            }
+            Move::Reshape { index, rect } => {
+                if index >= self.units.len() || !self.rect_ok(rect, min_side) || self.duplicate(rect, &[index]) {
+                    return false;
+                }
+                let id = self.units[index].id;
+                // Every door of this unit must still fit between facing walls.
+                self.doors.iter().filter(|d| d.lo == id || d.hi == id).all(|d| {
+                    let other = if d.lo == id { d.hi } else { d.lo };
+                    let Some(o) = self.index_of(other) else { return false };
+                    let (lo, hi) = if d.lo == id { (rect, self.units[o].rect()) } else { (self.units[o].rect(), rect) };
+                    door_rect(lo, hi, d, &self.door_limits).is_some()
+                })
+            }
+            Move::Repartition { i, j, a, b } => {
+                i != j
+                    && i.max(j) < self.units.len()
+                    && !self.has_door(self.units[i].id)
+                    && !self.has_door(self.units[j].id)
+                    && self.rect_ok(a, min_side)
+                    && self.rect_ok(b, min_side)
+                    && a != b
+                    && !self.duplicate(a, &[i, j])
+                    && !self.duplicate(b, &[i, j])
+            }
+            Move::Allocate(d) => {
+                let Some(r) = self.door_rect_of(&d) else { return false };
+                !self.doors.iter().any(|o| self.door_rect_of(o).is_some_and(|or| or.intersection(&r).is_some()))
+            }
+            Move::Delete(k) => k < self.doors.len(),
+        }
+    }
+
+    fn new_unit(&mut self, r: Rect) -> Unit {
+        let u = Unit { id: self.next_id, x: r.x, y: r.y, w: r.w, h: r.h, kind: UnitType::Unknown };
+        self.next_id += 1;
+        u
+    }
+
+    fn bump(&mut self) -> u64 {
+        let old = self.generation;
+        self.generation_counter += 1;
+        self.generation = self.generation_counter;
+        old
+    }
+
+    /// Applies a valid move and returns how to undo it.
+    pub fn apply(&mut self, m: &Move) -> (Undo, u64, u32) {
+        let saved = (self.generation, self.next_id);
+        let undo = match *m {
+            Move::Add(r) => {
+                let u = self.new_unit(r);
+                self.explanation.apply_unit(r, 1);
+                self.units.push(u);
+                self.bump();
+                Undo::Added
+            }
+            Move::Remove(i) => {
+                let u = self.units.swap_remove(i);
+                self.explanation.apply_unit(u.rect(), -1);
+                self.bump();
+                Undo::Removed { index: i, unit: u }
+            }
+            Move::Split { index, first, second } => {
+                let len = self.units.len();
+                let old = self.units[index];
+                self.explanation.apply_unit(old.rect(), -1);
+                self.explanation.apply_unit(first, 1);
+                self.explanation.apply_unit(second, 1);
+                self.units[index] = self.new_unit(first);
+                let s = self.new_unit(second);
+                self.units.push(s);
+                self.bump();
+                Undo::Replaced { old: [(index, old), (index, old)], count: 1, len }
+            }
+            Move::Merge { i, j, merged } => {
+                let (ui, uj) = (self.units[i], self.units[j]);
+                self.explanation.apply_unit(ui.rect(), -1);
+                self.explanation.apply_unit(uj.rect(), -1);
+                self.explanation.apply_unit(merged, 1);
+                self.units[i] = self.new_unit(merged);
+                self.units.remove(j);
+                self.bump();
+                Undo::Merged { i, j, ui, uj }
+            }
+            Move::Reshape { index, rect } => {
+                let len = self.units.len();
+                let old = self.units[index];
+                let id = old.id;
+                let doors: Vec<usize> =
+                    (0..self.doors.len()).filter(|&k| self.doors[k].lo == id || self.doors[k].hi == id).collect();
+                for &k in &doors {
+                    let r = self.door_rect_of(&self.doors[k]).expect("valid before the move");
+                    self.explanation.apply_door(r, -1);
+                }
+                self.explanation.apply_unit(old.rect(), -1);
+                self.explanation.apply_unit(rect, 1);
+                self.units[index] = Unit { x: rect.x, y: rect.y, w: rect.w, h: rect.h, ..old };
+                for &k in &doors {
+                    let r = self.door_rect_of(&self.doors[k]).expect("checked by is_valid");
+                    self.explanation.apply_door(r, 1);
+                }
+                self.bump();
+                Undo::Replaced { old: [(index, old), (index, old)], count: 1, len }
+            }
+            Move::Repartition { i, j, a, b } => {
+                let len = self.units.len();
+                let (ui, uj) = (self.units[i], self.units[j]);
+                self.explanation.apply_unit(ui.rect(), -1);
+                self.explanation.apply_unit(uj.rect(), -1);
+                self.explanation.apply_unit(a, 1);
+                self.explanation.apply_unit(b, 1);
+                self.units[i] = Unit { x: a.x, y: a.y, w: a.w, h: a.h, ..ui };
+                self.units[j] = Unit { x: b.x, y: b.y, w: b.w, h: b.h, ..uj };
+                self.bump();
+                Undo::Replaced { old: [(i, ui), (j, uj)], count: 2, len }
+            }
+            Move::Allocate(d) => {
+                let r = self.door_rect_of(&d).expect("checked by is_valid");
+                self.explanation.apply_door(r, 1);
+                self.doors.push(d);
+                Undo::Allocated
+            }
+            Move::Delete(k) => {
+                let d = self.doors.swap_remove(k);
+                let r = self.door_rect_of(&d).expect("doors are kept valid");
+                self.explanation.apply_door(r, -1);
+                Undo::Deleted { index: k, door: d }
+            }
+        };
+        (undo, saved.0, saved.1)
+    }
+
+    /// Reverts a move applied by [`State::apply`].
+    pub fn undo(&mut self, undo: Undo, generation: u64, next_id: u32) {
+        match undo {
+            Undo::Added => {
+                let u = self.units.pop().expect("added unit");
+                self.explanation.apply_unit(u.rect(), -1);
+            }
+            Undo::Removed { index, unit } => {
+                self.explanation.apply_unit(unit.rect(), 1);
+                self.units.push(unit);
+                let last = self.units.len() - 1;
+                self.units.swap(index, last);
+            }
+            Undo::Merged { i, j, ui, uj } => {
+                let mi = if i > j { i - 1 } else { i };
+                let merged = self.units[mi];
+                self.explanation.apply_unit(merged.rect(), -1);
+                self.units.insert(j, uj);
+                self.units[i] = ui;
+                self.explanation.apply_unit(ui.rect(), 1);
+                self.explanation.apply_unit(uj.rect(), 1);
+            }
+            Undo::Replaced { old, count, len } => {
+                // Doors of reshaped units move with them: take their current rectangles out first.
+                let ids: Vec<u32> = old[..count].iter().map(|(_, u)| u.id).collect();
+                let doors: Vec<usize> = (0..self.doors.len())
+                    .filter(|&k| ids.contains(&self.doors[k].lo) || ids.contains(&self.doors[k].hi))
+                    .collect();
+                for &k in &doors {
+                    if let Some(r) = self.door_rect_of(&self.doors[k]) {
+                        self.explanation.apply_door(r, -1);
+                    }
+                }
+                // Remove what the move added: appended units, then the changed slots.
+                while self.units.len() > len {
+                    let u = self.units.pop().expect("appended unit");
+                    self.explanation.apply_unit(u.rect(), -1);
+                }
+                for &(i, _) in &old[..count] {
+                    let cur = self.units[i];
+                    self.explanation.apply_unit(cur.rect(), -1);
+                }
+                for &(i, u) in &old[..count] {
+                    self.units[i] = u;
+                    self.explanation.apply_unit(u.rect(), 1);
+                }
+                for &k in &doors {
+                    let r = self.door_rect_of(&self.doors[k]).expect("doors were valid before the move");
+                    self.explanation.apply_door(r, 1);
+                }
+            }
+            Undo::Allocated => {
+                let d = self.doors.pop().expect("allocated door");
+                let r = self.door_rect_of(&d).expect("valid");
+                self.explanation.apply_door(r, -1);
+            }
+            Undo::Deleted { index, door } => {
+                let r = self.door_rect_of(&door).expect("valid");
+                self.explanation.apply_door(r, 1);
+                self.doors.push(door);
+                let last = self.doors.len() - 1;
+                self.doors.swap(index, last);
+            }
+        }
+        self.generation = generation;
+        self.next_id = next_id;
+    }
+
+    /// Rectangles of all units and doors, for a full recomputation.
+    pub fn rects(&self) -> (Vec<Rect>, Vec<Rect>) {
+        (
+            self.units.iter().map(|u| u.rect()).collect(),
+            self.doors.iter().filter_map(|d| self.door_rect_of(d)).collect(),
+        )
+    }
+}

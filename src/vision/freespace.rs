@@ -1,0 +1,48 @@
+//! The free-space unit (FSU) detector (Fig. 3.13): connected components of free cells that the
+//! current world leaves unexplained become unit candidates, for rooms whose walls the WBU
+//! detector missed (unexplored or hidden behind furniture).
+
+use crate::floorplan::explain::Explanation;
+use crate::floorplan::world::Rect;
+use crate::grid::Cell;
+
+/// Bounding boxes (grown by one cell for the walls) of 4-connected components of free cells
+/// covered by no unit, holding at least `min_cells` cells.
+pub fn unexplained(e: &Explanation, min_cells: usize) -> Vec<Rect> {
+    let (w, h) = (e.width(), e.height());
+    let mut seen = vec![false; w * h];
+    let mut stack = Vec::new();
+    let mut out = Vec::new();
+    for start in 0..w * h {
+        let (sx, sy) = (start % w, start / w);
+        if seen[start] || e.map_class(sx, sy) != Cell::Free || e.cover(sx, sy) > 0 {
+            continue;
+        }
+        seen[start] = true;
+        stack.push(start);
+        let (mut x0, mut y0, mut x1, mut y1, mut n) = (sx, sy, sx, sy, 0usize);
+        while let Some(i) = stack.pop() {
+            let (x, y) = (i % w, i / w);
+            n += 1;
+            (x0, y0, x1, y1) = (x0.min(x), y0.min(y), x1.max(x), y1.max(y));
+            let neighbours = [(x.wrapping_sub(1), y), (x + 1, y), (x, y.wrapping_sub(1)), (x, y + 1)];
+            for (nx, ny) in neighbours {
+                if nx < w && ny < h {
+                    let j = ny * w + nx;
+                    if !seen[j] && e.map_class(nx, ny) == Cell::Free && e.cover(nx, ny) == 0 {
+                        seen[j] = true;
+                        stack.push(j);
+                    }
+                }
+            }
+        }
+        if n >= min_cells {
+            let gx0 = x0.saturating_sub(1);
+            let gy0 = y0.saturating_sub(1);
+            let gx1 = (x1 + 1).min(w - 1);
+            let gy1 = (y1 + 1).min(h - 1);
+            out.push(Rect::new(gx0 as i32, gy0 as i32, (gx1 - gx0 + 1) as i32, (gy1 - gy0 + 1) as i32));
+        }
+    }
+    out
+}

@@ -1,0 +1,189 @@
+//! The wall-based unit (WBU) detector (eqs. 3.10 - 3.17, Fig. 3.12).
+//!
+//! In the upright world frame, walls are horizontal or vertical, so the Hough transform reduces
+//! to its 0° and 90° columns: the occupied cells of each row and each column. A row holding a
+//! long run of occupied cells is a wall line; adjacent wall rows are one thick wall, whose two
+//! faces are both places where a unit's wall ring can sit. Extending every wall line across the
+//! map divides it into sub-areas; every rectangle whose four sides lie on wall lines is a
+//! recombination of sub-areas and a unit candidate. Candidates are weighted by their weakest
+//! wall (eq. 3.10), each wall by its share of occupied cells (eq. 3.11).
+
+use crate::floorplan::explain::AreaCounts;
+use crate::floorplan::world::Rect;
+use crate::grid::{Cell, Grid};
+use serde::{Deserialize, Serialize};
+
+/// Parameters of the WBU detector.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct WallConfig {
+    /// Shortest run of occupied cells that counts as a wall segment.
+    pub min_segment: i32,
+    /// Largest gap (cells) bridged inside a wall segment (scan dropouts).
+    pub max_gap: i32,
+    /// Most wall lines kept per axis, strongest first.
+    pub max_lines: usize,
+    /// Smallest wall weight `ω_w` a candidate's walls may have.
+    pub min_wall_weight: f64,
+    /// Most candidates kept, best weights first.
+    pub max_candidates: usize,
+}
+
+impl Default for WallConfig {
+    fn default() -> Self {
+        WallConfig { min_segment: 12, max_gap: 2, max_lines: 40, min_wall_weight: 0.35, max_candidates: 60_000 }
+    }
+}
+
+/// A wall line: consecutive rows (or columns) `lo..=hi` holding wall segments.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct WallLine {
+    /// First row (column) of the wall.
+    pub lo: i32,
+    /// Last row (column) of the wall.
+    pub hi: i32,
+    /// Cells in wall segments on the strongest row (column).
+    pub strength: u32,
+}
+
+/// Cells of `line` that lie in occupied runs of at least `min` cells, gaps up to `gap` bridged.
+fn segment_cells(line: impl Iterator<Item = bool>, min: i32, gap: i32) -> u32 {
+    let (mut total, mut run, mut holes, mut since) = (0u32, 0i32, 0i32, 0i32);
+    let flush = |run: i32, holes: i32, total: &mut u32| {
+        if run - holes >= min {
+            *total += (run - holes) as u32;
+        }
+    };
+    for occ in line {
+        if occ {
+            if run > 0 && since > 0 {
+                holes += since;
+                run += since;
+            }
+            run += 1;
+            since = 0;
+        } else if run > 0 {
+            since += 1;
+            if since > gap {
+                flush(run, holes, &mut total);
+                (run, holes, since) = (0, 0, 0);
+            }
+        }
+    }
+    flush(run, holes, &mut total);
+    total
+}
+
+/// Horizontal (`rows = true`) or vertical wall lines of a world-frame map.
+pub fn wall_lines(grid: &Grid<Cell>, rows: bool, c: &WallConfig) -> Vec<WallLine> {
+    let (n, len) = if rows { (grid.height(), grid.width()) } else { (grid.width(), grid.height()) };
+    let strength: Vec<u32> = (0..n)
+        .map(|i| {
+            let cells = (0..len).map(|j| {
+                let (x, y) = if rows { (j, i) } else { (i, j) };
+                *grid.at(x, y) == Cell::Occupied
+            });
+            segment_cells(cells, c.min_segment, c.max_gap)
+        })
+        .collect();
+    let mut lines = Vec::new();
+    let mut i = 0;
+    while i < n {
+        if strength[i] == 0 {
+            i += 1;
+            continue;
+        }
+        let lo = i;
+        let mut best = 0;
+        while i < n && strength[i] > 0 {
+            best = best.max(strength[i]);
+            i += 1;
+        }
+        lines.push(WallLine { lo: lo as i32, hi: i as i32 - 1, strength: best });
+    }
+    // Keep the strongest, then restore positional order.
+    lines.sort_by(|a, b| b.strength.cmp(&a.strength).then(a.lo.cmp(&b.lo)));
+    lines.truncate(c.max_lines);
+    lines.sort_by_key(|l| l.lo);
+    lines
+}
+
+fn faces(lines: &[WallLine]) -> Vec<i32> {
+    let mut v: Vec<i32> = lines.iter().flat_map(|l| [l.lo, l.hi]).collect();
+    v.sort_unstable();
+    v.dedup();
+    v
+}
+
+/// Unit candidates with their weights `ω_r` (eq. 3.10), strongest first.
+pub fn candidates(grid: &Grid<Cell>, min_side: i32, c: &WallConfig) -> Vec<(Rect, f64)> {
+    let occ = AreaCounts::new(grid, Cell::Occupied);
+    let xs = faces(&wall_lines(grid, false, c));
+    let ys = faces(&wall_lines(grid, true, c));
+    let frac = |r: Rect| occ.count(r) as f64 / r.area().max(1) as f64;
+    let mut out = Vec::new();
+    let mut ok_rows = Vec::with_capacity(ys.len());
+    for (a, &x0) in xs.iter().enumerate() {
+        for &x1 in &xs[a + 1..] {
+            let w = x1 - x0 + 1;
+            if w < min_side {
+                continue;
+            }
+            // Rows where a horizontal wall spans x0..=x1 well enough (eq. 3.11).
+            ok_rows.clear();
+            ok_rows.extend(ys.iter().copied().map(|y| (y, frac(Rect::new(x0, y, w, 1)))).filter(|&(_, f)| f >= c.min_wall_weight));
+            for (b, &(y0, f0)) in ok_rows.iter().enumerate() {
+                for &(y1, f1) in &ok_rows[b + 1..] {
+                    let h = y1 - y0 + 1;
+                    if h < min_side {
+                        continue;
+                    }
+                    let fl = frac(Rect::new(x0, y0, 1, h));
+                    let fr = frac(Rect::new(x1, y0, 1, h));
+                    let weight = f0.min(f1).min(fl).min(fr);
+                    if weight >= c.min_wall_weight {
+                        out.push((Rect::new(x0, y0, w, h), weight));
+                    }
+                }
+            }
+        }
+    }
+    out.sort_by(|a, b| b.1.total_cmp(&a.1).then_with(|| (a.0.x, a.0.y, a.0.w, a.0.h).cmp(&(b.0.x, b.0.y, b.0.w, b.0.h))));
+    out.truncate(c.max_candidates);
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn segments_bridge_small_gaps_only() {
+        let line = |s: &str| s.chars().map(|c| c == '#').collect::<Vec<_>>().into_iter();
+        assert_eq!(segment_cells(line("..#####..."), 5, 1), 5);
+        assert_eq!(segment_cells(line("..###.##..."), 5, 1), 5);
+        assert_eq!(segment_cells(line("..###...##..."), 5, 1), 0);
+        assert_eq!(segment_cells(line("####"), 5, 1), 0);
+    }
+
+    #[test]
+    fn two_rooms_give_their_rectangles() {
+        // Two rooms side by side sharing a 2-cell wall: columns 0, 20-21, 40; rows 0 and 15.
+        let mut g = Grid::new(41, 16, Cell::Free);
+        for y in 0..16 {
+            for x in [0, 20, 21, 40] {
+                *g.at_mut(x, y) = Cell::Occupied;
+            }
+        }
+        for x in 0..41 {
+            *g.at_mut(x, 0) = Cell::Occupied;
+            *g.at_mut(x, 15) = Cell::Occupied;
+        }
+        let c = candidates(&g, 5, &WallConfig::default());
+        let rects: Vec<Rect> = c.iter().map(|x| x.0).collect();
+        assert!(rects.contains(&Rect::new(0, 0, 21, 16)), "left room with the wall's left face");
+        assert!(rects.contains(&Rect::new(21, 0, 20, 16)), "right room");
+        assert!(rects.contains(&Rect::new(0, 0, 41, 16)), "both rooms as one");
+        assert!(c.iter().all(|x| x.1 >= 0.35 && x.1 <= 1.0));
+    }
+}

@@ -2,7 +2,7 @@
 //!
 //! Labels on a floor plan are short ("room 3", "corridor 12") and must read the same natively
 //! and in the browser, without a font file, a shaper or a system dependency. A fixed 5x7 pixel
-//! font covering printable ASCII does that in a few hundred bytes of const data, drawn as
+//! font covering printable ASCII does that in under a kilobyte of const data, drawn as
 //! filled squares scaled by an integer factor so that every glyph pixel stays a crisp block.
 //!
 //! Each glyph is [`GLYPH_WIDTH`] columns by [`GLYPH_HEIGHT`] rows: rows 0 to 6 hold capitals

@@ -152,8 +152,9 @@ pub fn max_scale(width: usize, height: usize) -> u32 {
 
 /// Draws a classified map one pixel per cell.
 ///
-/// Never panics: maps with more than [`MAX_PIXELS`] cells, which the default loader limits
-/// rule out, are drawn as by [`render`]. Use [`try_render`] to be told instead.
+/// Never panics. Every map the loaders accept with the default limits is drawn in full; a grid
+/// that cannot be drawn (no cells, or more than [`MAX_PIXELS`] cells) gives a 1x1 transparent
+/// pixmap, as with [`render`]. Use [`try_render`] to be told instead.
 pub fn draw_map(classified: &Grid<Cell>) -> Pixmap {
     render(
         classified,

@@ -1,8 +1,155 @@
-//! `ksmcmc render` (being written).
+//! `ksmcmc render MAP [--world world.json] --out out.png`: draw a map, optionally with a world.
 
-use crate::args::CliError;
+use crate::args::{self, CliError};
+use ksmcmc::floorplan::World;
+use ksmcmc::grid::OccupancyMap;
+use ksmcmc::render::{self, RenderOptions};
 use std::ffi::OsString;
+use std::path::Path;
 
-pub fn run(_argv: Vec<OsString>) -> Result<(), CliError> {
-    Err(CliError::Failed("render is not implemented yet".into()))
+/// The largest `--scale`.
+const MAX_SCALE: u32 = 16;
+
+const HELP: &str = "\
+Usage: ksmcmc render MAP [--world world.json] --out out.png [--scale N] [--no-labels]
+
+Draws the classified map (occupied black, unknown gray, free white) and, with --world, a
+semantic world over it in the papers' colours: walls blue, doors cyan, object cells green,
+each unit's type and id at its centre.
+
+MAP is a PGM (P2/P5), a PNG, or a ROS map.yaml.
+
+Options:
+  --world FILE    a world.json made for this map (its frame.map_size must be the map's size)
+  --out FILE      where to write the PNG (required)
+  --scale N       output pixels per map cell, 1 to 16 (default 1)
+  --no-labels     leave out the unit labels
+  -h, --help      this text
+";
+
+pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
+    use lexopt::prelude::*;
+    let mut parser = lexopt::Parser::from_args(argv);
+    let mut map = None;
+    let mut world = None;
+    let mut out = None;
+    let mut options = RenderOptions::default();
+    while let Some(arg) = parser.next()? {
+        match arg {
+            Value(v) if map.is_none() => map = Some(args::path(v)),
+            Long("world") => world = Some(args::path(parser.value()?)),
+            Long("out") | Short('o') => out = Some(args::path(parser.value()?)),
+            Long("scale") => options.scale = scale(parser.value()?)?,
+            Long("no-labels") => options.labels = false,
+            Long("help") | Short('h') => {
+                print!("{HELP}");
+                return Ok(());
+            }
+            _ => return Err(arg.unexpected().into()),
+        }
+    }
+    let map_path = args::required(map, "a MAP", "render")?;
+    let out = args::required(out, "--out FILE", "render")?;
+
+    let map = args::load_map(&map_path)?;
+    let world = match &world {
+        Some(path) => Some(load_world(path, &map, &map_path)?),
+        None => None,
+    };
+    let pixmap = render::try_render(map.classified(), world.as_ref(), &options)
+        .map_err(|e| args::failed(map_path.display(), e))?;
+    let png = render::encode_png(&pixmap);
+    if png.is_empty() {
+        return Err(CliError::Failed(format!(
+            "{}: the PNG encoder failed",
+            out.display()
+        )));
+    }
+    args::write(&out, &png)?;
+    println!(
+        "{}: {} x {} pixels",
+        out.display(),
+        pixmap.width(),
+        pixmap.height()
+    );
+    Ok(())
+}
+
+/// Parses `--scale`: a whole number from 1 to [`MAX_SCALE`].
+fn scale(v: OsString) -> Result<u32, CliError> {
+    let s: u32 = args::value("--scale", v)?;
+    if !(1..=MAX_SCALE).contains(&s) {
+        return Err(CliError::Usage(format!(
+            "--scale: {s} is out of range; use 1 to {MAX_SCALE} output pixels per map cell"
+        )));
+    }
+    Ok(s)
+}
+
+/// Reads a world.json and checks that it belongs to `map`.
+fn load_world(path: &Path, map: &OccupancyMap, map_path: &Path) -> Result<World, CliError> {
+    let bytes = std::fs::read(path).map_err(|e| args::failed(path.display(), e))?;
+    let text = std::str::from_utf8(&bytes).map_err(|e| {
+        args::failed(
+            path.display(),
+            format!(
+                "not UTF-8 text (bad byte at offset {}); save it as UTF-8",
+                e.valid_up_to()
+            ),
+        )
+    })?;
+    let world = World::from_json(text).map_err(|e| args::failed(path.display(), e))?;
+    let map_size = [map.width(), map.height()];
+    let [fw, fh] = world.frame.map_size;
+    if [fw as usize, fh as usize] != map_size {
+        return Err(CliError::Failed(format!(
+            "{}: frame.map_size is {fw}x{fh} but {} is {}x{} cells; this world was made for a \
+             different map (or the map was cropped or resized since)",
+            path.display(),
+            map_path.display(),
+            map_size[0],
+            map_size[1]
+        )));
+    }
+    // validate() keeps units inside the world frame; in a rotated or larger world frame a unit
+    // can still miss the map entirely, which means the world and map do not belong together.
+    for unit in &world.units {
+        if !touches_map(&world, unit, map_size) {
+            return Err(CliError::Failed(format!(
+                "{}: unit {} ({}x{} at {},{}) lies entirely outside the {}x{} map",
+                path.display(),
+                unit.id,
+                unit.w,
+                unit.h,
+                unit.x,
+                unit.y,
+                map_size[0],
+                map_size[1]
+            )));
+        }
+    }
+    Ok(world)
+}
+
+/// Whether any part of `unit` lands on the map (checked on the bounding box of its corners).
+fn touches_map(world: &World, unit: &ksmcmc::floorplan::Unit, [w, h]: [usize; 2]) -> bool {
+    let r = unit.rect();
+    let corners = [
+        (r.x, r.y),
+        (r.right(), r.y),
+        (r.x, r.bottom()),
+        (r.right(), r.bottom()),
+    ]
+    .map(|(x, y)| world.frame.to_map(x as f64, y as f64));
+    let min_x = corners.iter().map(|c| c.0).fold(f64::INFINITY, f64::min);
+    let max_x = corners
+        .iter()
+        .map(|c| c.0)
+        .fold(f64::NEG_INFINITY, f64::max);
+    let min_y = corners.iter().map(|c| c.1).fold(f64::INFINITY, f64::min);
+    let max_y = corners
+        .iter()
+        .map(|c| c.1)
+        .fold(f64::NEG_INFINITY, f64::max);
+    max_x > 0.0 && max_y > 0.0 && min_x < w as f64 && min_y < h as f64
 }

@@ -1,0 +1,304 @@
+//! Drawing a semantic [`World`] over a rendered map: walls, doors, object cells, labels.
+//!
+//! Everything in a world is a rectangle of cells in the *world frame*. Drawing works the same
+//! way for every kind of thing: list the world-frame cell rectangles, clip them to the part of
+//! the world that can appear on the map, map their corners to pixels and fill all of them with
+//! one tiny-skia path in one colour. One fill per colour means overlapping rectangles (the
+//! corners of a wall ring, a doubly listed object cell) blend once, not twice.
+//!
+//! In the identity frame the corners land on whole pixels (cell `x` starts at pixel
+//! `x * scale`), and with anti-aliasing off the fill covers exactly the cells' pixel blocks, so
+//! the result is as crisp as the map under it. In a rotated frame the rectangles become rotated
+//! quadrilaterals; anti-aliasing stays off there too, so every pixel is either untouched or the
+//! pure colour, as in the papers' figures.
+
+use super::font;
+use crate::floorplan::{Frame, World};
+use tiny_skia::{Color, FillRule, Paint, PathBuilder, Pixmap, Rect, Transform};
+
+/// Wall cells (each unit's outer ring), drawn opaque: the papers' blue.
+pub const WALL_RGBA: [u8; 4] = [0, 0, 255, 255];
+/// Door cells, drawn opaque over the walls: the papers' cyan.
+pub const DOOR_RGBA: [u8; 4] = [0, 255, 255, 255];
+/// Object cells (unknown cells inside units), semi-transparent green so the map shows through.
+pub const OBJECT_RGBA: [u8; 4] = [0, 255, 0, 150];
+/// Label text: dark red, as the papers print unit types and ids in red.
+pub const LABEL_TEXT_RGBA: [u8; 4] = [150, 0, 0, 255];
+/// Label background box: light and mostly opaque, so a label reads over black and white alike.
+pub const LABEL_BACKGROUND_RGBA: [u8; 4] = [255, 255, 255, 215];
+/// Label box outline: dark gray, one pixel wide.
+pub const LABEL_OUTLINE_RGBA: [u8; 4] = [40, 40, 40, 255];
+
+/// Output pixels per font pixel for labels on a map drawn at `scale` pixels per cell.
+///
+/// At least 2, so that capitals are 14 pixels high even at one pixel per cell; it grows slowly
+/// with the scale so labels stay in proportion without swamping small units.
+pub fn label_text_scale(scale: u32) -> u32 {
+    2 + scale / 8
+}
+
+/// The label of a unit: its type name and id, e.g. `"room 3"`.
+pub fn unit_label(unit: &crate::floorplan::Unit) -> String {
+    format!("{} {}", unit.kind.name(), unit.id)
+}
+
+/// Draws `world` over a pixmap that holds a map of `map_width` x `map_height` cells drawn at
+/// `scale` pixels per cell (as [`super::render`] does); `labels` adds each unit's type and id.
+///
+/// The world is drawn as it is, without [`World::validate`]: units and doors are clipped to
+/// the map, units with a size below 1x1 and doors that are neither horizontal nor vertical are
+/// skipped, and a frame with a non-finite angle draws nothing. It never panics.
+pub fn draw_world(
+    pixmap: &mut Pixmap,
+    map_width: usize,
+    map_height: usize,
+    world: &World,
+    scale: u32,
+    labels: bool,
+) {
+    let Some(place) = Placement::new(&world.frame, map_width, map_height, scale) else {
+        return;
+    };
+
+    // Object cells first, so that walls and doors stay their pure colours where they meet.
+    let objects = world
+        .object_cells
+        .iter()
+        .map(|&[x, y]| CellRect::cell(x as i64, y as i64));
+    place.fill(pixmap, objects, OBJECT_RGBA);
+
+    let walls = world
+        .units
+        .iter()
+        .filter(|u| u.w >= 1 && u.h >= 1)
+        .flat_map(|u| CellRect::new(u.x as i64, u.y as i64, u.w as i64, u.h as i64).ring());
+    place.fill(pixmap, walls, WALL_RGBA);
+
+    let doors = world
+        .doors
+        .iter()
+        .filter(|d| d.x0 == d.x1 || d.y0 == d.y1)
+        .map(|d| {
+            let (x0, x1) = (d.x0.min(d.x1) as i64, d.x0.max(d.x1) as i64);
+            let (y0, y1) = (d.y0.min(d.y1) as i64, d.y0.max(d.y1) as i64);
+            CellRect {
+                x0,
+                y0,
+                x1: x1 + 1,
+                y1: y1 + 1,
+            }
+        });
+    place.fill(pixmap, doors, DOOR_RGBA);
+
+    if labels {
+        let factor = label_text_scale(scale);
+        for unit in world.units.iter().filter(|u| u.w >= 1 && u.h >= 1) {
+            let (cx, cy) = unit.rect().center();
+            let (px, py) = place.to_pixel(cx, cy);
+            draw_tag(pixmap, px, py, &unit_label(unit), factor);
+        }
+    }
+}
+
+/// Draws `text` centred on pixel position `(cx, cy)` on a light box with a dark outline, with
+/// each font pixel `factor` output pixels wide. Tags whose box misses the pixmap are skipped.
+pub fn draw_tag(pixmap: &mut Pixmap, cx: f64, cy: f64, text: &str, factor: u32) {
+    if !cx.is_finite() || !cy.is_finite() || factor == 0 {
+        return;
+    }
+    let (text_w, text_h) = font::text_size(text, factor);
+    let pad = factor as i64;
+    let box_w = text_w as i64 + 2 * pad;
+    let box_h = text_h as i64 + 2 * pad;
+    // Centre the box; positions are whole pixels so the glyphs stay crisp.
+    let left = (cx - box_w as f64 / 2.0).round();
+    let top = (cy - box_h as f64 / 2.0).round();
+    let (width, height) = (pixmap.width() as f64, pixmap.height() as f64);
+    if left >= width || top >= height || left + (box_w as f64) <= 0.0 || top + (box_h as f64) <= 0.0
+    {
+        return;
+    }
+    // On the pixmap, so both fit in i32 comfortably (pixmap sides are below 2^29).
+    let (left, top) = (left as i64, top as i64);
+    fill_box(pixmap, left, top, box_w, box_h, LABEL_BACKGROUND_RGBA);
+    for (x, y, w, h) in [
+        (left, top, box_w, 1),
+        (left, top + box_h - 1, box_w, 1),
+        (left, top + 1, 1, box_h - 2),
+        (left + box_w - 1, top + 1, 1, box_h - 2),
+    ] {
+        fill_box(pixmap, x, y, w, h, LABEL_OUTLINE_RGBA);
+    }
+    let (tx, ty) = (left + pad, top + pad);
+    if let (Ok(tx), Ok(ty)) = (i32::try_from(tx), i32::try_from(ty)) {
+        font::draw_text(pixmap, tx, ty, text, factor, LABEL_TEXT_RGBA);
+    }
+}
+
+/// Fills a pixel rectangle with a straight-alpha colour, without anti-aliasing.
+fn fill_box(pixmap: &mut Pixmap, x: i64, y: i64, w: i64, h: i64, rgba: [u8; 4]) {
+    if let Some(rect) = Rect::from_xywh(x as f32, y as f32, w as f32, h as f32) {
+        pixmap.fill_rect(rect, &solid(rgba), Transform::identity(), None);
+    }
+}
+
+/// A solid, aliased paint.
+fn solid(rgba: [u8; 4]) -> Paint<'static> {
+    let mut paint = Paint::default();
+    paint.set_color(Color::from_rgba8(rgba[0], rgba[1], rgba[2], rgba[3]));
+    paint.anti_alias = false;
+    paint
+}
+
+/// A rectangle of world cells: columns `x0..x1`, rows `y0..y1` (end exclusive). `i64` so that
+/// sums of `i32` coordinates from an unchecked world cannot overflow.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct CellRect {
+    x0: i64,
+    y0: i64,
+    x1: i64,
+    y1: i64,
+}
+
+impl CellRect {
+    fn new(x: i64, y: i64, w: i64, h: i64) -> Self {
+        CellRect {
+            x0: x,
+            y0: y,
+            x1: x + w,
+            y1: y + h,
+        }
+    }
+
+    fn cell(x: i64, y: i64) -> Self {
+        CellRect::new(x, y, 1, 1)
+    }
+
+    /// The outer ring of cells (eq. 3.8's walls) as four strips: top, bottom, left, right.
+    fn ring(self) -> [CellRect; 4] {
+        let CellRect { x0, y0, x1, y1 } = self;
+        [
+            CellRect {
+                x0,
+                y0,
+                x1,
+                y1: y0 + 1,
+            },
+            CellRect {
+                x0,
+                y0: y1 - 1,
+                x1,
+                y1,
+            },
+            CellRect {
+                x0,
+                y0,
+                x1: x0 + 1,
+                y1,
+            },
+            CellRect {
+                x0: x1 - 1,
+                y0,
+                x1,
+                y1,
+            },
+        ]
+    }
+
+    /// The overlap with `other`, if not empty.
+    fn clip(self, other: &CellRect) -> Option<CellRect> {
+        let r = CellRect {
+            x0: self.x0.max(other.x0),
+            y0: self.y0.max(other.y0),
+            x1: self.x1.min(other.x1),
+            y1: self.y1.min(other.y1),
+        };
+        (r.x0 < r.x1 && r.y0 < r.y1).then_some(r)
+    }
+}
+
+/// Where world cells land on the pixmap.
+struct Placement {
+    frame: Frame,
+    /// World cells are map cells: corners go straight to whole pixels.
+    identity: bool,
+    scale: f64,
+    /// The world cells that can appear on the map (a bounding box, generous by a cell).
+    visible: CellRect,
+}
+
+impl Placement {
+    fn new(frame: &Frame, map_width: usize, map_height: usize, scale: u32) -> Option<Placement> {
+        if !frame.angle.is_finite() || scale == 0 {
+            return None;
+        }
+        let (w, h) = (map_width as f64, map_height as f64);
+        let identity = frame.is_identity();
+        let visible = if identity {
+            CellRect::new(0, 0, map_width as i64, map_height as i64)
+        } else {
+            let corners =
+                [(0.0, 0.0), (w, 0.0), (0.0, h), (w, h)].map(|(x, y)| frame.to_world(x, y));
+            let min_x = corners.iter().map(|c| c.0).fold(f64::INFINITY, f64::min);
+            let max_x = corners
+                .iter()
+                .map(|c| c.0)
+                .fold(f64::NEG_INFINITY, f64::max);
+            let min_y = corners.iter().map(|c| c.1).fold(f64::INFINITY, f64::min);
+            let max_y = corners
+                .iter()
+                .map(|c| c.1)
+                .fold(f64::NEG_INFINITY, f64::max);
+            if ![min_x, max_x, min_y, max_y].iter().all(|v| v.is_finite()) {
+                return None;
+            }
+            // `as` saturates, so even an absurd frame gives a box, not an overflow.
+            CellRect {
+                x0: min_x.floor() as i64 - 1,
+                y0: min_y.floor() as i64 - 1,
+                x1: max_x.ceil() as i64 + 1,
+                y1: max_y.ceil() as i64 + 1,
+            }
+        };
+        Some(Placement {
+            frame: *frame,
+            identity,
+            scale: scale as f64,
+            visible,
+        })
+    }
+
+    /// A world-frame point (cell units) in output pixels.
+    fn to_pixel(&self, x: f64, y: f64) -> (f64, f64) {
+        let (mx, my) = if self.identity {
+            (x, y)
+        } else {
+            self.frame.to_map(x, y)
+        };
+        (mx * self.scale, my * self.scale)
+    }
+
+    /// Fills the union of `rects` with one colour in one pass.
+    fn fill(&self, pixmap: &mut Pixmap, rects: impl Iterator<Item = CellRect>, rgba: [u8; 4]) {
+        let mut pb = PathBuilder::new();
+        for r in rects.filter_map(|r| r.clip(&self.visible)) {
+            let corners = [(r.x0, r.y0), (r.x1, r.y0), (r.x1, r.y1), (r.x0, r.y1)];
+            let [a, b, c, d] = corners.map(|(x, y)| self.to_pixel(x as f64, y as f64));
+            pb.move_to(a.0 as f32, a.1 as f32);
+            pb.line_to(b.0 as f32, b.1 as f32);
+            pb.line_to(c.0 as f32, c.1 as f32);
+            pb.line_to(d.0 as f32, d.1 as f32);
+            pb.close();
+        }
+        // `finish` is `None` for an empty path (nothing to draw).
+        if let Some(path) = pb.finish() {
+            pixmap.fill_path(
+                &path,
+                &solid(rgba),
+                FillRule::Winding,
+                Transform::identity(),
+                None,
+            );
+        }
+    }
+}

@@ -5,14 +5,8 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use std::time::{Duration, Instant};
 
-const CARTESIUM: &str = concat!(
-    env!("CARGO_MANIFEST_DIR"),
-    "/../shared/datasets/radish/ubremen-cartesium.png"
-);
-const LAB_A: &str = concat!(
-    env!("CARGO_MANIFEST_DIR"),
-    "/../shared/datasets/bormann2016/lab_a_scan.png"
-);
+const CARTESIUM: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/datasets/radish/ubremen-cartesium.png");
+const LAB_A: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/datasets/bormann2016/lab_a_scan.png");
 
 /// A fresh, empty folder for one test.
 fn temp_dir(test: &str) -> PathBuf {
@@ -23,18 +17,11 @@ fn temp_dir(test: &str) -> PathBuf {
 }
 
 fn ksmcmc(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_ksmcmc"))
-        .args(args)
-        .output()
-        .expect("run ksmcmc")
+    Command::new(env!("CARGO_BIN_EXE_ksmcmc")).args(args).output().expect("run ksmcmc")
 }
 
 fn text(out: &Output) -> String {
-    format!(
-        "{}{}",
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
-    )
+    format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr))
 }
 
 /// Runs `ksmcmc render ARGS`, expects exit code `code` and a message containing `needle`.
@@ -44,19 +31,10 @@ fn fails(args: &[&str], code: i32, needle: &str) -> String {
     let out = ksmcmc(&all);
     let msg = text(&out);
     assert_eq!(out.status.code(), Some(code), "ksmcmc {all:?} said:\n{msg}");
-    assert!(
-        msg.contains(needle),
-        "ksmcmc {all:?}: expected {needle:?} in:\n{msg}"
-    );
-    assert!(
-        !msg.contains("panicked") && !msg.contains("internal error"),
-        "ksmcmc {all:?} panicked:\n{msg}"
-    );
+    assert!(msg.contains(needle), "ksmcmc {all:?}: expected {needle:?} in:\n{msg}");
+    assert!(!msg.contains("panicked") && !msg.contains("internal error"), "ksmcmc {all:?} panicked:\n{msg}");
     let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(
-        stderr.starts_with("ksmcmc: "),
-        "the message goes to stderr: {msg}"
-    );
+    assert!(stderr.starts_with("ksmcmc: "), "the message goes to stderr: {msg}");
     msg
 }
 
@@ -92,10 +70,7 @@ fn renders_a_dataset_map_at_its_size() {
     assert_eq!(png_size(&png), (map.width() as u32, map.height() as u32));
     // The picture is the classified map.
     let back = tiny_skia::Pixmap::decode_png(&png).expect("decodes");
-    assert_eq!(
-        back.data(),
-        ksmcmc::render::draw_map(map.classified()).data()
-    );
+    assert_eq!(back.data(), ksmcmc::render::draw_map(map.classified()).data());
 }
 
 #[test]
@@ -103,47 +78,21 @@ fn renders_a_world_at_a_scale() {
     let dir = temp_dir("world");
     let world = dir.join("world.json");
     // The Cartesium map is 1237x672 and leans by about 20 degrees.
-    std::fs::write(
-        &world,
-        world_json(0.35, [1400, 900], [1237, 672], [400, 300, 200, 120]),
-    )
-    .expect("write");
+    std::fs::write(&world, world_json(0.35, [1400, 900], [1237, 672], [400, 300, 200, 120])).expect("write");
     let out = dir.join("out.png");
-    let run = ksmcmc(&[
-        "render",
-        CARTESIUM,
-        "--world",
-        s(&world),
-        "--out",
-        s(&out),
-        "--scale",
-        "2",
-    ]);
+    let run = ksmcmc(&["render", CARTESIUM, "--world", s(&world), "--out", s(&out), "--scale", "2"]);
     assert!(run.status.success(), "{}", text(&run));
     let png = std::fs::read(&out).expect("written");
     assert_eq!(png_size(&png), (2474, 1344));
     let pixmap = tiny_skia::Pixmap::decode_png(&png).expect("decodes");
-    let blue = pixmap
-        .pixels()
-        .iter()
-        .filter(|p| [p.red(), p.green(), p.blue()] == [0, 0, 255])
-        .count();
+    let blue = pixmap.pixels().iter().filter(|p| [p.red(), p.green(), p.blue()] == [0, 0, 255]).count();
     assert!(blue > 2000, "only {blue} wall pixels");
 
     // --no-labels gives a different picture, and the same arguments give the same bytes.
     let plain = dir.join("plain.png");
     let again = dir.join("again.png");
     for (path, extra) in [(&plain, Some("--no-labels")), (&again, None)] {
-        let mut args = vec![
-            "render",
-            CARTESIUM,
-            "--world",
-            s(&world),
-            "--out",
-            s(path),
-            "--scale",
-            "2",
-        ];
+        let mut args = vec!["render", CARTESIUM, "--world", s(&world), "--out", s(path), "--scale", "2"];
         args.extend(extra);
         assert!(ksmcmc(&args).status.success());
     }
@@ -165,10 +114,7 @@ fn renders_a_map_yaml() {
     let run = ksmcmc(&["render", s(&yaml), "--out", s(&out), "--no-labels"]);
     assert!(run.status.success(), "{}", text(&run));
     let map = ksmcmc::grid::OccupancyMap::load(Path::new(LAB_A), &Default::default()).expect("map");
-    assert_eq!(
-        png_size(&std::fs::read(&out).expect("written")),
-        (map.width() as u32, map.height() as u32)
-    );
+    assert_eq!(png_size(&std::fs::read(&out).expect("written")), (map.width() as u32, map.height() as u32));
 }
 
 #[test]
@@ -176,10 +122,7 @@ fn help_prints_usage() {
     let out = ksmcmc(&["render", "--help"]);
     assert!(out.status.success());
     let msg = text(&out);
-    assert!(
-        msg.contains("Usage: ksmcmc render MAP") && msg.contains("--scale N"),
-        "{msg}"
-    );
+    assert!(msg.contains("Usage: ksmcmc render MAP") && msg.contains("--scale N"), "{msg}");
 }
 
 #[test]
@@ -196,58 +139,24 @@ fn unreadable_maps_fail_with_a_reason() {
 
     let missing = dir.join("no-such-map.pgm");
     fails(&[s(&missing), "--out", out], 1, "No such file");
-    fails(
-        &[s(&write("empty.pgm", b"")), "--out", out],
-        1,
-        "data is empty",
-    );
-    fails(
-        &[s(&write("cut.png", &real_png[..100])), "--out", out],
-        1,
-        "cannot decode PNG",
-    );
-    fails(
-        &[
-            s(&write("cut.pgm", b"P5\n10 10\n255\n\x00\x01\x02")),
-            "--out",
-            out,
-        ],
-        1,
-        "truncated PGM",
-    );
-    fails(
-        &[s(&write("hello.pgm", b"hello")), "--out", out],
-        1,
-        "not an occupancy map",
-    );
-    fails(
-        &[s(&write("zero.pgm", b"P5\n0 10\n255\n")), "--out", out],
-        1,
-        "0x10",
-    );
+    fails(&[s(&write("empty.pgm", b"")), "--out", out], 1, "data is empty");
+    fails(&[s(&write("cut.png", &real_png[..100])), "--out", out], 1, "cannot decode PNG");
+    fails(&[s(&write("cut.pgm", b"P5\n10 10\n255\n\x00\x01\x02")), "--out", out], 1, "truncated PGM");
+    fails(&[s(&write("hello.pgm", b"hello")), "--out", out], 1, "not an occupancy map");
+    fails(&[s(&write("zero.pgm", b"P5\n0 10\n255\n")), "--out", out], 1, "0x10");
 
     // An absurd header is refused from the header alone: quickly, without allocating 10 GB.
     let huge = write("huge.pgm", b"P5\n100000 100000\n255\n");
     let start = Instant::now();
     fails(&[s(&huge), "--out", out], 1, "over the limit");
-    assert!(
-        start.elapsed() < Duration::from_secs(5),
-        "took {:?}",
-        start.elapsed()
-    );
+    assert!(start.elapsed() < Duration::from_secs(5), "took {:?}", start.elapsed());
 
-    let yaml = write(
-        "map.yaml",
-        b"image: nowhere.pgm\nresolution: 0.05\norigin: [0, 0, 0]\n",
-    );
+    let yaml = write("map.yaml", b"image: nowhere.pgm\nresolution: 0.05\norigin: [0, 0, 0]\n");
     fails(&[s(&yaml), "--out", out], 1, "does not exist");
     let latin1 = write("latin1.yaml", b"image: caf\xe9.pgm\nresolution: 0.05\n");
     fails(&[s(&latin1), "--out", out], 1, "not UTF-8");
 
-    assert!(
-        !Path::new(out).exists(),
-        "no output is written for a bad map"
-    );
+    assert!(!Path::new(out).exists(), "no output is written for a bad map");
 }
 
 #[test]
@@ -260,27 +169,11 @@ fn worlds_that_do_not_fit_the_map_fail_with_a_reason() {
         std::fs::write(&p, text).expect("write");
         p
     };
-    let render_with = |world: &Path, code: i32, needle: &str| {
-        fails(
-            &[CARTESIUM, "--world", s(world), "--out", out],
-            code,
-            needle,
-        )
-    };
+    let render_with =
+        |world: &Path, code: i32, needle: &str| fails(&[CARTESIUM, "--world", s(world), "--out", out], code, needle);
 
-    render_with(
-        &write("cut.json", r#"{"format": "ksmcmc-world/1", "frame": "#),
-        1,
-        "world.json",
-    );
-    render_with(
-        &write(
-            "typo.json",
-            r#"{"format": "ksmcmc-world/1", "frame": {}, "unitz": []}"#,
-        ),
-        1,
-        "world.json",
-    );
+    render_with(&write("cut.json", r#"{"format": "ksmcmc-world/1", "frame": "#), 1, "world.json");
+    render_with(&write("typo.json", r#"{"format": "ksmcmc-world/1", "frame": {}, "unitz": []}"#), 1, "world.json");
     let bytes = dir.join("latin1.json");
     std::fs::write(&bytes, b"{\"format\": \"caf\xe9\"}").expect("write");
     render_with(&bytes, 1, "not UTF-8");
@@ -288,42 +181,23 @@ fn worlds_that_do_not_fit_the_map_fail_with_a_reason() {
 
     // A unit hanging over the right edge of the 1237x672 map (and world).
     let msg = render_with(
-        &write(
-            "outside.json",
-            &world_json(0.0, [1237, 672], [1237, 672], [1200, 10, 100, 20]),
-        ),
+        &write("outside.json", &world_json(0.0, [1237, 672], [1237, 672], [1200, 10, 100, 20])),
         1,
         "unit 1",
     );
     assert!(msg.contains("outside"), "{msg}");
     // A larger world frame: the unit is inside the world but misses the map altogether.
     let msg = render_with(
-        &write(
-            "offmap.json",
-            &world_json(0.0, [3000, 2000], [1237, 672], [2800, 1800, 50, 50]),
-        ),
+        &write("offmap.json", &world_json(0.0, [3000, 2000], [1237, 672], [2800, 1800, 50, 50])),
         1,
         "unit 1",
     );
     assert!(msg.contains("entirely outside the 1237x672 map"), "{msg}");
     // A world made for another map.
-    let msg = render_with(
-        &write(
-            "other.json",
-            &world_json(0.0, [100, 80], [100, 80], [10, 10, 20, 20]),
-        ),
-        1,
-        "100x80",
-    );
-    assert!(
-        msg.contains("1237x672") && msg.contains("different map"),
-        "{msg}"
-    );
+    let msg = render_with(&write("other.json", &world_json(0.0, [100, 80], [100, 80], [10, 10, 20, 20])), 1, "100x80");
+    assert!(msg.contains("1237x672") && msg.contains("different map"), "{msg}");
 
-    assert!(
-        !Path::new(out).exists(),
-        "no output is written for a bad world"
-    );
+    assert!(!Path::new(out).exists(), "no output is written for a bad world");
 }
 
 #[test]
@@ -331,26 +205,14 @@ fn bad_command_lines_are_usage_errors() {
     let dir = temp_dir("usage");
     let out = dir.join("out.png");
     let out = s(&out);
-    fails(
-        &[CARTESIUM, "--out", out, "--scale", "0"],
-        2,
-        "--scale: 0 is out of range",
-    );
-    fails(
-        &[CARTESIUM, "--out", out, "--scale", "999"],
-        2,
-        "use 1 to 16",
-    );
+    fails(&[CARTESIUM, "--out", out, "--scale", "0"], 2, "--scale: 0 is out of range");
+    fails(&[CARTESIUM, "--out", out, "--scale", "999"], 2, "use 1 to 16");
     fails(&[CARTESIUM, "--out", out, "--scale", "abc"], 2, "--scale");
     fails(&[CARTESIUM, "--out", out, "--scale", "-3"], 2, "--scale");
     fails(&[CARTESIUM, "--out", out, "--scale"], 2, "--scale");
     fails(&[CARTESIUM], 2, "needs --out");
     fails(&["--out", out], 2, "needs a MAP");
-    fails(
-        &[CARTESIUM, "--out", out, "--frobnicate"],
-        2,
-        "--frobnicate",
-    );
+    fails(&[CARTESIUM, "--out", out, "--frobnicate"], 2, "--frobnicate");
     fails(&[CARTESIUM, LAB_A, "--out", out], 2, "lab_a_scan.png");
     assert!(!Path::new(out).exists());
 }
@@ -360,11 +222,7 @@ fn outputs_over_the_pixel_limit_name_a_scale_that_fits() {
     let dir = temp_dir("too-large");
     let out = dir.join("out.png");
     // 1237x672 at 16 pixels per cell is 213 million pixels.
-    fails(
-        &[CARTESIUM, "--out", s(&out), "--scale", "16"],
-        1,
-        "use a scale of at most 8",
-    );
+    fails(&[CARTESIUM, "--out", s(&out), "--scale", "16"], 1, "use a scale of at most 8");
     assert!(!out.exists());
 }
 

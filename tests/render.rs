@@ -4,9 +4,8 @@
 use ksmcmc::floorplan::{Door, Frame, Unit, UnitType, World};
 use ksmcmc::grid::{Cell, Grid, OccupancyMap};
 use ksmcmc::render::{
-    self, cell_rgb, draw_labels, draw_map, encode_png, font, label_rgb, label_text_scale, render,
-    to_rgba, try_render, RenderError, RenderOptions, DOOR_RGBA, LABEL_TEXT_RGBA, MAX_PIXELS,
-    WALL_RGBA,
+    self, cell_rgb, draw_labels, draw_map, encode_png, font, label_rgb, label_text_scale, render, to_rgba, try_render,
+    RenderError, RenderOptions, DOOR_RGBA, LABEL_TEXT_RGBA, MAX_PIXELS, WALL_RGBA,
 };
 use tiny_skia::Pixmap;
 
@@ -17,18 +16,12 @@ const BLACK: [u8; 3] = [0, 0, 0];
 
 /// The straight RGB of a pixel; panics off the pixmap (a test bug).
 fn rgb(pixmap: &Pixmap, x: u32, y: u32) -> [u8; 3] {
-    let p = pixmap
-        .pixel(x, y)
-        .expect("pixel on the pixmap")
-        .demultiply();
+    let p = pixmap.pixel(x, y).expect("pixel on the pixmap").demultiply();
     [p.red(), p.green(), p.blue()]
 }
 
 fn no_labels(scale: u32) -> RenderOptions {
-    RenderOptions {
-        scale,
-        labels: false,
-    }
+    RenderOptions { scale, labels: false }
 }
 
 /// A 16x12 map: free everywhere except an occupied cell at (12, 2), unknown cells at (13, 2),
@@ -48,30 +41,9 @@ fn small_map() -> Grid<Cell> {
 /// occupied, (6, 3) free.
 fn small_world() -> World {
     let mut w = World::empty(16, 12);
-    w.units.push(Unit {
-        id: 1,
-        x: 1,
-        y: 1,
-        w: 8,
-        h: 7,
-        kind: UnitType::Room,
-    });
-    w.units.push(Unit {
-        id: 2,
-        x: 8,
-        y: 1,
-        w: 7,
-        h: 7,
-        kind: UnitType::Corridor,
-    });
-    w.doors.push(Door {
-        id: 1,
-        units: [1, 2],
-        x0: 8,
-        y0: 3,
-        x1: 8,
-        y1: 5,
-    });
+    w.units.push(Unit { id: 1, x: 1, y: 1, w: 8, h: 7, kind: UnitType::Room });
+    w.units.push(Unit { id: 2, x: 8, y: 1, w: 7, h: 7, kind: UnitType::Corridor });
+    w.doors.push(Door { id: 1, units: [1, 2], x0: 8, y0: 3, x1: 8, y1: 5 });
     w.object_cells = vec![[3, 3], [4, 3], [5, 3], [6, 3]];
     w.validate().expect("the test world is valid");
     w
@@ -89,59 +61,30 @@ fn map_and_world_have_the_papers_colours() {
     assert_eq!((pixmap.width(), pixmap.height()), (16, 12));
 
     // Walls: the outer ring of both units.
-    for (x, y) in [
-        (1, 1),
-        (8, 1),
-        (1, 7),
-        (4, 7),
-        (1, 4),
-        (14, 4),
-        (14, 1),
-        (11, 7),
-    ] {
+    for (x, y) in [(1, 1), (8, 1), (1, 7), (4, 7), (1, 4), (14, 4), (14, 1), (11, 7)] {
         assert_eq!(rgb(&pixmap, x, y), BLUE, "wall cell ({x}, {y})");
     }
     // Doors over the walls.
     for y in 3..=5 {
         assert_eq!(rgb(&pixmap, 8, y), CYAN, "door cell (8, {y})");
     }
-    assert_eq!(
-        rgb(&pixmap, 8, 2),
-        BLUE,
-        "the wall just above the door stays a wall"
-    );
-    assert_eq!(
-        rgb(&pixmap, 8, 6),
-        BLUE,
-        "the wall just below the door stays a wall"
-    );
+    assert_eq!(rgb(&pixmap, 8, 2), BLUE, "the wall just above the door stays a wall");
+    assert_eq!(rgb(&pixmap, 8, 6), BLUE, "the wall just below the door stays a wall");
     // Object cells: green over whatever class lies beneath, still telling the classes apart.
     let objects: Vec<[u8; 3]> = (3..=6).map(|x| rgb(&pixmap, x, 3)).collect();
     for (x, c) in (3..=6).zip(&objects) {
         assert!(is_green_tinted(*c), "object cell ({x}, 3) is {c:?}");
     }
-    assert_eq!(
-        objects[0], objects[1],
-        "two unknown object cells look alike"
-    );
-    assert!(
-        objects[2][1] < objects[0][1],
-        "occupied under green is darker than unknown"
-    );
-    assert!(
-        objects[0][1] < objects[3][1],
-        "unknown under green is darker than free"
-    );
+    assert_eq!(objects[0], objects[1], "two unknown object cells look alike");
+    assert!(objects[2][1] < objects[0][1], "occupied under green is darker than unknown");
+    assert!(objects[0][1] < objects[3][1], "unknown under green is darker than free");
     // The map where no world is drawn.
     assert_eq!(rgb(&pixmap, 4, 4), WHITE, "free inside a unit");
     assert_eq!(rgb(&pixmap, 0, 0), WHITE, "free outside every unit");
     assert_eq!(rgb(&pixmap, 12, 2), BLACK, "occupied");
     assert_eq!(rgb(&pixmap, 13, 2), cell_rgb(Cell::Unknown), "unknown");
     assert_eq!(rgb(&pixmap, 15, 11), WHITE, "far corner");
-    assert!(
-        pixmap.pixels().iter().all(|p| p.alpha() == 255),
-        "the picture is opaque"
-    );
+    assert!(pixmap.pixels().iter().all(|p| p.alpha() == 255), "the picture is opaque");
 }
 
 #[test]
@@ -150,17 +93,10 @@ fn map_without_world_is_cell_rgb() {
     let pixmap = draw_map(&map);
     for y in 0..map.height() {
         for x in 0..map.width() {
-            assert_eq!(
-                rgb(&pixmap, x as u32, y as u32),
-                cell_rgb(*map.at(x, y)),
-                "cell ({x}, {y})"
-            );
+            assert_eq!(rgb(&pixmap, x as u32, y as u32), cell_rgb(*map.at(x, y)), "cell ({x}, {y})");
         }
     }
-    assert_eq!(
-        render(&map, None, &RenderOptions::default()).data(),
-        pixmap.data()
-    );
+    assert_eq!(render(&map, None, &RenderOptions::default()).data(), pixmap.data());
 }
 
 #[test]
@@ -172,11 +108,7 @@ fn scale_repeats_every_cell_as_a_block() {
     assert_eq!((three.width(), three.height()), (48, 36));
     for y in 0..three.height() {
         for x in 0..three.width() {
-            assert_eq!(
-                rgb(&three, x, y),
-                rgb(&one, x / 3, y / 3),
-                "pixel ({x}, {y})"
-            );
+            assert_eq!(rgb(&three, x, y), rgb(&one, x / 3, y / 3), "pixel ({x}, {y})");
         }
     }
 }
@@ -193,12 +125,7 @@ fn ring_side(u: &Unit, x: f64, y: f64, m: f64) -> Side {
     let inside = |x0: f64, y0: f64, x1: f64, y1: f64, grow: f64| {
         x > x0 - grow && x < x1 + grow && y > y0 - grow && y < y1 + grow
     };
-    let (x0, y0, x1, y1) = (
-        u.x as f64,
-        u.y as f64,
-        (u.x + u.w) as f64,
-        (u.y + u.h) as f64,
-    );
+    let (x0, y0, x1, y1) = (u.x as f64, u.y as f64, (u.x + u.w) as f64, (u.y + u.h) as f64);
     let in_outer = |g| inside(x0, y0, x1, y1, g);
     let in_inner = |g| inside(x0 + 1.0, y0 + 1.0, x1 - 1.0, y1 - 1.0, g);
     if in_outer(-m) && !in_inner(m) {
@@ -215,19 +142,8 @@ fn rotated_frame_draws_walls_where_the_frame_puts_them() {
     let (w, h, scale) = (60usize, 50usize, 4u32);
     let map = Grid::new(w, h, Cell::Free);
     let mut world = World::empty(w as u32, h as u32);
-    world.frame = Frame {
-        angle: 0.3,
-        world_size: [64, 56],
-        map_size: [w as u32, h as u32],
-    };
-    let unit = Unit {
-        id: 1,
-        x: 22,
-        y: 20,
-        w: 20,
-        h: 14,
-        kind: UnitType::Room,
-    };
+    world.frame = Frame { angle: 0.3, world_size: [64, 56], map_size: [w as u32, h as u32] };
+    let unit = Unit { id: 1, x: 22, y: 20, w: 20, h: 14, kind: UnitType::Room };
     world.units.push(unit);
     world.validate().expect("valid world");
     let pixmap = render(&map, Some(&world), &no_labels(scale));
@@ -237,36 +153,22 @@ fn rotated_frame_draws_walls_where_the_frame_puts_them() {
     let (mut walls, mut others) = (0, 0);
     for py in 0..pixmap.height() {
         for px in 0..pixmap.width() {
-            let (mx, my) = (
-                (px as f64 + 0.5) / scale as f64,
-                (py as f64 + 0.5) / scale as f64,
-            );
+            let (mx, my) = ((px as f64 + 0.5) / scale as f64, (py as f64 + 0.5) / scale as f64);
             let (wx, wy) = world.frame.to_world(mx, my);
             match ring_side(&unit, wx, wy, 0.3) {
                 Side::Wall => {
                     walls += 1;
-                    assert_eq!(
-                        rgb(&pixmap, px, py),
-                        BLUE,
-                        "pixel ({px}, {py}) is on the wall"
-                    )
+                    assert_eq!(rgb(&pixmap, px, py), BLUE, "pixel ({px}, {py}) is on the wall")
                 }
                 Side::NotWall => {
                     others += 1;
-                    assert_eq!(
-                        rgb(&pixmap, px, py),
-                        WHITE,
-                        "pixel ({px}, {py}) is off the wall"
-                    )
+                    assert_eq!(rgb(&pixmap, px, py), WHITE, "pixel ({px}, {py}) is off the wall")
                 }
                 Side::Edge => {}
             }
         }
     }
-    assert!(
-        walls > 300 && others > 40_000,
-        "the test saw {walls} wall and {others} other pixels"
-    );
+    assert!(walls > 300 && others > 40_000, "the test saw {walls} wall and {others} other pixels");
 
     // Spot checks stated through Frame::to_map: the middle of the top wall cell row is blue...
     let (mx, my) = world.frame.to_map(32.5, 20.5);
@@ -285,30 +187,9 @@ fn rotated_doors_and_objects_follow_the_frame() {
     let map = Grid::new(40, 40, Cell::Free);
     let mut world = World::empty(40, 40);
     world.frame.angle = -0.5;
-    world.units.push(Unit {
-        id: 1,
-        x: 5,
-        y: 5,
-        w: 15,
-        h: 30,
-        kind: UnitType::Room,
-    });
-    world.units.push(Unit {
-        id: 2,
-        x: 19,
-        y: 5,
-        w: 15,
-        h: 30,
-        kind: UnitType::Room,
-    });
-    world.doors.push(Door {
-        id: 1,
-        units: [1, 2],
-        x0: 19,
-        y0: 15,
-        x1: 19,
-        y1: 20,
-    });
+    world.units.push(Unit { id: 1, x: 5, y: 5, w: 15, h: 30, kind: UnitType::Room });
+    world.units.push(Unit { id: 2, x: 19, y: 5, w: 15, h: 30, kind: UnitType::Room });
+    world.doors.push(Door { id: 1, units: [1, 2], x0: 19, y0: 15, x1: 19, y1: 20 });
     world.object_cells = vec![[10, 25], [11, 25]];
     world.validate().expect("valid world");
     let pixmap = render(&map, Some(&world), &no_labels(5));
@@ -326,27 +207,10 @@ fn rotated_doors_and_objects_follow_the_frame() {
 fn labels_draw_at_the_unit_centre_and_only_when_asked() {
     let map = Grid::new(80, 40, Cell::Occupied);
     let mut world = World::empty(80, 40);
-    world.units.push(Unit {
-        id: 3,
-        x: 10,
-        y: 5,
-        w: 40,
-        h: 30,
-        kind: UnitType::Room,
-    });
+    world.units.push(Unit { id: 3, x: 10, y: 5, w: 40, h: 30, kind: UnitType::Room });
     let plain = render(&map, Some(&world), &no_labels(2));
-    let labelled = render(
-        &map,
-        Some(&world),
-        &RenderOptions {
-            scale: 2,
-            labels: true,
-        },
-    );
-    assert_eq!(
-        render(&map, Some(&world), &no_labels(2)).data(),
-        plain.data()
-    );
+    let labelled = render(&map, Some(&world), &RenderOptions { scale: 2, labels: true });
+    assert_eq!(render(&map, Some(&world), &no_labels(2)).data(), plain.data());
 
     // The unit's centre is cell (30, 20), pixel (60, 40); "room 3" is 6 characters.
     let factor = label_text_scale(2);
@@ -362,20 +226,15 @@ fn labels_draw_at_the_unit_centre_and_only_when_asked() {
             changed += 1;
             let (dx, dy) = ((x as i64 - cx).abs(), (y as i64 - cy).abs());
             assert!(
-                dx <= text_w as i64 / 2 + 2 * factor as i64
-                    && dy <= text_h as i64 / 2 + 2 * factor as i64,
+                dx <= text_w as i64 / 2 + 2 * factor as i64 && dy <= text_h as i64 / 2 + 2 * factor as i64,
                 "pixel ({x}, {y}) changed, far from the centre"
             );
-            if rgb(&labelled, x, y) == [LABEL_TEXT_RGBA[0], LABEL_TEXT_RGBA[1], LABEL_TEXT_RGBA[2]]
-            {
+            if rgb(&labelled, x, y) == [LABEL_TEXT_RGBA[0], LABEL_TEXT_RGBA[1], LABEL_TEXT_RGBA[2]] {
                 text_pixels += 1;
             }
         }
     }
-    assert!(
-        changed as u32 >= text_w * text_h / 2,
-        "only {changed} pixels changed"
-    );
+    assert!(changed as u32 >= text_w * text_h / 2, "only {changed} pixels changed");
     assert!(text_pixels > 50, "only {text_pixels} pixels of text colour");
     // The box is light, so a label on a black map is readable: the pixel at the centre of the
     // box's padding, left of the text, is bright.
@@ -387,22 +246,9 @@ fn labels_draw_at_the_unit_centre_and_only_when_asked() {
 fn labels_are_readable_at_every_scale() {
     for scale in 1..=16 {
         let glyph_px = label_text_scale(scale) * font::CAP_HEIGHT;
-        assert!(
-            glyph_px >= 10,
-            "capitals are {glyph_px} px at scale {scale}"
-        );
+        assert!(glyph_px >= 10, "capitals are {glyph_px} px at scale {scale}");
     }
-    assert_eq!(
-        render::unit_label(&Unit {
-            id: 12,
-            x: 0,
-            y: 0,
-            w: 3,
-            h: 3,
-            kind: UnitType::Corridor
-        }),
-        "corridor 12"
-    );
+    assert_eq!(render::unit_label(&Unit { id: 12, x: 0, y: 0, w: 3, h: 3, kind: UnitType::Corridor }), "corridor 12");
 }
 
 #[test]
@@ -410,15 +256,8 @@ fn font_covers_printable_ascii() {
     let mut seen = std::collections::HashSet::new();
     for c in ' '..='~' {
         let g = font::glyph(c).unwrap_or_else(|| panic!("no glyph for {c:?}"));
-        assert!(
-            g.iter().all(|row| *row < 1 << font::GLYPH_WIDTH),
-            "{c:?} is wider than the cell"
-        );
-        assert_eq!(
-            c == ' ',
-            g.iter().all(|row| *row == 0),
-            "{c:?} has ink unless it is a space"
-        );
+        assert!(g.iter().all(|row| *row < 1 << font::GLYPH_WIDTH), "{c:?} is wider than the cell");
+        assert_eq!(c == ' ', g.iter().all(|row| *row == 0), "{c:?} has ink unless it is a space");
         assert!(seen.insert(*g), "{c:?} looks like another character");
         assert_ne!(*g, font::PLACEHOLDER, "{c:?} is drawn as the placeholder");
     }
@@ -440,12 +279,10 @@ fn unknown_characters_draw_a_placeholder_box() {
     let pixmap = draw("é");
     assert_eq!(pixmap.data(), draw("\u{1F600}").data());
     // Font pixel (col, row) covers output pixels (2 + 2 col .., 2 + 2 row ..).
-    let inked =
-        |col: u32, row: u32| pixmap.pixel(2 + 2 * col, 2 + 2 * row).map(|p| p.alpha()) == Some(255);
+    let inked = |col: u32, row: u32| pixmap.pixel(2 + 2 * col, 2 + 2 * row).map(|p| p.alpha()) == Some(255);
     for row in 0..font::GLYPH_HEIGHT {
         for col in 0..font::GLYPH_WIDTH {
-            let expected =
-                font::PLACEHOLDER[row as usize] & (1 << (font::GLYPH_WIDTH - 1 - col)) != 0;
+            let expected = font::PLACEHOLDER[row as usize] & (1 << (font::GLYPH_WIDTH - 1 - col)) != 0;
             assert_eq!(inked(col, row), expected, "font pixel ({col}, {row})");
         }
     }
@@ -455,14 +292,7 @@ fn unknown_characters_draw_a_placeholder_box() {
         draw("éA").data(),
         {
             let mut p = draw("é");
-            font::draw_text(
-                &mut p,
-                2 + 2 * font::ADVANCE as i32,
-                2,
-                "A",
-                2,
-                [0, 0, 0, 255],
-            );
+            font::draw_text(&mut p, 2 + 2 * font::ADVANCE as i32, 2, "A", 2, [0, 0, 0, 255]);
             p
         }
         .data()
@@ -472,14 +302,7 @@ fn unknown_characters_draw_a_placeholder_box() {
 #[test]
 fn text_is_clipped_not_panicking() {
     let mut p = Pixmap::new(10, 10).expect("pixmap");
-    for (x, y) in [
-        (-5, -5),
-        (-1000, 3),
-        (8, 8),
-        (i32::MAX, i32::MAX),
-        (i32::MIN, i32::MIN),
-        (0, -15),
-    ] {
+    for (x, y) in [(-5, -5), (-1000, 3), (8, 8), (i32::MAX, i32::MAX), (i32::MIN, i32::MIN), (0, -15)] {
         font::draw_text(&mut p, x, y, "Hello, world!", 3, [0, 0, 0, 255]);
     }
     font::draw_text(&mut p, 0, 0, "x", 0, [0, 0, 0, 255]);
@@ -494,10 +317,7 @@ fn text_is_clipped_not_panicking() {
 fn rgba_has_four_straight_bytes_per_pixel() {
     let pixmap = render(&small_map(), Some(&small_world()), &no_labels(2));
     let rgba = to_rgba(&pixmap);
-    assert_eq!(
-        rgba.len(),
-        4 * pixmap.width() as usize * pixmap.height() as usize
-    );
+    assert_eq!(rgba.len(), 4 * pixmap.width() as usize * pixmap.height() as usize);
     // Pixel (2, 2) is wall cell (1, 1).
     let i = 4 * (2 * pixmap.width() as usize + 2);
     assert_eq!(rgba[i..i + 4], [BLUE[0], BLUE[1], BLUE[2], 255]);
@@ -516,39 +336,25 @@ fn png_round_trips() {
     assert_eq!((loaded.width(), loaded.height()), (32, 24));
     for y in 0..24 {
         for x in 0..32 {
-            assert_eq!(
-                loaded.classified().at(x, y),
-                map.at(x / 2, y / 2),
-                "cell ({x}, {y})"
-            );
+            assert_eq!(loaded.classified().at(x, y), map.at(x / 2, y / 2), "cell ({x}, {y})");
         }
     }
     // With a world drawn in, the size still round-trips.
-    let with_world = encode_png(&render(
-        &map,
-        Some(&small_world()),
-        &RenderOptions::default(),
-    ));
+    let with_world = encode_png(&render(&map, Some(&small_world()), &RenderOptions::default()));
     let loaded = OccupancyMap::from_bytes(&with_world).expect("PNG with a world");
     assert_eq!((loaded.width(), loaded.height()), (16, 12));
 }
 
 #[test]
 fn same_inputs_give_identical_bytes() {
-    let options = RenderOptions {
-        scale: 3,
-        labels: true,
-    };
+    let options = RenderOptions { scale: 3, labels: true };
     let mut world = small_world();
     world.frame.angle = 0.2;
     let a = render(&small_map(), Some(&world), &options);
     let b = render(&small_map(), Some(&world.clone()), &options.clone());
     assert_eq!(a.data(), b.data());
     assert_eq!(encode_png(&a), encode_png(&b));
-    assert_ne!(
-        encode_png(&a),
-        encode_png(&render(&small_map(), Some(&small_world()), &options))
-    );
+    assert_ne!(encode_png(&a), encode_png(&render(&small_map(), Some(&small_world()), &options)));
 }
 
 #[test]
@@ -556,17 +362,8 @@ fn label_regions_get_distinct_deterministic_colours() {
     let colours: Vec<[u8; 3]> = (1..=64).map(label_rgb).collect();
     for (i, a) in colours.iter().enumerate() {
         for (j, b) in colours.iter().enumerate().skip(i + 1) {
-            let d: i32 = a
-                .iter()
-                .zip(b)
-                .map(|(x, y)| (*x as i32 - *y as i32).abs())
-                .sum();
-            assert!(
-                d >= 24,
-                "labels {} and {} look alike: {a:?} {b:?}",
-                i + 1,
-                j + 1
-            );
+            let d: i32 = a.iter().zip(b).map(|(x, y)| (*x as i32 - *y as i32).abs()).sum();
+            assert!(d >= 24, "labels {} and {} look alike: {a:?} {b:?}", i + 1, j + 1);
         }
     }
     assert_eq!(label_rgb(7), label_rgb(7));
@@ -576,17 +373,9 @@ fn label_regions_get_distinct_deterministic_colours() {
     let mut pixmap = render(&map, None, &no_labels(2));
     draw_labels(&mut pixmap, &labels, 2, 255);
     assert_eq!(rgb(&pixmap, 0, 0), BLACK, "label 0 is not drawn");
-    assert_eq!(
-        rgb(&pixmap, 3, 1),
-        label_rgb(1),
-        "cell (1, 0) is label 1 in all its pixels"
-    );
+    assert_eq!(rgb(&pixmap, 3, 1), label_rgb(1), "cell (1, 0) is label 1 in all its pixels");
     assert_eq!(rgb(&pixmap, 5, 1), label_rgb(2));
-    assert_eq!(
-        rgb(&pixmap, 5, 1),
-        rgb(&pixmap, 7, 0),
-        "one label, one colour"
-    );
+    assert_eq!(rgb(&pixmap, 5, 1), rgb(&pixmap, 7, 0), "one label, one colour");
     assert_eq!(rgb(&pixmap, 4, 2), label_rgb(300));
 
     // Half opacity over black is about half the colour.
@@ -610,43 +399,23 @@ fn label_regions_get_distinct_deterministic_colours() {
 #[test]
 fn sizes_are_checked_not_panicking() {
     let empty: Grid<Cell> = Grid::new(0, 7, Cell::Free);
-    assert_eq!(
-        try_render(&empty, None, &no_labels(1)).err(),
-        Some(RenderError::Empty {
-            width: 0,
-            height: 7
-        })
-    );
+    assert_eq!(try_render(&empty, None, &no_labels(1)).err(), Some(RenderError::Empty { width: 0, height: 7 }));
     let p = draw_map(&empty);
     assert_eq!((p.width(), p.height()), (1, 1));
 
     let map = small_map();
-    assert_eq!(
-        try_render(&map, None, &no_labels(0)).err(),
-        Some(RenderError::ZeroScale)
-    );
+    assert_eq!(try_render(&map, None, &no_labels(0)).err(), Some(RenderError::ZeroScale));
     let p = render(&map, None, &no_labels(0));
-    assert_eq!(
-        (p.width(), p.height()),
-        (16, 12),
-        "scale 0 draws at scale 1"
-    );
+    assert_eq!((p.width(), p.height()), (16, 12), "scale 0 draws at scale 1");
 
     // 16x12 cells fit MAX_PIXELS = 2^26 up to scale 591 (591^2 * 192 <= 2^26 < 592^2 * 192).
     assert_eq!(render::max_scale(16, 12), 591);
     assert!(try_render(&map, None, &no_labels(591)).is_ok());
     let err = try_render(&map, None, &no_labels(592)).unwrap_err();
-    assert!(
-        matches!(err, RenderError::TooLarge { max_scale: 591, .. }),
-        "{err:?}"
-    );
+    assert!(matches!(err, RenderError::TooLarge { max_scale: 591, .. }), "{err:?}");
     assert!(err.to_string().contains("at most 591"), "{err}");
     let p = render(&map, None, &no_labels(u32::MAX));
-    assert_eq!(
-        (p.width(), p.height()),
-        (16 * 591, 12 * 591),
-        "render lowers the scale"
-    );
+    assert_eq!((p.width(), p.height()), (16 * 591, 12 * 591), "render lowers the scale");
     assert!(p.width() as u64 * p.height() as u64 <= MAX_PIXELS);
 
     // Every map the loaders accept by default fits at scale 1.
@@ -659,82 +428,22 @@ fn sizes_are_checked_not_panicking() {
 fn unchecked_worlds_do_not_panic() {
     let map = small_map();
     let mut world = small_world();
-    world.units.push(Unit {
-        id: 7,
-        x: i32::MAX - 1,
-        y: i32::MIN,
-        w: i32::MAX,
-        h: i32::MAX,
-        kind: UnitType::Hall,
-    });
-    world.units.push(Unit {
-        id: 8,
-        x: 2,
-        y: 2,
-        w: 0,
-        h: -4,
-        kind: UnitType::Other,
-    });
-    world.units.push(Unit {
-        id: 9,
-        x: -100,
-        y: -100,
-        w: 120,
-        h: 3,
-        kind: UnitType::Other,
-    });
-    world.doors.push(Door {
-        id: 2,
-        units: [1, 99],
-        x0: 0,
-        y0: 0,
-        x1: 5,
-        y1: 5,
-    });
-    world.doors.push(Door {
-        id: 3,
-        units: [1, 2],
-        x0: i32::MIN,
-        y0: 3,
-        x1: i32::MAX,
-        y1: 3,
-    });
-    world
-        .object_cells
-        .extend([[i32::MIN, i32::MAX], [-1, -1], [16, 12]]);
-    let options = RenderOptions {
-        scale: 2,
-        labels: true,
-    };
+    world.units.push(Unit { id: 7, x: i32::MAX - 1, y: i32::MIN, w: i32::MAX, h: i32::MAX, kind: UnitType::Hall });
+    world.units.push(Unit { id: 8, x: 2, y: 2, w: 0, h: -4, kind: UnitType::Other });
+    world.units.push(Unit { id: 9, x: -100, y: -100, w: 120, h: 3, kind: UnitType::Other });
+    world.doors.push(Door { id: 2, units: [1, 99], x0: 0, y0: 0, x1: 5, y1: 5 });
+    world.doors.push(Door { id: 3, units: [1, 2], x0: i32::MIN, y0: 3, x1: i32::MAX, y1: 3 });
+    world.object_cells.extend([[i32::MIN, i32::MAX], [-1, -1], [16, 12]]);
+    let options = RenderOptions { scale: 2, labels: true };
     for frame in [
         world.frame,
-        Frame {
-            angle: 0.4,
-            ..world.frame
-        },
-        Frame {
-            angle: f64::NAN,
-            ..world.frame
-        },
-        Frame {
-            angle: f64::INFINITY,
-            ..world.frame
-        },
-        Frame {
-            angle: 1e300,
-            world_size: [u32::MAX, 1],
-            map_size: [1, u32::MAX],
-        },
-        Frame {
-            angle: 0.0,
-            world_size: [0, 0],
-            map_size: [0, 0],
-        },
+        Frame { angle: 0.4, ..world.frame },
+        Frame { angle: f64::NAN, ..world.frame },
+        Frame { angle: f64::INFINITY, ..world.frame },
+        Frame { angle: 1e300, world_size: [u32::MAX, 1], map_size: [1, u32::MAX] },
+        Frame { angle: 0.0, world_size: [0, 0], map_size: [0, 0] },
     ] {
-        let w = World {
-            frame,
-            ..world.clone()
-        };
+        let w = World { frame, ..world.clone() };
         let p = render(&map, Some(&w), &options);
         assert_eq!((p.width(), p.height()), (32, 24));
     }
@@ -760,12 +469,7 @@ fn every_dataset_map_renders_with_its_cell_counts() {
         .filter(|p| p.extension().is_some_and(|e| e == "png"))
         .collect();
     paths.sort();
-    assert!(
-        paths.len() >= 10,
-        "found only {} maps in {}",
-        paths.len(),
-        dir.display()
-    );
+    assert!(paths.len() >= 10, "found only {} maps in {}", paths.len(), dir.display());
     paths.push(datasets().join("radish/ubremen-cartesium.png"));
 
     // Two threads: the maps are independent and the machine has two cores.
@@ -779,39 +483,22 @@ fn every_dataset_map_renders_with_its_cell_counts() {
 }
 
 fn check_dataset_map(path: &std::path::Path) {
-    let map = OccupancyMap::load(path, &Default::default())
-        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let map = OccupancyMap::load(path, &Default::default()).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     let pixmap = draw_map(map.classified());
-    assert_eq!(
-        (pixmap.width() as usize, pixmap.height() as usize),
-        (map.width(), map.height()),
-        "{}",
-        path.display()
-    );
+    assert_eq!((pixmap.width() as usize, pixmap.height() as usize), (map.width(), map.height()), "{}", path.display());
     let mut counts = [0usize; 3];
     for p in pixmap.pixels() {
         let c = p.demultiply();
         let c = [c.red(), c.green(), c.blue()];
-        let class = [Cell::Free, Cell::Unknown, Cell::Occupied]
-            .iter()
-            .position(|&k| cell_rgb(k) == c);
-        let class =
-            class.unwrap_or_else(|| panic!("{}: pixel colour {c:?} is no class", path.display()));
+        let class = [Cell::Free, Cell::Unknown, Cell::Occupied].iter().position(|&k| cell_rgb(k) == c);
+        let class = class.unwrap_or_else(|| panic!("{}: pixel colour {c:?} is no class", path.display()));
         counts[class] += 1;
     }
     assert_eq!(
         counts,
-        [
-            map.count(Cell::Free),
-            map.count(Cell::Unknown),
-            map.count(Cell::Occupied)
-        ],
+        [map.count(Cell::Free), map.count(Cell::Unknown), map.count(Cell::Occupied)],
         "{}",
         path.display()
     );
-    assert!(
-        counts[0] > 0 && counts[2] > 0,
-        "{}: a real map has free and occupied cells",
-        path.display()
-    );
+    assert!(counts[0] > 0 && counts[2] > 0, "{}: a real map has free and occupied cells", path.display());
 }

@@ -73,8 +73,12 @@ pub struct ChainConfig {
     pub kernels: KernelConfig,
     /// Door geometry.
     pub doors: DoorLimits,
-    /// Detectors.
+        /// Detectors.
     pub detectors: DetectorConfig,
+    /// Depth of every unit's wall ring in cells; `None` estimates it from the map's walls.
+    /// The dissertation's model is 1; real walls are thicker, and a ring as deep as half a wall
+    /// lets two units sharing a wall predict all of it.
+    pub wall_thickness: Option<i32>,
     /// Output bookkeeping.
     pub output: OutputConfig,
 }
@@ -112,8 +116,16 @@ impl ChainConfig {
             ));
         }
         let w = &self.detectors.walls;
-        if w.min_segment < 2 || w.max_gap < 0 || !(w.min_wall_weight.is_finite() && (0.0..=1.0).contains(&w.min_wall_weight)) {
+        if w.min_segment < 2
+            || w.max_gap < 0
+            || !(w.min_wall_weight.is_finite() && (0.0..=1.0).contains(&w.min_wall_weight))
+        {
             return bad("detectors.walls: min_segment >= 2, max_gap >= 0, min_wall_weight in [0, 1]".into());
+        }
+                if let Some(t) = self.wall_thickness {
+            if !(1..=8).contains(&t) {
+                return bad(format!("wall_thickness {t} must be between 1 and 8 cells"));
+            }
         }
         if self.detectors.free_space_every == 0 {
             return bad("detectors.free_space_every must be at least 1".into());
@@ -214,22 +226,39 @@ impl Chain {
                 }
             }
         };
-        let (world_map, frame) = vision::orientation::to_world_frame(classified, angle);
-        let candidates = Candidates::new(vision::walls::candidates(&world_map, config.kernels.min_side, &config.detectors.walls));
-        Ok(Self::with_parts(config, frame, world_map, classified.clone(), candidates, seed))
+                let (world_map, frame) = vision::orientation::to_world_frame(classified, angle);
+                let found = vision::walls::candidates(&world_map, config.kernels.min_side, &config.detectors.walls);
+        let wall = config.wall_thickness.unwrap_or_else(|| vision::walls::ring_depth(classified, angle));
+        let min_side = config.kernels.min_side.max(2 * wall + 1);
+        let candidates = Candidates::new(found.into_iter().filter(|(r, _)| r.w >= min_side && r.h >= min_side));
+        Ok(Self::with_parts(config, frame, world_map, classified.clone(), candidates, wall, seed))
     }
 
     /// A chain on an upright world-frame map with an explicit ADD candidate pool (no detectors,
     /// no rotation): for tests, teaching pages and callers with their own detectors.
-    pub fn with_candidates(map: &Grid<Cell>, config: ChainConfig, candidates: Vec<(Rect, f64)>, seed: u64) -> Result<Chain, ChainError> {
+    pub fn with_candidates(
+        map: &Grid<Cell>,
+        config: ChainConfig,
+        candidates: Vec<(Rect, f64)>,
+        seed: u64,
+    ) -> Result<Chain, ChainError> {
         config.validate()?;
-        let frame = Frame::identity(map.width() as u32, map.height() as u32);
-        Ok(Self::with_parts(config, frame, map.clone(), map.clone(), Candidates::new(candidates), seed))
+                let frame = Frame::identity(map.width() as u32, map.height() as u32);
+        let wall = config.wall_thickness.unwrap_or(1);
+        Ok(Self::with_parts(config, frame, map.clone(), map.clone(), Candidates::new(candidates), wall, seed))
     }
 
-    fn with_parts(config: ChainConfig, frame: Frame, world_map: Grid<Cell>, map: Grid<Cell>, candidates: Candidates, seed: u64) -> Chain {
-        let state = State::new(&world_map, config.doors);
-        let proposer = Proposer::new(config.kernels, candidates, state.width(), state.height());
+    fn with_parts(
+        config: ChainConfig,
+        frame: Frame,
+        world_map: Grid<Cell>,
+        map: Grid<Cell>,
+                candidates: Candidates,
+        wall: i32,
+        seed: u64,
+    ) -> Chain {
+        let state = State::new(&world_map, config.doors, wall);
+        let proposer = Proposer::new(config.kernels, candidates, state.width(), state.height(), wall);
         let posterior = Posterior::new(&config.posterior);
         let log_target = posterior.log_target(&state.explanation);
         let phase_tables = config.schedule.phases.iter().map(|p| Cumulative::new(p.weights.0)).collect();
@@ -279,6 +308,11 @@ impl Chain {
     /// The classified map in the world frame.
     pub fn world_map(&self) -> &Grid<Cell> {
         &self.world_map
+    }
+
+        /// Depth of the units' wall rings, cells.
+    pub fn wall_thickness(&self) -> i32 {
+        self.state.wall
     }
 
     /// The ADD candidates the detectors found.
@@ -344,22 +378,32 @@ impl Chain {
     fn export(&self, units: &[Unit], doors: &[DoorSpec]) -> World {
         let mut w = World::empty(self.frame.map_size[0], self.frame.map_size[1]);
         w.format = WORLD_FORMAT.to_string();
-        w.frame = self.frame;
+                w.frame = self.frame;
+        w.wall_thickness = self.state.wall;
         w.units = units.iter().enumerate().map(|(k, u)| Unit { id: k as u32 + 1, ..*u }).collect();
         let new_id = |id: u32| units.iter().position(|u| u.id == id).map(|k| k as u32 + 1);
         let rect_of = |id: u32| units.iter().find(|u| u.id == id).map(|u| u.rect());
         for (k, d) in doors.iter().enumerate() {
-            let (Some(lo), Some(hi), Some(a), Some(b)) = (rect_of(d.lo), rect_of(d.hi), new_id(d.lo), new_id(d.hi)) else {
+            let (Some(lo), Some(hi), Some(a), Some(b)) = (rect_of(d.lo), rect_of(d.hi), new_id(d.lo), new_id(d.hi))
+            else {
                 continue;
             };
-            if let Some(r) = super::state::door_rect(lo, hi, d, &self.config.doors) {
-                w.doors.push(Door { id: k as u32 + 1, units: [a, b], x0: r.x, y0: r.y, x1: r.right() - 1, y1: r.bottom() - 1 });
+                        if let Some(r) = super::state::door_rect(lo, hi, d, &self.config.doors, self.state.wall) {
+                w.doors.push(Door {
+                    id: k as u32 + 1,
+                    units: [a, b],
+                    x0: r.x,
+                    y0: r.y,
+                    x1: r.right() - 1,
+                    y1: r.bottom() - 1,
+                });
             }
         }
         // Object cells: unknown map cells inside a unit's free space (furniture, clutter).
+                let t = self.state.wall;
         for u in units {
-            for y in u.y + 1..u.y + u.h - 1 {
-                for x in u.x + 1..u.x + u.w - 1 {
+            for y in u.y + t..u.y + u.h - t {
+                for x in u.x + t..u.x + u.w - t {
                     if *self.world_map.at(x as usize, y as usize) == Cell::Unknown {
                         w.object_cells.push([x, y]);
                     }
@@ -376,7 +420,7 @@ impl Chain {
         let min = self.config.kernels.min_side;
         let items: Vec<(Rect, f64)> = rects
             .into_iter()
-            .filter(|r| r.w >= min && r.h >= min)
+                        .filter(|r| r.w >= min.max(2 * self.state.wall + 1) && r.h >= min.max(2 * self.state.wall + 1))
             .map(|r| (r, self.state.unit_weight(r).max(0.2)))
             .collect();
         self.proposer.candidates.extend(items);
@@ -384,7 +428,8 @@ impl Chain {
 
     fn current_weights(&mut self) -> usize {
         let phases = &self.config.schedule.phases;
-        while self.phase_index + 1 < phases.len() && phases[self.phase_index].until.is_some_and(|u| self.iteration > u) {
+        while self.phase_index + 1 < phases.len() && phases[self.phase_index].until.is_some_and(|u| self.iteration > u)
+        {
             self.phase_index += 1;
         }
         self.phase_index
@@ -478,7 +523,7 @@ impl Chain {
     /// Checks the incremental bookkeeping against a full recomputation (for tests).
     pub fn check_consistency(&self) -> bool {
         let (units, doors) = self.state.rects();
-        self.state.explanation.same_as(&Explanation::recompute(&self.world_map, &units, &doors))
+                self.state.explanation.same_as(&Explanation::recompute(&self.world_map, &units, self.state.wall, &doors))
     }
 
     /// The current world's units and doors as internal records (for tests and the wasm layer).

@@ -163,25 +163,31 @@ impl Explanation {
         self.overlap += c.cover.saturating_sub(1) as i64 - old_overlap;
     }
 
-    /// Adds (`sign = 1`) or removes (`sign = -1`) a unit: its rectangle covers cells and its
-    /// outer ring is wall. The rectangle must lie inside the grid.
-    pub fn apply_unit(&mut self, r: Rect, sign: i8) {
+        /// Adds (`sign = 1`) or removes (`sign = -1`) a unit: its rectangle covers cells and its
+    /// outer ring, `t` cells deep, is wall. The rectangle must lie inside the grid.
+    pub fn apply_unit(&mut self, r: Rect, t: i32, sign: i8) {
         debug_assert!(r.x >= 0 && r.y >= 0 && r.right() as usize <= self.width && r.bottom() as usize <= self.height);
         let (x0, x1) = (r.x as usize, r.right() as usize);
         let (y0, y1) = (r.y as usize, r.bottom() as usize);
+        let t = t.max(1) as usize;
+        // Interior columns [i0, i1); empty when the unit is all wall.
+        let i0 = (x0 + t).min(x1);
+        let i1 = x1.saturating_sub(t).max(i0);
         for y in y0..y1 {
             let base = y * self.width;
-            if y == y0 || y == y1 - 1 {
+            if y < y0 + t || y + t >= y1 {
                 for x in x0..x1 {
                     self.touch(base + x, sign, sign, 0);
                 }
             } else {
-                self.touch(base + x0, sign, sign, 0);
-                for x in x0 + 1..x1 - 1 {
+                for x in x0..i0 {
+                    self.touch(base + x, sign, sign, 0);
+                }
+                for x in i0..i1 {
                     self.touch(base + x, sign, 0, 0);
                 }
-                if x1 - 1 > x0 {
-                    self.touch(base + x1 - 1, sign, sign, 0);
+                for x in i1..x1 {
+                    self.touch(base + x, sign, sign, 0);
                 }
             }
         }
@@ -198,7 +204,7 @@ impl Explanation {
 
     /// Recomputes everything from scratch for a set of unit and door rectangles; the incremental
     /// state must always equal this.
-    pub fn recompute(map: &Grid<Cell>, units: &[Rect], doors: &[Rect]) -> Self {
+        pub fn recompute(map: &Grid<Cell>, units: &[Rect], t: i32, doors: &[Rect]) -> Self {
         let mut e = Explanation::new(map);
         let w = e.width;
         for c in e.cells.iter_mut() {
@@ -209,7 +215,7 @@ impl Explanation {
                 for x in r.x..r.right() {
                     let c = &mut e.cells[y as usize * w + x as usize];
                     c.cover += 1;
-                    c.wall += r.on_border(x, y) as u8;
+                                        c.wall += r.in_ring(x, y, t) as u8;
                 }
             }
         }
@@ -255,16 +261,24 @@ mod tests {
         let a = Rect::new(0, 0, 6, 5);
         let b = Rect::new(4, 2, 8, 7);
         let d = Rect::new(5, 3, 2, 1);
-        e.apply_unit(a, 1);
-        e.apply_unit(b, 1);
+                e.apply_unit(a, 1, 1);
+        e.apply_unit(b, 1, 1);
         e.apply_door(d, 1);
-        assert!(e.same_as(&Explanation::recompute(&m, &[a, b], &[d])));
+        assert!(e.same_as(&Explanation::recompute(&m, &[a, b], 1, &[d])));
         // overlap: a ∩ b = columns 4..6, rows 2..5 = 2 x 3 cells
         assert_eq!(e.overlap(), 6);
-        e.apply_unit(a, -1);
-        assert!(e.same_as(&Explanation::recompute(&m, &[b], &[d])));
+                e.apply_unit(a, 1, -1);
+        assert!(e.same_as(&Explanation::recompute(&m, &[b], 1, &[d])));
         e.apply_door(d, -1);
-        e.apply_unit(b, -1);
+        e.apply_unit(b, 1, -1);
+        // Thick rings, including units that are all wall.
+        for t in 2..5 {
+            for r in [Rect::new(1, 1, 9, 7), Rect::new(0, 0, 4, 3), Rect::new(2, 3, 10, 6)] {
+                e.apply_unit(r, t, 1);
+                assert!(e.same_as(&Explanation::recompute(&m, &[r], t, &[])), "{r:?} t={t}");
+                e.apply_unit(r, t, -1);
+            }
+        }
         assert!(e.same_as(&Explanation::new(&m)));
         let total: i64 = e.confusion().iter().flatten().sum();
         assert_eq!(total, 108);
@@ -278,7 +292,7 @@ mod tests {
         assert_eq!(e.prediction_rate(), 12.0 / 108.0);
         // A unit over rows 0..8: row 0 wall (occupied: match), rows 1..7 interior free except
         // the side columns (walls, mismatching free map cells), row 7 bottom wall mismatch.
-        e.apply_unit(Rect::new(0, 0, 12, 8), 1);
+                e.apply_unit(Rect::new(0, 0, 12, 8), 1, 1);
         let hits = 12 + 10 * 6 + 12;
         assert_eq!(e.prediction_rate(), hits as f64 / 108.0);
         assert_eq!(e.predicted(0, 3), Cell::Occupied);

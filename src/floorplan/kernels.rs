@@ -167,7 +167,8 @@ pub struct Proposer {
     shift: Cumulative,
     scratch: Cumulative,
     scratch_weights: Vec<f64>,
-    uniform_count: f64,
+        uniform_count: f64,
+    min_side: i32,
 }
 
 fn spans(s: i32, e: i32, limits: &DoorLimits) -> f64 {
@@ -264,11 +265,12 @@ pub fn shifted(r: Rect, side: usize, d: i32) -> Rect {
 
 impl Proposer {
     /// A proposer for a `width` x `height` world with the given ADD candidates.
-    pub fn new(config: KernelConfig, candidates: Candidates, width: i32, height: i32) -> Self {
+        pub fn new(config: KernelConfig, candidates: Candidates, width: i32, height: i32, wall: i32) -> Self {
+        let min_side = config.min_side.max(2 * wall + 1);
         let m = libm::ceil(4.0 * config.shift_sigma).max(1.0) as i32;
         let s2 = 2.0 * config.shift_sigma * config.shift_sigma;
         let shift = Cumulative::new((1..=m).map(|d| libm::exp(-((d * d) as f64) / s2)));
-        let n = config.min_side as i64;
+                let n = min_side as i64;
         let uniform_count = (interval_count(width as i64, n) * interval_count(height as i64, n)) as f64;
         Proposer {
             config,
@@ -277,7 +279,8 @@ impl Proposer {
             shift,
             scratch: Cumulative::default(),
             scratch_weights: Vec::new(),
-            uniform_count,
+                        uniform_count,
+            min_side,
         }
     }
 
@@ -299,19 +302,21 @@ impl Proposer {
         s.wall_weights(r).map(|w| if w > 0.0 { (1.0 / w).min(self.config.h_v) } else { self.config.h_v })
     }
 
-    fn cut_weight(s: &State, u: Rect, vertical: bool, k: i32, eps: f64) -> f64 {
-        // Wall evidence along the cut: occupied cells on the two lines either side of it,
-        // inside the unit's interior (the Hough accumulator at 0 / 90 degrees, eq. 3.18).
+        fn cut_weight(s: &State, u: Rect, vertical: bool, k: i32, eps: f64) -> f64 {
+        // Wall evidence along the cut: occupied cells in the two new wall rings either side of
+        // it, inside the unit's interior (the Hough accumulator at 0 / 90 degrees, eq. 3.18),
+        // per ring row so that thick rings do not count a wall twice.
+        let t = s.wall;
         let ev = if vertical {
-            s.occupied_in(Rect::new(k - 1, u.y + 1, 2, u.h - 2))
+            s.occupied_in(Rect::new(k - t, u.y + t, 2 * t, u.h - 2 * t))
         } else {
-            s.occupied_in(Rect::new(u.x + 1, k - 1, u.w - 2, 2))
+            s.occupied_in(Rect::new(u.x + t, k - t, u.w - 2 * t, 2 * t))
         };
-        eps + ev as f64
+        eps + ev as f64 / t as f64
     }
 
-    fn cut_range(&self, u: Rect, vertical: bool) -> (i32, i32) {
-        let m = self.config.min_side;
+        fn cut_range(&self, u: Rect, vertical: bool) -> (i32, i32) {
+        let m = self.min_side;
         if vertical {
             (u.x + m, u.right() - m)
         } else {
@@ -408,7 +413,7 @@ impl Proposer {
         for a in &s.units {
             for b in &s.units {
                 for axis in [Axis::Horizontal, Axis::Vertical] {
-                    let Some((st, en)) = facing(a.rect(), b.rect(), axis, limits.max_gap) else { continue };
+                                        let Some((st, en)) = facing(a.rect(), b.rect(), axis, limits.max_gap, s.wall) else { continue };
                     let n = spans(st, en, &limits);
                     if n <= 0.0 {
                         continue;
@@ -468,8 +473,8 @@ impl Proposer {
         self.scratch.probability(k)
     }
 
-    fn draw_uniform_rect(&self, s: &State, rng: &mut Rng) -> Rect {
-        let m = self.config.min_side;
+        fn draw_uniform_rect(&self, s: &State, rng: &mut Rng) -> Rect {
+        let m = self.min_side;
         let axis = |rng: &mut Rng, size: i32| -> (i32, i32) {
             let total = interval_count(size as i64, m as i64);
             let mut k = (rng.uniform() * total as f64) as i64;
@@ -493,7 +498,7 @@ impl Proposer {
         let n = s.units.len();
         match kernel {
             Kernel::Add => {
-                if s.width() < self.config.min_side || s.height() < self.config.min_side {
+                                if s.width() < self.min_side || s.height() < self.min_side {
                     return None;
                 }
                 let p_unif = if self.candidates.is_empty() { 1.0 } else { self.config.uniform_add };
@@ -523,7 +528,8 @@ impl Proposer {
                 let q = self.scratch.probability(c) / n as f64;
                 let (va, vb) = self.cut_range(u, true);
                 let nv = (vb - va + 1).max(0) as usize;
-                let (vertical, k) = if c < nv { (true, va + c as i32) } else { (false, self.cut_range(u, false).0 + (c - nv) as i32) };
+                let (vertical, k) =
+                    if c < nv { (true, va + c as i32) } else { (false, self.cut_range(u, false).0 + (c - nv) as i32) };
                 let (first, second) = split_at(u, vertical, k);
                 Some((Move::Split { index: i, first, second }, q))
             }
@@ -622,7 +628,12 @@ impl Proposer {
             (Move::Reshape { index, rect }, Undo::Replaced { old, .. }) => {
                 let before = old[0].1.rect();
                 // Which wall moved, and by how much (positive outwards in the new state's terms).
-                let moves = [before.x - rect.x, rect.right() - before.right(), before.y - rect.y, rect.bottom() - before.bottom()];
+                let moves = [
+                    before.x - rect.x,
+                    rect.right() - before.right(),
+                    before.y - rect.y,
+                    rect.bottom() - before.bottom(),
+                ];
                 match moves.iter().position(|&d| d != 0) {
                     Some(side) => self.q_shift(s, *index, side, -moves[side]),
                     None => 0.0,

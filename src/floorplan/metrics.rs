@@ -4,7 +4,8 @@ use super::world::World;
 use crate::grid::{Cell, Grid};
 
 /// The class a world predicts for every cell of the map (eq. 3.8), in the map's frame: wall
-/// rings occupied, unit interiors and doors free, everything else unknown.
+/// rings (`world.wall_thickness` deep) occupied, unit interiors and doors free, everything
+/// else unknown.
 pub fn predicted_map(map_width: usize, map_height: usize, world: &World) -> Grid<Cell> {
     let [ww, wh] = world.frame.world_size;
     let (ww, wh) = (ww as usize, wh as usize);
@@ -17,7 +18,7 @@ pub fn predicted_map(map_width: usize, map_height: usize, world: &World) -> Grid
             for x in r.x.max(0)..r.right().min(ww as i32) {
                 let i = y as usize * ww + x as usize;
                 cover[i] = cover[i].saturating_add(1);
-                if r.on_border(x, y) {
+                                if r.in_ring(x, y, world.wall_thickness) {
                     wall[i] = wall[i].saturating_add(1);
                 }
             }

@@ -52,32 +52,34 @@ impl Default for DoorLimits {
     }
 }
 
-/// The interior range two facing units share along their walls, if they face each other.
-pub fn facing(lo: Rect, hi: Rect, axis: Axis, max_gap: i32) -> Option<(i32, i32)> {
-    let (wall_lo, wall_hi, a0, a1, b0, b1) = match axis {
-        Axis::Horizontal => (lo.right() - 1, hi.x, lo.y, lo.bottom(), hi.y, hi.bottom()),
-        Axis::Vertical => (lo.bottom() - 1, hi.y, lo.x, lo.right(), hi.x, hi.right()),
+/// The interior range two facing units share along their walls, if they face each other:
+/// `hi` lies beyond `lo` (their wall rings of depth `t` may overlap, their rectangles may be
+/// up to `max_gap` cells apart), and their interiors overlap along the walls.
+pub fn facing(lo: Rect, hi: Rect, axis: Axis, max_gap: i32, t: i32) -> Option<(i32, i32)> {
+    let (gap, a0, a1, b0, b1) = match axis {
+        Axis::Horizontal => (hi.x - lo.right(), lo.y, lo.bottom(), hi.y, hi.bottom()),
+        Axis::Vertical => (hi.y - lo.bottom(), lo.x, lo.right(), hi.x, hi.right()),
     };
-    if wall_hi < wall_lo || wall_hi - wall_lo > max_gap {
+    if gap < -t || gap > max_gap {
         return None;
     }
-    // Interior rows (or columns) of both: exclude each unit's corner cells.
-    let s = (a0 + 1).max(b0 + 1);
-    let e = (a1 - 2).min(b1 - 2);
+    // Interior rows (or columns) of both: exclude each unit's corner walls.
+    let s = (a0 + t).max(b0 + t);
+    let e = (a1 - 1 - t).min(b1 - 1 - t);
     (s <= e).then_some((s, e))
 }
 
 /// The rectangle of a door between `lo` and `hi`, or `None` if they no longer face each other
 /// over the door's span.
-pub fn door_rect(lo: Rect, hi: Rect, d: &DoorSpec, limits: &DoorLimits) -> Option<Rect> {
-    let (s, e) = facing(lo, hi, d.axis, limits.max_gap)?;
+pub fn door_rect(lo: Rect, hi: Rect, d: &DoorSpec, limits: &DoorLimits, t: i32) -> Option<Rect> {
+    let (s, e) = facing(lo, hi, d.axis, limits.max_gap, t)?;
     let len = d.end - d.start + 1;
     if d.start < s || d.end > e || len < limits.min_len || len > limits.max_len {
         return None;
     }
     Some(match d.axis {
-        Axis::Horizontal => Rect::new(lo.right() - 1, d.start, hi.x - lo.right() + 2, len),
-        Axis::Vertical => Rect::new(d.start, lo.bottom() - 1, len, hi.y - lo.bottom() + 2),
+                Axis::Horizontal => Rect::new(lo.right() - t, d.start, hi.x - lo.right() + 2 * t, len),
+        Axis::Vertical => Rect::new(d.start, lo.bottom() - t, len, hi.y - lo.bottom() + 2 * t),
     })
 }
 
@@ -189,15 +191,17 @@ pub struct State {
     /// Changes whenever unit geometry changes (restored on undo), for caches.
     pub generation: u64,
     generation_counter: u64,
-    /// Door geometry limits.
+        /// Door geometry limits.
     pub door_limits: DoorLimits,
+    /// Depth of every unit's wall ring, cells.
+    pub wall: i32,
     width: i32,
     height: i32,
 }
 
 impl State {
     /// An empty world over a world-frame classified map.
-    pub fn new(map: &Grid<Cell>, door_limits: DoorLimits) -> Self {
+        pub fn new(map: &Grid<Cell>, door_limits: DoorLimits, wall: i32) -> Self {
         State {
             explanation: Explanation::new(map),
             occupied: AreaCounts::new(map, Cell::Occupied),
@@ -207,7 +211,8 @@ impl State {
             next_id: 1,
             generation: 0,
             generation_counter: 0,
-            door_limits,
+                        door_limits,
+            wall: wall.max(1),
             width: map.width() as i32,
             height: map.height() as i32,
         }
@@ -235,12 +240,13 @@ impl State {
 
     /// Wall weights `ω_w` of eq. 3.11 for the four walls (left, right, top, bottom): the share
     /// of each wall's cells that are occupied in the map (eqs. 3.12 - 3.14).
-    pub fn wall_weights(&self, r: Rect) -> [f64; 4] {
+        pub fn wall_weights(&self, r: Rect) -> [f64; 4] {
+        let t = self.wall;
         let walls = [
-            Rect::new(r.x, r.y, 1, r.h),
-            Rect::new(r.right() - 1, r.y, 1, r.h),
-            Rect::new(r.x, r.y, r.w, 1),
-            Rect::new(r.x, r.bottom() - 1, r.w, 1),
+            Rect::new(r.x, r.y, t, r.h),
+            Rect::new(r.right() - t, r.y, t, r.h),
+            Rect::new(r.x, r.y, r.w, t),
+            Rect::new(r.x, r.bottom() - t, r.w, t),
         ];
         walls.map(|w| self.occupied.count(w) as f64 / w.area().max(1) as f64)
     }
@@ -264,11 +270,17 @@ impl State {
     pub fn door_rect_of(&self, d: &DoorSpec) -> Option<Rect> {
         let lo = self.units[self.index_of(d.lo)?].rect();
         let hi = self.units[self.index_of(d.hi)?].rect();
-        door_rect(lo, hi, d, &self.door_limits)
+                door_rect(lo, hi, d, &self.door_limits, self.wall)
     }
 
-    fn rect_ok(&self, r: Rect, min_side: i32) -> bool {
-        r.w >= min_side && r.h >= min_side && r.x >= 0 && r.y >= 0 && r.right() <= self.width && r.bottom() <= self.height
+        fn rect_ok(&self, r: Rect, min_side: i32) -> bool {
+        let min_side = min_side.max(2 * self.wall + 1);
+        r.w >= min_side
+            && r.h >= min_side
+            && r.x >= 0
+            && r.y >= 0
+            && r.right() <= self.width
+            && r.bottom() <= self.height
     }
 
     fn duplicate(&self, r: Rect, except: &[usize]) -> bool {
@@ -309,7 +321,7 @@ impl State {
                     let other = if d.lo == id { d.hi } else { d.lo };
                     let Some(o) = self.index_of(other) else { return false };
                     let (lo, hi) = if d.lo == id { (rect, self.units[o].rect()) } else { (self.units[o].rect(), rect) };
-                    door_rect(lo, hi, d, &self.door_limits).is_some()
+                                        door_rect(lo, hi, d, &self.door_limits, self.wall).is_some()
                 })
             }
             Move::Repartition { i, j, a, b } => {
@@ -350,23 +362,23 @@ impl State {
         let undo = match *m {
             Move::Add(r) => {
                 let u = self.new_unit(r);
-                self.explanation.apply_unit(r, 1);
+                self.explanation.apply_unit(r, self.wall, 1);
                 self.units.push(u);
                 self.bump();
                 Undo::Added
             }
             Move::Remove(i) => {
                 let u = self.units.swap_remove(i);
-                self.explanation.apply_unit(u.rect(), -1);
+                self.explanation.apply_unit(u.rect(), self.wall, -1);
                 self.bump();
                 Undo::Removed { index: i, unit: u }
             }
             Move::Split { index, first, second } => {
                 let len = self.units.len();
                 let old = self.units[index];
-                self.explanation.apply_unit(old.rect(), -1);
-                self.explanation.apply_unit(first, 1);
-                self.explanation.apply_unit(second, 1);
+                self.explanation.apply_unit(old.rect(), self.wall, -1);
+                self.explanation.apply_unit(first, self.wall, 1);
+                self.explanation.apply_unit(second, self.wall, 1);
                 self.units[index] = self.new_unit(first);
                 let s = self.new_unit(second);
                 self.units.push(s);
@@ -375,9 +387,9 @@ impl State {
             }
             Move::Merge { i, j, merged } => {
                 let (ui, uj) = (self.units[i], self.units[j]);
-                self.explanation.apply_unit(ui.rect(), -1);
-                self.explanation.apply_unit(uj.rect(), -1);
-                self.explanation.apply_unit(merged, 1);
+                self.explanation.apply_unit(ui.rect(), self.wall, -1);
+                self.explanation.apply_unit(uj.rect(), self.wall, -1);
+                self.explanation.apply_unit(merged, self.wall, 1);
                 self.units[i] = self.new_unit(merged);
                 self.units.remove(j);
                 self.bump();
@@ -393,8 +405,8 @@ impl State {
                     let r = self.door_rect_of(&self.doors[k]).expect("valid before the move");
                     self.explanation.apply_door(r, -1);
                 }
-                self.explanation.apply_unit(old.rect(), -1);
-                self.explanation.apply_unit(rect, 1);
+                self.explanation.apply_unit(old.rect(), self.wall, -1);
+                self.explanation.apply_unit(rect, self.wall, 1);
                 self.units[index] = Unit { x: rect.x, y: rect.y, w: rect.w, h: rect.h, ..old };
                 for &k in &doors {
                     let r = self.door_rect_of(&self.doors[k]).expect("checked by is_valid");
@@ -406,10 +418,10 @@ impl State {
             Move::Repartition { i, j, a, b } => {
                 let len = self.units.len();
                 let (ui, uj) = (self.units[i], self.units[j]);
-                self.explanation.apply_unit(ui.rect(), -1);
-                self.explanation.apply_unit(uj.rect(), -1);
-                self.explanation.apply_unit(a, 1);
-                self.explanation.apply_unit(b, 1);
+                self.explanation.apply_unit(ui.rect(), self.wall, -1);
+                self.explanation.apply_unit(uj.rect(), self.wall, -1);
+                self.explanation.apply_unit(a, self.wall, 1);
+                self.explanation.apply_unit(b, self.wall, 1);
                 self.units[i] = Unit { x: a.x, y: a.y, w: a.w, h: a.h, ..ui };
                 self.units[j] = Unit { x: b.x, y: b.y, w: b.w, h: b.h, ..uj };
                 self.bump();
@@ -436,10 +448,10 @@ impl State {
         match undo {
             Undo::Added => {
                 let u = self.units.pop().expect("added unit");
-                self.explanation.apply_unit(u.rect(), -1);
+                self.explanation.apply_unit(u.rect(), self.wall, -1);
             }
             Undo::Removed { index, unit } => {
-                self.explanation.apply_unit(unit.rect(), 1);
+                self.explanation.apply_unit(unit.rect(), self.wall, 1);
                 self.units.push(unit);
                 let last = self.units.len() - 1;
                 self.units.swap(index, last);
@@ -447,11 +459,11 @@ impl State {
             Undo::Merged { i, j, ui, uj } => {
                 let mi = if i > j { i - 1 } else { i };
                 let merged = self.units[mi];
-                self.explanation.apply_unit(merged.rect(), -1);
+                self.explanation.apply_unit(merged.rect(), self.wall, -1);
                 self.units.insert(j, uj);
                 self.units[i] = ui;
-                self.explanation.apply_unit(ui.rect(), 1);
-                self.explanation.apply_unit(uj.rect(), 1);
+                self.explanation.apply_unit(ui.rect(), self.wall, 1);
+                self.explanation.apply_unit(uj.rect(), self.wall, 1);
             }
             Undo::Replaced { old, count, len } => {
                 // Doors of reshaped units move with them: take their current rectangles out first.
@@ -467,15 +479,15 @@ impl State {
                 // Remove what the move added: appended units, then the changed slots.
                 while self.units.len() > len {
                     let u = self.units.pop().expect("appended unit");
-                    self.explanation.apply_unit(u.rect(), -1);
+                    self.explanation.apply_unit(u.rect(), self.wall, -1);
                 }
                 for &(i, _) in &old[..count] {
                     let cur = self.units[i];
-                    self.explanation.apply_unit(cur.rect(), -1);
+                    self.explanation.apply_unit(cur.rect(), self.wall, -1);
                 }
                 for &(i, u) in &old[..count] {
                     self.units[i] = u;
-                    self.explanation.apply_unit(u.rect(), 1);
+                    self.explanation.apply_unit(u.rect(), self.wall, 1);
                 }
                 for &k in &doors {
                     let r = self.door_rect_of(&self.doors[k]).expect("doors were valid before the move");

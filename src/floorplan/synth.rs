@@ -14,10 +14,7 @@ pub struct SynthConfig {
 
 impl Default for SynthConfig {
     fn default() -> Self {
-        SynthConfig {
-            width: 400,
-            height: 300,
-        }
+        SynthConfig { width: 400, height: 300 }
     }
 }
 
@@ -59,11 +56,7 @@ impl Synthetic {
     }
     /// `truth_labels.pgm` bytes: 16-bit binary PGM.
     pub fn labels_pgm(&self) -> Vec<u8> {
-        crate::grid::pgm::encode_u16(
-            self.labels.width(),
-            self.labels.height(),
-            self.labels.cells(),
-        )
+        crate::grid::pgm::encode_u16(self.labels.width(), self.labels.height(), self.labels.cells())
     }
 }
 
@@ -72,9 +65,5 @@ pub fn generate(config: &SynthConfig, seed: u64) -> Result<Synthetic, SynthError
     let _ = seed;
     let (w, h) = (config.width as usize, config.height as usize);
     let map = OccupancyMap::from_classified(Grid::new(w, h, Cell::Unknown));
-    Ok(Synthetic {
-        map,
-        truth: World::empty(config.width, config.height),
-        labels: Grid::new(w, h, 0),
-    })
+    Ok(Synthetic { map, truth: World::empty(config.width, config.height), labels: Grid::new(w, h, 0) })
 }

@@ -14,6 +14,7 @@
 //! {
 //!   "format": "ksmcmc-world/1",
 //!   "frame": { "angle": 0.0, "world_size": [120, 80], "map_size": [120, 80] },
+//!   "wall_thickness": 2,
 //!   "units": [ { "id": 1, "x": 10, "y": 10, "w": 30, "h": 20, "type": "room" } ],
 //!   "doors": [ { "id": 1, "units": [1, 2], "x0": 39, "y0": 14, "x1": 39, "y1": 18 } ],
 //!   "object_cells": [[12, 14], [12, 15]]
@@ -22,6 +23,8 @@
 //!
 //! * `frame.angle`: radians; a world point `p` lies at map point
 //!   `c_map + R(angle) (p - c_world)`, where the `c` are the centres of the two grids.
+//! * `wall_thickness`: how many cells deep each unit's wall ring is (1 in the dissertation's
+//!   model; optional, default 1).
 //! * `units[].type`: `room`, `corridor`, `hall`, `other` or `unknown` (not yet typed).
 //! * `doors[]`: the rectangle of cells from `(x0, y0)` to `(x1, y1)` inclusive, through the wall
 //!   between the two units named by id (a straight run of cells where they share a thin wall).
@@ -33,9 +36,7 @@ use serde::{Deserialize, Serialize};
 pub const WORLD_FORMAT: &str = "ksmcmc-world/1";
 
 /// The semantic type of a unit (the query predicates of Tab. 3.3).
-#[derive(
-    Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize, Default,
-)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize, Default)]
 #[serde(rename_all = "lowercase")]
 pub enum UnitType {
     /// An office, lab or other enclosed room.
@@ -53,13 +54,8 @@ pub enum UnitType {
 
 impl UnitType {
     /// All types, in a fixed order.
-    pub const ALL: [UnitType; 5] = [
-        UnitType::Room,
-        UnitType::Corridor,
-        UnitType::Hall,
-        UnitType::Other,
-        UnitType::Unknown,
-    ];
+    pub const ALL: [UnitType; 5] =
+        [UnitType::Room, UnitType::Corridor, UnitType::Hall, UnitType::Other, UnitType::Unknown];
 
     /// The lowercase name used in JSON and labels.
     pub fn name(self) -> &'static str {
@@ -112,18 +108,20 @@ impl Rect {
         x >= self.x && x < self.right() && y >= self.y && y < self.bottom()
     }
 
-    /// Whether cell `(x, y)` is on the outer ring (a wall cell, eq. 3.8's `S_w`).
+        /// Whether cell `(x, y)` is on the outer ring (a wall cell, eq. 3.8's `S_w`).
     pub fn on_border(&self, x: i32, y: i32) -> bool {
-        self.contains(x, y)
-            && (x == self.x || y == self.y || x == self.right() - 1 || y == self.bottom() - 1)
+        self.in_ring(x, y, 1)
+    }
+
+    /// Whether cell `(x, y)` lies within `t` cells of the rectangle's edge: the walls of a unit
+    /// whose walls are `t` cells thick.
+    pub fn in_ring(&self, x: i32, y: i32, t: i32) -> bool {
+        self.contains(x, y) && (x < self.x + t || y < self.y + t || x >= self.right() - t || y >= self.bottom() - t)
     }
 
     /// The centre in cell coordinates (cell centres at `+0.5`).
     pub fn center(&self) -> (f64, f64) {
-        (
-            self.x as f64 + self.w as f64 / 2.0,
-            self.y as f64 + self.h as f64 / 2.0,
-        )
+        (self.x as f64 + self.w as f64 / 2.0, self.y as f64 + self.h as f64 / 2.0)
     }
 
     /// The overlap of two rectangles, if any.
@@ -222,11 +220,7 @@ pub struct Frame {
 impl Frame {
     /// The identity frame for a map of the given size.
     pub fn identity(width: u32, height: u32) -> Self {
-        Frame {
-            angle: 0.0,
-            world_size: [width, height],
-            map_size: [width, height],
-        }
+        Frame { angle: 0.0, world_size: [width, height], map_size: [width, height] }
     }
 
     /// Whether world cells are map cells.
@@ -237,27 +231,15 @@ impl Frame {
     /// Maps a world-frame point (cell units, continuous) to map coordinates.
     pub fn to_map(&self, x: f64, y: f64) -> (f64, f64) {
         let (s, c) = (libm::sin(self.angle), libm::cos(self.angle));
-        let (wx, wy) = (
-            x - self.world_size[0] as f64 / 2.0,
-            y - self.world_size[1] as f64 / 2.0,
-        );
-        (
-            self.map_size[0] as f64 / 2.0 + c * wx - s * wy,
-            self.map_size[1] as f64 / 2.0 + s * wx + c * wy,
-        )
+        let (wx, wy) = (x - self.world_size[0] as f64 / 2.0, y - self.world_size[1] as f64 / 2.0);
+        (self.map_size[0] as f64 / 2.0 + c * wx - s * wy, self.map_size[1] as f64 / 2.0 + s * wx + c * wy)
     }
 
     /// Maps a map point to the world frame (the inverse of [`Frame::to_map`]).
     pub fn to_world(&self, x: f64, y: f64) -> (f64, f64) {
         let (s, c) = (libm::sin(self.angle), libm::cos(self.angle));
-        let (mx, my) = (
-            x - self.map_size[0] as f64 / 2.0,
-            y - self.map_size[1] as f64 / 2.0,
-        );
-        (
-            self.world_size[0] as f64 / 2.0 + c * mx + s * my,
-            self.world_size[1] as f64 / 2.0 - s * mx + c * my,
-        )
+        let (mx, my) = (x - self.map_size[0] as f64 / 2.0, y - self.map_size[1] as f64 / 2.0);
+        (self.world_size[0] as f64 / 2.0 + c * mx + s * my, self.world_size[1] as f64 / 2.0 - s * mx + c * my)
     }
 }
 
@@ -267,8 +249,11 @@ impl Frame {
 pub struct World {
     /// Always [`WORLD_FORMAT`].
     pub format: String,
-    /// How the world frame sits on the map.
+        /// How the world frame sits on the map.
     pub frame: Frame,
+    /// Depth of each unit's wall ring, in cells (1 in the dissertation's model).
+    #[serde(default = "one")]
+    pub wall_thickness: i32,
     /// The units.
     pub units: Vec<Unit>,
     /// The doors.
@@ -277,6 +262,10 @@ pub struct World {
     /// Unknown map cells inside units (furniture and clutter), world frame.
     #[serde(default)]
     pub object_cells: Vec<[i32; 2]>,
+}
+
+fn one() -> i32 {
+    1
 }
 
 /// Why a `world.json` was refused.
@@ -296,7 +285,8 @@ impl World {
     pub fn empty(width: u32, height: u32) -> Self {
         World {
             format: WORLD_FORMAT.to_string(),
-            frame: Frame::identity(width, height),
+                        frame: Frame::identity(width, height),
+            wall_thickness: 1,
             units: Vec::new(),
             doors: Vec::new(),
             object_cells: Vec::new(),
@@ -324,8 +314,7 @@ impl World {
     /// assert!(World::from_json("{").is_err());
     /// ```
     pub fn from_json(text: &str) -> Result<World, WorldError> {
-        let w: World =
-            serde_json::from_str(text).map_err(|e| WorldError(format!("world.json: {e}")))?;
+        let w: World = serde_json::from_str(text).map_err(|e| WorldError(format!("world.json: {e}")))?;
         w.validate()?;
         Ok(w)
     }
@@ -334,14 +323,14 @@ impl World {
     pub fn validate(&self) -> Result<(), WorldError> {
         let bad = |m: String| Err(WorldError(m));
         if self.format != WORLD_FORMAT {
-            return bad(format!(
-                "world.json: format is {:?}, expected {WORLD_FORMAT:?}",
-                self.format
-            ));
+            return bad(format!("world.json: format is {:?}, expected {WORLD_FORMAT:?}", self.format));
         }
         let f = &self.frame;
         if !f.angle.is_finite() || f.world_size.contains(&0) || f.map_size.contains(&0) {
             return bad("world.json: the frame needs a finite angle and non-zero sizes".into());
+        }
+                if !(1..=20).contains(&self.wall_thickness) {
+            return bad(format!("world.json: wall_thickness {} is not between 1 and 20", self.wall_thickness));
         }
         let [ww, wh] = [f.world_size[0] as i64, f.world_size[1] as i64];
         let mut ids = std::collections::HashSet::new();
@@ -350,10 +339,7 @@ impl World {
                 return bad(format!("world.json: unit id {} appears twice", u.id));
             }
             if u.w < 1 || u.h < 1 {
-                return bad(format!(
-                    "world.json: unit {} has size {}x{}",
-                    u.id, u.w, u.h
-                ));
+                return bad(format!("world.json: unit {} has size {}x{}", u.id, u.w, u.h));
             }
             let (x0, y0) = (u.x as i64, u.y as i64);
             if x0 < 0 || y0 < 0 || x0 + u.w as i64 > ww || y0 + u.h as i64 > wh {
@@ -366,33 +352,21 @@ impl World {
         for d in &self.doors {
             for id in d.units {
                 if !ids.contains(&id) {
-                    return bad(format!(
-                        "world.json: door {} names unit {id}, which does not exist",
-                        d.id
-                    ));
+                    return bad(format!("world.json: door {} names unit {id}, which does not exist", d.id));
                 }
             }
             if d.x0 != d.x1 && d.y0 != d.y1 {
-                return bad(format!(
-                    "world.json: door {} is neither horizontal nor vertical",
-                    d.id
-                ));
+                return bad(format!("world.json: door {} is neither horizontal nor vertical", d.id));
             }
             for (x, y) in [(d.x0, d.y0), (d.x1, d.y1)] {
                 if x < 0 || y < 0 || x as i64 >= ww || y as i64 >= wh {
-                    return bad(format!(
-                        "world.json: door {} has a cell ({x},{y}) outside the world",
-                        d.id
-                    ));
+                    return bad(format!("world.json: door {} has a cell ({x},{y}) outside the world", d.id));
                 }
             }
         }
         for c in &self.object_cells {
             if c[0] < 0 || c[1] < 0 || c[0] as i64 >= ww || c[1] as i64 >= wh {
-                return bad(format!(
-                    "world.json: object cell ({},{}) lies outside the world",
-                    c[0], c[1]
-                ));
+                return bad(format!("world.json: object cell ({},{}) lies outside the world", c[0], c[1]));
             }
         }
         Ok(())

@@ -5,9 +5,7 @@ use super::raster::{Grid, Raster};
 use super::ros::{MapYaml, Mode};
 
 /// The class of one map cell, with the codes of eq. 3.7 (`C_M(x, y)`).
-#[derive(
-    Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, serde::Serialize, serde::Deserialize,
-)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, serde::Serialize, serde::Deserialize)]
 #[repr(u8)]
 pub enum Cell {
     /// Seen and empty (`C_M = 0`).
@@ -74,10 +72,7 @@ impl Default for Classifier {
     /// space with 254 or 255; scan edges are anti-aliased dark grays. ROS's own defaults would
     /// call 230 free.
     fn default() -> Self {
-        Classifier::Intensity {
-            occupied_max: 0.35,
-            unknown_max: 0.92,
-        }
+        Classifier::Intensity { occupied_max: 0.35, unknown_max: 0.92 }
     }
 }
 
@@ -95,27 +90,16 @@ impl Classifier {
     /// Checks that the thresholds are finite, ordered probabilities.
     pub fn validate(&self) -> Result<(), MapError> {
         let (lo_name, lo, hi_name, hi) = match *self {
-            Classifier::Intensity {
-                occupied_max,
-                unknown_max,
-            } => ("occupied_max", occupied_max, "unknown_max", unknown_max),
-            Classifier::MapServer {
-                occupied_thresh,
-                free_thresh,
-                ..
-            } => (
-                "free_thresh",
-                free_thresh,
-                "occupied_thresh",
-                occupied_thresh,
-            ),
+            Classifier::Intensity { occupied_max, unknown_max } => {
+                ("occupied_max", occupied_max, "unknown_max", unknown_max)
+            }
+            Classifier::MapServer { occupied_thresh, free_thresh, .. } => {
+                ("free_thresh", free_thresh, "occupied_thresh", occupied_thresh)
+            }
         };
         for (name, v) in [(lo_name, lo), (hi_name, hi)] {
             if !v.is_finite() || !(0.0..=1.0).contains(&v) {
-                return Err(MapError::BadThreshold {
-                    name,
-                    message: format!("{v} is not a number between 0 and 1"),
-                });
+                return Err(MapError::BadThreshold { name, message: format!("{v} is not a number between 0 and 1") });
             }
         }
         if lo >= hi {
@@ -134,10 +118,7 @@ impl Classifier {
             return Cell::Unknown;
         }
         match *self {
-            Classifier::Intensity {
-                occupied_max,
-                unknown_max,
-            } => {
+            Classifier::Intensity { occupied_max, unknown_max } => {
                 let g = gray as f64 / 65535.0;
                 if g <= occupied_max {
                     Cell::Occupied
@@ -147,12 +128,7 @@ impl Classifier {
                     Cell::Free
                 }
             }
-            Classifier::MapServer {
-                negate,
-                occupied_thresh,
-                free_thresh,
-                mode,
-            } => {
+            Classifier::MapServer { negate, occupied_thresh, free_thresh, mode } => {
                 let mut v = gray as f64 / 257.0;
                 if negate {
                     v = 255.0 - v;
@@ -177,11 +153,7 @@ impl Classifier {
     pub fn classify_raster(&self, raster: &Raster) -> Grid<Cell> {
         let gray = raster.gray.cells();
         let cells: Vec<Cell> = match &raster.alpha {
-            Some(alpha) => gray
-                .iter()
-                .zip(alpha.cells())
-                .map(|(&g, &a)| self.classify(g, a))
-                .collect(),
+            Some(alpha) => gray.iter().zip(alpha.cells()).map(|(&g, &a)| self.classify(g, a)).collect(),
             None => gray.iter().map(|&g| self.classify(g, u16::MAX)).collect(),
         };
         Grid::from_vec(raster.width(), raster.height(), cells).expect("same size as the raster")

@@ -109,14 +109,12 @@ impl fmt::Display for MapError {
                 "truncated {format}: the header promises {expected} samples but the file holds \
                  only {found}; the file was probably cut off while copying"
             ),
-            MapError::SampleOutOfRange { index, value, maxval } => write!(
-                f,
-                "PGM sample {index} is {value}, above the header's maximum value {maxval}"
-            ),
-            MapError::Empty { width, height } => write!(
-                f,
-                "the map is {width}x{height}: a map needs at least one row and one column"
-            ),
+            MapError::SampleOutOfRange { index, value, maxval } => {
+                write!(f, "PGM sample {index} is {value}, above the header's maximum value {maxval}")
+            }
+            MapError::Empty { width, height } => {
+                write!(f, "the map is {width}x{height}: a map needs at least one row and one column")
+            }
             MapError::TooLarge { width, height, limit } => write!(
                 f,
                 "the map is {width}x{height} = {} cells, over the limit of {limit} cells; crop or \
@@ -128,10 +126,9 @@ impl fmt::Display for MapError {
                 write!(f, "map.yaml line {line}: {message}")
             }
             MapError::Yaml { message, .. } => write!(f, "map.yaml: {message}"),
-            MapError::NotUtf8 { what, offset } => write!(
-                f,
-                "{what} is not UTF-8 text (bad byte at offset {offset}); save it as UTF-8"
-            ),
+            MapError::NotUtf8 { what, offset } => {
+                write!(f, "{what} is not UTF-8 text (bad byte at offset {offset}); save it as UTF-8")
+            }
             MapError::MissingImage { path, yaml } => write!(
                 f,
                 "{yaml} names the image {path}, which does not exist; put the image beside the \

@@ -50,9 +50,7 @@ pub const DEFAULT_MAX_CELLS: usize = 1 << 25;
 
 impl Default for Limits {
     fn default() -> Self {
-        Limits {
-            max_cells: DEFAULT_MAX_CELLS,
-        }
+        Limits { max_cells: DEFAULT_MAX_CELLS }
     }
 }
 
@@ -64,11 +62,7 @@ impl Limits {
         }
         let cells = (width as u128) * (height as u128);
         if cells > self.max_cells as u128 {
-            return Err(MapError::TooLarge {
-                width,
-                height,
-                limit: self.max_cells,
-            });
+            return Err(MapError::TooLarge { width, height, limit: self.max_cells });
         }
         Ok((width as usize, height as usize))
     }
@@ -110,9 +104,7 @@ impl ImageFormat {
                 });
             }
         }
-        Err(MapError::UnknownFormat {
-            start: describe_start(bytes),
-        })
+        Err(MapError::UnknownFormat { start: describe_start(bytes) })
     }
 }
 
@@ -140,26 +132,14 @@ impl OccupancyMap {
     }
 
     /// Loads a PGM or PNG from memory with the given classifier and limits.
-    pub fn from_image_bytes(
-        bytes: &[u8],
-        classifier: Classifier,
-        limits: &Limits,
-    ) -> Result<Self, MapError> {
+    pub fn from_image_bytes(bytes: &[u8], classifier: Classifier, limits: &Limits) -> Result<Self, MapError> {
         classifier.validate()?;
         let raster = decode_image(bytes, limits)?;
-        Ok(Self::from_raster(
-            raster,
-            MapYaml::for_image("map.pgm"),
-            classifier,
-        ))
+        Ok(Self::from_raster(raster, MapYaml::for_image("map.pgm"), classifier))
     }
 
     /// Loads a ROS map_server pair from the YAML text and the bytes of the image it names.
-    pub fn from_yaml_and_image(
-        yaml_text: &str,
-        image: &[u8],
-        limits: &Limits,
-    ) -> Result<Self, MapError> {
+    pub fn from_yaml_and_image(yaml_text: &str, image: &[u8], limits: &Limits) -> Result<Self, MapError> {
         let yaml = MapYaml::parse(yaml_text)?;
         let classifier = Classifier::from_yaml(&yaml);
         classifier.validate()?;
@@ -170,12 +150,7 @@ impl OccupancyMap {
     /// Wraps an already decoded raster.
     pub fn from_raster(raster: Raster, yaml: MapYaml, classifier: Classifier) -> Self {
         let classified = classifier.classify_raster(&raster);
-        OccupancyMap {
-            raster,
-            yaml,
-            classifier,
-            classified,
-        }
+        OccupancyMap { raster, yaml, classifier, classified }
     }
 
     /// A map made directly from classes, e.g. one a person painted. Its raster is the
@@ -204,22 +179,14 @@ impl OccupancyMap {
             message: e.to_string(),
         };
         let bytes = std::fs::read(path).map_err(|e| io(path, e))?;
-        let is_yaml = matches!(
-            path.extension().and_then(|e| e.to_str()),
-            Some("yaml" | "yml")
-        );
+        let is_yaml = matches!(path.extension().and_then(|e| e.to_str()), Some("yaml" | "yml"));
         if !is_yaml {
             return Self::from_image_bytes(&bytes, Classifier::default(), limits);
         }
-        let text = std::str::from_utf8(&bytes).map_err(|e| MapError::NotUtf8 {
-            what: path.display().to_string(),
-            offset: e.valid_up_to(),
-        })?;
+        let text = std::str::from_utf8(&bytes)
+            .map_err(|e| MapError::NotUtf8 { what: path.display().to_string(), offset: e.valid_up_to() })?;
         let yaml = MapYaml::parse(text)?;
-        let image_path = path
-            .parent()
-            .unwrap_or(std::path::Path::new("."))
-            .join(&yaml.image);
+        let image_path = path.parent().unwrap_or(std::path::Path::new(".")).join(&yaml.image);
         let image = match std::fs::read(&image_path) {
             Ok(b) => b,
             Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
@@ -280,12 +247,7 @@ impl OccupancyMap {
     /// free 254), which map_server reads back to the same classes with the YAML of
     /// [`OccupancyMap::to_yaml`].
     pub fn to_pgm(&self) -> Vec<u8> {
-        let samples: Vec<u8> = self
-            .classified
-            .cells()
-            .iter()
-            .map(|&c| gray_of(c))
-            .collect();
+        let samples: Vec<u8> = self.classified.cells().iter().map(|&c| gray_of(c)).collect();
         pgm::encode_u8(self.width(), self.height(), &samples)
     }
 

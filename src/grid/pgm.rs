@@ -15,19 +15,13 @@ pub fn decode(bytes: &[u8], limits: &Limits) -> Result<Raster, MapError> {
     let binary = match magic {
         b"P5" => true,
         b"P2" => false,
-        _ => {
-            return Err(MapError::BadPgmHeader {
-                message: "the file does not start with P2 or P5".into(),
-            })
-        }
+        _ => return Err(MapError::BadPgmHeader { message: "the file does not start with P2 or P5".into() }),
     };
     let width = p.header_number("width")?;
     let height = p.header_number("height")?;
     let maxval = p.header_number("maximum value")?;
     if !(1..=65535).contains(&maxval) {
-        return Err(MapError::BadPgmHeader {
-            message: format!("maximum value {maxval} is outside 1..=65535"),
-        });
+        return Err(MapError::BadPgmHeader { message: format!("maximum value {maxval} is outside 1..=65535") });
     }
     let (w, h) = limits.check(width, height)?;
     let n = w * h;
@@ -46,25 +40,14 @@ pub fn decode(bytes: &[u8], limits: &Limits) -> Result<Raster, MapError> {
         let bytes_per = if maxval < 256 { 1 } else { 2 };
         let data = &bytes[p.pos..];
         if data.len() < n * bytes_per {
-            return Err(MapError::Truncated {
-                format: "PGM",
-                expected: n,
-                found: data.len() / bytes_per,
-            });
+            return Err(MapError::Truncated { format: "PGM", expected: n, found: data.len() / bytes_per });
         }
         cells.reserve_exact(n);
         for i in 0..n {
-            let v = if bytes_per == 1 {
-                data[i] as u32
-            } else {
-                u16::from_be_bytes([data[2 * i], data[2 * i + 1]]) as u32
-            };
+            let v =
+                if bytes_per == 1 { data[i] as u32 } else { u16::from_be_bytes([data[2 * i], data[2 * i + 1]]) as u32 };
             if v as u64 > maxval {
-                return Err(MapError::SampleOutOfRange {
-                    index: i,
-                    value: v,
-                    maxval: maxval as u32,
-                });
+                return Err(MapError::SampleOutOfRange { index: i, value: v, maxval: maxval as u32 });
             }
             cells.push(scale(v));
         }
@@ -82,13 +65,7 @@ pub fn decode(bytes: &[u8], limits: &Limits) -> Result<Raster, MapError> {
                         maxval: maxval as u32,
                     })
                 }
-                None => {
-                    return Err(MapError::Truncated {
-                        format: "PGM",
-                        expected: n,
-                        found: i,
-                    })
-                }
+                None => return Err(MapError::Truncated { format: "PGM", expected: n, found: i }),
             }
         }
     }
@@ -161,9 +138,7 @@ impl Parser<'_> {
         let start = self.pos;
         let mut v: u64 = 0;
         while !self.at_end() && self.peek().is_ascii_digit() {
-            v = v
-                .saturating_mul(10)
-                .saturating_add((self.peek() - b'0') as u64);
+            v = v.saturating_mul(10).saturating_add((self.peek() - b'0') as u64);
             self.pos += 1;
         }
         if self.pos == start {
@@ -171,11 +146,7 @@ impl Parser<'_> {
             return Err(MapError::BadPgmHeader {
                 message: format!(
                     "expected a decimal number at byte {start}, found {}",
-                    if c.is_ascii_graphic() {
-                        format!("'{}'", c as char)
-                    } else {
-                        format!("byte 0x{c:02x}")
-                    }
+                    if c.is_ascii_graphic() { format!("'{}'", c as char) } else { format!("byte 0x{c:02x}") }
                 ),
             });
         }
@@ -185,9 +156,9 @@ impl Parser<'_> {
     fn header_number(&mut self, what: &str) -> Result<u64, MapError> {
         match self.number()? {
             Some(v) => Ok(v),
-            None => Err(MapError::BadPgmHeader {
-                message: format!("the file ends before the header gives the {what}"),
-            }),
+            None => {
+                Err(MapError::BadPgmHeader { message: format!("the file ends before the header gives the {what}") })
+            }
         }
     }
 }

@@ -10,12 +10,7 @@ use super::Limits;
 /// Decodes a PNG into a 16-bit raster. The size is checked against `limits` before the pixel
 /// buffer is allocated.
 pub fn decode(bytes: &[u8], limits: &Limits) -> Result<Raster, MapError> {
-    let mut decoder = png::Decoder::new_with_limits(
-        bytes,
-        png::Limits {
-            bytes: limits.max_cells.saturating_mul(8),
-        },
-    );
+    let mut decoder = png::Decoder::new_with_limits(bytes, png::Limits { bytes: limits.max_cells.saturating_mul(8) });
     // Expand palettes and low bit depths to 8 bits and tRNS chunks to an alpha channel.
     decoder.set_transformations(png::Transformations::EXPAND);
     let mut reader = decoder.read_info().map_err(png_error)?;
@@ -43,11 +38,7 @@ pub fn decode(bytes: &[u8], limits: &Limits) -> Result<Raster, MapError> {
         png::ColorType::GrayscaleAlpha => (false, true),
         png::ColorType::Rgb => (true, false),
         png::ColorType::Rgba => (true, true),
-        png::ColorType::Indexed => {
-            return Err(MapError::Png {
-                message: "palette was not expanded".into(),
-            })
-        }
+        png::ColorType::Indexed => return Err(MapError::Png { message: "palette was not expanded".into() }),
     };
     let mut gray = Vec::with_capacity(w * h);
     let mut alpha = has_alpha.then(|| Vec::with_capacity(w * h));
@@ -56,9 +47,7 @@ pub fn decode(bytes: &[u8], limits: &Limits) -> Result<Raster, MapError> {
         for x in 0..w {
             let base = x * channels;
             let g = if has_color {
-                let sum = sample(row, base) as u32
-                    + sample(row, base + 1) as u32
-                    + sample(row, base + 2) as u32;
+                let sum = sample(row, base) as u32 + sample(row, base + 1) as u32 + sample(row, base + 2) as u32;
                 ((sum + 1) / 3) as u16
             } else {
                 sample(row, base)
@@ -78,15 +67,11 @@ pub fn decode(bytes: &[u8], limits: &Limits) -> Result<Raster, MapError> {
 fn png_error(e: png::DecodingError) -> MapError {
     match e {
         png::DecodingError::IoError(io) if io.kind() == std::io::ErrorKind::UnexpectedEof => {
-            MapError::Png {
-                message: "the file ends in the middle of the image data (truncated?)".into(),
-            }
+            MapError::Png { message: "the file ends in the middle of the image data (truncated?)".into() }
         }
-        png::DecodingError::LimitsExceeded => MapError::Png {
-            message: "the decoded image would exceed the memory limit for maps".into(),
-        },
-        other => MapError::Png {
-            message: other.to_string(),
-        },
+        png::DecodingError::LimitsExceeded => {
+            MapError::Png { message: "the decoded image would exceed the memory limit for maps".into() }
+        }
+        other => MapError::Png { message: other.to_string() },
     }
 }

@@ -13,22 +13,14 @@ pub struct Grid<T> {
 impl<T: Clone> Grid<T> {
     /// A `width` x `height` grid with every cell set to `value`.
     pub fn new(width: usize, height: usize, value: T) -> Self {
-        Grid {
-            width,
-            height,
-            cells: vec![value; width * height],
-        }
+        Grid { width, height, cells: vec![value; width * height] }
     }
 }
 
 impl<T> Grid<T> {
     /// Wraps row-major `cells`; `None` if their number is not `width * height`.
     pub fn from_vec(width: usize, height: usize, cells: Vec<T>) -> Option<Self> {
-        (width.checked_mul(height) == Some(cells.len())).then_some(Grid {
-            width,
-            height,
-            cells,
-        })
+        (width.checked_mul(height) == Some(cells.len())).then_some(Grid { width, height, cells })
     }
 
     /// Number of columns.
@@ -58,8 +50,7 @@ impl<T> Grid<T> {
 
     /// The cell at `(x, y)`, or `None` off the grid.
     pub fn get(&self, x: i64, y: i64) -> Option<&T> {
-        self.contains(x, y)
-            .then(|| &self.cells[y as usize * self.width + x as usize])
+        self.contains(x, y).then(|| &self.cells[y as usize * self.width + x as usize])
     }
 
     /// The cell at `(x, y)`. Panics off the grid; for hot loops that have checked bounds.
@@ -96,11 +87,7 @@ impl<T> Grid<T> {
 
     /// A grid of the same size with `f` applied to every cell.
     pub fn map<U>(&self, f: impl FnMut(&T) -> U) -> Grid<U> {
-        Grid {
-            width: self.width,
-            height: self.height,
-            cells: self.cells.iter().map(f).collect(),
-        }
+        Grid { width: self.width, height: self.height, cells: self.cells.iter().map(f).collect() }
     }
 }
 

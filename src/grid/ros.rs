@@ -84,10 +84,7 @@ impl MapYaml {
         let mut mode = Mode::Trinary;
         for (i, raw) in text.lines().enumerate() {
             let line_no = i + 1;
-            let err = |message: String| MapError::Yaml {
-                line: line_no,
-                message,
-            };
+            let err = |message: String| MapError::Yaml { line: line_no, message };
             let line = strip_comment(raw).trim();
             if line.is_empty() || line == "---" {
                 continue;
@@ -100,18 +97,14 @@ impl MapYaml {
             match key {
                 "image" => {
                     if value.is_empty() {
-                        return Err(err(
-                            "`image:` is empty; name the map's PGM or PNG file".into()
-                        ));
+                        return Err(err("`image:` is empty; name the map's PGM or PNG file".into()));
                     }
                     image = Some(value.to_string())
                 }
                 "resolution" => {
                     let r = number(value).map_err(|m| err(format!("resolution: {m}")))?;
                     if !(r > 0.0 && r.is_finite()) {
-                        return Err(err(format!(
-                            "resolution must be a positive number of metres per cell, not {r}"
-                        )));
+                        return Err(err(format!("resolution must be a positive number of metres per cell, not {r}")));
                     }
                     resolution = Some(r)
                 }
@@ -124,33 +117,22 @@ impl MapYaml {
                     }
                 }
                 "occupied_thresh" => {
-                    occupied_thresh =
-                        probability(value).map_err(|m| err(format!("occupied_thresh: {m}")))?
+                    occupied_thresh = probability(value).map_err(|m| err(format!("occupied_thresh: {m}")))?
                 }
-                "free_thresh" => {
-                    free_thresh =
-                        probability(value).map_err(|m| err(format!("free_thresh: {m}")))?
-                }
+                "free_thresh" => free_thresh = probability(value).map_err(|m| err(format!("free_thresh: {m}")))?,
                 "mode" => {
                     mode = match value {
                         "trinary" => Mode::Trinary,
                         "scale" => Mode::Scale,
                         "raw" => Mode::Raw,
-                        _ => {
-                            return Err(err(format!(
-                                "mode must be trinary, scale or raw, not {value:?}"
-                            )))
-                        }
+                        _ => return Err(err(format!("mode must be trinary, scale or raw, not {value:?}"))),
                     }
                 }
                 // Other keys (e.g. Nav2's extra fields) are harmless; ignore them as map_server does.
                 _ => {}
             }
         }
-        let missing = |k: &str| MapError::Yaml {
-            line: 0,
-            message: format!("the required key `{k}:` is missing"),
-        };
+        let missing = |k: &str| MapError::Yaml { line: 0, message: format!("the required key `{k}:` is missing") };
         let yaml = MapYaml {
             image: image.ok_or_else(|| missing("image"))?,
             resolution: resolution.ok_or_else(|| missing("resolution"))?,
@@ -241,10 +223,7 @@ fn triple(v: &str) -> Result<[f64; 3], String> {
         .ok_or_else(|| format!("expected a list like [x, y, yaw], found {v:?}"))?;
     let parts: Vec<&str> = inner.split(',').map(str::trim).collect();
     if parts.len() != 3 {
-        return Err(format!(
-            "expected three numbers [x, y, yaw], found {}",
-            parts.len()
-        ));
+        return Err(format!("expected three numbers [x, y, yaw], found {}", parts.len()));
     }
     Ok([number(parts[0])?, number(parts[1])?, number(parts[2])?])
 }

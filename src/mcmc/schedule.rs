@@ -119,10 +119,7 @@ impl Default for Schedule {
                     until: Some(4000),
                     weights: KernelWeights([0.05, 0.05, 0.15, 0.15, 0.15, 0.15, 0.3, 0.0, 0.0]),
                 },
-                Phase {
-                    until: None,
-                    weights: KernelWeights([0.05, 0.05, 0.15, 0.15, 0.15, 0.15, 0.2, 0.05, 0.05]),
-                },
+                Phase { until: None, weights: KernelWeights([0.05, 0.05, 0.15, 0.15, 0.15, 0.15, 0.2, 0.05, 0.05]) },
             ],
         }
     }

@@ -50,8 +50,8 @@ pub mod font;
 mod world;
 
 pub use world::{
-    draw_tag, draw_world, label_text_scale, unit_label, DOOR_RGBA, LABEL_BACKGROUND_RGBA,
-    LABEL_OUTLINE_RGBA, LABEL_TEXT_RGBA, OBJECT_RGBA, WALL_RGBA,
+    draw_tag, draw_world, label_text_scale, unit_label, DOOR_RGBA, LABEL_BACKGROUND_RGBA, LABEL_OUTLINE_RGBA,
+    LABEL_TEXT_RGBA, OBJECT_RGBA, WALL_RGBA,
 };
 
 use crate::floorplan::World;
@@ -107,14 +107,8 @@ impl std::fmt::Display for RenderError {
                 write!(f, "cannot draw a {width}x{height} map: it has no cells")
             }
             RenderError::ZeroScale => write!(f, "the scale must be at least 1 pixel per cell"),
-            RenderError::TooLarge {
-                width,
-                height,
-                scale,
-                max_scale,
-            } => {
-                let pixels =
-                    (*width as u128) * (*height as u128) * (*scale as u128) * (*scale as u128);
+            RenderError::TooLarge { width, height, scale, max_scale } => {
+                let pixels = (*width as u128) * (*height as u128) * (*scale as u128) * (*scale as u128);
                 write!(
                     f,
                     "a {width}x{height} map at scale {scale} would be {pixels} pixels, over the limit of \
@@ -156,14 +150,7 @@ pub fn max_scale(width: usize, height: usize) -> u32 {
 /// that cannot be drawn (no cells, or more than [`MAX_PIXELS`] cells) gives a 1x1 transparent
 /// pixmap, as with [`render`]. Use [`try_render`] to be told instead.
 pub fn draw_map(classified: &Grid<Cell>) -> Pixmap {
-    render(
-        classified,
-        None,
-        &RenderOptions {
-            scale: 1,
-            labels: false,
-        },
-    )
+    render(classified, None, &RenderOptions { scale: 1, labels: false })
 }
 
 /// The pixmap as straight (not premultiplied) RGBA bytes, as a canvas `ImageData` wants.
@@ -188,10 +175,7 @@ pub struct RenderOptions {
 impl Default for RenderOptions {
     /// One pixel per cell, with labels.
     fn default() -> Self {
-        RenderOptions {
-            scale: 1,
-            labels: true,
-        }
+        RenderOptions { scale: 1, labels: true }
     }
 }
 
@@ -230,10 +214,7 @@ impl Default for RenderOptions {
 pub fn render(classified: &Grid<Cell>, world: Option<&World>, options: &RenderOptions) -> Pixmap {
     let fitted = max_scale(classified.width(), classified.height());
     let scale = options.scale.clamp(1, fitted.max(1));
-    let options = RenderOptions {
-        scale,
-        labels: options.labels,
-    };
+    let options = RenderOptions { scale, labels: options.labels };
     match try_render(classified, world, &options) {
         Ok(pixmap) => pixmap,
         // Only maps with no cells or more than MAX_PIXELS cells get here; 1x1 always allocates.
@@ -266,12 +247,7 @@ pub fn try_render(
     if scale == 0 {
         return Err(RenderError::ZeroScale);
     }
-    let too_large = || RenderError::TooLarge {
-        width,
-        height,
-        scale,
-        max_scale: max_scale(width, height),
-    };
+    let too_large = || RenderError::TooLarge { width, height, scale, max_scale: max_scale(width, height) };
     let pixels = (width as u128) * (height as u128) * (scale as u128) * (scale as u128);
     if pixels > MAX_PIXELS as u128 {
         return Err(too_large());
@@ -294,17 +270,11 @@ fn paint_cells(pixmap: &mut Pixmap, classified: &Grid<Cell>, scale: usize) {
         ColorU8::from_rgba(r, g, b, 255).premultiply()
     };
     let out_w = pixmap.width() as usize;
-    if out_w != classified.width() * scale
-        || pixmap.height() as usize != classified.height() * scale
-    {
+    if out_w != classified.width() * scale || pixmap.height() as usize != classified.height() * scale {
         return;
     }
     // Draw the first pixel row of each cell row, then copy it down `scale - 1` times.
-    for (y, block) in pixmap
-        .pixels_mut()
-        .chunks_exact_mut(out_w * scale)
-        .enumerate()
-    {
+    for (y, block) in pixmap.pixels_mut().chunks_exact_mut(out_w * scale).enumerate() {
         let (first, rest) = block.split_at_mut(out_w);
         for (run, c) in first.chunks_exact_mut(scale).zip(classified.row(y)) {
             run.fill(palette(c));
@@ -402,8 +372,7 @@ pub fn draw_labels(pixmap: &mut Pixmap, labels: &Grid<u16>, scale: u32, opacity:
                 _ => {
                     let [r, g, b] = label_rgb(label);
                     let a = opacity as u16;
-                    let src = [r as u16 * a, g as u16 * a, b as u16 * a, 255 * a]
-                        .map(|v| (v + 127) / 255);
+                    let src = [r as u16 * a, g as u16 * a, b as u16 * a, 255 * a].map(|v| (v + 127) / 255);
                     cached = Some((label, src));
                     src
                 }
@@ -424,11 +393,7 @@ fn over(src: [u16; 4], dst: PremultipliedColorU8, alpha: u8) -> PremultipliedCol
     let keep = 255 - alpha as u16;
     let mix = |s: u16, d: u8| (s + (d as u16 * keep + 127) / 255).min(255) as u8;
     let a = mix(src[3], dst.alpha());
-    let (r, g, b) = (
-        mix(src[0], dst.red()),
-        mix(src[1], dst.green()),
-        mix(src[2], dst.blue()),
-    );
+    let (r, g, b) = (mix(src[0], dst.red()), mix(src[1], dst.green()), mix(src[2], dst.blue()));
     // Each channel is at most the alpha by construction; keep `dst` if rounding ever disagreed.
     PremultipliedColorU8::from_rgba(r.min(a), g.min(a), b.min(a), a).unwrap_or(dst)
 }

@@ -48,46 +48,27 @@ pub fn unit_label(unit: &crate::floorplan::Unit) -> String {
 /// The world is drawn as it is, without [`World::validate`]: units and doors are clipped to
 /// the map, units with a size below 1x1 and doors that are neither horizontal nor vertical are
 /// skipped, and a frame with a non-finite angle draws nothing. It never panics.
-pub fn draw_world(
-    pixmap: &mut Pixmap,
-    map_width: usize,
-    map_height: usize,
-    world: &World,
-    scale: u32,
-    labels: bool,
-) {
+pub fn draw_world(pixmap: &mut Pixmap, map_width: usize, map_height: usize, world: &World, scale: u32, labels: bool) {
     let Some(place) = Placement::new(&world.frame, map_width, map_height, scale) else {
         return;
     };
 
     // Object cells first, so that walls and doors stay their pure colours where they meet.
-    let objects = world
-        .object_cells
-        .iter()
-        .map(|&[x, y]| CellRect::cell(x as i64, y as i64));
+    let objects = world.object_cells.iter().map(|&[x, y]| CellRect::cell(x as i64, y as i64));
     place.fill(pixmap, objects, OBJECT_RGBA);
 
     let walls = world
         .units
         .iter()
         .filter(|u| u.w >= 1 && u.h >= 1)
-        .flat_map(|u| CellRect::new(u.x as i64, u.y as i64, u.w as i64, u.h as i64).ring());
+        .flat_map(|u| CellRect::new(u.x as i64, u.y as i64, u.w as i64, u.h as i64).ring(world.wall_thickness.max(1) as i64));
     place.fill(pixmap, walls, WALL_RGBA);
 
-    let doors = world
-        .doors
-        .iter()
-        .filter(|d| d.x0 == d.x1 || d.y0 == d.y1)
-        .map(|d| {
-            let (x0, x1) = (d.x0.min(d.x1) as i64, d.x0.max(d.x1) as i64);
-            let (y0, y1) = (d.y0.min(d.y1) as i64, d.y0.max(d.y1) as i64);
-            CellRect {
-                x0,
-                y0,
-                x1: x1 + 1,
-                y1: y1 + 1,
-            }
-        });
+    let doors = world.doors.iter().map(|d| {
+        let (x0, x1) = (d.x0.min(d.x1) as i64, d.x0.max(d.x1) as i64);
+        let (y0, y1) = (d.y0.min(d.y1) as i64, d.y0.max(d.y1) as i64);
+        CellRect { x0, y0, x1: x1 + 1, y1: y1 + 1 }
+    });
     place.fill(pixmap, doors, DOOR_RGBA);
 
     if labels {
@@ -114,8 +95,7 @@ pub fn draw_tag(pixmap: &mut Pixmap, cx: f64, cy: f64, text: &str, factor: u32) 
     let left = (cx - box_w as f64 / 2.0).round();
     let top = (cy - box_h as f64 / 2.0).round();
     let (width, height) = (pixmap.width() as f64, pixmap.height() as f64);
-    if left >= width || top >= height || left + (box_w as f64) <= 0.0 || top + (box_h as f64) <= 0.0
-    {
+    if left >= width || top >= height || left + (box_w as f64) <= 0.0 || top + (box_h as f64) <= 0.0 {
         return;
     }
     // On the pixmap, so both fit in i32 comfortably (pixmap sides are below 2^29).
@@ -162,46 +142,24 @@ struct CellRect {
 
 impl CellRect {
     fn new(x: i64, y: i64, w: i64, h: i64) -> Self {
-        CellRect {
-            x0: x,
-            y0: y,
-            x1: x + w,
-            y1: y + h,
-        }
+        CellRect { x0: x, y0: y, x1: x + w, y1: y + h }
     }
 
     fn cell(x: i64, y: i64) -> Self {
         CellRect::new(x, y, 1, 1)
     }
 
-    /// The outer ring of cells (eq. 3.8's walls) as four strips: top, bottom, left, right.
-    fn ring(self) -> [CellRect; 4] {
+        /// The outer ring of cells `t` deep (eq. 3.8's walls) as four strips: top, bottom, left,
+    /// right. The strips may overlap on small rectangles; they are filled as one path.
+    fn ring(self, t: i64) -> [CellRect; 4] {
         let CellRect { x0, y0, x1, y1 } = self;
+        let ty = t.min(y1 - y0);
+        let tx = t.min(x1 - x0);
         [
-            CellRect {
-                x0,
-                y0,
-                x1,
-                y1: y0 + 1,
-            },
-            CellRect {
-                x0,
-                y0: y1 - 1,
-                x1,
-                y1,
-            },
-            CellRect {
-                x0,
-                y0,
-                x1: x0 + 1,
-                y1,
-            },
-            CellRect {
-                x0: x1 - 1,
-                y0,
-                x1,
-                y1,
-            },
+            CellRect { x0, y0, x1, y1: y0 + ty },
+            CellRect { x0, y0: y1 - ty, x1, y1 },
+            CellRect { x0, y0, x1: x0 + tx, y1 },
+            CellRect { x0: x1 - tx, y0, x1, y1 },
         ]
     }
 
@@ -237,18 +195,11 @@ impl Placement {
         let visible = if identity {
             CellRect::new(0, 0, map_width as i64, map_height as i64)
         } else {
-            let corners =
-                [(0.0, 0.0), (w, 0.0), (0.0, h), (w, h)].map(|(x, y)| frame.to_world(x, y));
+            let corners = [(0.0, 0.0), (w, 0.0), (0.0, h), (w, h)].map(|(x, y)| frame.to_world(x, y));
             let min_x = corners.iter().map(|c| c.0).fold(f64::INFINITY, f64::min);
-            let max_x = corners
-                .iter()
-                .map(|c| c.0)
-                .fold(f64::NEG_INFINITY, f64::max);
+            let max_x = corners.iter().map(|c| c.0).fold(f64::NEG_INFINITY, f64::max);
             let min_y = corners.iter().map(|c| c.1).fold(f64::INFINITY, f64::min);
-            let max_y = corners
-                .iter()
-                .map(|c| c.1)
-                .fold(f64::NEG_INFINITY, f64::max);
+            let max_y = corners.iter().map(|c| c.1).fold(f64::NEG_INFINITY, f64::max);
             if ![min_x, max_x, min_y, max_y].iter().all(|v| v.is_finite()) {
                 return None;
             }
@@ -260,21 +211,12 @@ impl Placement {
                 y1: max_y.ceil() as i64 + 1,
             }
         };
-        Some(Placement {
-            frame: *frame,
-            identity,
-            scale: scale as f64,
-            visible,
-        })
+        Some(Placement { frame: *frame, identity, scale: scale as f64, visible })
     }
 
     /// A world-frame point (cell units) in output pixels.
     fn to_pixel(&self, x: f64, y: f64) -> (f64, f64) {
-        let (mx, my) = if self.identity {
-            (x, y)
-        } else {
-            self.frame.to_map(x, y)
-        };
+        let (mx, my) = if self.identity { (x, y) } else { self.frame.to_map(x, y) };
         (mx * self.scale, my * self.scale)
     }
 
@@ -292,13 +234,7 @@ impl Placement {
         }
         // `finish` is `None` for an empty path (nothing to draw).
         if let Some(path) = pb.finish() {
-            pixmap.fill_path(
-                &path,
-                &solid(rgba),
-                FillRule::Winding,
-                Transform::identity(),
-                None,
-            );
+            pixmap.fill_path(&path, &solid(rgba), FillRule::Winding, Transform::identity(), None);
         }
     }
 }

@@ -13,12 +13,22 @@ use crate::floorplan::world::Rect;
 
 /// Door candidates between `lo` and `hi` over the shared span `start..=end`, with weights.
 #[allow(clippy::too_many_arguments)]
-pub fn detect(s: &State, lo: Rect, hi: Rect, lo_id: u32, hi_id: u32, axis: Axis, start: i32, end: i32) -> Vec<(DoorSpec, f64)> {
-    let limits = s.door_limits;
+pub fn detect(
+    s: &State,
+    lo: Rect,
+    hi: Rect,
+    lo_id: u32,
+    hi_id: u32,
+    axis: Axis,
+    start: i32,
+    end: i32,
+) -> Vec<(DoorSpec, f64)> {
+        let limits = s.door_limits;
+    let w = s.wall;
     let segment = |t: i32| -> Rect {
         match axis {
-            Axis::Horizontal => Rect::new(lo.right() - 1, t, hi.x - lo.right() + 2, 1),
-            Axis::Vertical => Rect::new(t, lo.bottom() - 1, 1, hi.y - lo.bottom() + 2),
+            Axis::Horizontal => Rect::new(lo.right() - w, t, hi.x - lo.right() + 2 * w, 1),
+            Axis::Vertical => Rect::new(t, lo.bottom() - w, 1, hi.y - lo.bottom() + 2 * w),
         }
     };
     let open = |t: i32| {
@@ -37,7 +47,7 @@ pub fn detect(s: &State, lo: Rect, hi: Rect, lo_id: u32, hi_id: u32, axis: Axis,
             t += 1;
         }
         let d = DoorSpec { lo: lo_id, hi: hi_id, axis, start: run_start, end: t - 1 };
-        if let Some(r) = door_rect(lo, hi, &d, &limits) {
+                if let Some(r) = door_rect(lo, hi, &d, &limits, w) {
             out.push((d, s.free_in(r) as f64 / r.area() as f64));
         }
     }

@@ -68,7 +68,9 @@ mod tests {
         let (s, c) = (a.sin(), a.cos());
         for i in 0..400 {
             let t = i as f64 / 400.0;
-            for (px, py) in [(t * 60.0 - 30.0, -20.0), (t * 60.0 - 30.0, 20.0), (-30.0, t * 40.0 - 20.0), (30.0, t * 40.0 - 20.0)] {
+            for (px, py) in
+                [(t * 60.0 - 30.0, -20.0), (t * 60.0 - 30.0, 20.0), (-30.0, t * 40.0 - 20.0), (30.0, t * 40.0 - 20.0)]
+            {
                 let x = 60.0 + c * px - s * py;
                 let y = 50.0 + s * px + c * py;
                 *g.at_mut(x as usize, y as usize) = Cell::Occupied;

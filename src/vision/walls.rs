@@ -27,11 +27,22 @@ pub struct WallConfig {
     pub min_wall_weight: f64,
     /// Most candidates kept, best weights first.
     pub max_candidates: usize,
+    /// Tolerance (cells) across a wall when scoring it: real walls are thick and scanned
+    /// jaggedly (more so after rotating the map), so a wall cell counts as matched when an
+    /// occupied cell lies within this distance.
+    pub tolerance: i32,
 }
 
 impl Default for WallConfig {
     fn default() -> Self {
-        WallConfig { min_segment: 12, max_gap: 2, max_lines: 40, min_wall_weight: 0.35, max_candidates: 60_000 }
+        WallConfig {
+            min_segment: 12,
+            max_gap: 2,
+            max_lines: 40,
+            min_wall_weight: 0.35,
+            max_candidates: 60_000,
+            tolerance: 2,
+        }
     }
 }
 
@@ -117,7 +128,7 @@ fn faces(lines: &[WallLine]) -> Vec<i32> {
 
 /// Unit candidates with their weights `ω_r` (eq. 3.10), strongest first.
 pub fn candidates(grid: &Grid<Cell>, min_side: i32, c: &WallConfig) -> Vec<(Rect, f64)> {
-    let occ = AreaCounts::new(grid, Cell::Occupied);
+    let occ = AreaCounts::new(&dilate(grid, c.tolerance), Cell::Occupied);
     let xs = faces(&wall_lines(grid, false, c));
     let ys = faces(&wall_lines(grid, true, c));
     let frac = |r: Rect| occ.count(r) as f64 / r.area().max(1) as f64;
@@ -131,7 +142,9 @@ pub fn candidates(grid: &Grid<Cell>, min_side: i32, c: &WallConfig) -> Vec<(Rect
             }
             // Rows where a horizontal wall spans x0..=x1 well enough (eq. 3.11).
             ok_rows.clear();
-            ok_rows.extend(ys.iter().copied().map(|y| (y, frac(Rect::new(x0, y, w, 1)))).filter(|&(_, f)| f >= c.min_wall_weight));
+            ok_rows.extend(
+                ys.iter().copied().map(|y| (y, frac(Rect::new(x0, y, w, 1)))).filter(|&(_, f)| f >= c.min_wall_weight),
+            );
             for (b, &(y0, f0)) in ok_rows.iter().enumerate() {
                 for &(y1, f1) in &ok_rows[b + 1..] {
                     let h = y1 - y0 + 1;
@@ -148,14 +161,88 @@ pub fn candidates(grid: &Grid<Cell>, min_side: i32, c: &WallConfig) -> Vec<(Rect
             }
         }
     }
-    out.sort_by(|a, b| b.1.total_cmp(&a.1).then_with(|| (a.0.x, a.0.y, a.0.w, a.0.h).cmp(&(b.0.x, b.0.y, b.0.w, b.0.h))));
+    out.sort_by(|a, b| {
+        b.1.total_cmp(&a.1).then_with(|| (a.0.x, a.0.y, a.0.w, a.0.h).cmp(&(b.0.x, b.0.y, b.0.w, b.0.h)))
+    });
     out.truncate(c.max_candidates);
+    out
+}
+
+/// Occupied cells grown by `r` cells in every direction (a square max filter), separably.
+pub fn dilate(grid: &Grid<Cell>, r: i32) -> Grid<Cell> {
+    if r <= 0 {
+        return grid.clone();
+    }
+    let (w, h) = (grid.width(), grid.height());
+    let r = r as usize;
+    let occ: Vec<bool> = grid.cells().iter().map(|&c| c == Cell::Occupied).collect();
+    let mut rows = vec![false; w * h];
+    for y in 0..h {
+        // Running count of occupied cells in the window [x - r, x + r].
+        let line = &occ[y * w..(y + 1) * w];
+        let mut count = line[..r.min(w)].iter().filter(|&&o| o).count();
+        for x in 0..w {
+            if x + r < w && line[x + r] {
+                count += 1;
+            }
+            if x > r && line[x - r - 1] {
+                count -= 1;
+            }
+            rows[y * w + x] = count > 0;
+        }
+    }
+    let mut out = grid.clone();
+    for x in 0..w {
+        let mut count = (0..r.min(h)).filter(|&y| rows[y * w + x]).count();
+        for y in 0..h {
+            if y + r < h && rows[(y + r) * w + x] {
+                count += 1;
+            }
+            if y > r && rows[(y - r - 1) * w + x] {
+                count -= 1;
+            }
+            if count > 0 {
+                *out.at_mut(x, y) = Cell::Occupied;
+            }
+        }
+    }
     out
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn dilation_grows_by_r() {
+        let mut g = Grid::new(9, 7, Cell::Free);
+        *g.at_mut(4, 3) = Cell::Occupied;
+        let d = dilate(&g, 2);
+        for y in 0..7i64 {
+            for x in 0..9i64 {
+                let inside = (x - 4).abs() <= 2 && (y - 3).abs() <= 2;
+                assert_eq!(*d.get(x, y).unwrap() == Cell::Occupied, inside, "({x},{y})");
+            }
+        }
+        assert_eq!(dilate(&g, 0), g);
+    }
+
+    #[test]
+    fn ring_depth_measures_wall_thickness() {
+        for d in 1..=4usize {
+            // A room outlined by walls d cells thick.
+            let mut g = Grid::new(60, 50, Cell::Free);
+            for y in 0..50 {
+                for x in 0..60 {
+                    if x < d || y < d || x >= 60 - d || y >= 50 - d || (x >= 30 && x < 30 + d) {
+                        *g.at_mut(x, y) = Cell::Occupied;
+                    }
+                }
+            }
+            assert_eq!(ring_depth(&g, 0.0), d as i32);
+        }
+        assert_eq!(ring_depth(&Grid::new(5, 5, Cell::Free), 0.0), 1);
+    }
 
     #[test]
     fn segments_bridge_small_gaps_only() {
@@ -186,4 +273,63 @@ mod tests {
         assert!(rects.contains(&Rect::new(0, 0, 41, 16)), "both rooms as one");
         assert!(c.iter().all(|x| x.1 >= 0.35 && x.1 <= 1.0));
     }
+}
+
+/// The depth of unit wall rings that best explains this map's walls: the typical wall
+/// thickness, measured on the original map along the two wall directions of its dominant
+/// orientation `angle` (radians): for each occupied cell, the shorter of the two runs of
+/// occupied cells through it along those axes; the median over cells, clamped to 1..=4.
+///
+/// Why the whole thickness: a ring as deep as the wall predicts every wall cell, on outer walls
+/// and on walls two units share (where their rings then overlap, which the prior tolerates at
+/// a cost). Scanned walls are thin and jagged and give 1 (the dissertation's model); cleanly
+/// drawn walls are thicker. Measuring on the original map rather than the rotated world frame
+/// keeps the resampling from doubling thin walls.
+pub fn ring_depth(grid: &Grid<Cell>, angle: f64) -> i32 {
+    let (w, h) = (grid.width() as i64, grid.height() as i64);
+    let occ = |x: f64, y: f64| {
+        let (cx, cy) = (libm::floor(x) as i64, libm::floor(y) as i64);
+        cx >= 0 && cy >= 0 && cx < w && cy < h && *grid.at(cx as usize, cy as usize) == Cell::Occupied
+    };
+    let (s, c) = (libm::sin(angle), libm::cos(angle));
+    let axes = [(c, s), (-s, c)];
+    let run = |x: f64, y: f64, (dx, dy): (f64, f64)| -> usize {
+        let mut n = 1;
+        for sign in [1.0, -1.0] {
+            let mut k = 1.0;
+            while n < 16 && occ(x + sign * k * dx, y + sign * k * dy) {
+                n += 1;
+                k += 1.0;
+            }
+        }
+        n
+    };
+    let total_occ = grid.cells().iter().filter(|&&c| c == Cell::Occupied).count();
+    let stride = (total_occ / 20_000).max(1);
+    let mut hist = [0u64; 17];
+    let mut k = 0;
+    for y in 0..h {
+        for x in 0..w {
+            if *grid.at(x as usize, y as usize) != Cell::Occupied {
+                continue;
+            }
+            k += 1;
+            if k % stride != 0 {
+                continue;
+            }
+            let (fx, fy) = (x as f64 + 0.5, y as f64 + 0.5);
+            let d = run(fx, fy, axes[0]).min(run(fx, fy, axes[1]));
+            hist[d.min(16)] += 1;
+        }
+    }
+    let total: u64 = hist.iter().sum();
+    if total == 0 {
+        return 1;
+    }
+    let mut acc = 0;
+    let median = (0..hist.len()).find(|&d| {
+        acc += hist[d];
+        2 * acc >= total
+    });
+    (median.unwrap_or(1) as i32).clamp(1, 4)
 }

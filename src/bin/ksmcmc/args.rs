@@ -29,11 +29,8 @@ pub fn value<T: std::str::FromStr>(name: &str, v: OsString) -> Result<T, CliErro
 where
     T::Err: Display,
 {
-    let s = v
-        .into_string()
-        .map_err(|v| CliError::Usage(format!("{name}: {v:?} is not UTF-8")))?;
-    s.parse()
-        .map_err(|e| CliError::Usage(format!("{name}: {s:?}: {e}")))
+    let s = v.into_string().map_err(|v| CliError::Usage(format!("{name}: {v:?} is not UTF-8")))?;
+    s.parse().map_err(|e| CliError::Usage(format!("{name}: {s:?}: {e}")))
 }
 
 /// Writes a file, creating its folder.
@@ -46,17 +43,12 @@ pub fn write(path: &Path, bytes: &[u8]) -> Result<(), CliError> {
 
 /// Loads a map file with default limits.
 pub fn load_map(path: &Path) -> Result<ksmcmc::grid::OccupancyMap, CliError> {
-    ksmcmc::grid::OccupancyMap::load(path, &Default::default())
-        .map_err(|e| failed(path.display(), e))
+    ksmcmc::grid::OccupancyMap::load(path, &Default::default()).map_err(|e| failed(path.display(), e))
 }
 
 /// Requires an option that was not given.
 pub fn required<T>(v: Option<T>, name: &str, command: &str) -> Result<T, CliError> {
-    v.ok_or_else(|| {
-        CliError::Usage(format!(
-            "{command} needs {name}; run `ksmcmc {command} --help`"
-        ))
-    })
+    v.ok_or_else(|| CliError::Usage(format!("{command} needs {name}; run `ksmcmc {command} --help`")))
 }
 
 /// A path argument.

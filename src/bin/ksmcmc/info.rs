@@ -4,8 +4,7 @@ use crate::args::{self, CliError};
 use ksmcmc::grid::Cell;
 use std::ffi::OsString;
 
-const HELP: &str =
-    "Usage: ksmcmc info MAP\n\nPrints the size, resolution and cell classes of a map.\n";
+const HELP: &str = "Usage: ksmcmc info MAP\n\nPrints the size, resolution and cell classes of a map.\n";
 
 pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     use lexopt::prelude::*;
@@ -24,21 +23,10 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     let path = args::required(map, "a MAP", "info")?;
     let m = args::load_map(&path)?;
     let n = (m.width() * m.height()) as f64;
-    println!(
-        "{}: {} x {} cells, {} m/cell",
-        path.display(),
-        m.width(),
-        m.height(),
-        m.yaml().resolution
-    );
+    println!("{}: {} x {} cells, {} m/cell", path.display(), m.width(), m.height(), m.yaml().resolution);
     for c in [Cell::Free, Cell::Unknown, Cell::Occupied] {
         let k = m.count(c);
-        println!(
-            "  {:<9} {:>9} ({:.1} %)",
-            format!("{c:?}").to_lowercase(),
-            k,
-            100.0 * k as f64 / n
-        );
+        println!("  {:<9} {:>9} ({:.1} %)", format!("{c:?}").to_lowercase(), k, 100.0 * k as f64 / n);
     }
     Ok(())
 }

@@ -60,18 +60,10 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
         .map_err(|e| args::failed(map_path.display(), e))?;
     let png = render::encode_png(&pixmap);
     if png.is_empty() {
-        return Err(CliError::Failed(format!(
-            "{}: the PNG encoder failed",
-            out.display()
-        )));
+        return Err(CliError::Failed(format!("{}: the PNG encoder failed", out.display())));
     }
     args::write(&out, &png)?;
-    println!(
-        "{}: {} x {} pixels",
-        out.display(),
-        pixmap.width(),
-        pixmap.height()
-    );
+    println!("{}: {} x {} pixels", out.display(), pixmap.width(), pixmap.height());
     Ok(())
 }
 
@@ -92,10 +84,7 @@ fn load_world(path: &Path, map: &OccupancyMap, map_path: &Path) -> Result<World,
     let text = std::str::from_utf8(&bytes).map_err(|e| {
         args::failed(
             path.display(),
-            format!(
-                "not UTF-8 text (bad byte at offset {}); save it as UTF-8",
-                e.valid_up_to()
-            ),
+            format!("not UTF-8 text (bad byte at offset {}); save it as UTF-8", e.valid_up_to()),
         )
     })?;
     let world = World::from_json(text).map_err(|e| args::failed(path.display(), e))?;
@@ -134,22 +123,11 @@ fn load_world(path: &Path, map: &OccupancyMap, map_path: &Path) -> Result<World,
 /// Whether any part of `unit` lands on the map (checked on the bounding box of its corners).
 fn touches_map(world: &World, unit: &ksmcmc::floorplan::Unit, [w, h]: [usize; 2]) -> bool {
     let r = unit.rect();
-    let corners = [
-        (r.x, r.y),
-        (r.right(), r.y),
-        (r.x, r.bottom()),
-        (r.right(), r.bottom()),
-    ]
-    .map(|(x, y)| world.frame.to_map(x as f64, y as f64));
+    let corners = [(r.x, r.y), (r.right(), r.y), (r.x, r.bottom()), (r.right(), r.bottom())]
+        .map(|(x, y)| world.frame.to_map(x as f64, y as f64));
     let min_x = corners.iter().map(|c| c.0).fold(f64::INFINITY, f64::min);
-    let max_x = corners
-        .iter()
-        .map(|c| c.0)
-        .fold(f64::NEG_INFINITY, f64::max);
+    let max_x = corners.iter().map(|c| c.0).fold(f64::NEG_INFINITY, f64::max);
     let min_y = corners.iter().map(|c| c.1).fold(f64::INFINITY, f64::min);
-    let max_y = corners
-        .iter()
-        .map(|c| c.1)
-        .fold(f64::NEG_INFINITY, f64::max);
+    let max_y = corners.iter().map(|c| c.1).fold(f64::NEG_INFINITY, f64::max);
     max_x > 0.0 && max_y > 0.0 && min_x < w as f64 && min_y < h as f64
 }

@@ -1,0 +1,168 @@
+//! The chain's bookkeeping, determinism and input checks.
+
+use ksmcmc::floorplan::{Chain, ChainConfig, ChainError};
+use ksmcmc::grid::{Cell, Grid, OccupancyMap};
+use ksmcmc::mcmc::{KernelWeights, Schedule};
+
+/// Three rooms in a row with doors between them and a corridor below; walls 2 cells thick.
+fn rooms_map() -> Grid<Cell> {
+    let (w, h) = (64, 40);
+    let mut g = Grid::new(w, h, Cell::Unknown);
+    let mut room = |x0: usize, y0: usize, x1: usize, y1: usize| {
+        for y in y0..=y1 {
+            for x in x0..=x1 {
+                let edge = x <= x0 + 1 || x >= x1 - 1 || y <= y0 + 1 || y >= y1 - 1;
+                *g.at_mut(x, y) = if edge { Cell::Occupied } else { Cell::Free };
+            }
+        }
+    };
+    room(0, 0, 21, 25);
+    room(20, 0, 41, 25);
+    room(40, 0, 63, 25);
+    room(0, 24, 63, 39);
+    // Doors: between rooms, and from each room to the corridor.
+    for y in 10..16 {
+        for x in 20..22 {
+            *g.at_mut(x, y) = Cell::Free;
+            *g.at_mut(x + 20, y) = Cell::Free;
+        }
+    }
+        for x in [8usize, 28, 50] {
+        for dx in 0..6 {
+            for y in 24..26 {
+                *g.at_mut(x + dx, y) = Cell::Free;
+            }
+        }
+    }
+    // Clutter.
+    *g.at_mut(10, 10) = Cell::Unknown;
+    *g.at_mut(30, 30) = Cell::Occupied;
+    g
+}
+
+fn all_kernels_config() -> ChainConfig {
+    let mut c = ChainConfig::default();
+    c.schedule = Schedule::constant(KernelWeights([0.15, 0.1, 0.1, 0.1, 0.1, 0.1, 0.1, 0.15, 0.1]));
+    c.doors.min_len = 4;
+    c.detectors.free_space_start = 200;
+    c.detectors.free_space_every = 150;
+    c.posterior.temperature = 3.0;
+    c.detectors.rotation_deg = Some(0.0);
+    c
+}
+
+#[test]
+fn incremental_posterior_equals_full_recomputation_after_every_step() {
+    let map = OccupancyMap::from_classified(rooms_map());
+        for seed in 0..4 {
+        let mut config = all_kernels_config();
+        // Thin rings (the dissertation's model) and thick ones.
+        config.wall_thickness = Some(1 + (seed as i32 % 2));
+        let mut chain = Chain::new(&map, config, seed).unwrap();
+        let mut doors_seen = 0;
+        for i in 0..2500 {
+            chain.step(1);
+            assert!(chain.check_consistency(), "seed {seed}: bookkeeping diverged at step {i}");
+            doors_seen = doors_seen.max(chain.current_rects().1.len());
+        }
+        let t = chain.trace();
+        for k in ksmcmc::mcmc::Kernel::ALL {
+            assert!(t.proposed[k.index()] > 0, "seed {seed}: {} never proposed", k.name());
+        }
+        assert!(t.total_accepted() > 50, "seed {seed}: the chain barely moved");
+        assert!(doors_seen > 0, "seed {seed}: no door was ever allocated");
+    }
+}
+
+#[test]
+fn explains_a_clean_map_well() {
+    let map = OccupancyMap::from_classified(rooms_map());
+    let mut chain = Chain::new(&map, ChainConfig::default(), 3).unwrap();
+    chain.step(8000);
+    let k = chain.best_prediction_rate();
+    assert!(k > 0.95, "K(W,M) = {k}");
+    let best = chain.best_world();
+    assert!((3..=6).contains(&best.units.len()), "{} units", best.units.len());
+    best.validate().unwrap();
+    // The best world is never worse than the current one.
+    assert!(chain.best_log_posterior() >= chain.log_posterior());
+}
+
+#[test]
+fn same_seed_same_chain_different_seed_different_chain() {
+    let map = OccupancyMap::from_classified(rooms_map());
+    let run = |seed| {
+        let mut c = Chain::new(&map, all_kernels_config(), seed).unwrap();
+        c.step(3000);
+        (c.world().to_json(), c.log_posterior(), c.trace().accepted)
+    };
+    assert_eq!(run(42), run(42));
+    assert_ne!(run(42).0, run(43).0);
+}
+
+#[test]
+fn run_for_respects_its_budget_and_clock() {
+    let map = OccupancyMap::from_classified(rooms_map());
+    let mut chain = Chain::new(&map, ChainConfig::default(), 1).unwrap();
+    // A fake clock advancing 1 ms per reading: a 10 ms budget allows a few 64-step rounds.
+    let mut t = 0.0;
+    let n = chain.run_for(10.0, &mut || {
+        t += 1.0;
+        t
+    });
+    assert_eq!(n % 64, 0);
+    assert!((64..=64 * 11).contains(&n), "{n}");
+    assert_eq!(chain.iteration(), n);
+}
+
+#[test]
+fn bad_maps_and_configs_are_errors() {
+    let free = OccupancyMap::from_classified(Grid::new(40, 30, Cell::Occupied));
+    let e = Chain::new(&free, ChainConfig::default(), 1).unwrap_err();
+    assert!(matches!(e, ChainError::Map(_)) && e.to_string().contains("no free cells"), "{e}");
+    let one = OccupancyMap::from_classified(Grid::new(1, 1, Cell::Free));
+    let e = Chain::new(&one, ChainConfig::default(), 1).unwrap_err();
+    assert!(e.to_string().contains("1x1"), "{e}");
+    let map = OccupancyMap::from_classified(rooms_map());
+    let mut cases: Vec<(ChainConfig, &str)> = Vec::new();
+    let mut c = ChainConfig::default();
+    c.posterior.temperature = f64::NAN;
+    cases.push((c, "temperature"));
+    let mut c = ChainConfig::default();
+    c.posterior.overlap_penalty = -1.0;
+    cases.push((c, "overlap_penalty"));
+    let mut c = ChainConfig::default();
+    c.posterior.sensor.table[0][0] = 0.0;
+    cases.push((c, "sensor"));
+    let mut c = ChainConfig::default();
+    c.kernels.shift_sigma = f64::INFINITY;
+    cases.push((c, "shift_sigma"));
+    let mut c = ChainConfig::default();
+    c.kernels.min_side = 1;
+    cases.push((c, "min_side"));
+    let mut c = ChainConfig::default();
+    c.schedule = Schedule::constant(KernelWeights([0.0; 9]));
+    cases.push((c, "positive weight"));
+    let mut c = ChainConfig::default();
+    c.schedule = Schedule::constant(KernelWeights([1.0, -1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]));
+    cases.push((c, "non-negative"));
+    let mut c = ChainConfig::default();
+    c.doors.min_len = 50;
+    cases.push((c, "doors"));
+    let mut c = ChainConfig::default();
+    c.detectors.rotation_deg = Some(f64::NAN);
+    cases.push((c, "rotation_deg"));
+    for (c, needle) in cases {
+        let e = Chain::new(&map, c, 1).unwrap_err();
+        assert!(matches!(e, ChainError::Config(_)) && e.to_string().contains(needle), "{needle}: {e}");
+    }
+}
+
+#[test]
+fn config_json_accepts_partial_objects() {
+    let c: ChainConfig =
+        serde_json::from_str(r#"{"posterior": {"temperature": 2.0}, "kernels": {"min_side": 4}}"#).unwrap();
+    assert_eq!(c.posterior.temperature, 2.0);
+    assert_eq!(c.kernels.min_side, 4);
+    assert_eq!(c.posterior.overlap_penalty, ChainConfig::default().posterior.overlap_penalty);
+}

@@ -249,8 +249,14 @@ fn furnish(
     let mut attempts = 0;
     while covered < target && attempts < 400 {
         attempts += 1;
-        let bw = between(rng, smin, smax).min(room.w - 2);
-        let bh = between(rng, smin, smax).min(room.h - 2);
+        let mut bw = between(rng, smin, smax).min(room.w - 2);
+        let mut bh = between(rng, smin, smax).min(room.h - 2);
+        // Near the target, smaller pieces: overshoot by a quarter at most.
+        let budget = ((target - covered) * 5 / 4).max((smin * smin) as i64) as i32;
+        if bw * bh > budget {
+            bh = (budget / bw).max(smin).min(bh);
+            bw = (budget / bh).max(smin).min(bw);
+        }
         if bw < 2 || bh < 2 {
             return;
         }

@@ -10,6 +10,7 @@ fn quiet() -> SynthConfig {
     SynthConfig {
         speckle_occupied: 0.0,
         speckle_unknown: 0.0,
+        wall_roughness: 0.0,
         wall_gaps: 0.0,
         clutter: 0.0,
         ..SynthConfig::default()
@@ -675,6 +676,31 @@ fn clutter_and_wall_gaps_follow_the_config() {
         unknown as f64 / n as f64
     };
     assert_eq!(ring_unknown(&quiet()), 0.0);
+    // Ragged faces: cells just inside the walls read occupied at about the configured rate.
+    let c = SynthConfig {
+        wall_roughness: 0.3,
+        ..quiet()
+    };
+    let (mut rough, mut n) = (0, 0);
+    for seed in 0..4 {
+        let s = gen(&c, seed);
+        for u in &s.truth.units {
+            let r = interior(u);
+            for y in r.y..r.bottom() {
+                for x in r.x..r.right() {
+                    if r.on_border(x, y) {
+                        n += 1;
+                        rough += usize::from(map_cell(&s, x, y) == Some(Cell::Occupied));
+                    }
+                }
+            }
+        }
+    }
+    let f = rough as f64 / n as f64;
+    assert!(
+        f > 0.22 && f < 0.32,
+        "roughness 0.3 made {f:.3} of the wall faces occupied"
+    );
     let gappy = ring_unknown(&SynthConfig {
         wall_gaps: 0.02,
         ..quiet()

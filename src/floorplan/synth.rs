@@ -135,6 +135,7 @@ pub fn generate(config: &SynthConfig, seed: u64) -> Result<Synthetic, SynthError
     let noise = scan::Noise {
         speckle_occupied: config.speckle_occupied,
         speckle_unknown: config.speckle_unknown,
+        wall_roughness: config.wall_roughness,
         wall_gaps: config.wall_gaps,
         clutter: config.clutter,
         peek: config.peek,

@@ -31,6 +31,8 @@ Options (override the config file, whose fields are documented in the library's 
   --unexplored F        fraction of rooms, halls and others never entered (default 0)
   --speckle P           probability of a free cell reading occupied, and twice P of reading
                         unknown (default 0.002)
+  --wall-roughness P    probability of a free cell beside an occupied one reading
+                        occupied (default 0.05)
   --wall-gaps P         probability per wall cell of a gap starting (default 0.004)
   --print-config        print the effective config as JSON and exit
   -h, --help            this text
@@ -96,6 +98,10 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
                     c.speckle_occupied = v;
                     c.speckle_unknown = 2.0 * v;
                 }));
+            }
+            Long("wall-roughness") => {
+                let v = args::value("--wall-roughness", parser.value()?)?;
+                overrides.push(Box::new(move |c| c.wall_roughness = v));
             }
             Long("wall-gaps") => {
                 let v = args::value("--wall-gaps", parser.value()?)?;

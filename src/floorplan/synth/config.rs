@@ -67,6 +67,9 @@ pub struct SynthConfig {
     pub speckle_occupied: f64,
     /// Probability that a free map cell reads unknown (scan dropout), 0 to 1 (default 0.004).
     pub speckle_unknown: f64,
+    /// Probability that a free map cell next to an occupied one reads occupied, which makes wall
+    /// faces and furniture outlines ragged as in real scans, 0 to 1 (default 0.05).
+    pub wall_roughness: f64,
     /// Probability, per cell along each side of each unit, that a gap (2 to 8 cells of the wall
     /// read as unknown, across its whole thickness) starts there, 0 to 1 (default 0.004).
     pub wall_gaps: f64,
@@ -103,6 +106,7 @@ impl Default for SynthConfig {
             rotation_deg: 0.0,
             speckle_occupied: 0.002,
             speckle_unknown: 0.004,
+            wall_roughness: 0.05,
             wall_gaps: 0.004,
             clutter: 0.03,
             unexplored: 0.0,
@@ -314,6 +318,7 @@ impl SynthConfig {
             ("extra_doors", self.extra_doors, 1.0),
             ("speckle_occupied", self.speckle_occupied, 1.0),
             ("speckle_unknown", self.speckle_unknown, 1.0),
+            ("wall_roughness", self.wall_roughness, 1.0),
             ("wall_gaps", self.wall_gaps, 1.0),
             ("clutter", self.clutter, 0.5),
             ("unexplored", self.unexplored, 1.0),

@@ -8,7 +8,8 @@
 //!   laser sees the faces of walls from where the robot was); outside the building is unknown;
 //! * walls have gaps (glass, dark surfaces), runs of unknown across their whole thickness;
 //! * furniture blobs in rooms and halls, their outline partly occupied, their inside unknown;
-//! * finally, in the map frame, speckle: free cells flipping to occupied or unknown.
+//! * finally, in the map frame, ragged wall faces (free cells beside occupied ones read occupied
+//!   now and then) and speckle: free cells flipping to occupied or unknown.
 //!
 //! The map is sampled from the world frame per map cell: each map cell centre is taken into
 //! the world frame with the inverse of [`Frame::to_map`](crate::floorplan::Frame::to_map) and
@@ -25,6 +26,7 @@ use crate::grid::{Cell, Grid};
 pub(super) struct Noise {
     pub speckle_occupied: f64,
     pub speckle_unknown: f64,
+    pub wall_roughness: f64,
     pub wall_gaps: f64,
     pub clutter: f64,
     pub peek: f64,
@@ -372,6 +374,24 @@ pub(super) fn to_map(
             } else {
                 cells.push(Cell::Unknown);
                 labels.push(0);
+            }
+        }
+    }
+    if noise.wall_roughness > 0.0 {
+        let sharp = cells.clone();
+        let occupied = |x: usize, y: usize| sharp[y * mw + x] == Cell::Occupied;
+        for y in 0..mh {
+            for x in 0..mw {
+                if sharp[y * mw + x] != Cell::Free {
+                    continue;
+                }
+                let beside = (x > 0 && occupied(x - 1, y))
+                    || (x + 1 < mw && occupied(x + 1, y))
+                    || (y > 0 && occupied(x, y - 1))
+                    || (y + 1 < mh && occupied(x, y + 1));
+                if beside && chance(rng, noise.wall_roughness) {
+                    cells[y * mw + x] = Cell::Occupied;
+                }
             }
         }
     }

@@ -615,3 +615,70 @@ fn share(rng: &mut Stream, n: usize, total: i32, cap: i32) -> Vec<i32> {
     }
     add
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::SeedableRng;
+
+    #[test]
+    fn share_gives_everything_and_respects_caps() {
+        let mut rng = Stream::seed_from_u64(1);
+        for (n, total, cap) in [
+            (1, 10, 100),
+            (5, 37, 10),
+            (4, 100, 10),
+            (3, 0, 5),
+            (7, 1000, i32::MAX),
+        ] {
+            let add = share(&mut rng, n, total, cap);
+            assert_eq!(add.len(), n);
+            assert_eq!(add.iter().sum::<i32>(), total);
+            if total as i64 <= cap as i64 * n as i64 {
+                assert!(add.iter().all(|&a| (0..=cap).contains(&a)), "{add:?}");
+            } else {
+                // Past every cap, the rest is spread evenly.
+                let (lo, hi) = (add.iter().min().unwrap(), add.iter().max().unwrap());
+                assert!(hi - lo <= 1, "{add:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn segment_counts_bracket_the_possible_room_numbers() {
+        let row = Rect::new(0, 0, 0, 50);
+        let room = Span { lo: 60, hi: 120 };
+        // 400 cells with 3-cell walls: at least 4 rooms of at most 120, at most 6 of at least 60.
+        assert_eq!(Segment::new(row, 0, 400).counts(3, room), (4, 6));
+        assert_eq!(Segment::new(row, 0, 120).counts(3, room), (1, 1));
+        // 121 cells: no count fits exactly, so one room is widened.
+        assert_eq!(Segment::new(row, 0, 121).counts(3, room), (1, 1));
+        let mut s = Segment::new(row, 0, 200);
+        s.others.push(40);
+        assert_eq!(s.rest(3), 157);
+    }
+
+    #[test]
+    fn door_run_sits_on_the_wall_centre_line() {
+        let o = Opening {
+            a: 0,
+            b: 1,
+            vertical: true,
+            wall: 10,
+            along: 5,
+            len: 4,
+        };
+        assert_eq!(o.rect(3), Rect::new(10, 5, 3, 4));
+        let d = o.door(7, 3);
+        assert_eq!(
+            (d.id, d.units, d.x0, d.y0, d.x1, d.y1),
+            (7, [1, 2], 11, 5, 11, 8)
+        );
+        let h = Opening {
+            vertical: false,
+            ..o
+        }
+        .door(1, 1);
+        assert_eq!((h.x0, h.y0, h.x1, h.y1), (5, 10, 8, 10));
+    }
+}

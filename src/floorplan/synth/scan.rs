@@ -411,3 +411,43 @@ pub(super) fn to_map(
         Grid::from_vec(mw, mh, labels).expect("map size"),
     )
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::{Rng, SeedableRng};
+
+    #[test]
+    fn dilate_matches_brute_force() {
+        let mut rng = Stream::seed_from_u64(3);
+        let (w, h) = (23, 17);
+        let cells: Vec<bool> = (0..w * h).map(|_| rng.gen_bool(0.05)).collect();
+        let g = Grid::from_vec(w, h, cells).unwrap();
+        for r in [0, 1, 3] {
+            let d = dilate(&g, r);
+            for y in 0..h {
+                for x in 0..w {
+                    let near = (y.saturating_sub(r)..(y + r + 1).min(h)).any(|yy| {
+                        (x.saturating_sub(r)..(x + r + 1).min(w)).any(|xx| *g.at(xx, yy))
+                    });
+                    assert_eq!(*d.at(x, y), near, "r {r} at ({x},{y})");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn door_zone_lies_in_front_of_the_door() {
+        let o = Opening {
+            a: 0,
+            b: 1,
+            vertical: false,
+            wall: 20,
+            along: 30,
+            len: 16,
+        };
+        // Above the wall for a, below it (past the 3-cell wall) for b.
+        assert_eq!(door_zone(&o, 0, 3), Rect::new(28, 4, 20, 16));
+        assert_eq!(door_zone(&o, 1, 3), Rect::new(28, 23, 20, 16));
+    }
+}

@@ -1,24 +1,66 @@
-//! Synthetic floor plans with ground truth (placeholder: being written).
+//! Synthetic floor plans with ground truth.
+//!
+//! Real SLAM maps come without the floor plan that produced them, so the chain's accuracy can
+//! only be measured on maps whose truth is known. [`generate`] draws a small office building
+//! (rooms on both sides of one or two corridors, optionally halls at the ends and small "other"
+//! units such as storage or stairs, all joined by doors), then maps it the way a robot with a
+//! 2D laser would have: walls as seen from where the robot went, gaps in walls, furniture
+//! blobs, rooms never entered, speckle, and optionally the whole map rotated against the image
+//! axes. Everything is drawn from one seeded ChaCha8 stream with platform-independent draws and
+//! `libm` arithmetic, so a config and a seed give the same bytes natively and in wasm.
+//!
+//! # What the truth means
+//!
+//! * [`Synthetic::truth`] is a [`World`] in the world frame: the canvas of
+//!   [`SynthConfig::width`] x [`SynthConfig::height`] cells, upright. Its `frame.angle` is the
+//!   rotation in radians and its `frame.map_size` the map's size; with no rotation the frame is
+//!   the identity.
+//! * Each unit's rectangle is its **free interior expanded by one cell on every side**, so its
+//!   border ring (eq. 3.8's wall cells `S_w`) lies on the inner face of its walls. This is the
+//!   rectangle the likelihood of eq. 3.6 favours: every ring cell is a wall cell and every
+//!   inside cell is free. Neighbouring units are separated by one wall of
+//!   [`SynthConfig::wall_thickness`] `t` cells, so their rings are `t - 1` cells apart (they
+//!   coincide when `t` is 1) and units never share interior cells.
+//! * Each door joins units `[a, b]` (1-based ids), `a` left of or above the wall. The door is
+//!   an opening of free cells through the whole wall; its `world.json` run is the opening's
+//!   row or column on the wall's centre line, `(t - 1) / 2` cells past `a`'s ring, so it lies
+//!   on `a`'s ring for `t` <= 2 and on both rings for `t` = 1.
+//! * `object_cells` are the furniture cells (world frame, row by row): the blobs' footprints,
+//!   whose map cells read occupied (seen outline) or unknown. Furniture is placed only in
+//!   explored rooms and halls, never in corridors, and keeps door fronts clear.
+//! * Units the robot never entered are still in the truth; [`Synthetic::explored`] says which.
+//!
+//! [`Synthetic::labels`] has the map's size and frame: for every map cell whose centre, taken
+//! into the world frame by the inverse of [`Frame::to_map`], falls on the interior (ring
+//! excluded) of unit `i` of `truth.units`, the value `i + 1`; 0 everywhere else (walls, door
+//! openings, outside). With no rotation, world and map cells coincide.
+//!
+//! ```
+//! use ksmcmc::floorplan::synth::{generate, SynthConfig};
+//!
+//! let s = generate(&SynthConfig::default(), 7).unwrap();
+//! assert_eq!((s.map.width(), s.map.height()), (400, 300));
+//! assert!(s.truth.units.len() >= 3);
+//! // Same seed, same bytes.
+//! assert_eq!(generate(&SynthConfig::default(), 7).unwrap().map_pgm(), s.map_pgm());
+//! // Bad configs are errors that name the field.
+//! let bad = SynthConfig { wall_thickness: 0, ..SynthConfig::default() };
+//! assert!(generate(&bad, 7).unwrap_err().to_string().contains("wall_thickness"));
+//! ```
 
-use super::World;
-use crate::grid::{Cell, Grid, OccupancyMap};
+mod config;
+mod layout;
+mod rng;
+mod scan;
 
-/// Parameters of the synthetic generator.
-#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
-pub struct SynthConfig {
-    /// Map width in cells.
-    pub width: u32,
-    /// Map height in cells.
-    pub height: u32,
-}
+pub use config::SynthConfig;
 
-impl Default for SynthConfig {
-    fn default() -> Self {
-        SynthConfig { width: 400, height: 300 }
-    }
-}
+use super::{Frame, Unit, UnitType, World, WORLD_FORMAT};
+use crate::grid::{Cell, Classifier, Grid, MapYaml, Mode, OccupancyMap, Raster};
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
 
-/// Why a configuration was refused.
+/// Why a configuration was refused: the message names the field and the accepted range.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SynthError(pub String);
 
@@ -30,40 +72,147 @@ impl std::fmt::Display for SynthError {
 
 impl std::error::Error for SynthError {}
 
-/// A generated map with its ground truth.
+/// A generated map with its ground truth (conventions in the [module docs](self)).
 #[derive(Debug, Clone)]
 pub struct Synthetic {
     /// The occupancy map a SLAM system would have produced.
     pub map: OccupancyMap,
-    /// The true world (units with types, doors), in `world.json` form.
+    /// The true world (units with types, doors, furniture cells), in `world.json` form.
     pub truth: World,
-    /// Per map cell: index + 1 of the truth unit it belongs to, 0 elsewhere.
+    /// Per map cell: index + 1 of the truth unit whose interior it lies in, 0 elsewhere.
     pub labels: Grid<u16>,
+    /// Per truth unit: whether the robot entered it (unexplored units read unknown).
+    pub explored: Vec<bool>,
 }
 
 impl Synthetic {
-    /// `map.pgm` bytes.
+    /// `map.pgm` bytes: 8-bit binary PGM, occupied 0, unknown 205, free 254.
     pub fn map_pgm(&self) -> Vec<u8> {
         self.map.to_pgm()
     }
-    /// `map.yaml` text naming `map.pgm`.
+
+    /// `map.yaml` text naming `map.pgm`, with the configured resolution.
     pub fn map_yaml(&self) -> String {
         self.map.to_yaml("map.pgm")
     }
-    /// `truth.json` text.
+
+    /// `truth.json` text: the truth world.
     pub fn truth_json(&self) -> String {
         self.truth.to_json()
     }
-    /// `truth_labels.pgm` bytes: 16-bit binary PGM.
+
+    /// `truth_labels.pgm` bytes: 16-bit binary PGM (maxval 65535), unit index + 1 per cell.
     pub fn labels_pgm(&self) -> Vec<u8> {
-        crate::grid::pgm::encode_u16(self.labels.width(), self.labels.height(), self.labels.cells())
+        crate::grid::pgm::encode_u16(
+            self.labels.width(),
+            self.labels.height(),
+            self.labels.cells(),
+        )
     }
 }
 
 /// Generates a synthetic floor plan; same config and seed, same result on every platform.
+///
+/// Fails, without panicking, when the config is invalid or the building cannot hold what it
+/// asks for; random choices that happen not to fit are redrawn a few times first.
+///
+/// ```
+/// use ksmcmc::floorplan::synth::{generate, SynthConfig};
+/// use ksmcmc::grid::Cell;
+///
+/// let config = SynthConfig { rotation_deg: 20.0, clutter: 0.1, ..SynthConfig::default() };
+/// let s = generate(&config, 42).unwrap();
+/// assert!((s.truth.frame.angle - 20f64.to_radians()).abs() < 1e-12);
+/// assert!(s.map.width() > 400 && s.map.height() > 300); // grown to hold the rotated canvas
+/// assert!(!s.truth.object_cells.is_empty());
+/// assert_eq!(s.map.classified().at(0, 0), &Cell::Unknown); // outside the building
+/// ```
 pub fn generate(config: &SynthConfig, seed: u64) -> Result<Synthetic, SynthError> {
-    let _ = seed;
-    let (w, h) = (config.width as usize, config.height as usize);
-    let map = OccupancyMap::from_classified(Grid::new(w, h, Cell::Unknown));
-    Ok(Synthetic { map, truth: World::empty(config.width, config.height), labels: Grid::new(w, h, 0) })
+    let cells = config.cells()?;
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let plan = layout::plan(&cells, config.extra_doors, &mut rng)?;
+    let explored = choose_explored(&plan.spaces, config.unexplored, &mut rng);
+    let noise = scan::Noise {
+        speckle_occupied: config.speckle_occupied,
+        speckle_unknown: config.speckle_unknown,
+        wall_roughness: config.wall_roughness,
+        wall_gaps: config.wall_gaps,
+        clutter: config.clutter,
+        peek: config.peek,
+    };
+    let observed = scan::observe(&plan, &explored, &cells, &noise, &mut rng);
+    let (map_cells, labels) = scan::to_map(&observed, &cells, &noise, &mut rng);
+
+    let units = plan
+        .spaces
+        .iter()
+        .enumerate()
+        .map(|(i, s)| Unit {
+            id: i as u32 + 1,
+            x: s.inner.x - 1,
+            y: s.inner.y - 1,
+            w: s.inner.w + 2,
+            h: s.inner.h + 2,
+            kind: s.kind,
+        })
+        .collect();
+    let doors = plan
+        .openings
+        .iter()
+        .enumerate()
+        .map(|(i, o)| o.door(i as u32 + 1, cells.wall))
+        .collect();
+    // -0 degrees would otherwise be written as an angle of -0.0.
+    let angle = if cells.angle == 0.0 { 0.0 } else { cells.angle };
+    let truth = World {
+        format: WORLD_FORMAT.to_string(),
+        frame: Frame {
+            angle,
+            world_size: [config.width, config.height],
+            map_size: [cells.map_size.0, cells.map_size.1],
+        },
+        units,
+        doors,
+        object_cells: observed.objects,
+    };
+    Ok(Synthetic {
+        map: occupancy_map(map_cells, config.resolution),
+        truth,
+        labels,
+        explored,
+    })
+}
+
+/// Picks which units the robot never entered: a fraction of the rooms, halls and "other"
+/// units, never a corridor (the robot drives through those).
+fn choose_explored(spaces: &[layout::Space], unexplored: f64, rng: &mut rng::Stream) -> Vec<bool> {
+    let mut pool: Vec<usize> = (0..spaces.len())
+        .filter(|&i| spaces[i].kind != UnitType::Corridor)
+        .collect();
+    let n = (libm::round(unexplored * pool.len() as f64) as usize).min(pool.len());
+    let mut explored = vec![true; spaces.len()];
+    for k in 0..n {
+        let j = k + rng::below(rng, pool.len() - k);
+        pool.swap(k, j);
+        explored[pool[k]] = false;
+    }
+    explored
+}
+
+/// Wraps classified cells as a map in the ROS convention with the given resolution.
+fn occupancy_map(cells: Grid<Cell>, resolution: f64) -> OccupancyMap {
+    let gray = cells.map(|c| crate::grid::gray_of(*c) as u16 * 257);
+    let yaml = MapYaml {
+        resolution,
+        ..MapYaml::for_image("map.pgm")
+    };
+    let classifier = Classifier::MapServer {
+        negate: false,
+        occupied_thresh: 0.65,
+        free_thresh: 0.196,
+        mode: Mode::Trinary,
+    };
+    let map = OccupancyMap::from_raster(Raster { gray, alpha: None }, yaml, classifier);
+    debug_assert_eq!(map.classified(), &cells);
+    map
 }

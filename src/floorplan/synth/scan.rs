@@ -1,0 +1,453 @@
+//! What a robot with a 2D laser would have mapped of a layout.
+//!
+//! The truth is rasterised in the world frame, then degraded the way SLAM maps are:
+//!
+//! * explored units read free, units the robot never entered read unknown, except for a fan
+//!   of free cells seen through a door from the explored side ("peeking");
+//! * a wall cell reads occupied only when it is within `wall` cells of observed free space (a
+//!   laser sees the faces of walls from where the robot was); outside the building is unknown;
+//! * walls have gaps (glass, dark surfaces), runs of unknown across their whole thickness;
+//! * furniture blobs in rooms and halls, their outline partly occupied, their inside unknown;
+//! * finally, in the map frame, ragged wall faces (free cells beside occupied ones read occupied
+//!   now and then) and speckle: free cells flipping to occupied or unknown.
+//!
+//! The map is sampled from the world frame per map cell: each map cell centre is taken into
+//! the world frame with the inverse of [`Frame::to_map`](crate::floorplan::Frame::to_map) and
+//! the world cell under it is read (nearest neighbour), so rotated walls stay solid.
+
+use super::config::Cells;
+use super::layout::{Opening, Plan, Space};
+use super::rng::{below, between, chance, unit, Stream};
+use crate::floorplan::{Rect, UnitType};
+use crate::grid::{Cell, Grid};
+
+/// The noise settings, all probabilities or fractions.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Noise {
+    pub speckle_occupied: f64,
+    pub speckle_unknown: f64,
+    pub wall_roughness: f64,
+    pub wall_gaps: f64,
+    pub clutter: f64,
+    pub peek: f64,
+}
+
+/// A world-frame observation.
+pub(super) struct Observed {
+    /// What the map shows, world frame.
+    pub cells: Grid<Cell>,
+    /// Unit index + 1 on unit interiors, 0 elsewhere, world frame.
+    pub labels: Grid<u16>,
+    /// Furniture cells, world frame, row by row.
+    pub objects: Vec<[i32; 2]>,
+}
+
+const OUTSIDE: u8 = 0;
+const WALL: u8 = 1;
+const INTERIOR: u8 = 2;
+const OPENING: u8 = 3;
+
+fn fill<T: Copy>(g: &mut Grid<T>, r: Rect, v: T) {
+    for y in r.y..r.bottom() {
+        for x in r.x..r.right() {
+            *g.at_mut(x as usize, y as usize) = v;
+        }
+    }
+}
+
+/// Rasterises the plan in the world frame and degrades it as a scan would.
+pub(super) fn observe(
+    plan: &Plan,
+    explored: &[bool],
+    c: &Cells,
+    noise: &Noise,
+    rng: &mut Stream,
+) -> Observed {
+    let (w, h) = (c.canvas.0 as usize, c.canvas.1 as usize);
+    let t = c.wall;
+    let mut kind = Grid::new(w, h, OUTSIDE);
+    let mut labels = Grid::new(w, h, 0u16);
+    fill(&mut kind, plan.building, WALL);
+    for (i, s) in plan.spaces.iter().enumerate() {
+        fill(&mut kind, s.inner, INTERIOR);
+        fill(&mut labels, s.inner, i as u16 + 1);
+    }
+    for o in &plan.openings {
+        fill(&mut kind, o.rect(t), OPENING);
+    }
+
+    // Free space the robot saw: explored interiors, openings next to them, peeks.
+    let mut cells = Grid::new(w, h, Cell::Unknown);
+    for (s, _) in plan.spaces.iter().zip(explored).filter(|(_, &e)| e) {
+        fill(&mut cells, s.inner, Cell::Free);
+    }
+    for o in &plan.openings {
+        if explored[o.a] || explored[o.b] {
+            fill(&mut cells, o.rect(t), Cell::Free);
+        }
+    }
+    for (u, s) in plan.spaces.iter().enumerate() {
+        if explored[u] {
+            continue;
+        }
+        for o in plan.openings.iter().filter(|o| o.a == u || o.b == u) {
+            let v = o.other(u);
+            if explored[v] && chance(rng, noise.peek) {
+                peek(&mut cells, o, s, &plan.spaces[v], v == o.a, t);
+            }
+        }
+    }
+
+    // Walls read occupied where seen from free space.
+    let free = cells.map(|c| *c == Cell::Free);
+    let seen = dilate(&free, t as usize);
+    for ((cell, k), s) in cells
+        .cells_mut()
+        .iter_mut()
+        .zip(kind.cells())
+        .zip(seen.cells())
+    {
+        if *k == WALL && *s {
+            *cell = Cell::Occupied;
+        }
+    }
+
+    // Gaps: runs along each unit side, across the whole wall.
+    if noise.wall_gaps > 0.0 {
+        for s in &plan.spaces {
+            let r = s.inner;
+            // (start, step along, offset across outwards, length)
+            let sides = [
+                ((r.x, r.y - 1), (1, 0), (0, -1), r.w),
+                ((r.x, r.bottom()), (1, 0), (0, 1), r.w),
+                ((r.x - 1, r.y), (0, 1), (-1, 0), r.h),
+                ((r.right(), r.y), (0, 1), (1, 0), r.h),
+            ];
+            for ((x0, y0), (dx, dy), (ox, oy), len) in sides {
+                let mut i = 0;
+                while i < len {
+                    if !chance(rng, noise.wall_gaps) {
+                        i += 1;
+                        continue;
+                    }
+                    let g = between(rng, 2, 8);
+                    for j in i..(i + g).min(len) {
+                        for k in 0..t {
+                            let (x, y) = (x0 + dx * j + ox * k, y0 + dy * j + oy * k);
+                            if kind.get(x as i64, y as i64) == Some(&WALL) {
+                                *cells.at_mut(x as usize, y as usize) = Cell::Unknown;
+                            }
+                        }
+                    }
+                    i += g;
+                }
+            }
+        }
+    }
+
+    // Furniture in explored rooms and halls.
+    let mut object = Grid::new(w, h, false);
+    if noise.clutter > 0.0 {
+        for (u, s) in plan.spaces.iter().enumerate() {
+            if explored[u] && matches!(s.kind, UnitType::Room | UnitType::Hall) {
+                let keep_out: Vec<Rect> = plan
+                    .openings
+                    .iter()
+                    .filter(|o| o.a == u || o.b == u)
+                    .map(|o| door_zone(o, u, t))
+                    .collect();
+                furnish(
+                    &mut cells,
+                    &mut object,
+                    s.inner,
+                    &keep_out,
+                    noise.clutter,
+                    c.resolution,
+                    rng,
+                );
+            }
+        }
+    }
+    let mut objects = Vec::new();
+    for y in 0..h {
+        for x in 0..w {
+            if *object.at(x, y) {
+                objects.push([x as i32, y as i32]);
+            }
+        }
+    }
+    Observed {
+        cells,
+        labels,
+        objects,
+    }
+}
+
+/// Marks free the cells of unexplored space `s` visible from inside `v` (the opening's `a` side
+/// when `v_is_a`) through opening `o`.
+fn peek(cells: &mut Grid<Cell>, o: &Opening, s: &Space, v: &Space, v_is_a: bool, t: i32) {
+    // Work in (along, across) coordinates of the wall.
+    let flip = |r: Rect| {
+        if o.vertical {
+            (r.y, r.bottom(), r.x, r.right())
+        } else {
+            (r.x, r.right(), r.y, r.bottom())
+        }
+    };
+    let (_, _, v0, v1) = flip(v.inner);
+    let (s_al0, s_al1, s_ac0, s_ac1) = flip(s.inner);
+    let (faces, len) = ([o.wall as f64, (o.wall + t) as f64], o.len as f64);
+    // The robot stood about a door's width back from the opening, on `v`'s side.
+    let depth = (o.len as f64).min((v1 - v0) as f64 - 1.0).max(0.5);
+    let view_across = if v_is_a {
+        o.wall as f64 - depth
+    } else {
+        (o.wall + t) as f64 + depth
+    };
+    let view_along = o.along as f64 + len / 2.0;
+    let (lo, hi) = (o.along as f64, o.along as f64 + len);
+    for ac in s_ac0..s_ac1 {
+        let pc = ac as f64 + 0.5;
+        for al in s_al0..s_al1 {
+            let pa = al as f64 + 0.5;
+            let through = faces.iter().all(|&f| {
+                let at = view_along + (pa - view_along) * (f - view_across) / (pc - view_across);
+                at >= lo && at <= hi
+            });
+            if through {
+                let (x, y) = if o.vertical { (ac, al) } else { (al, ac) };
+                *cells.at_mut(x as usize, y as usize) = Cell::Free;
+            }
+        }
+    }
+}
+
+/// The area in front of a door on space `u`'s side, kept clear of furniture.
+fn door_zone(o: &Opening, u: usize, t: i32) -> Rect {
+    let depth = o.len;
+    let across = if u == o.a { o.wall - depth } else { o.wall + t };
+    if o.vertical {
+        Rect::new(across, o.along - 2, depth, o.len + 4)
+    } else {
+        Rect::new(o.along - 2, across, o.len + 4, depth)
+    }
+}
+
+/// Places furniture blobs in `room` until `fraction` of it is covered (or space runs out).
+fn furnish(
+    cells: &mut Grid<Cell>,
+    object: &mut Grid<bool>,
+    room: Rect,
+    keep_out: &[Rect],
+    fraction: f64,
+    resolution: f64,
+    rng: &mut Stream,
+) {
+    let target = libm::round(fraction * room.area() as f64) as i64;
+    let size = |m: f64| (libm::round(m / resolution) as i32).max(2);
+    let (smin, smax) = (size(0.3), size(1.6));
+    let mut placed: Vec<Rect> = Vec::new();
+    let mut covered = 0i64;
+    let mut attempts = 0;
+    while covered < target && attempts < 400 {
+        attempts += 1;
+        let mut bw = between(rng, smin, smax).min(room.w - 2);
+        let mut bh = between(rng, smin, smax).min(room.h - 2);
+        // Near the target, smaller pieces: overshoot by a quarter at most.
+        let budget = ((target - covered) * 5 / 4).max((smin * smin) as i64) as i32;
+        if bw * bh > budget {
+            bh = (budget / bw).max(smin).min(bh);
+            bw = (budget / bh).max(smin).min(bw);
+        }
+        if bw < 2 || bh < 2 {
+            return;
+        }
+        // Most furniture stands against a wall.
+        let (x, y) = if chance(rng, 0.6) {
+            match below(rng, 4) {
+                0 => (between(rng, room.x, room.right() - bw), room.y),
+                1 => (between(rng, room.x, room.right() - bw), room.bottom() - bh),
+                2 => (room.x, between(rng, room.y, room.bottom() - bh)),
+                _ => (room.right() - bw, between(rng, room.y, room.bottom() - bh)),
+            }
+        } else {
+            (
+                between(rng, room.x + 1, room.right() - bw - 1),
+                between(rng, room.y + 1, room.bottom() - bh - 1),
+            )
+        };
+        let r = Rect::new(x, y, bw, bh);
+        let grown = Rect::new(x - 3, y - 3, bw + 6, bh + 6);
+        if keep_out.iter().any(|k| k.intersection(&r).is_some())
+            || placed.iter().any(|p| p.intersection(&grown).is_some())
+        {
+            continue;
+        }
+        placed.push(r);
+        let round = chance(rng, 0.4);
+        let (cx, cy, rx, ry) = (
+            x as f64 + bw as f64 / 2.0,
+            y as f64 + bh as f64 / 2.0,
+            bw as f64 / 2.0,
+            bh as f64 / 2.0,
+        );
+        let inside = |px: i32, py: i32| {
+            if !r.contains(px, py) {
+                return false;
+            }
+            if !round {
+                return true;
+            }
+            let (dx, dy) = ((px as f64 + 0.5 - cx) / rx, (py as f64 + 0.5 - cy) / ry);
+            dx * dx + dy * dy <= 1.0
+        };
+        for py in r.y..r.bottom() {
+            for px in r.x..r.right() {
+                if !inside(px, py) {
+                    continue;
+                }
+                let edge = !(inside(px - 1, py)
+                    && inside(px + 1, py)
+                    && inside(px, py - 1)
+                    && inside(px, py + 1));
+                // The laser sees part of the outline; the inside stays unknown.
+                let seen = edge && unit(rng) < 0.7;
+                *cells.at_mut(px as usize, py as usize) =
+                    if seen { Cell::Occupied } else { Cell::Unknown };
+                *object.at_mut(px as usize, py as usize) = true;
+                covered += 1;
+            }
+        }
+    }
+}
+
+/// Square dilation: true where any cell within Chebyshev distance `r` is true.
+fn dilate(g: &Grid<bool>, r: usize) -> Grid<bool> {
+    let (w, h) = (g.width(), g.height());
+    let pass = |src: &[bool], n: usize, stride: usize, out: &mut [bool]| {
+        // Prefix counts along one line, then a window of 2r + 1.
+        let mut prefix = vec![0u32; n + 1];
+        for i in 0..n {
+            prefix[i + 1] = prefix[i] + u32::from(src[i * stride]);
+        }
+        for i in 0..n {
+            let (a, b) = (i.saturating_sub(r), (i + r + 1).min(n));
+            out[i * stride] = prefix[b] > prefix[a];
+        }
+    };
+    let mut mid = vec![false; w * h];
+    for y in 0..h {
+        pass(&g.cells()[y * w..], w, 1, &mut mid[y * w..]);
+    }
+    let mut out = vec![false; w * h];
+    for x in 0..w {
+        pass(&mid[x..], h, w, &mut out[x..]);
+    }
+    Grid::from_vec(w, h, out).expect("same size")
+}
+
+/// Samples the world-frame observation into the map frame and adds speckle.
+pub(super) fn to_map(
+    obs: &Observed,
+    c: &Cells,
+    noise: &Noise,
+    rng: &mut Stream,
+) -> (Grid<Cell>, Grid<u16>) {
+    let (ww, wh) = (c.canvas.0 as usize, c.canvas.1 as usize);
+    let (mw, mh) = (c.map_size.0 as usize, c.map_size.1 as usize);
+    let (s, co) = (libm::sin(c.angle), libm::cos(c.angle));
+    let mut cells = Vec::with_capacity(mw * mh);
+    let mut labels = Vec::with_capacity(mw * mh);
+    for my in 0..mh {
+        for mx in 0..mw {
+            // Frame::to_world of the cell centre, written out to keep sin and cos out of the loop.
+            let (dx, dy) = (
+                mx as f64 + 0.5 - mw as f64 / 2.0,
+                my as f64 + 0.5 - mh as f64 / 2.0,
+            );
+            let wx = libm::floor(ww as f64 / 2.0 + co * dx + s * dy);
+            let wy = libm::floor(wh as f64 / 2.0 - s * dx + co * dy);
+            if wx >= 0.0 && wy >= 0.0 && wx < ww as f64 && wy < wh as f64 {
+                let (x, y) = (wx as usize, wy as usize);
+                cells.push(*obs.cells.at(x, y));
+                labels.push(*obs.labels.at(x, y));
+            } else {
+                cells.push(Cell::Unknown);
+                labels.push(0);
+            }
+        }
+    }
+    if noise.wall_roughness > 0.0 {
+        let sharp = cells.clone();
+        let occupied = |x: usize, y: usize| sharp[y * mw + x] == Cell::Occupied;
+        for y in 0..mh {
+            for x in 0..mw {
+                if sharp[y * mw + x] != Cell::Free {
+                    continue;
+                }
+                let beside = (x > 0 && occupied(x - 1, y))
+                    || (x + 1 < mw && occupied(x + 1, y))
+                    || (y > 0 && occupied(x, y - 1))
+                    || (y + 1 < mh && occupied(x, y + 1));
+                if beside && chance(rng, noise.wall_roughness) {
+                    cells[y * mw + x] = Cell::Occupied;
+                }
+            }
+        }
+    }
+    let (po, pu) = (noise.speckle_occupied, noise.speckle_unknown);
+    if po + pu > 0.0 {
+        for cell in cells.iter_mut().filter(|c| **c == Cell::Free) {
+            let d = unit(rng);
+            if d < po {
+                *cell = Cell::Occupied;
+            } else if d < po + pu {
+                *cell = Cell::Unknown;
+            }
+        }
+    }
+    (
+        Grid::from_vec(mw, mh, cells).expect("map size"),
+        Grid::from_vec(mw, mh, labels).expect("map size"),
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::{Rng, SeedableRng};
+
+    #[test]
+    fn dilate_matches_brute_force() {
+        let mut rng = Stream::seed_from_u64(3);
+        let (w, h) = (23, 17);
+        let cells: Vec<bool> = (0..w * h).map(|_| rng.gen_bool(0.05)).collect();
+        let g = Grid::from_vec(w, h, cells).unwrap();
+        for r in [0, 1, 3] {
+            let d = dilate(&g, r);
+            for y in 0..h {
+                for x in 0..w {
+                    let near = (y.saturating_sub(r)..(y + r + 1).min(h)).any(|yy| {
+                        (x.saturating_sub(r)..(x + r + 1).min(w)).any(|xx| *g.at(xx, yy))
+                    });
+                    assert_eq!(*d.at(x, y), near, "r {r} at ({x},{y})");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn door_zone_lies_in_front_of_the_door() {
+        let o = Opening {
+            a: 0,
+            b: 1,
+            vertical: false,
+            wall: 20,
+            along: 30,
+            len: 16,
+        };
+        // Above the wall for a, below it (past the 3-cell wall) for b.
+        assert_eq!(door_zone(&o, 0, 3), Rect::new(28, 4, 20, 16));
+        assert_eq!(door_zone(&o, 1, 3), Rect::new(28, 23, 20, 16));
+    }
+}

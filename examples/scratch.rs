@@ -5,7 +5,13 @@ fn main() {
     let iters: u64 = std::env::args().nth(2).map(|s| s.parse().unwrap()).unwrap_or(20000);
     let map = OccupancyMap::load(std::path::Path::new(&path), &Limits::default()).unwrap();
     let t0 = std::time::Instant::now();
-    let mut cfg = ChainConfig::default(); if let Ok(t) = std::env::var("WALL") { cfg.wall_thickness = Some(t.parse().unwrap()); } if let Ok(j) = std::env::var("CFG") { cfg = serde_json::from_str(&j).unwrap(); }
+    let mut cfg = ChainConfig::default();
+    if let Ok(t) = std::env::var("WALL") {
+        cfg.wall_thickness = Some(t.parse().unwrap());
+    }
+    if let Ok(j) = std::env::var("CFG") {
+        cfg = serde_json::from_str(&j).unwrap();
+    }
     let mut chain = Chain::new(&map, cfg, 1).unwrap();
     let setup = t0.elapsed().as_secs_f64();
     println!(

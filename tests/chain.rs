@@ -1,5 +1,7 @@
 //! The chain's bookkeeping, determinism and input checks.
 
+#![allow(clippy::field_reassign_with_default)] // configs are built by adjusting defaults, field by field
+
 use ksmcmc::floorplan::{Chain, ChainConfig, ChainError};
 use ksmcmc::grid::{Cell, Grid, OccupancyMap};
 use ksmcmc::mcmc::{KernelWeights, Schedule};
@@ -27,7 +29,7 @@ fn rooms_map() -> Grid<Cell> {
             *g.at_mut(x + 20, y) = Cell::Free;
         }
     }
-        for x in [8usize, 28, 50] {
+    for x in [8usize, 28, 50] {
         for dx in 0..6 {
             for y in 24..26 {
                 *g.at_mut(x + dx, y) = Cell::Free;
@@ -54,7 +56,7 @@ fn all_kernels_config() -> ChainConfig {
 #[test]
 fn incremental_posterior_equals_full_recomputation_after_every_step() {
     let map = OccupancyMap::from_classified(rooms_map());
-        for seed in 0..4 {
+    for seed in 0..4 {
         let mut config = all_kernels_config();
         // Thin rings (the dissertation's model) and thick ones.
         config.wall_thickness = Some(1 + (seed as i32 % 2));

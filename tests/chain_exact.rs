@@ -4,6 +4,8 @@
 //! If any kernel's forward or reverse proposal probability were wrong, the chain would converge
 //! to a different distribution and the total-variation distance below would be large.
 
+#![allow(clippy::field_reassign_with_default)] // configs are built by adjusting defaults, field by field
+
 use ksmcmc::floorplan::explain::Explanation;
 use ksmcmc::floorplan::posterior::Posterior;
 use ksmcmc::floorplan::{Chain, ChainConfig, Rect};

@@ -28,10 +28,7 @@ fn gen(c: &SynthConfig, seed: u64) -> Synthetic {
 /// The map cell under world cell `(x, y)`'s centre.
 fn map_cell(s: &Synthetic, x: i32, y: i32) -> Option<Cell> {
     let (mx, my) = s.truth.frame.to_map(x as f64 + 0.5, y as f64 + 0.5);
-    s.map
-        .classified()
-        .get(mx.floor() as i64, my.floor() as i64)
-        .copied()
+    s.map.classified().get(mx.floor() as i64, my.floor() as i64).copied()
 }
 
 /// The world cell under map cell `(x, y)`'s centre.
@@ -65,23 +62,11 @@ fn check_truth(s: &Synthetic, c: &SynthConfig, seed: u64) {
     let w = &s.truth;
     let t = c.wall_thickness as i32;
     let ctx = |m: &str| format!("seed {seed}: {m}");
-    w.validate()
-        .unwrap_or_else(|e| panic!("{}", ctx(&e.to_string())));
-    assert_eq!(
-        World::from_json(&s.truth_json()).unwrap(),
-        *w,
-        "{}",
-        ctx("truth.json round trip")
-    );
+    w.validate().unwrap_or_else(|e| panic!("{}", ctx(&e.to_string())));
+    assert_eq!(World::from_json(&s.truth_json()).unwrap(), *w, "{}", ctx("truth.json round trip"));
     assert_eq!(w.frame.world_size, [c.width, c.height]);
-    assert_eq!(
-        w.frame.map_size,
-        [s.map.width() as u32, s.map.height() as u32]
-    );
-    assert_eq!(
-        (s.labels.width(), s.labels.height()),
-        (s.map.width(), s.map.height())
-    );
+    assert_eq!(w.frame.map_size, [s.map.width() as u32, s.map.height() as u32]);
+    assert_eq!((s.labels.width(), s.labels.height()), (s.map.width(), s.map.height()));
     assert_eq!(s.explored.len(), w.units.len());
     let (ww, wh) = (c.width as usize, c.height as usize);
 
@@ -89,21 +74,14 @@ fn check_truth(s: &Synthetic, c: &SynthConfig, seed: u64) {
     let mut owner = Grid::new(ww, wh, 0usize);
     for (i, u) in w.units.iter().enumerate() {
         assert_eq!(u.id, i as u32 + 1);
-        assert!(
-            u.x >= 0 && u.y >= 0 && u.x + u.w <= c.width as i32 && u.y + u.h <= c.height as i32
-        );
+        assert!(u.x >= 0 && u.y >= 0 && u.x + u.w <= c.width as i32 && u.y + u.h <= c.height as i32);
         assert!(u.w >= 3 && u.h >= 3);
         assert_ne!(u.kind, UnitType::Unknown);
         let r = interior(u);
         for y in r.y..r.bottom() {
             for x in r.x..r.right() {
                 let o = owner.at_mut(x as usize, y as usize);
-                assert_eq!(
-                    *o,
-                    0,
-                    "{}",
-                    ctx(&format!("units {} and {} overlap at ({x},{y})", *o, u.id))
-                );
+                assert_eq!(*o, 0, "{}", ctx(&format!("units {} and {} overlap at ({x},{y})", *o, u.id)));
                 *o = i + 1;
             }
         }
@@ -113,61 +91,28 @@ fn check_truth(s: &Synthetic, c: &SynthConfig, seed: u64) {
     let mut pairs = HashSet::new();
     for d in &w.doors {
         let (a, b) = (w.unit(d.units[0]).unwrap(), w.unit(d.units[1]).unwrap());
-        assert!(
-            pairs.insert(d.units),
-            "{}",
-            ctx("two doors join the same units")
-        );
+        assert!(pairs.insert(d.units), "{}", ctx("two doors join the same units"));
         let (ra, rb) = (a.rect(), b.rect());
         let vertical = d.x0 == d.x1;
         // Across the wall: a's ring, then t - 1 cells on to b's ring.
-        let (ring_a, ring_b, across) = if vertical {
-            (ra.right() - 1, rb.x, d.x0)
-        } else {
-            (ra.bottom() - 1, rb.y, d.y0)
-        };
-        assert_eq!(
-            ring_b - ring_a,
-            t - 1,
-            "{}",
-            ctx(&format!("door {} joins units not sharing a wall", d.id))
-        );
-        assert_eq!(
-            across,
-            ring_a + (t - 1) / 2,
-            "{}",
-            ctx("door off the wall's centre line")
-        );
+        let (ring_a, ring_b, across) =
+            if vertical { (ra.right() - 1, rb.x, d.x0) } else { (ra.bottom() - 1, rb.y, d.y0) };
+        assert_eq!(ring_b - ring_a, t - 1, "{}", ctx(&format!("door {} joins units not sharing a wall", d.id)));
+        assert_eq!(across, ring_a + (t - 1) / 2, "{}", ctx("door off the wall's centre line"));
         for (x, y) in d.cells() {
             let along = if vertical { y } else { x };
             for r in [ra, rb] {
-                let (lo, hi) = if vertical {
-                    (r.y, r.bottom() - 1)
-                } else {
-                    (r.x, r.right() - 1)
-                };
-                assert!(
-                    along > lo && along < hi,
-                    "{}",
-                    ctx(&format!("door {} leaves its wall at ({x},{y})", d.id))
-                );
+                let (lo, hi) = if vertical { (r.y, r.bottom() - 1) } else { (r.x, r.right() - 1) };
+                assert!(along > lo && along < hi, "{}", ctx(&format!("door {} leaves its wall at ({x},{y})", d.id)));
             }
             if t == 1 {
-                assert!(
-                    ra.on_border(x, y) && rb.on_border(x, y),
-                    "{}",
-                    ctx("door not on both rings")
-                );
+                assert!(ra.on_border(x, y) && rb.on_border(x, y), "{}", ctx("door not on both rings"));
             } else if t == 2 {
                 assert!(ra.on_border(x, y), "{}", ctx("door not on a's ring"));
             }
         }
         let dl = d.len() as f64 * c.resolution;
-        assert!(
-            dl <= c.door_width[1] + 1e-9,
-            "{}",
-            ctx(&format!("door {} is {dl} m wide", d.id))
-        );
+        assert!(dl <= c.door_width[1] + 1e-9, "{}", ctx(&format!("door {} is {dl} m wide", d.id)));
     }
     assert!(connected(w), "{}", ctx("door graph not connected"));
 
@@ -176,12 +121,7 @@ fn check_truth(s: &Synthetic, c: &SynthConfig, seed: u64) {
         for x in 0..s.map.width() {
             let (wx, wy) = world_cell(s, x, y);
             let expected = owner.get(wx as i64, wy as i64).map_or(0, |&o| o as u16);
-            assert_eq!(
-                *s.labels.at(x, y),
-                expected,
-                "{}",
-                ctx(&format!("label at map ({x},{y})"))
-            );
+            assert_eq!(*s.labels.at(x, y), expected, "{}", ctx(&format!("label at map ({x},{y})")));
         }
     }
 
@@ -190,16 +130,9 @@ fn check_truth(s: &Synthetic, c: &SynthConfig, seed: u64) {
     for &(x, y) in &objects {
         let o = *owner.at(x as usize, y as usize);
         assert!(o > 0, "{}", ctx("object cell outside every unit"));
-        assert!(
-            matches!(w.units[o - 1].kind, UnitType::Room | UnitType::Hall) && s.explored[o - 1]
-        );
+        assert!(matches!(w.units[o - 1].kind, UnitType::Room | UnitType::Hall) && s.explored[o - 1]);
         if w.frame.angle == 0.0 {
-            assert_ne!(
-                map_cell(s, x, y),
-                Some(Cell::Free),
-                "{}",
-                ctx("object cell reads free")
-            );
+            assert_ne!(map_cell(s, x, y), Some(Cell::Free), "{}", ctx("object cell reads free"));
         }
     }
 
@@ -219,11 +152,7 @@ fn check_truth(s: &Synthetic, c: &SynthConfig, seed: u64) {
     for i in 0..w.units.len() {
         if s.explored[i] && total[i] > 0 {
             let f = free[i] as f64 / total[i] as f64;
-            assert!(
-                f >= 1.0 - noise - 0.03,
-                "{}",
-                ctx(&format!("explored unit {} only {f:.3} free", i + 1))
-            );
+            assert!(f >= 1.0 - noise - 0.03, "{}", ctx(&format!("explored unit {} only {f:.3} free", i + 1)));
         }
     }
 
@@ -241,12 +170,7 @@ fn check_truth(s: &Synthetic, c: &SynthConfig, seed: u64) {
         for x in 0..s.map.width() {
             let (wx, wy) = world_cell(s, x, y);
             if !near.get(wx as i64, wy as i64).copied().unwrap_or(false) {
-                assert_eq!(
-                    s.map.classified().at(x, y),
-                    &Cell::Unknown,
-                    "{}",
-                    ctx(&format!("outside at ({x},{y})"))
-                );
+                assert_eq!(s.map.classified().at(x, y), &Cell::Unknown, "{}", ctx(&format!("outside at ({x},{y})")));
             }
         }
     }
@@ -254,12 +178,7 @@ fn check_truth(s: &Synthetic, c: &SynthConfig, seed: u64) {
 
 #[test]
 fn same_seed_same_bytes_different_seed_different_map() {
-    let c = SynthConfig {
-        rotation_deg: 12.5,
-        clutter: 0.08,
-        unexplored: 0.3,
-        ..SynthConfig::default()
-    };
+    let c = SynthConfig { rotation_deg: 12.5, clutter: 0.08, unexplored: 0.3, ..SynthConfig::default() };
     let (a, b) = (gen(&c, 99), gen(&c, 99));
     assert_eq!(a.map_pgm(), b.map_pgm());
     assert_eq!(a.map_yaml(), b.map_yaml());
@@ -282,55 +201,14 @@ fn truth_is_consistent_for_many_seeds() {
 #[test]
 fn truth_is_consistent_across_layouts() {
     let cases = [
-        SynthConfig {
-            wall_thickness: 1,
-            ..quiet()
-        },
-        SynthConfig {
-            wall_thickness: 2,
-            unexplored: 0.4,
-            ..SynthConfig::default()
-        },
-        SynthConfig {
-            width: 700,
-            height: 600,
-            corridors: Some(2),
-            others: 3,
-            ..SynthConfig::default()
-        },
-        SynthConfig {
-            width: 900,
-            height: 600,
-            halls: 2,
-            clutter: 0.15,
-            ..SynthConfig::default()
-        },
-        SynthConfig {
-            width: 500,
-            height: 160,
-            halls: 1,
-            unexplored: 0.5,
-            peek: 1.0,
-            ..SynthConfig::default()
-        },
-        SynthConfig {
-            width: 260,
-            height: 520,
-            rotation_deg: -33.0,
-            ..SynthConfig::default()
-        },
-        SynthConfig {
-            rotation_deg: 20.0,
-            wall_thickness: 4,
-            unexplored: 0.2,
-            clutter: 0.1,
-            ..SynthConfig::default()
-        },
-        SynthConfig {
-            resolution: 0.1,
-            wall_thickness: 2,
-            ..SynthConfig::default()
-        },
+        SynthConfig { wall_thickness: 1, ..quiet() },
+        SynthConfig { wall_thickness: 2, unexplored: 0.4, ..SynthConfig::default() },
+        SynthConfig { width: 700, height: 600, corridors: Some(2), others: 3, ..SynthConfig::default() },
+        SynthConfig { width: 900, height: 600, halls: 2, clutter: 0.15, ..SynthConfig::default() },
+        SynthConfig { width: 500, height: 160, halls: 1, unexplored: 0.5, peek: 1.0, ..SynthConfig::default() },
+        SynthConfig { width: 260, height: 520, rotation_deg: -33.0, ..SynthConfig::default() },
+        SynthConfig { rotation_deg: 20.0, wall_thickness: 4, unexplored: 0.2, clutter: 0.1, ..SynthConfig::default() },
+        SynthConfig { resolution: 0.1, wall_thickness: 2, ..SynthConfig::default() },
     ];
     for (k, c) in cases.iter().enumerate() {
         for seed in 0..6 {
@@ -357,8 +235,8 @@ fn noise_free_map_is_exactly_the_layout() {
                         assert_eq!(cell, Cell::Free, "seed {seed}: ring ({x},{y})");
                         assert!(
                             s.truth.doors.iter().any(|d| d.units.contains(&u.id)
-                                && d.cells().any(|(dx, dy)| (dx - x).abs() + (dy - y).abs()
-                                    <= c.wall_thickness as i32)),
+                                && d.cells()
+                                    .any(|(dx, dy)| (dx - x).abs() + (dy - y).abs() <= c.wall_thickness as i32)),
                             "seed {seed}: free ring cell ({x},{y}) of unit {} away from its doors",
                             u.id
                         );
@@ -368,12 +246,7 @@ fn noise_free_map_is_exactly_the_layout() {
         }
         for d in &s.truth.doors {
             for (x, y) in d.cells() {
-                assert_eq!(
-                    *cells.at(x as usize, y as usize),
-                    Cell::Free,
-                    "seed {seed}: door {} closed",
-                    d.id
-                );
+                assert_eq!(*cells.at(x as usize, y as usize), Cell::Free, "seed {seed}: door {} closed", d.id);
             }
         }
     }
@@ -383,13 +256,7 @@ fn noise_free_map_is_exactly_the_layout() {
 fn layout_matches_the_config() {
     let cm = |m: f64| (m / 0.05).round() as i32;
     for seed in 0..10 {
-        let c = SynthConfig {
-            width: 900,
-            height: 500,
-            halls: 2,
-            others: 3,
-            ..SynthConfig::default()
-        };
+        let c = SynthConfig { width: 900, height: 500, halls: 2, others: 3, ..SynthConfig::default() };
         let s = gen(&c, seed);
         let count = |k| s.truth.units.iter().filter(|u| u.kind == k).count();
         assert_eq!(count(UnitType::Hall), 2);
@@ -400,14 +267,8 @@ fn layout_matches_the_config() {
             let (short, long) = ((u.w - 2).min(u.h - 2), (u.w - 2).max(u.h - 2));
             match u.kind {
                 UnitType::Corridor => {
-                    assert!(
-                        short >= cm(1.5) && short <= cm(2.5),
-                        "corridor {short} cells wide"
-                    );
-                    assert!(
-                        long >= 2 * short,
-                        "corridor {short} x {long} is not long and narrow"
-                    );
+                    assert!(short >= cm(1.5) && short <= cm(2.5), "corridor {short} cells wide");
+                    assert!(long >= 2 * short, "corridor {short} x {long} is not long and narrow");
                 }
                 UnitType::Hall => assert!(short >= cm(8.0) || long >= cm(8.0)),
                 UnitType::Other => assert!(short <= cm(2.5), "other unit {short} cells wide"),
@@ -416,98 +277,42 @@ fn layout_matches_the_config() {
             }
         }
         // Every room and other unit opens onto a corridor or a hall it touches.
-        for u in s
-            .truth
-            .units
-            .iter()
-            .filter(|u| matches!(u.kind, UnitType::Room | UnitType::Other))
-        {
+        for u in s.truth.units.iter().filter(|u| matches!(u.kind, UnitType::Room | UnitType::Other)) {
             let hub_door = s.truth.doors.iter().any(|d| {
                 d.units.contains(&u.id)
-                    && d.units.iter().any(|&v| {
-                        matches!(
-                            s.truth.unit(v).unwrap().kind,
-                            UnitType::Corridor | UnitType::Hall
-                        )
-                    })
+                    && d.units
+                        .iter()
+                        .any(|&v| matches!(s.truth.unit(v).unwrap().kind, UnitType::Corridor | UnitType::Hall))
             });
-            assert!(
-                hub_door,
-                "seed {seed}: unit {} has no door to a corridor or hall",
-                u.id
-            );
+            assert!(hub_door, "seed {seed}: unit {} has no door to a corridor or hall", u.id);
         }
     }
     // Two corridors and no hall: a connecting corridor joins them.
-    let c = SynthConfig {
-        width: 800,
-        height: 640,
-        corridors: Some(2),
-        ..SynthConfig::default()
-    };
+    let c = SynthConfig { width: 800, height: 640, corridors: Some(2), ..SynthConfig::default() };
     for seed in 0..5 {
         let s = gen(&c, seed);
-        assert_eq!(
-            s.truth
-                .units
-                .iter()
-                .filter(|u| u.kind == UnitType::Corridor)
-                .count(),
-            3
-        );
+        assert_eq!(s.truth.units.iter().filter(|u| u.kind == UnitType::Corridor).count(), 3);
         assert!(connected(&s.truth));
     }
     // A portrait canvas turns the layout: corridors run vertically.
-    let c = SynthConfig {
-        width: 300,
-        height: 500,
-        ..SynthConfig::default()
-    };
+    let c = SynthConfig { width: 300, height: 500, ..SynthConfig::default() };
     let s = gen(&c, 3);
     assert_eq!((s.map.width(), s.map.height()), (300, 500));
-    for u in s
-        .truth
-        .units
-        .iter()
-        .filter(|u| u.kind == UnitType::Corridor)
-    {
+    for u in s.truth.units.iter().filter(|u| u.kind == UnitType::Corridor) {
         assert!(u.h > u.w);
     }
     // The room count range is honoured.
     for seed in 0..5 {
-        let s = gen(
-            &SynthConfig {
-                rooms: [8, 8],
-                ..SynthConfig::default()
-            },
-            seed,
-        );
-        assert_eq!(
-            s.truth
-                .units
-                .iter()
-                .filter(|u| u.kind == UnitType::Room)
-                .count(),
-            8
-        );
+        let s = gen(&SynthConfig { rooms: [8, 8], ..SynthConfig::default() }, seed);
+        assert_eq!(s.truth.units.iter().filter(|u| u.kind == UnitType::Room).count(), 8);
     }
-    let err = generate(
-        &SynthConfig {
-            rooms: [40, 50],
-            ..SynthConfig::default()
-        },
-        1,
-    )
-    .unwrap_err();
+    let err = generate(&SynthConfig { rooms: [40, 50], ..SynthConfig::default() }, 1).unwrap_err();
     assert!(err.to_string().contains("rooms"), "{err}");
 }
 
 #[test]
 fn rotation_keeps_walls_on_the_truth() {
-    let c = SynthConfig {
-        rotation_deg: 20.0,
-        ..quiet()
-    };
+    let c = SynthConfig { rotation_deg: 20.0, ..quiet() };
     for seed in 0..5 {
         let s = gen(&c, seed);
         assert!((s.truth.frame.angle - 0.349_065_850_4).abs() < 1e-9);
@@ -529,25 +334,15 @@ fn rotation_keeps_walls_on_the_truth() {
             }
         }
         let (wall_rate, free_rate) = (on_wall as f64 / rings as f64, free as f64 / inside as f64);
-        assert!(
-            wall_rate > 0.8,
-            "seed {seed}: only {wall_rate:.3} of the truth walls read occupied"
-        );
-        assert!(
-            free_rate > 0.98,
-            "seed {seed}: only {free_rate:.3} of the truth interiors read free"
-        );
+        assert!(wall_rate > 0.8, "seed {seed}: only {wall_rate:.3} of the truth walls read occupied");
+        assert!(free_rate > 0.98, "seed {seed}: only {free_rate:.3} of the truth interiors read free");
         check_truth(&s, &c, seed);
     }
 }
 
 #[test]
 fn speckle_rates_match_the_config() {
-    let c = SynthConfig {
-        speckle_occupied: 0.05,
-        speckle_unknown: 0.1,
-        ..quiet()
-    };
+    let c = SynthConfig { speckle_occupied: 0.05, speckle_unknown: 0.1, ..quiet() };
     let (mut occ, mut unk, mut n) = (0usize, 0usize, 0usize);
     for seed in 0..4 {
         let s = gen(&c, seed);
@@ -566,19 +361,10 @@ fn speckle_rates_match_the_config() {
 
 #[test]
 fn unexplored_units_read_unknown() {
-    let c = SynthConfig {
-        unexplored: 0.5,
-        peek: 0.0,
-        ..quiet()
-    };
+    let c = SynthConfig { unexplored: 0.5, peek: 0.0, ..quiet() };
     for seed in 0..8 {
         let s = gen(&c, seed);
-        let pool = s
-            .truth
-            .units
-            .iter()
-            .filter(|u| u.kind != UnitType::Corridor)
-            .count();
+        let pool = s.truth.units.iter().filter(|u| u.kind != UnitType::Corridor).count();
         let dark: Vec<usize> = (0..s.explored.len()).filter(|&i| !s.explored[i]).collect();
         assert_eq!(dark.len(), (pool as f64 * 0.5).round() as usize);
         for &i in &dark {
@@ -587,20 +373,13 @@ fn unexplored_units_read_unknown() {
             let r = interior(u);
             for y in r.y..r.bottom() {
                 for x in r.x..r.right() {
-                    assert_eq!(
-                        s.map.classified().at(x as usize, y as usize),
-                        &Cell::Unknown
-                    );
+                    assert_eq!(s.map.classified().at(x as usize, y as usize), &Cell::Unknown);
                 }
             }
         }
     }
     // Peeking through doors reveals part, never all, of an unexplored unit.
-    let c = SynthConfig {
-        unexplored: 0.5,
-        peek: 1.0,
-        ..quiet()
-    };
+    let c = SynthConfig { unexplored: 0.5, peek: 1.0, ..quiet() };
     let (mut seen, mut total) = (0usize, 0usize);
     for seed in 0..8 {
         let s = gen(&c, seed);
@@ -614,20 +393,14 @@ fn unexplored_units_read_unknown() {
         }
         let dark: Vec<usize> = (0..n).filter(|&i| !s.explored[i]).collect();
         // A narrow storage room may be seen whole through its door, but not every unit.
-        assert!(
-            dark.iter().any(|&i| unit_seen[i] < unit_total[i] * 9 / 10),
-            "seed {seed}: all seen by peeking"
-        );
+        assert!(dark.iter().any(|&i| unit_seen[i] < unit_total[i] * 9 / 10), "seed {seed}: all seen by peeking");
         for i in dark {
             seen += unit_seen[i];
             total += unit_total[i];
         }
     }
     let f = seen as f64 / total as f64;
-    assert!(
-        f > 0.05 && f < 0.9,
-        "peeking revealed {f:.3} of unexplored space"
-    );
+    assert!(f > 0.05 && f < 0.9, "peeking revealed {f:.3} of unexplored space");
 }
 
 #[test]
@@ -649,10 +422,7 @@ fn clutter_and_wall_gaps_follow_the_config() {
             total += area(&s);
         }
         let f = cells as f64 / total as f64;
-        assert!(
-            f > 0.6 * clutter && f < 1.3 * clutter,
-            "clutter {clutter}: covered {f:.3}"
-        );
+        assert!(f > 0.6 * clutter && f < 1.3 * clutter, "clutter {clutter}: covered {f:.3}");
     }
     assert!(gen(&quiet(), 1).truth.object_cells.is_empty());
 
@@ -677,10 +447,7 @@ fn clutter_and_wall_gaps_follow_the_config() {
     };
     assert_eq!(ring_unknown(&quiet()), 0.0);
     // Ragged faces: cells just inside the walls read occupied at about the configured rate.
-    let c = SynthConfig {
-        wall_roughness: 0.3,
-        ..quiet()
-    };
+    let c = SynthConfig { wall_roughness: 0.3, ..quiet() };
     let (mut rough, mut n) = (0, 0);
     for seed in 0..4 {
         let s = gen(&c, seed);
@@ -697,26 +464,14 @@ fn clutter_and_wall_gaps_follow_the_config() {
         }
     }
     let f = rough as f64 / n as f64;
-    assert!(
-        f > 0.22 && f < 0.32,
-        "roughness 0.3 made {f:.3} of the wall faces occupied"
-    );
-    let gappy = ring_unknown(&SynthConfig {
-        wall_gaps: 0.02,
-        ..quiet()
-    });
-    assert!(
-        gappy > 0.03 && gappy < 0.3,
-        "gaps left {gappy:.3} of the rings unknown"
-    );
+    assert!(f > 0.22 && f < 0.32, "roughness 0.3 made {f:.3} of the wall faces occupied");
+    let gappy = ring_unknown(&SynthConfig { wall_gaps: 0.02, ..quiet() });
+    assert!(gappy > 0.03 && gappy < 0.3, "gaps left {gappy:.3} of the rings unknown");
 }
 
 #[test]
 fn outputs_have_the_promised_formats() {
-    let c = SynthConfig {
-        resolution: 0.1,
-        ..SynthConfig::default()
-    };
+    let c = SynthConfig { resolution: 0.1, ..SynthConfig::default() };
     let s = gen(&c, 4);
     let (w, h) = (s.map.width(), s.map.height());
     let pgm = s.map_pgm();
@@ -731,13 +486,9 @@ fn outputs_have_the_promised_formats() {
     let max = s.labels.cells().iter().max().copied().unwrap();
     assert_eq!(max as usize, s.truth.units.len());
     let yaml = s.map_yaml();
-    assert!(
-        yaml.contains("image: map.pgm") && yaml.contains("resolution: 0.1"),
-        "{yaml}"
-    );
+    assert!(yaml.contains("image: map.pgm") && yaml.contains("resolution: 0.1"), "{yaml}");
     // The map reads back to the same classes through its own YAML.
-    let back =
-        ksmcmc::grid::OccupancyMap::from_yaml_and_image(&yaml, &pgm, &Default::default()).unwrap();
+    let back = ksmcmc::grid::OccupancyMap::from_yaml_and_image(&yaml, &pgm, &Default::default()).unwrap();
     assert_eq!(back.classified(), s.map.classified());
     // Config JSON round trip.
     assert_eq!(SynthConfig::from_json(&c.to_json()).unwrap(), c);
@@ -749,229 +500,47 @@ fn bad_configs_are_errors_naming_the_field() {
     let cases: Vec<(SynthConfig, &str)> = vec![
         (SynthConfig { width: 0, ..d() }, "width"),
         (SynthConfig { height: 5, ..d() }, "height"),
-        (
-            SynthConfig {
-                width: 60_000,
-                height: 60_000,
-                ..d()
-            },
-            "width x height",
-        ),
-        (
-            SynthConfig {
-                width: 8000,
-                height: 4000,
-                rotation_deg: 45.0,
-                ..d()
-            },
-            "rotation_deg",
-        ),
-        (
-            SynthConfig {
-                resolution: f64::NAN,
-                ..d()
-            },
-            "resolution",
-        ),
-        (
-            SynthConfig {
-                resolution: -0.05,
-                ..d()
-            },
-            "resolution",
-        ),
-        (
-            SynthConfig {
-                resolution: 0.0,
-                ..d()
-            },
-            "resolution",
-        ),
-        (
-            SynthConfig {
-                rotation_deg: f64::INFINITY,
-                ..d()
-            },
-            "rotation_deg",
-        ),
-        (
-            SynthConfig {
-                wall_thickness: 0,
-                ..d()
-            },
-            "wall_thickness",
-        ),
-        (
-            SynthConfig {
-                wall_thickness: 20,
-                ..d()
-            },
-            "wall_thickness",
-        ),
+        (SynthConfig { width: 60_000, height: 60_000, ..d() }, "width x height"),
+        (SynthConfig { width: 8000, height: 4000, rotation_deg: 45.0, ..d() }, "rotation_deg"),
+        (SynthConfig { resolution: f64::NAN, ..d() }, "resolution"),
+        (SynthConfig { resolution: -0.05, ..d() }, "resolution"),
+        (SynthConfig { resolution: 0.0, ..d() }, "resolution"),
+        (SynthConfig { rotation_deg: f64::INFINITY, ..d() }, "rotation_deg"),
+        (SynthConfig { wall_thickness: 0, ..d() }, "wall_thickness"),
+        (SynthConfig { wall_thickness: 20, ..d() }, "wall_thickness"),
         (SynthConfig { margin: 200, ..d() }, "margin"),
-        (
-            SynthConfig {
-                corridors: Some(3),
-                ..d()
-            },
-            "corridors",
-        ),
-        (
-            SynthConfig {
-                corridors: Some(0),
-                ..d()
-            },
-            "corridors",
-        ),
+        (SynthConfig { corridors: Some(3), ..d() }, "corridors"),
+        (SynthConfig { corridors: Some(0), ..d() }, "corridors"),
         (SynthConfig { halls: 5, ..d() }, "halls"),
-        (
-            SynthConfig {
-                others: 1000,
-                ..d()
-            },
-            "others",
-        ),
-        (
-            SynthConfig {
-                rooms: [5, 2],
-                ..d()
-            },
-            "rooms",
-        ),
-        (
-            SynthConfig {
-                room_width: [f64::NAN, 6.0],
-                ..d()
-            },
-            "room_width",
-        ),
-        (
-            SynthConfig {
-                room_width: [-3.0, 6.0],
-                ..d()
-            },
-            "room_width",
-        ),
-        (
-            SynthConfig {
-                corridor_width: [2.5, 1.5],
-                ..d()
-            },
-            "corridor_width",
-        ),
-        (
-            SynthConfig {
-                hall_width: [0.0, 10.0],
-                ..d()
-            },
-            "hall_width",
-        ),
-        (
-            SynthConfig {
-                door_width: [2.0, 2.5],
-                ..d()
-            },
-            "door_width",
-        ),
-        (
-            SynthConfig {
-                door_width: [0.01, 1.0],
-                ..d()
-            },
-            "door_width",
-        ),
-        (
-            SynthConfig {
-                other_width: [1e9, 1e9],
-                ..d()
-            },
-            "other_width",
-        ),
-        (
-            SynthConfig {
-                speckle_occupied: -0.1,
-                ..d()
-            },
-            "speckle_occupied",
-        ),
-        (
-            SynthConfig {
-                speckle_unknown: f64::NAN,
-                ..d()
-            },
-            "speckle_unknown",
-        ),
-        (
-            SynthConfig {
-                speckle_occupied: 0.6,
-                speckle_unknown: 0.6,
-                ..d()
-            },
-            "speckle_occupied + speckle_unknown",
-        ),
-        (
-            SynthConfig {
-                wall_gaps: 2.0,
-                ..d()
-            },
-            "wall_gaps",
-        ),
-        (
-            SynthConfig {
-                clutter: 0.9,
-                ..d()
-            },
-            "clutter",
-        ),
-        (
-            SynthConfig {
-                unexplored: -1.0,
-                ..d()
-            },
-            "unexplored",
-        ),
+        (SynthConfig { others: 1000, ..d() }, "others"),
+        (SynthConfig { rooms: [5, 2], ..d() }, "rooms"),
+        (SynthConfig { room_width: [f64::NAN, 6.0], ..d() }, "room_width"),
+        (SynthConfig { room_width: [-3.0, 6.0], ..d() }, "room_width"),
+        (SynthConfig { corridor_width: [2.5, 1.5], ..d() }, "corridor_width"),
+        (SynthConfig { hall_width: [0.0, 10.0], ..d() }, "hall_width"),
+        (SynthConfig { door_width: [2.0, 2.5], ..d() }, "door_width"),
+        (SynthConfig { door_width: [0.01, 1.0], ..d() }, "door_width"),
+        (SynthConfig { other_width: [1e9, 1e9], ..d() }, "other_width"),
+        (SynthConfig { speckle_occupied: -0.1, ..d() }, "speckle_occupied"),
+        (SynthConfig { speckle_unknown: f64::NAN, ..d() }, "speckle_unknown"),
+        (SynthConfig { speckle_occupied: 0.6, speckle_unknown: 0.6, ..d() }, "speckle_occupied + speckle_unknown"),
+        (SynthConfig { wall_gaps: 2.0, ..d() }, "wall_gaps"),
+        (SynthConfig { clutter: 0.9, ..d() }, "clutter"),
+        (SynthConfig { unexplored: -1.0, ..d() }, "unexplored"),
         (SynthConfig { peek: 1.5, ..d() }, "peek"),
-        (
-            SynthConfig {
-                extra_doors: f64::NAN,
-                ..d()
-            },
-            "extra_doors",
-        ),
+        (SynthConfig { extra_doors: f64::NAN, ..d() }, "extra_doors"),
         // Valid fields, but the building cannot hold the layout.
-        (
-            SynthConfig {
-                height: 100,
-                corridors: Some(2),
-                ..d()
-            },
-            "height",
-        ),
-        (
-            SynthConfig {
-                width: 300,
-                halls: 2,
-                ..d()
-            },
-            "width",
-        ),
+        (SynthConfig { height: 100, corridors: Some(2), ..d() }, "height"),
+        (SynthConfig { width: 300, halls: 2, ..d() }, "width"),
         (SynthConfig { height: 60, ..d() }, "height"),
         (SynthConfig { others: 100, ..d() }, "others"),
     ];
     for (c, field) in cases {
-        let e = generate(&c, 1)
-            .err()
-            .unwrap_or_else(|| panic!("{field}: accepted {c:?}"))
-            .to_string();
+        let e = generate(&c, 1).err().unwrap_or_else(|| panic!("{field}: accepted {c:?}")).to_string();
         assert!(e.contains(field), "error for {field} does not name it: {e}");
-        assert!(
-            e.contains("accepted") || e.contains("holds") || e.contains("held"),
-            "no accepted range: {e}"
-        );
+        assert!(e.contains("accepted") || e.contains("holds") || e.contains("held"), "no accepted range: {e}");
     }
-    let e = SynthConfig::from_json(r#"{"widht": 3}"#)
-        .unwrap_err()
-        .to_string();
+    let e = SynthConfig::from_json(r#"{"widht": 3}"#).unwrap_err().to_string();
     assert!(e.contains("widht"), "{e}");
     assert!(SynthConfig::from_json(r#"{"width": -3}"#).is_err());
 }
@@ -992,26 +561,14 @@ fn large_building_is_fast_enough_and_consistent() {
     let s = gen(&c, 11);
     // Generous: debug builds are ~10x slower than release, where this takes well under 0.1 s.
     assert!(start.elapsed().as_secs_f64() < 10.0);
-    assert!(
-        s.truth
-            .units
-            .iter()
-            .filter(|u| u.kind == UnitType::Room)
-            .count()
-            >= 20
-    );
+    assert!(s.truth.units.iter().filter(|u| u.kind == UnitType::Room).count() >= 20);
     check_truth(&s, &c, 11);
 }
 
 /// FNV-1a over all four outputs.
 fn fingerprint(s: &Synthetic) -> u64 {
     let mut h = 0xcbf2_9ce4_8422_2325u64;
-    for bytes in [
-        s.map_pgm(),
-        s.map_yaml().into_bytes(),
-        s.truth_json().into_bytes(),
-        s.labels_pgm(),
-    ] {
+    for bytes in [s.map_pgm(), s.map_yaml().into_bytes(), s.truth_json().into_bytes(), s.labels_pgm()] {
         for b in bytes {
             h ^= b as u64;
             h = h.wrapping_mul(0x0100_0000_01b3);
@@ -1028,12 +585,7 @@ fn fingerprints_are_pinned() {
     let d = SynthConfig::default;
     let configs = [
         d(),
-        SynthConfig {
-            rotation_deg: 20.0,
-            clutter: 0.1,
-            unexplored: 0.3,
-            ..d()
-        },
+        SynthConfig { rotation_deg: 20.0, clutter: 0.1, unexplored: 0.3, ..d() },
         SynthConfig {
             width: 1217,
             height: 272,
@@ -1062,11 +614,7 @@ fn fingerprints_are_pinned() {
     ];
     for (k, c) in configs.iter().enumerate() {
         for (j, seed) in [0, 42].into_iter().enumerate() {
-            assert_eq!(
-                fingerprint(&gen(c, seed)),
-                expected[k][j],
-                "config {k}, seed {seed}"
-            );
+            assert_eq!(fingerprint(&gen(c, seed)), expected[k][j], "config {k}, seed {seed}");
         }
     }
 }

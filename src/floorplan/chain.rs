@@ -73,11 +73,11 @@ pub struct ChainConfig {
     pub kernels: KernelConfig,
     /// Door geometry.
     pub doors: DoorLimits,
-        /// Detectors.
+    /// Detectors.
     pub detectors: DetectorConfig,
-    /// Depth of every unit's wall ring in cells; `None` estimates it from the map's walls.
-    /// The dissertation's model is 1; real walls are thicker, and a ring as deep as half a wall
-    /// lets two units sharing a wall predict all of it.
+        /// Depth of every unit's wall ring in cells; `None` estimates it from the map's walls
+    /// ([`vision::walls::ring_depth`]). The dissertation's model is 1; thicker rings let units
+    /// predict thick walls.
     pub wall_thickness: Option<i32>,
     /// Output bookkeeping.
     pub output: OutputConfig,
@@ -122,7 +122,7 @@ impl ChainConfig {
         {
             return bad("detectors.walls: min_segment >= 2, max_gap >= 0, min_wall_weight in [0, 1]".into());
         }
-                if let Some(t) = self.wall_thickness {
+        if let Some(t) = self.wall_thickness {
             if !(1..=8).contains(&t) {
                 return bad(format!("wall_thickness {t} must be between 1 and 8 cells"));
             }
@@ -226,8 +226,8 @@ impl Chain {
                 }
             }
         };
-                let (world_map, frame) = vision::orientation::to_world_frame(classified, angle);
-                let found = vision::walls::candidates(&world_map, config.kernels.min_side, &config.detectors.walls);
+        let (world_map, frame) = vision::orientation::to_world_frame(classified, angle);
+        let found = vision::walls::candidates(&world_map, config.kernels.min_side, &config.detectors.walls);
         let wall = config.wall_thickness.unwrap_or_else(|| vision::walls::ring_depth(classified, angle));
         let min_side = config.kernels.min_side.max(2 * wall + 1);
         let candidates = Candidates::new(found.into_iter().filter(|(r, _)| r.w >= min_side && r.h >= min_side));
@@ -243,7 +243,7 @@ impl Chain {
         seed: u64,
     ) -> Result<Chain, ChainError> {
         config.validate()?;
-                let frame = Frame::identity(map.width() as u32, map.height() as u32);
+        let frame = Frame::identity(map.width() as u32, map.height() as u32);
         let wall = config.wall_thickness.unwrap_or(1);
         Ok(Self::with_parts(config, frame, map.clone(), map.clone(), Candidates::new(candidates), wall, seed))
     }
@@ -253,7 +253,7 @@ impl Chain {
         frame: Frame,
         world_map: Grid<Cell>,
         map: Grid<Cell>,
-                candidates: Candidates,
+        candidates: Candidates,
         wall: i32,
         seed: u64,
     ) -> Chain {
@@ -310,7 +310,7 @@ impl Chain {
         &self.world_map
     }
 
-        /// Depth of the units' wall rings, cells.
+    /// Depth of the units' wall rings, cells.
     pub fn wall_thickness(&self) -> i32 {
         self.state.wall
     }
@@ -378,7 +378,7 @@ impl Chain {
     fn export(&self, units: &[Unit], doors: &[DoorSpec]) -> World {
         let mut w = World::empty(self.frame.map_size[0], self.frame.map_size[1]);
         w.format = WORLD_FORMAT.to_string();
-                w.frame = self.frame;
+        w.frame = self.frame;
         w.wall_thickness = self.state.wall;
         w.units = units.iter().enumerate().map(|(k, u)| Unit { id: k as u32 + 1, ..*u }).collect();
         let new_id = |id: u32| units.iter().position(|u| u.id == id).map(|k| k as u32 + 1);
@@ -388,7 +388,7 @@ impl Chain {
             else {
                 continue;
             };
-                        if let Some(r) = super::state::door_rect(lo, hi, d, &self.config.doors, self.state.wall) {
+            if let Some(r) = super::state::door_rect(lo, hi, d, &self.config.doors, self.state.wall) {
                 w.doors.push(Door {
                     id: k as u32 + 1,
                     units: [a, b],
@@ -400,7 +400,7 @@ impl Chain {
             }
         }
         // Object cells: unknown map cells inside a unit's free space (furniture, clutter).
-                let t = self.state.wall;
+        let t = self.state.wall;
         for u in units {
             for y in u.y + t..u.y + u.h - t {
                 for x in u.x + t..u.x + u.w - t {
@@ -420,7 +420,7 @@ impl Chain {
         let min = self.config.kernels.min_side;
         let items: Vec<(Rect, f64)> = rects
             .into_iter()
-                        .filter(|r| r.w >= min.max(2 * self.state.wall + 1) && r.h >= min.max(2 * self.state.wall + 1))
+            .filter(|r| r.w >= min.max(2 * self.state.wall + 1) && r.h >= min.max(2 * self.state.wall + 1))
             .map(|r| (r, self.state.unit_weight(r).max(0.2)))
             .collect();
         self.proposer.candidates.extend(items);
@@ -451,7 +451,9 @@ impl Chain {
         loop {
             self.step(64);
             done += 64;
-            if !(now() - start < budget_ms) {
+            // A clock that returns NaN stops the loop rather than spinning forever.
+            let elapsed = now() - start;
+            if elapsed >= budget_ms || elapsed.is_nan() {
                 return done;
             }
         }
@@ -523,7 +525,7 @@ impl Chain {
     /// Checks the incremental bookkeeping against a full recomputation (for tests).
     pub fn check_consistency(&self) -> bool {
         let (units, doors) = self.state.rects();
-                self.state.explanation.same_as(&Explanation::recompute(&self.world_map, &units, self.state.wall, &doors))
+        self.state.explanation.same_as(&Explanation::recompute(&self.world_map, &units, self.state.wall, &doors))
     }
 
     /// The current world's units and doors as internal records (for tests and the wasm layer).

@@ -163,7 +163,7 @@ impl Explanation {
         self.overlap += c.cover.saturating_sub(1) as i64 - old_overlap;
     }
 
-        /// Adds (`sign = 1`) or removes (`sign = -1`) a unit: its rectangle covers cells and its
+    /// Adds (`sign = 1`) or removes (`sign = -1`) a unit: its rectangle covers cells and its
     /// outer ring, `t` cells deep, is wall. The rectangle must lie inside the grid.
     pub fn apply_unit(&mut self, r: Rect, t: i32, sign: i8) {
         debug_assert!(r.x >= 0 && r.y >= 0 && r.right() as usize <= self.width && r.bottom() as usize <= self.height);
@@ -204,7 +204,7 @@ impl Explanation {
 
     /// Recomputes everything from scratch for a set of unit and door rectangles; the incremental
     /// state must always equal this.
-        pub fn recompute(map: &Grid<Cell>, units: &[Rect], t: i32, doors: &[Rect]) -> Self {
+    pub fn recompute(map: &Grid<Cell>, units: &[Rect], t: i32, doors: &[Rect]) -> Self {
         let mut e = Explanation::new(map);
         let w = e.width;
         for c in e.cells.iter_mut() {
@@ -215,7 +215,7 @@ impl Explanation {
                 for x in r.x..r.right() {
                     let c = &mut e.cells[y as usize * w + x as usize];
                     c.cover += 1;
-                                        c.wall += r.in_ring(x, y, t) as u8;
+                    c.wall += r.in_ring(x, y, t) as u8;
                 }
             }
         }
@@ -261,13 +261,13 @@ mod tests {
         let a = Rect::new(0, 0, 6, 5);
         let b = Rect::new(4, 2, 8, 7);
         let d = Rect::new(5, 3, 2, 1);
-                e.apply_unit(a, 1, 1);
+        e.apply_unit(a, 1, 1);
         e.apply_unit(b, 1, 1);
         e.apply_door(d, 1);
         assert!(e.same_as(&Explanation::recompute(&m, &[a, b], 1, &[d])));
         // overlap: a ∩ b = columns 4..6, rows 2..5 = 2 x 3 cells
         assert_eq!(e.overlap(), 6);
-                e.apply_unit(a, 1, -1);
+        e.apply_unit(a, 1, -1);
         assert!(e.same_as(&Explanation::recompute(&m, &[b], 1, &[d])));
         e.apply_door(d, -1);
         e.apply_unit(b, 1, -1);
@@ -292,7 +292,7 @@ mod tests {
         assert_eq!(e.prediction_rate(), 12.0 / 108.0);
         // A unit over rows 0..8: row 0 wall (occupied: match), rows 1..7 interior free except
         // the side columns (walls, mismatching free map cells), row 7 bottom wall mismatch.
-                e.apply_unit(Rect::new(0, 0, 12, 8), 1, 1);
+        e.apply_unit(Rect::new(0, 0, 12, 8), 1, 1);
         let hits = 12 + 10 * 6 + 12;
         assert_eq!(e.prediction_rate(), hits as f64 / 108.0);
         assert_eq!(e.predicted(0, 3), Cell::Occupied);

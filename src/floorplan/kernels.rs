@@ -167,7 +167,7 @@ pub struct Proposer {
     shift: Cumulative,
     scratch: Cumulative,
     scratch_weights: Vec<f64>,
-        uniform_count: f64,
+    uniform_count: f64,
     min_side: i32,
 }
 
@@ -265,12 +265,12 @@ pub fn shifted(r: Rect, side: usize, d: i32) -> Rect {
 
 impl Proposer {
     /// A proposer for a `width` x `height` world with the given ADD candidates.
-        pub fn new(config: KernelConfig, candidates: Candidates, width: i32, height: i32, wall: i32) -> Self {
+    pub fn new(config: KernelConfig, candidates: Candidates, width: i32, height: i32, wall: i32) -> Self {
         let min_side = config.min_side.max(2 * wall + 1);
         let m = libm::ceil(4.0 * config.shift_sigma).max(1.0) as i32;
         let s2 = 2.0 * config.shift_sigma * config.shift_sigma;
         let shift = Cumulative::new((1..=m).map(|d| libm::exp(-((d * d) as f64) / s2)));
-                let n = min_side as i64;
+        let n = min_side as i64;
         let uniform_count = (interval_count(width as i64, n) * interval_count(height as i64, n)) as f64;
         Proposer {
             config,
@@ -279,7 +279,7 @@ impl Proposer {
             shift,
             scratch: Cumulative::default(),
             scratch_weights: Vec::new(),
-                        uniform_count,
+            uniform_count,
             min_side,
         }
     }
@@ -302,7 +302,7 @@ impl Proposer {
         s.wall_weights(r).map(|w| if w > 0.0 { (1.0 / w).min(self.config.h_v) } else { self.config.h_v })
     }
 
-        fn cut_weight(s: &State, u: Rect, vertical: bool, k: i32, eps: f64) -> f64 {
+    fn cut_weight(s: &State, u: Rect, vertical: bool, k: i32, eps: f64) -> f64 {
         // Wall evidence along the cut: occupied cells in the two new wall rings either side of
         // it, inside the unit's interior (the Hough accumulator at 0 / 90 degrees, eq. 3.18),
         // per ring row so that thick rings do not count a wall twice.
@@ -315,7 +315,7 @@ impl Proposer {
         eps + ev as f64 / t as f64
     }
 
-        fn cut_range(&self, u: Rect, vertical: bool) -> (i32, i32) {
+    fn cut_range(&self, u: Rect, vertical: bool) -> (i32, i32) {
         let m = self.min_side;
         if vertical {
             (u.x + m, u.right() - m)
@@ -413,7 +413,7 @@ impl Proposer {
         for a in &s.units {
             for b in &s.units {
                 for axis in [Axis::Horizontal, Axis::Vertical] {
-                                        let Some((st, en)) = facing(a.rect(), b.rect(), axis, limits.max_gap, s.wall) else { continue };
+                    let Some((st, en)) = facing(a.rect(), b.rect(), axis, limits.max_gap, s.wall) else { continue };
                     let n = spans(st, en, &limits);
                     if n <= 0.0 {
                         continue;
@@ -473,7 +473,7 @@ impl Proposer {
         self.scratch.probability(k)
     }
 
-        fn draw_uniform_rect(&self, s: &State, rng: &mut Rng) -> Rect {
+    fn draw_uniform_rect(&self, s: &State, rng: &mut Rng) -> Rect {
         let m = self.min_side;
         let axis = |rng: &mut Rng, size: i32| -> (i32, i32) {
             let total = interval_count(size as i64, m as i64);
@@ -498,7 +498,7 @@ impl Proposer {
         let n = s.units.len();
         match kernel {
             Kernel::Add => {
-                                if s.width() < self.min_side || s.height() < self.min_side {
+                if s.width() < self.min_side || s.height() < self.min_side {
                     return None;
                 }
                 let p_unif = if self.candidates.is_empty() { 1.0 } else { self.config.uniform_add };

@@ -18,7 +18,7 @@ pub fn predicted_map(map_width: usize, map_height: usize, world: &World) -> Grid
             for x in r.x.max(0)..r.right().min(ww as i32) {
                 let i = y as usize * ww + x as usize;
                 cover[i] = cover[i].saturating_add(1);
-                                if r.in_ring(x, y, world.wall_thickness) {
+                if r.in_ring(x, y, world.wall_thickness) {
                     wall[i] = wall[i].saturating_add(1);
                 }
             }

@@ -104,9 +104,9 @@ impl Posterior {
     pub fn log_posterior(&self, e: &Explanation) -> f64 {
         let n = e.confusion();
         let mut s = 0.0;
-        for m in 0..3 {
-            for w in 0..3 {
-                s += n[m][w] as f64 * self.log_sensor[m][w];
+        for (counts, logs) in n.iter().zip(&self.log_sensor) {
+            for (c, l) in counts.iter().zip(logs) {
+                s += *c as f64 * l;
             }
         }
         s + e.overlap() as f64 * self.log_overlap

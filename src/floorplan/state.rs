@@ -78,7 +78,7 @@ pub fn door_rect(lo: Rect, hi: Rect, d: &DoorSpec, limits: &DoorLimits, t: i32) 
         return None;
     }
     Some(match d.axis {
-                Axis::Horizontal => Rect::new(lo.right() - t, d.start, hi.x - lo.right() + 2 * t, len),
+        Axis::Horizontal => Rect::new(lo.right() - t, d.start, hi.x - lo.right() + 2 * t, len),
         Axis::Vertical => Rect::new(d.start, lo.bottom() - t, len, hi.y - lo.bottom() + 2 * t),
     })
 }
@@ -191,7 +191,7 @@ pub struct State {
     /// Changes whenever unit geometry changes (restored on undo), for caches.
     pub generation: u64,
     generation_counter: u64,
-        /// Door geometry limits.
+    /// Door geometry limits.
     pub door_limits: DoorLimits,
     /// Depth of every unit's wall ring, cells.
     pub wall: i32,
@@ -201,7 +201,7 @@ pub struct State {
 
 impl State {
     /// An empty world over a world-frame classified map.
-        pub fn new(map: &Grid<Cell>, door_limits: DoorLimits, wall: i32) -> Self {
+    pub fn new(map: &Grid<Cell>, door_limits: DoorLimits, wall: i32) -> Self {
         State {
             explanation: Explanation::new(map),
             occupied: AreaCounts::new(map, Cell::Occupied),
@@ -211,7 +211,7 @@ impl State {
             next_id: 1,
             generation: 0,
             generation_counter: 0,
-                        door_limits,
+            door_limits,
             wall: wall.max(1),
             width: map.width() as i32,
             height: map.height() as i32,
@@ -240,7 +240,7 @@ impl State {
 
     /// Wall weights `ω_w` of eq. 3.11 for the four walls (left, right, top, bottom): the share
     /// of each wall's cells that are occupied in the map (eqs. 3.12 - 3.14).
-        pub fn wall_weights(&self, r: Rect) -> [f64; 4] {
+    pub fn wall_weights(&self, r: Rect) -> [f64; 4] {
         let t = self.wall;
         let walls = [
             Rect::new(r.x, r.y, t, r.h),
@@ -270,10 +270,10 @@ impl State {
     pub fn door_rect_of(&self, d: &DoorSpec) -> Option<Rect> {
         let lo = self.units[self.index_of(d.lo)?].rect();
         let hi = self.units[self.index_of(d.hi)?].rect();
-                door_rect(lo, hi, d, &self.door_limits, self.wall)
+        door_rect(lo, hi, d, &self.door_limits, self.wall)
     }
 
-        fn rect_ok(&self, r: Rect, min_side: i32) -> bool {
+    fn rect_ok(&self, r: Rect, min_side: i32) -> bool {
         let min_side = min_side.max(2 * self.wall + 1);
         r.w >= min_side
             && r.h >= min_side
@@ -321,7 +321,7 @@ impl State {
                     let other = if d.lo == id { d.hi } else { d.lo };
                     let Some(o) = self.index_of(other) else { return false };
                     let (lo, hi) = if d.lo == id { (rect, self.units[o].rect()) } else { (self.units[o].rect(), rect) };
-                                        door_rect(lo, hi, d, &self.door_limits, self.wall).is_some()
+                    door_rect(lo, hi, d, &self.door_limits, self.wall).is_some()
                 })
             }
             Move::Repartition { i, j, a, b } => {

@@ -103,11 +103,7 @@ impl Synthetic {
 
     /// `truth_labels.pgm` bytes: 16-bit binary PGM (maxval 65535), unit index + 1 per cell.
     pub fn labels_pgm(&self) -> Vec<u8> {
-        crate::grid::pgm::encode_u16(
-            self.labels.width(),
-            self.labels.height(),
-            self.labels.cells(),
-        )
+        crate::grid::pgm::encode_u16(self.labels.width(), self.labels.height(), self.labels.cells())
     }
 }
 
@@ -156,12 +152,7 @@ pub fn generate(config: &SynthConfig, seed: u64) -> Result<Synthetic, SynthError
             kind: s.kind,
         })
         .collect();
-    let doors = plan
-        .openings
-        .iter()
-        .enumerate()
-        .map(|(i, o)| o.door(i as u32 + 1, cells.wall))
-        .collect();
+    let doors = plan.openings.iter().enumerate().map(|(i, o)| o.door(i as u32 + 1, cells.wall)).collect();
     // -0 degrees would otherwise be written as an angle of -0.0.
     let angle = if cells.angle == 0.0 { 0.0 } else { cells.angle };
     let truth = World {
@@ -171,24 +162,18 @@ pub fn generate(config: &SynthConfig, seed: u64) -> Result<Synthetic, SynthError
             world_size: [config.width, config.height],
             map_size: [cells.map_size.0, cells.map_size.1],
         },
+        wall_thickness: 1,
         units,
         doors,
         object_cells: observed.objects,
     };
-    Ok(Synthetic {
-        map: occupancy_map(map_cells, config.resolution),
-        truth,
-        labels,
-        explored,
-    })
+    Ok(Synthetic { map: occupancy_map(map_cells, config.resolution), truth, labels, explored })
 }
 
 /// Picks which units the robot never entered: a fraction of the rooms, halls and "other"
 /// units, never a corridor (the robot drives through those).
 fn choose_explored(spaces: &[layout::Space], unexplored: f64, rng: &mut rng::Stream) -> Vec<bool> {
-    let mut pool: Vec<usize> = (0..spaces.len())
-        .filter(|&i| spaces[i].kind != UnitType::Corridor)
-        .collect();
+    let mut pool: Vec<usize> = (0..spaces.len()).filter(|&i| spaces[i].kind != UnitType::Corridor).collect();
     let n = (libm::round(unexplored * pool.len() as f64) as usize).min(pool.len());
     let mut explored = vec![true; spaces.len()];
     for k in 0..n {
@@ -202,16 +187,9 @@ fn choose_explored(spaces: &[layout::Space], unexplored: f64, rng: &mut rng::Str
 /// Wraps classified cells as a map in the ROS convention with the given resolution.
 fn occupancy_map(cells: Grid<Cell>, resolution: f64) -> OccupancyMap {
     let gray = cells.map(|c| crate::grid::gray_of(*c) as u16 * 257);
-    let yaml = MapYaml {
-        resolution,
-        ..MapYaml::for_image("map.pgm")
-    };
-    let classifier = Classifier::MapServer {
-        negate: false,
-        occupied_thresh: 0.65,
-        free_thresh: 0.196,
-        mode: Mode::Trinary,
-    };
+    let yaml = MapYaml { resolution, ..MapYaml::for_image("map.pgm") };
+    let classifier =
+        Classifier::MapServer { negate: false, occupied_thresh: 0.65, free_thresh: 0.196, mode: Mode::Trinary };
     let map = OccupancyMap::from_raster(Raster { gray, alpha: None }, yaml, classifier);
     debug_assert_eq!(map.classified(), &cells);
     map

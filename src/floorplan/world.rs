@@ -108,7 +108,7 @@ impl Rect {
         x >= self.x && x < self.right() && y >= self.y && y < self.bottom()
     }
 
-        /// Whether cell `(x, y)` is on the outer ring (a wall cell, eq. 3.8's `S_w`).
+    /// Whether cell `(x, y)` is on the outer ring (a wall cell, eq. 3.8's `S_w`).
     pub fn on_border(&self, x: i32, y: i32) -> bool {
         self.in_ring(x, y, 1)
     }
@@ -249,10 +249,10 @@ impl Frame {
 pub struct World {
     /// Always [`WORLD_FORMAT`].
     pub format: String,
-        /// How the world frame sits on the map.
+    /// How the world frame sits on the map.
     pub frame: Frame,
     /// Depth of each unit's wall ring, in cells (1 in the dissertation's model).
-    #[serde(default = "one")]
+    #[serde(default = "one", skip_serializing_if = "is_one")]
     pub wall_thickness: i32,
     /// The units.
     pub units: Vec<Unit>,
@@ -266,6 +266,10 @@ pub struct World {
 
 fn one() -> i32 {
     1
+}
+
+fn is_one(t: &i32) -> bool {
+    *t == 1
 }
 
 /// Why a `world.json` was refused.
@@ -285,7 +289,7 @@ impl World {
     pub fn empty(width: u32, height: u32) -> Self {
         World {
             format: WORLD_FORMAT.to_string(),
-                        frame: Frame::identity(width, height),
+            frame: Frame::identity(width, height),
             wall_thickness: 1,
             units: Vec::new(),
             doors: Vec::new(),
@@ -329,7 +333,7 @@ impl World {
         if !f.angle.is_finite() || f.world_size.contains(&0) || f.map_size.contains(&0) {
             return bad("world.json: the frame needs a finite angle and non-zero sizes".into());
         }
-                if !(1..=20).contains(&self.wall_thickness) {
+        if !(1..=20).contains(&self.wall_thickness) {
             return bad(format!("world.json: wall_thickness {} is not between 1 and 20", self.wall_thickness));
         }
         let [ww, wh] = [f.world_size[0] as i64, f.world_size[1] as i64];

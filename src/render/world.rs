@@ -57,11 +57,9 @@ pub fn draw_world(pixmap: &mut Pixmap, map_width: usize, map_height: usize, worl
     let objects = world.object_cells.iter().map(|&[x, y]| CellRect::cell(x as i64, y as i64));
     place.fill(pixmap, objects, OBJECT_RGBA);
 
-    let walls = world
-        .units
-        .iter()
-        .filter(|u| u.w >= 1 && u.h >= 1)
-        .flat_map(|u| CellRect::new(u.x as i64, u.y as i64, u.w as i64, u.h as i64).ring(world.wall_thickness.max(1) as i64));
+    let walls = world.units.iter().filter(|u| u.w >= 1 && u.h >= 1).flat_map(|u| {
+        CellRect::new(u.x as i64, u.y as i64, u.w as i64, u.h as i64).ring(world.wall_thickness.max(1) as i64)
+    });
     place.fill(pixmap, walls, WALL_RGBA);
 
     let doors = world.doors.iter().map(|d| {
@@ -149,7 +147,7 @@ impl CellRect {
         CellRect::new(x, y, 1, 1)
     }
 
-        /// The outer ring of cells `t` deep (eq. 3.8's walls) as four strips: top, bottom, left,
+    /// The outer ring of cells `t` deep (eq. 3.8's walls) as four strips: top, bottom, left,
     /// right. The strips may overlap on small rectangles; they are filled as one path.
     fn ring(self, t: i64) -> [CellRect; 4] {
         let CellRect { x0, y0, x1, y1 } = self;

@@ -23,7 +23,7 @@ pub fn detect(
     start: i32,
     end: i32,
 ) -> Vec<(DoorSpec, f64)> {
-        let limits = s.door_limits;
+    let limits = s.door_limits;
     let w = s.wall;
     let segment = |t: i32| -> Rect {
         match axis {
@@ -47,7 +47,7 @@ pub fn detect(
             t += 1;
         }
         let d = DoorSpec { lo: lo_id, hi: hi_id, axis, start: run_start, end: t - 1 };
-                if let Some(r) = door_rect(lo, hi, &d, &limits, w) {
+        if let Some(r) = door_rect(lo, hi, &d, &limits, w) {
             out.push((d, s.free_in(r) as f64 / r.area() as f64));
         }
     }

@@ -98,10 +98,8 @@ mod tests {
         let (w, frame) = to_world_frame(&g, angle);
         assert!(frame.world_size[0] >= 120 && frame.world_size[1] >= 100);
         // In the world frame, the occupied cells concentrate on few rows and columns.
-        let mut rows = vec![0u32; w.height()];
-        for y in 0..w.height() {
-            rows[y] = w.row(y).iter().filter(|&&c| c == Cell::Occupied).count() as u32;
-        }
+        let mut rows: Vec<u32> =
+            (0..w.height()).map(|y| w.row(y).iter().filter(|&&c| c == Cell::Occupied).count() as u32).collect();
         rows.sort_unstable();
         let top2: u32 = rows.iter().rev().take(4).sum();
         assert!(top2 > 90, "long walls should fill few rows: {top2}");

@@ -209,82 +209,18 @@ pub fn dilate(grid: &Grid<Cell>, r: i32) -> Grid<Cell> {
     out
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn dilation_grows_by_r() {
-        let mut g = Grid::new(9, 7, Cell::Free);
-        *g.at_mut(4, 3) = Cell::Occupied;
-        let d = dilate(&g, 2);
-        for y in 0..7i64 {
-            for x in 0..9i64 {
-                let inside = (x - 4).abs() <= 2 && (y - 3).abs() <= 2;
-                assert_eq!(*d.get(x, y).unwrap() == Cell::Occupied, inside, "({x},{y})");
-            }
-        }
-        assert_eq!(dilate(&g, 0), g);
-    }
-
-    #[test]
-    fn ring_depth_measures_wall_thickness() {
-        for d in 1..=4usize {
-            // A room outlined by walls d cells thick.
-            let mut g = Grid::new(60, 50, Cell::Free);
-            for y in 0..50 {
-                for x in 0..60 {
-                    if x < d || y < d || x >= 60 - d || y >= 50 - d || (x >= 30 && x < 30 + d) {
-                        *g.at_mut(x, y) = Cell::Occupied;
-                    }
-                }
-            }
-            assert_eq!(ring_depth(&g, 0.0), d as i32);
-        }
-        assert_eq!(ring_depth(&Grid::new(5, 5, Cell::Free), 0.0), 1);
-    }
-
-    #[test]
-    fn segments_bridge_small_gaps_only() {
-        let line = |s: &str| s.chars().map(|c| c == '#').collect::<Vec<_>>().into_iter();
-        assert_eq!(segment_cells(line("..#####..."), 5, 1), 5);
-        assert_eq!(segment_cells(line("..###.##..."), 5, 1), 5);
-        assert_eq!(segment_cells(line("..###...##..."), 5, 1), 0);
-        assert_eq!(segment_cells(line("####"), 5, 1), 0);
-    }
-
-    #[test]
-    fn two_rooms_give_their_rectangles() {
-        // Two rooms side by side sharing a 2-cell wall: columns 0, 20-21, 40; rows 0 and 15.
-        let mut g = Grid::new(41, 16, Cell::Free);
-        for y in 0..16 {
-            for x in [0, 20, 21, 40] {
-                *g.at_mut(x, y) = Cell::Occupied;
-            }
-        }
-        for x in 0..41 {
-            *g.at_mut(x, 0) = Cell::Occupied;
-            *g.at_mut(x, 15) = Cell::Occupied;
-        }
-        let c = candidates(&g, 5, &WallConfig::default());
-        let rects: Vec<Rect> = c.iter().map(|x| x.0).collect();
-        assert!(rects.contains(&Rect::new(0, 0, 21, 16)), "left room with the wall's left face");
-        assert!(rects.contains(&Rect::new(21, 0, 20, 16)), "right room");
-        assert!(rects.contains(&Rect::new(0, 0, 41, 16)), "both rooms as one");
-        assert!(c.iter().all(|x| x.1 >= 0.35 && x.1 <= 1.0));
-    }
-}
-
 /// The depth of unit wall rings that best explains this map's walls: the typical wall
 /// thickness, measured on the original map along the two wall directions of its dominant
 /// orientation `angle` (radians): for each occupied cell, the shorter of the two runs of
-/// occupied cells through it along those axes; the median over cells, clamped to 1..=4.
+/// occupied cells through it along those axes; the median `d` over cells. The ring depth is
+/// `d - 1`, clamped to 1..=4.
 ///
-/// Why the whole thickness: a ring as deep as the wall predicts every wall cell, on outer walls
-/// and on walls two units share (where their rings then overlap, which the prior tolerates at
-/// a cost). Scanned walls are thin and jagged and give 1 (the dissertation's model); cleanly
-/// drawn walls are thicker. Measuring on the original map rather than the rotated world frame
-/// keeps the resampling from doubling thin walls.
+/// Why `d - 1`: two units sharing a wall `d` thick each put a ring `d - 1` deep into it, so
+/// together they predict all of it while overlapping on only `d - 2` rows, and an outer wall
+/// loses one row at most. Scanned walls are thin and jagged and give 1, the dissertation's
+/// model; cleanly drawn walls are thicker. Measured on the original map, not the rotated
+/// world frame, so that resampling does not double thin walls. On our maps this rule picked
+/// the best or nearly the best depth for K(W, M) (see BENCHMARKS.md).
 pub fn ring_depth(grid: &Grid<Cell>, angle: f64) -> i32 {
     let (w, h) = (grid.width() as i64, grid.height() as i64);
     let occ = |x: f64, y: f64| {
@@ -331,5 +267,71 @@ pub fn ring_depth(grid: &Grid<Cell>, angle: f64) -> i32 {
         acc += hist[d];
         2 * acc >= total
     });
-    (median.unwrap_or(1) as i32).clamp(1, 4)
+        (median.unwrap_or(2) as i32 - 1).clamp(1, 4)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn dilation_grows_by_r() {
+        let mut g = Grid::new(9, 7, Cell::Free);
+        *g.at_mut(4, 3) = Cell::Occupied;
+        let d = dilate(&g, 2);
+        for y in 0..7i64 {
+            for x in 0..9i64 {
+                let inside = (x - 4).abs() <= 2 && (y - 3).abs() <= 2;
+                assert_eq!(*d.get(x, y).unwrap() == Cell::Occupied, inside, "({x},{y})");
+            }
+        }
+        assert_eq!(dilate(&g, 0), g);
+    }
+
+    #[test]
+    fn ring_depth_measures_wall_thickness() {
+        for d in 1..=4usize {
+            // A room outlined by walls d cells thick.
+            let mut g = Grid::new(60, 50, Cell::Free);
+            for y in 0..50 {
+                for x in 0..60 {
+                    if x < d || y < d || x >= 60 - d || y >= 50 - d || (x >= 30 && x < 30 + d) {
+                        *g.at_mut(x, y) = Cell::Occupied;
+                    }
+                }
+            }
+                        assert_eq!(ring_depth(&g, 0.0), (d as i32 - 1).max(1));
+        }
+        assert_eq!(ring_depth(&Grid::new(5, 5, Cell::Free), 0.0), 1);
+    }
+
+    #[test]
+    fn segments_bridge_small_gaps_only() {
+        let line = |s: &str| s.chars().map(|c| c == '#').collect::<Vec<_>>().into_iter();
+        assert_eq!(segment_cells(line("..#####..."), 5, 1), 5);
+        assert_eq!(segment_cells(line("..###.##..."), 5, 1), 5);
+        assert_eq!(segment_cells(line("..###...##..."), 5, 1), 0);
+        assert_eq!(segment_cells(line("####"), 5, 1), 0);
+    }
+
+    #[test]
+    fn two_rooms_give_their_rectangles() {
+        // Two rooms side by side sharing a 2-cell wall: columns 0, 20-21, 40; rows 0 and 15.
+        let mut g = Grid::new(41, 16, Cell::Free);
+        for y in 0..16 {
+            for x in [0, 20, 21, 40] {
+                *g.at_mut(x, y) = Cell::Occupied;
+            }
+        }
+        for x in 0..41 {
+            *g.at_mut(x, 0) = Cell::Occupied;
+            *g.at_mut(x, 15) = Cell::Occupied;
+        }
+        let c = candidates(&g, 5, &WallConfig::default());
+        let rects: Vec<Rect> = c.iter().map(|x| x.0).collect();
+        assert!(rects.contains(&Rect::new(0, 0, 21, 16)), "left room with the wall's left face");
+        assert!(rects.contains(&Rect::new(21, 0, 20, 16)), "right room");
+        assert!(rects.contains(&Rect::new(0, 0, 41, 16)), "both rooms as one");
+        assert!(c.iter().all(|x| x.1 >= 0.35 && x.1 <= 1.0));
+    }
 }

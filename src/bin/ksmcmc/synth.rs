@@ -125,9 +125,7 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     for apply in overrides {
         apply(&mut config);
     }
-    config
-        .validate()
-        .map_err(|e| CliError::Failed(e.to_string()))?;
+    config.validate().map_err(|e| CliError::Failed(e.to_string()))?;
     if print_config {
         println!("{}", config.to_json());
         return Ok(());

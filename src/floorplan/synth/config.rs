@@ -152,8 +152,7 @@ pub(super) struct Cells {
 impl SynthConfig {
     /// Parses a JSON config (missing fields take their defaults) and validates it.
     pub fn from_json(text: &str) -> Result<SynthConfig, SynthError> {
-        let c: SynthConfig =
-            serde_json::from_str(text).map_err(|e| SynthError(format!("synth config: {e}")))?;
+        let c: SynthConfig = serde_json::from_str(text).map_err(|e| SynthError(format!("synth config: {e}")))?;
         c.validate()?;
         Ok(c)
     }
@@ -194,24 +193,15 @@ impl SynthConfig {
         if self.width as u64 * self.height as u64 > DEFAULT_MAX_CELLS as u64 {
             return err(
                 "width x height",
-                format!(
-                    "is {} x {} cells; accepted: at most {DEFAULT_MAX_CELLS} cells",
-                    self.width, self.height
-                ),
+                format!("is {} x {} cells; accepted: at most {DEFAULT_MAX_CELLS} cells", self.width, self.height),
             );
         }
         let resolution = self.resolution;
         if !resolution.is_finite() || !(0.005..=0.5).contains(&resolution) {
-            return err(
-                "resolution",
-                format!("is {resolution}; accepted: 0.005 to 0.5 m per cell"),
-            );
+            return err("resolution", format!("is {resolution}; accepted: 0.005 to 0.5 m per cell"));
         }
         if !self.rotation_deg.is_finite() || !(-360.0..=360.0).contains(&self.rotation_deg) {
-            return err(
-                "rotation_deg",
-                format!("is {}; accepted: -360 to 360 degrees", self.rotation_deg),
-            );
+            return err("rotation_deg", format!("is {}; accepted: -360 to 360 degrees", self.rotation_deg));
         }
         let (mw, mh) = self.map_size();
         if mw as u64 * mh as u64 > DEFAULT_MAX_CELLS as u64 {
@@ -226,25 +216,15 @@ impl SynthConfig {
         if self.margin > min_side / 4 {
             return err(
                 "margin",
-                format!(
-                    "is {}; accepted: 0 to {} cells (a quarter of the canvas)",
-                    self.margin,
-                    min_side / 4
-                ),
+                format!("is {}; accepted: 0 to {} cells (a quarter of the canvas)", self.margin, min_side / 4),
             );
         }
         if !(1..=20).contains(&self.wall_thickness) {
-            return err(
-                "wall_thickness",
-                format!("is {}; accepted: 1 to 20 cells", self.wall_thickness),
-            );
+            return err("wall_thickness", format!("is {}; accepted: 1 to 20 cells", self.wall_thickness));
         }
         if let Some(c) = self.corridors {
             if !(1..=2).contains(&c) {
-                return err(
-                    "corridors",
-                    format!("is {c}; accepted: 1, 2 or null (automatic)"),
-                );
+                return err("corridors", format!("is {c}; accepted: 1, 2 or null (automatic)"));
             }
         }
         if self.halls > 2 {
@@ -255,10 +235,7 @@ impl SynthConfig {
         }
         let [rlo, rhi] = self.rooms;
         if rlo > rhi || rhi > 10_000 {
-            return err(
-                "rooms",
-                format!("is [{rlo}, {rhi}]; accepted: [low, high] with low <= high <= 10000"),
-            );
+            return err("rooms", format!("is [{rlo}, {rhi}]; accepted: [low, high] with low <= high <= 10000"));
         }
         let span = |name: &str, r: [f64; 2]| -> Result<Span, SynthError> {
             let [lo, hi] = r;
@@ -268,10 +245,7 @@ impl SynthConfig {
                 )));
             }
             let to_cells = |m: f64| libm::round(m / resolution) as i32;
-            let s = Span {
-                lo: to_cells(lo),
-                hi: to_cells(hi),
-            };
+            let s = Span { lo: to_cells(lo), hi: to_cells(hi) };
             let least = if name == "door_width" { 2 } else { 3 };
             if s.lo < least {
                 return Err(SynthError(format!(
@@ -288,12 +262,7 @@ impl SynthConfig {
         let other = span("other_width", self.other_width)?;
         let door = span("door_width", self.door_width)?;
         let wall = self.wall_thickness as i32;
-        let narrowest = corridor
-            .lo
-            .min(room.lo)
-            .min(depth.lo)
-            .min(hall.lo)
-            .min(other.lo);
+        let narrowest = corridor.lo.min(room.lo).min(depth.lo).min(hall.lo).min(other.lo);
         if wall * 2 > narrowest {
             return err(
                 "wall_thickness",
@@ -331,10 +300,7 @@ impl SynthConfig {
         if self.speckle_occupied + self.speckle_unknown > 1.0 {
             return err(
                 "speckle_occupied + speckle_unknown",
-                format!(
-                    "is {}; accepted: at most 1",
-                    self.speckle_occupied + self.speckle_unknown
-                ),
+                format!("is {}; accepted: at most 1", self.speckle_occupied + self.speckle_unknown),
             );
         }
         Ok(Cells {

@@ -62,19 +62,8 @@ impl Opening {
     pub fn door(&self, id: u32, wall: i32) -> Door {
         let c = self.wall + (wall - 1) / 2;
         let end = self.along + self.len - 1;
-        let (x0, y0, x1, y1) = if self.vertical {
-            (c, self.along, c, end)
-        } else {
-            (self.along, c, end, c)
-        };
-        Door {
-            id,
-            units: [self.a as u32 + 1, self.b as u32 + 1],
-            x0,
-            y0,
-            x1,
-            y1,
-        }
+        let (x0, y0, x1, y1) = if self.vertical { (c, self.along, c, end) } else { (self.along, c, end, c) };
+        Door { id, units: [self.a as u32 + 1, self.b as u32 + 1], x0, y0, x1, y1 }
     }
 
     /// The other space of the opening.
@@ -106,22 +95,8 @@ impl Plan {
     fn transposed(self) -> Plan {
         Plan {
             building: transpose(self.building),
-            spaces: self
-                .spaces
-                .into_iter()
-                .map(|s| Space {
-                    inner: transpose(s.inner),
-                    kind: s.kind,
-                })
-                .collect(),
-            openings: self
-                .openings
-                .into_iter()
-                .map(|o| Opening {
-                    vertical: !o.vertical,
-                    ..o
-                })
-                .collect(),
+            spaces: self.spaces.into_iter().map(|s| Space { inner: transpose(s.inner), kind: s.kind }).collect(),
+            openings: self.openings.into_iter().map(|o| Opening { vertical: !o.vertical, ..o }).collect(),
         }
     }
 }
@@ -171,12 +146,7 @@ struct Segment {
 
 impl Segment {
     fn new(row: Rect, x0: i32, x1: i32) -> Self {
-        Segment {
-            row,
-            x0,
-            x1,
-            others: Vec::new(),
-        }
+        Segment { row, x0, x1, others: Vec::new() }
     }
 
     /// Length left for rooms after the "other" units and their walls.
@@ -189,39 +159,22 @@ impl Segment {
     fn counts(&self, wall: i32, room: Span) -> (i32, i32) {
         let rest = self.rest(wall) + wall;
         let most = rest / (room.lo + wall);
-        let fewest = ((rest + room.hi + wall - 1) / (room.hi + wall))
-            .max(1)
-            .min(most);
+        let fewest = ((rest + room.hi + wall - 1) / (room.hi + wall)).max(1).min(most);
         (fewest, most)
     }
 }
 
 fn attempt(c: &Cells, extra_doors: f64, rng: &mut Stream) -> Result<Plan, Failure> {
     let portrait = c.canvas.1 > c.canvas.0;
-    let (cw, ch) = if portrait {
-        (c.canvas.1, c.canvas.0)
-    } else {
-        c.canvas
-    };
+    let (cw, ch) = if portrait { (c.canvas.1, c.canvas.0) } else { c.canvas };
     let t = c.wall;
     let building = Rect::new(c.margin, c.margin, cw - 2 * c.margin, ch - 2 * c.margin);
-    let inner = Rect::new(
-        building.x + t,
-        building.y + t,
-        building.w - 2 * t,
-        building.h - 2 * t,
-    );
-    let (long_side, short_side) = if portrait {
-        ("height", "width")
-    } else {
-        ("width", "height")
-    };
+    let inner = Rect::new(building.x + t, building.y + t, building.w - 2 * t, building.h - 2 * t);
+    let (long_side, short_side) = if portrait { ("height", "width") } else { ("width", "height") };
     let mut spaces = Vec::new();
 
     // Bands across the depth.
-    let need = |rows: i32, corridors: i32| {
-        rows * c.depth.lo + corridors * c.corridor.lo + (rows + corridors - 1) * t
-    };
+    let need = |rows: i32, corridors: i32| rows * c.depth.lo + corridors * c.corridor.lo + (rows + corridors - 1) * t;
     let depth_needed = |n: i32| n + 2 * t + 2 * c.margin;
     let corridors = match c.corridors {
         Some(n) => n,
@@ -314,10 +267,7 @@ fn attempt(c: &Cells, extra_doors: f64, rng: &mut Stream) -> Result<Plan, Failur
         let r = Rect::new(xa, y, xb - xa, h);
         match band {
             Band::Corridor => {
-                spaces.push(Space {
-                    inner: r,
-                    kind: UnitType::Corridor,
-                });
+                spaces.push(Space { inner: r, kind: UnitType::Corridor });
                 ci += 1;
             }
             Band::Rooms => {
@@ -346,10 +296,7 @@ fn attempt(c: &Cells, extra_doors: f64, rng: &mut Stream) -> Result<Plan, Failur
         };
         let (upper, lower) = (room_rows[1], room_rows[2]);
         let conn = Rect::new(cx, upper.y, w, lower.bottom() - upper.y);
-        spaces.push(Space {
-            inner: conn,
-            kind: UnitType::Corridor,
-        });
+        spaces.push(Space { inner: conn, kind: UnitType::Corridor });
         for (i, row) in room_rows.iter().enumerate() {
             if i == 1 || i == 2 {
                 for (x0, x1) in [(xa, cx - t), (cx + w + t, xb)] {
@@ -365,18 +312,13 @@ fn attempt(c: &Cells, extra_doors: f64, rng: &mut Stream) -> Result<Plan, Failur
         segments.extend(room_rows.iter().map(|r| whole(*r)));
     }
     for h in halls {
-        spaces.push(Space {
-            inner: h,
-            kind: UnitType::Hall,
-        });
+        spaces.push(Space { inner: h, kind: UnitType::Hall });
     }
 
     // "Other" units go to segments that keep room for a room beside them.
     for placed in 0..c.others {
         let w = between(rng, c.other.lo, c.other.hi);
-        let fits: Vec<usize> = (0..segments.len())
-            .filter(|&i| segments[i].rest(t) - (w + t) >= c.room.lo)
-            .collect();
+        let fits: Vec<usize> = (0..segments.len()).filter(|&i| segments[i].rest(t) - (w + t) >= c.room.lo).collect();
         if fits.is_empty() {
             return Err(Failure::Unlucky(SynthError(format!(
                 "synth config: others: {} small units do not fit beside the rooms (this building held {placed}); \
@@ -389,9 +331,7 @@ fn attempt(c: &Cells, extra_doors: f64, rng: &mut Stream) -> Result<Plan, Failur
 
     // How many rooms each segment gets: drawn per segment, then nudged into the accepted range.
     let bounds: Vec<(i32, i32)> = segments.iter().map(|s| s.counts(t, c.room)).collect();
-    let (fewest, most) = bounds.iter().fold((0i64, 0i64), |(a, b), (lo, hi)| {
-        (a + *lo as i64, b + *hi as i64)
-    });
+    let (fewest, most) = bounds.iter().fold((0i64, 0i64), |(a, b), (lo, hi)| (a + *lo as i64, b + *hi as i64));
     let (lo, hi) = (fewest.max(c.rooms[0] as i64), most.min(c.rooms[1] as i64));
     if lo > hi {
         return Err(Failure::Unlucky(SynthError(format!(
@@ -405,13 +345,7 @@ fn attempt(c: &Cells, extra_doors: f64, rng: &mut Stream) -> Result<Plan, Failur
     while total < lo || total > hi {
         let grow = total < lo;
         let can: Vec<usize> = (0..counts.len())
-            .filter(|&i| {
-                if grow {
-                    counts[i] < bounds[i].1
-                } else {
-                    counts[i] > bounds[i].0
-                }
-            })
+            .filter(|&i| if grow { counts[i] < bounds[i].1 } else { counts[i] > bounds[i].0 })
             .collect();
         let i = can[below(rng, can.len())];
         counts[i] += if grow { 1 } else { -1 };
@@ -422,31 +356,21 @@ fn attempt(c: &Cells, extra_doors: f64, rng: &mut Stream) -> Result<Plan, Failur
     for (seg, &k) in segments.iter().zip(&counts) {
         let extra = seg.rest(t) - (k - 1) * t - k * c.room.lo;
         let widths = share(rng, k as usize, extra, c.room.hi - c.room.lo);
-        let mut seq: Vec<(UnitType, i32)> = widths
-            .iter()
-            .map(|w| (UnitType::Room, c.room.lo + w))
-            .collect();
+        let mut seq: Vec<(UnitType, i32)> = widths.iter().map(|w| (UnitType::Room, c.room.lo + w)).collect();
         for &w in &seg.others {
             let at = below(rng, seq.len() + 1);
             seq.insert(at, (UnitType::Other, w));
         }
         let mut x = seg.x0;
         for (kind, w) in seq {
-            spaces.push(Space {
-                inner: Rect::new(x, seg.row.y, w, seg.row.h),
-                kind,
-            });
+            spaces.push(Space { inner: Rect::new(x, seg.row.y, w, seg.row.h), kind });
             x += w + t;
         }
         debug_assert_eq!(x - t, seg.x1);
     }
 
     let openings = doors(&spaces, c, extra_doors, rng)?;
-    let plan = Plan {
-        building,
-        spaces,
-        openings,
-    };
+    let plan = Plan { building, spaces, openings };
     Ok(if portrait { plan.transposed() } else { plan })
 }
 
@@ -468,25 +392,11 @@ fn contact(spaces: &[Space], i: usize, j: usize, wall: i32) -> Option<Contact> {
     for (a, b, p, q) in [(i, j, p, q), (j, i, q, p)] {
         if p.right() + wall == q.x {
             let (lo, hi) = overlap(p.y, p.bottom(), q.y, q.bottom());
-            return (hi > lo).then_some(Contact {
-                a,
-                b,
-                vertical: true,
-                wall: p.right(),
-                lo,
-                hi,
-            });
+            return (hi > lo).then_some(Contact { a, b, vertical: true, wall: p.right(), lo, hi });
         }
         if p.bottom() + wall == q.y {
             let (lo, hi) = overlap(p.x, p.right(), q.x, q.right());
-            return (hi > lo).then_some(Contact {
-                a,
-                b,
-                vertical: false,
-                wall: p.bottom(),
-                lo,
-                hi,
-            });
+            return (hi > lo).then_some(Contact { a, b, vertical: false, wall: p.bottom(), lo, hi });
         }
     }
     None
@@ -498,12 +408,7 @@ fn is_hub(kind: UnitType) -> bool {
 
 /// Chooses the doors: each room and "other" unit onto a corridor (else a hall) it touches, hubs
 /// joined until everything is connected, other neighbours by chance.
-fn doors(
-    spaces: &[Space],
-    c: &Cells,
-    extra_doors: f64,
-    rng: &mut Stream,
-) -> Result<Vec<Opening>, Failure> {
+fn doors(spaces: &[Space], c: &Cells, extra_doors: f64, rng: &mut Stream) -> Result<Vec<Opening>, Failure> {
     let n = spaces.len();
     let mut contacts = Vec::new();
     for i in 0..n {
@@ -524,8 +429,7 @@ fn doors(
             let best = (0..contacts.len())
                 .filter(|&k| {
                     let ct = &contacts[k];
-                    (ct.a == u || ct.b == u)
-                        && spaces[if ct.a == u { ct.b } else { ct.a }].kind == hub
+                    (ct.a == u || ct.b == u) && spaces[if ct.a == u { ct.b } else { ct.a }].kind == hub
                 })
                 .max_by_key(|&k| (contacts[k].hi - contacts[k].lo, std::cmp::Reverse(k)));
             if let Some(k) = best {
@@ -549,15 +453,11 @@ fn doors(
             parent[ra] = rb;
         }
     }
-    let hubs_first =
-        |k: &usize| !(is_hub(spaces[contacts[*k].a].kind) && is_hub(spaces[contacts[*k].b].kind));
+    let hubs_first = |k: &usize| !(is_hub(spaces[contacts[*k].a].kind) && is_hub(spaces[contacts[*k].b].kind));
     let mut order: Vec<usize> = (0..contacts.len()).collect();
     order.sort_by_key(|k| (hubs_first(k), *k));
     for k in order {
-        let (ra, rb) = (
-            root(&mut parent, contacts[k].a),
-            root(&mut parent, contacts[k].b),
-        );
+        let (ra, rb) = (root(&mut parent, contacts[k].a), root(&mut parent, contacts[k].b));
         if ra != rb {
             parent[ra] = rb;
             chosen[k] = true;
@@ -578,14 +478,7 @@ fn doors(
         let room = ct.hi - ct.lo - 2 * DOOR_CLEARANCE;
         let len = between(rng, c.door.lo, c.door.hi).min(room);
         let along = between(rng, ct.lo + DOOR_CLEARANCE, ct.hi - DOOR_CLEARANCE - len);
-        openings.push(Opening {
-            a: ct.a,
-            b: ct.b,
-            vertical: ct.vertical,
-            wall: ct.wall,
-            along,
-            len,
-        });
+        openings.push(Opening { a: ct.a, b: ct.b, vertical: ct.vertical, wall: ct.wall, along, len });
     }
     Ok(openings)
 }
@@ -624,13 +517,7 @@ mod tests {
     #[test]
     fn share_gives_everything_and_respects_caps() {
         let mut rng = Stream::seed_from_u64(1);
-        for (n, total, cap) in [
-            (1, 10, 100),
-            (5, 37, 10),
-            (4, 100, 10),
-            (3, 0, 5),
-            (7, 1000, i32::MAX),
-        ] {
+        for (n, total, cap) in [(1, 10, 100), (5, 37, 10), (4, 100, 10), (3, 0, 5), (7, 1000, i32::MAX)] {
             let add = share(&mut rng, n, total, cap);
             assert_eq!(add.len(), n);
             assert_eq!(add.iter().sum::<i32>(), total);
@@ -660,25 +547,11 @@ mod tests {
 
     #[test]
     fn door_run_sits_on_the_wall_centre_line() {
-        let o = Opening {
-            a: 0,
-            b: 1,
-            vertical: true,
-            wall: 10,
-            along: 5,
-            len: 4,
-        };
+        let o = Opening { a: 0, b: 1, vertical: true, wall: 10, along: 5, len: 4 };
         assert_eq!(o.rect(3), Rect::new(10, 5, 3, 4));
         let d = o.door(7, 3);
-        assert_eq!(
-            (d.id, d.units, d.x0, d.y0, d.x1, d.y1),
-            (7, [1, 2], 11, 5, 11, 8)
-        );
-        let h = Opening {
-            vertical: false,
-            ..o
-        }
-        .door(1, 1);
+        assert_eq!((d.id, d.units, d.x0, d.y0, d.x1, d.y1), (7, [1, 2], 11, 5, 11, 8));
+        let h = Opening { vertical: false, ..o }.door(1, 1);
         assert_eq!((h.x0, h.y0, h.x1, h.y1), (5, 10, 8, 10));
     }
 }

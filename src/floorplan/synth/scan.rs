@@ -56,13 +56,7 @@ fn fill<T: Copy>(g: &mut Grid<T>, r: Rect, v: T) {
 }
 
 /// Rasterises the plan in the world frame and degrades it as a scan would.
-pub(super) fn observe(
-    plan: &Plan,
-    explored: &[bool],
-    c: &Cells,
-    noise: &Noise,
-    rng: &mut Stream,
-) -> Observed {
+pub(super) fn observe(plan: &Plan, explored: &[bool], c: &Cells, noise: &Noise, rng: &mut Stream) -> Observed {
     let (w, h) = (c.canvas.0 as usize, c.canvas.1 as usize);
     let t = c.wall;
     let mut kind = Grid::new(w, h, OUTSIDE);
@@ -101,12 +95,7 @@ pub(super) fn observe(
     // Walls read occupied where seen from free space.
     let free = cells.map(|c| *c == Cell::Free);
     let seen = dilate(&free, t as usize);
-    for ((cell, k), s) in cells
-        .cells_mut()
-        .iter_mut()
-        .zip(kind.cells())
-        .zip(seen.cells())
-    {
+    for ((cell, k), s) in cells.cells_mut().iter_mut().zip(kind.cells()).zip(seen.cells()) {
         if *k == WALL && *s {
             *cell = Cell::Occupied;
         }
@@ -150,21 +139,9 @@ pub(super) fn observe(
     if noise.clutter > 0.0 {
         for (u, s) in plan.spaces.iter().enumerate() {
             if explored[u] && matches!(s.kind, UnitType::Room | UnitType::Hall) {
-                let keep_out: Vec<Rect> = plan
-                    .openings
-                    .iter()
-                    .filter(|o| o.a == u || o.b == u)
-                    .map(|o| door_zone(o, u, t))
-                    .collect();
-                furnish(
-                    &mut cells,
-                    &mut object,
-                    s.inner,
-                    &keep_out,
-                    noise.clutter,
-                    c.resolution,
-                    rng,
-                );
+                let keep_out: Vec<Rect> =
+                    plan.openings.iter().filter(|o| o.a == u || o.b == u).map(|o| door_zone(o, u, t)).collect();
+                furnish(&mut cells, &mut object, s.inner, &keep_out, noise.clutter, c.resolution, rng);
             }
         }
     }
@@ -176,11 +153,7 @@ pub(super) fn observe(
             }
         }
     }
-    Observed {
-        cells,
-        labels,
-        objects,
-    }
+    Observed { cells, labels, objects }
 }
 
 /// Marks free the cells of unexplored space `s` visible from inside `v` (the opening's `a` side
@@ -199,11 +172,7 @@ fn peek(cells: &mut Grid<Cell>, o: &Opening, s: &Space, v: &Space, v_is_a: bool,
     let (faces, len) = ([o.wall as f64, (o.wall + t) as f64], o.len as f64);
     // The robot stood about a door's width back from the opening, on `v`'s side.
     let depth = (o.len as f64).min((v1 - v0) as f64 - 1.0).max(0.5);
-    let view_across = if v_is_a {
-        o.wall as f64 - depth
-    } else {
-        (o.wall + t) as f64 + depth
-    };
+    let view_across = if v_is_a { o.wall as f64 - depth } else { (o.wall + t) as f64 + depth };
     let view_along = o.along as f64 + len / 2.0;
     let (lo, hi) = (o.along as f64, o.along as f64 + len);
     for ac in s_ac0..s_ac1 {
@@ -271,10 +240,7 @@ fn furnish(
                 _ => (room.right() - bw, between(rng, room.y, room.bottom() - bh)),
             }
         } else {
-            (
-                between(rng, room.x + 1, room.right() - bw - 1),
-                between(rng, room.y + 1, room.bottom() - bh - 1),
-            )
+            (between(rng, room.x + 1, room.right() - bw - 1), between(rng, room.y + 1, room.bottom() - bh - 1))
         };
         let r = Rect::new(x, y, bw, bh);
         let grown = Rect::new(x - 3, y - 3, bw + 6, bh + 6);
@@ -285,12 +251,8 @@ fn furnish(
         }
         placed.push(r);
         let round = chance(rng, 0.4);
-        let (cx, cy, rx, ry) = (
-            x as f64 + bw as f64 / 2.0,
-            y as f64 + bh as f64 / 2.0,
-            bw as f64 / 2.0,
-            bh as f64 / 2.0,
-        );
+        let (cx, cy, rx, ry) =
+            (x as f64 + bw as f64 / 2.0, y as f64 + bh as f64 / 2.0, bw as f64 / 2.0, bh as f64 / 2.0);
         let inside = |px: i32, py: i32| {
             if !r.contains(px, py) {
                 return false;
@@ -306,14 +268,10 @@ fn furnish(
                 if !inside(px, py) {
                     continue;
                 }
-                let edge = !(inside(px - 1, py)
-                    && inside(px + 1, py)
-                    && inside(px, py - 1)
-                    && inside(px, py + 1));
+                let edge = !(inside(px - 1, py) && inside(px + 1, py) && inside(px, py - 1) && inside(px, py + 1));
                 // The laser sees part of the outline; the inside stays unknown.
                 let seen = edge && unit(rng) < 0.7;
-                *cells.at_mut(px as usize, py as usize) =
-                    if seen { Cell::Occupied } else { Cell::Unknown };
+                *cells.at_mut(px as usize, py as usize) = if seen { Cell::Occupied } else { Cell::Unknown };
                 *object.at_mut(px as usize, py as usize) = true;
                 covered += 1;
             }
@@ -347,12 +305,7 @@ fn dilate(g: &Grid<bool>, r: usize) -> Grid<bool> {
 }
 
 /// Samples the world-frame observation into the map frame and adds speckle.
-pub(super) fn to_map(
-    obs: &Observed,
-    c: &Cells,
-    noise: &Noise,
-    rng: &mut Stream,
-) -> (Grid<Cell>, Grid<u16>) {
+pub(super) fn to_map(obs: &Observed, c: &Cells, noise: &Noise, rng: &mut Stream) -> (Grid<Cell>, Grid<u16>) {
     let (ww, wh) = (c.canvas.0 as usize, c.canvas.1 as usize);
     let (mw, mh) = (c.map_size.0 as usize, c.map_size.1 as usize);
     let (s, co) = (libm::sin(c.angle), libm::cos(c.angle));
@@ -361,10 +314,7 @@ pub(super) fn to_map(
     for my in 0..mh {
         for mx in 0..mw {
             // Frame::to_world of the cell centre, written out to keep sin and cos out of the loop.
-            let (dx, dy) = (
-                mx as f64 + 0.5 - mw as f64 / 2.0,
-                my as f64 + 0.5 - mh as f64 / 2.0,
-            );
+            let (dx, dy) = (mx as f64 + 0.5 - mw as f64 / 2.0, my as f64 + 0.5 - mh as f64 / 2.0);
             let wx = libm::floor(ww as f64 / 2.0 + co * dx + s * dy);
             let wy = libm::floor(wh as f64 / 2.0 - s * dx + co * dy);
             if wx >= 0.0 && wy >= 0.0 && wx < ww as f64 && wy < wh as f64 {
@@ -406,10 +356,7 @@ pub(super) fn to_map(
             }
         }
     }
-    (
-        Grid::from_vec(mw, mh, cells).expect("map size"),
-        Grid::from_vec(mw, mh, labels).expect("map size"),
-    )
+    (Grid::from_vec(mw, mh, cells).expect("map size"), Grid::from_vec(mw, mh, labels).expect("map size"))
 }
 
 #[cfg(test)]
@@ -427,9 +374,8 @@ mod tests {
             let d = dilate(&g, r);
             for y in 0..h {
                 for x in 0..w {
-                    let near = (y.saturating_sub(r)..(y + r + 1).min(h)).any(|yy| {
-                        (x.saturating_sub(r)..(x + r + 1).min(w)).any(|xx| *g.at(xx, yy))
-                    });
+                    let near = (y.saturating_sub(r)..(y + r + 1).min(h))
+                        .any(|yy| (x.saturating_sub(r)..(x + r + 1).min(w)).any(|xx| *g.at(xx, yy)));
                     assert_eq!(*d.at(x, y), near, "r {r} at ({x},{y})");
                 }
             }
@@ -438,14 +384,7 @@ mod tests {
 
     #[test]
     fn door_zone_lies_in_front_of_the_door() {
-        let o = Opening {
-            a: 0,
-            b: 1,
-            vertical: false,
-            wall: 20,
-            along: 30,
-            len: 16,
-        };
+        let o = Opening { a: 0, b: 1, vertical: false, wall: 20, along: 30, len: 16 };
         // Above the wall for a, below it (past the 3-cell wall) for b.
         assert_eq!(door_zone(&o, 0, 3), Rect::new(28, 4, 20, 16));
         assert_eq!(door_zone(&o, 1, 3), Rect::new(28, 23, 20, 16));

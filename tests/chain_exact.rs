@@ -73,7 +73,7 @@ fn tv_distance(weights: [f64; 9], temperature: f64, steps: u64, seed: u64) -> (f
     let post = Posterior::new(&cfg.posterior);
     let mut exact: HashMap<Vec<(i32, i32, i32, i32)>, f64> = HashMap::new();
     let mut add = |units: Vec<Rect>| {
-        let lp = post.log_target(&Explanation::recompute(&map, &units, 1, &[]));
+        let lp = post.log_target(&Explanation::recompute(&map, &units, 1, &[]), units.len());
         exact.insert(key(units), lp);
     };
     add(vec![]);

@@ -75,7 +75,7 @@ pub struct ChainConfig {
     pub doors: DoorLimits,
     /// Detectors.
     pub detectors: DetectorConfig,
-        /// Depth of every unit's wall ring in cells; `None` estimates it from the map's walls
+    /// Depth of every unit's wall ring in cells; `None` estimates it from the map's walls
     /// ([`vision::walls::ring_depth`]). The dissertation's model is 1; thicker rings let units
     /// predict thick walls.
     pub wall_thickness: Option<i32>,
@@ -260,9 +260,9 @@ impl Chain {
         let state = State::new(&world_map, config.doors, wall);
         let proposer = Proposer::new(config.kernels, candidates, state.width(), state.height(), wall);
         let posterior = Posterior::new(&config.posterior);
-        let log_target = posterior.log_target(&state.explanation);
+        let log_target = posterior.log_target(&state.explanation, 0);
         let phase_tables = config.schedule.phases.iter().map(|p| Cumulative::new(p.weights.0)).collect();
-        let best_log_posterior = posterior.log_posterior(&state.explanation);
+        let best_log_posterior = posterior.log_posterior(&state.explanation, 0);
         Chain {
             trace: Trace::new(config.output.acceptance_window, config.output.trace_every),
             samples: Ring::new(config.output.samples),
@@ -327,7 +327,7 @@ impl Chain {
 
     /// `log p(W|M)` of the current world (untempered, up to a constant).
     pub fn log_posterior(&self) -> f64 {
-        self.posterior.log_posterior(&self.state.explanation)
+        self.posterior.log_posterior(&self.state.explanation, self.state.units.len())
     }
 
     /// The best log posterior seen.
@@ -499,11 +499,11 @@ impl Chain {
         }
         let (undo, generation, next_id) = self.state.apply(&mv);
         let q_rev = self.proposer.reverse_q(&mv, &undo, &self.state);
-        let new_target = self.posterior.log_target(&self.state.explanation);
+        let new_target = self.posterior.log_target(&self.state.explanation, self.state.units.len());
         let log_ratio = new_target - self.log_target + libm::log(phi_rev * q_rev) - libm::log(phi_fwd * q_fwd);
         if q_rev > 0.0 && accept(log_ratio, &mut self.rng) {
             self.log_target = new_target;
-            let lp = self.posterior.log_posterior(&self.state.explanation);
+            let lp = self.posterior.log_posterior(&self.state.explanation, self.state.units.len());
             if lp > self.best_log_posterior {
                 self.best_log_posterior = lp;
                 self.best_iteration = self.iteration;
@@ -520,6 +520,16 @@ impl Chain {
             self.state.undo(undo, generation, next_id);
             false
         }
+    }
+
+    /// The room segmentation of the best world on the original map (see [`super::rooms`]).
+    pub fn best_labels(&self, rooms: &super::rooms::RoomConfig) -> Grid<u16> {
+        super::rooms::room_labels(&self.best_world(), &self.map, &self.world_map, rooms)
+    }
+
+    /// The classified map the chain explains, in the map's own frame.
+    pub fn map(&self) -> &Grid<Cell> {
+        &self.map
     }
 
     /// Checks the incremental bookkeeping against a full recomputation (for tests).

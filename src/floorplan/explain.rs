@@ -29,6 +29,18 @@ fn predicted(cover: u8, wall: u8, door: u8) -> usize {
     }
 }
 
+/// The overlap exponent of one cell, `σ(c) - 1` of eq. 3.5, except on shared walls: a cell in
+/// the wall ring of *every* unit covering it is a wall two rooms share, as buildings are built,
+/// not two units claiming the same space, so it is not penalised.
+#[inline]
+fn overlap(cover: u8, wall: u8) -> i64 {
+    if cover > 1 && wall < cover {
+        (cover - 1) as i64
+    } else {
+        0
+    }
+}
+
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 struct CellState {
     /// Map class `C_M` (eq. 3.7 code).
@@ -87,7 +99,7 @@ pub struct Explanation {
     cells: Vec<CellState>,
     /// `confusion[C_M][C_W]`: how many cells of map class `C_M` the world predicts as `C_W`.
     confusion: [[i64; 3]; 3],
-    /// `Σ_c max(0, σ(c) - 1)`, the exponent of `ψ2` in eq. 3.5.
+    /// `Σ_c max(0, σ(c) - 1)`, the exponent of `ψ2` in eq. 3.5, shared walls excepted.
     overlap: i64,
 }
 
@@ -152,7 +164,7 @@ impl Explanation {
     fn touch(&mut self, i: usize, dcover: i8, dwall: i8, ddoor: i8) {
         let c = &mut self.cells[i];
         let old = predicted(c.cover, c.wall, c.door);
-        let old_overlap = c.cover.saturating_sub(1) as i64;
+        let old_overlap = overlap(c.cover, c.wall);
         c.cover = c.cover.wrapping_add_signed(dcover);
         c.wall = c.wall.wrapping_add_signed(dwall);
         c.door = c.door.wrapping_add_signed(ddoor);
@@ -160,7 +172,7 @@ impl Explanation {
         let row = &mut self.confusion[c.cm as usize];
         row[old] -= 1;
         row[new] += 1;
-        self.overlap += c.cover.saturating_sub(1) as i64 - old_overlap;
+        self.overlap += overlap(c.cover, c.wall) - old_overlap;
     }
 
     /// Adds (`sign = 1`) or removes (`sign = -1`) a unit: its rectangle covers cells and its
@@ -230,7 +242,7 @@ impl Explanation {
         e.overlap = 0;
         for c in &e.cells {
             e.confusion[c.cm as usize][predicted(c.cover, c.wall, c.door)] += 1;
-            e.overlap += c.cover.saturating_sub(1) as i64;
+            e.overlap += overlap(c.cover, c.wall);
         }
         e
     }
@@ -265,8 +277,10 @@ mod tests {
         e.apply_unit(b, 1, 1);
         e.apply_door(d, 1);
         assert!(e.same_as(&Explanation::recompute(&m, &[a, b], 1, &[d])));
-        // overlap: a ∩ b = columns 4..6, rows 2..5 = 2 x 3 cells
-        assert_eq!(e.overlap(), 6);
+        // a ∩ b is columns 4..6 x rows 2..5, six cells. a's ring there is column 5 and row 4,
+        // b's is column 4 and row 2: (4, 4) and (5, 2) are wall for both (a shared wall, not
+        // penalised); the other four are overlaps.
+        assert_eq!(e.overlap(), 4);
         e.apply_unit(a, 1, -1);
         assert!(e.same_as(&Explanation::recompute(&m, &[b], 1, &[d])));
         e.apply_door(d, -1);

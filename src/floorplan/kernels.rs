@@ -54,7 +54,7 @@ pub struct KernelConfig {
 impl Default for KernelConfig {
     fn default() -> Self {
         KernelConfig {
-            min_side: 5,
+            min_side: 10,
             max_units: 200,
             h_b: 20.0,
             h_v: 20.0,
@@ -169,6 +169,7 @@ pub struct Proposer {
     scratch_weights: Vec<f64>,
     uniform_count: f64,
     min_side: i32,
+    wall: i32,
 }
 
 fn spans(s: i32, e: i32, limits: &DoorLimits) -> f64 {
@@ -185,70 +186,81 @@ fn interval_count(n: i64, min: i64) -> i64 {
     }
 }
 
-/// The other way to cut the L shape formed by `r` and `s` into two rectangles, as new
-/// rectangles for `r`'s slot and `s`'s slot; `None` unless `r ∪ s` is an L tiled by them.
-pub fn interchange(r: Rect, s: Rect) -> Option<(Rect, Rect)> {
-    if let Some((rest, full)) = l_case(r, s) {
+/// The other way to cut the L shape formed by `r` and `s` into two rectangles sharing a wall
+/// `t` cells deep, as new rectangles for `r`'s slot and `s`'s slot; `None` unless `r ∪ s` is
+/// such an L.
+pub fn interchange(r: Rect, s: Rect, t: i32) -> Option<(Rect, Rect)> {
+    if let Some((rest, full)) = l_case(r, s, t) {
         return Some((rest, full));
     }
-    l_case(s, r).map(|(rest, full)| (full, rest))
+    l_case(s, r, t).map(|(rest, full)| (full, rest))
 }
 
 /// `full` spans the bounding box in one direction and `part` sits beside it, aligned with one
 /// edge and shorter. Returns (rest of `full` beside the new band, the new full band).
-fn l_case(full: Rect, part: Rect) -> Option<(Rect, Rect)> {
+fn l_case(full: Rect, part: Rect, t: i32) -> Option<(Rect, Rect)> {
     let bx = full.x.min(part.x);
     let by = full.y.min(part.y);
     let br = full.right().max(part.right());
     let bb = full.bottom().max(part.bottom());
-    // full spans the whole width; part is above or below it.
-    if full.x == bx && full.right() == br && part.w < full.w && (part.y == full.bottom() || part.bottom() == full.y) {
+    // full spans the whole width; part is above or below it, sharing a wall t deep.
+    if full.x == bx
+        && full.right() == br
+        && part.w < full.w
+        && (part.y == full.bottom() - t || part.bottom() - t == full.y)
+    {
         if part.x != bx && part.right() != br {
             return None;
         }
         let band = Rect::new(part.x, by, part.w, bb - by);
         let rest = if part.x == bx {
-            Rect::new(part.right(), full.y, br - part.right(), full.h)
+            Rect::new(part.right() - t, full.y, br - part.right() + t, full.h)
         } else {
-            Rect::new(bx, full.y, part.x - bx, full.h)
+            Rect::new(bx, full.y, part.x - bx + t, full.h)
         };
         return Some((rest, band));
     }
     // full spans the whole height; part is left or right of it.
-    if full.y == by && full.bottom() == bb && part.h < full.h && (part.x == full.right() || part.right() == full.x) {
+    if full.y == by
+        && full.bottom() == bb
+        && part.h < full.h
+        && (part.x == full.right() - t || part.right() - t == full.x)
+    {
         if part.y != by && part.bottom() != bb {
             return None;
         }
         let band = Rect::new(bx, part.y, br - bx, part.h);
         let rest = if part.y == by {
-            Rect::new(full.x, part.bottom(), full.w, bb - part.bottom())
+            Rect::new(full.x, part.bottom() - t, full.w, bb - part.bottom() + t)
         } else {
-            Rect::new(full.x, by, full.w, part.y - by)
+            Rect::new(full.x, by, full.w, part.y - by + t)
         };
         return Some((rest, band));
     }
     None
 }
 
-/// The bounding box of two rectangles that tile it side by side, and the cut between them.
-pub fn merge_of(r: Rect, s: Rect) -> Option<(Rect, bool, i32)> {
-    if r.y == s.y && r.h == s.h && (r.right() == s.x || s.right() == r.x) {
+/// The bounding box of two rectangles that tile it side by side sharing a wall `t` deep, and
+/// the cut between them (the first column or row of the shared wall).
+pub fn merge_of(r: Rect, s: Rect, t: i32) -> Option<(Rect, bool, i32)> {
+    if r.y == s.y && r.h == s.h && (r.right() - t == s.x || s.right() - t == r.x) {
         let x = r.x.min(s.x);
-        return Some((Rect::new(x, r.y, r.w + s.w, r.h), true, r.x.max(s.x)));
+        return Some((Rect::new(x, r.y, r.w + s.w - t, r.h), true, r.x.max(s.x)));
     }
-    if r.x == s.x && r.w == s.w && (r.bottom() == s.y || s.bottom() == r.y) {
+    if r.x == s.x && r.w == s.w && (r.bottom() - t == s.y || s.bottom() - t == r.y) {
         let y = r.y.min(s.y);
-        return Some((Rect::new(r.x, y, r.w, r.h + s.h), false, r.y.max(s.y)));
+        return Some((Rect::new(r.x, y, r.w, r.h + s.h - t), false, r.y.max(s.y)));
     }
     None
 }
 
-/// The two parts of `u` cut before column (`vertical`) or row `k`.
-pub fn split_at(u: Rect, vertical: bool, k: i32) -> (Rect, Rect) {
+/// The two parts of `u` cut at column (`vertical`) or row `k`: they share the wall of depth
+/// `t` that starts there, as two rooms share the wall between them.
+pub fn split_at(u: Rect, vertical: bool, k: i32, t: i32) -> (Rect, Rect) {
     if vertical {
-        (Rect::new(u.x, u.y, k - u.x, u.h), Rect::new(k, u.y, u.right() - k, u.h))
+        (Rect::new(u.x, u.y, k + t - u.x, u.h), Rect::new(k, u.y, u.right() - k, u.h))
     } else {
-        (Rect::new(u.x, u.y, u.w, k - u.y), Rect::new(u.x, k, u.w, u.bottom() - k))
+        (Rect::new(u.x, u.y, u.w, k + t - u.y), Rect::new(u.x, k, u.w, u.bottom() - k))
     }
 }
 
@@ -281,6 +293,7 @@ impl Proposer {
             scratch_weights: Vec::new(),
             uniform_count,
             min_side,
+            wall,
         }
     }
 
@@ -303,24 +316,25 @@ impl Proposer {
     }
 
     fn cut_weight(s: &State, u: Rect, vertical: bool, k: i32, eps: f64) -> f64 {
-        // Wall evidence along the cut: occupied cells in the two new wall rings either side of
-        // it, inside the unit's interior (the Hough accumulator at 0 / 90 degrees, eq. 3.18),
-        // per ring row so that thick rings do not count a wall twice.
+        // Wall evidence along the cut: occupied cells in the new shared wall, inside the unit's
+        // interior (the Hough accumulator at 0 / 90 degrees, eq. 3.18), per ring row.
         let t = s.wall;
         let ev = if vertical {
-            s.occupied_in(Rect::new(k - t, u.y + t, 2 * t, u.h - 2 * t))
+            s.occupied_in(Rect::new(k, u.y + t, t, u.h - 2 * t))
         } else {
-            s.occupied_in(Rect::new(u.x + t, k - t, u.w - 2 * t, 2 * t))
+            s.occupied_in(Rect::new(u.x + t, k, u.w - 2 * t, t))
         };
         eps + ev as f64 / t as f64
     }
 
+    /// Cuts `k` leaving both parts at least `min_side` cells: the first part is `k + t - x`.
     fn cut_range(&self, u: Rect, vertical: bool) -> (i32, i32) {
         let m = self.min_side;
+        let t = self.wall;
         if vertical {
-            (u.x + m, u.right() - m)
+            (u.x + m - t, u.right() - m)
         } else {
-            (u.y + m, u.bottom() - m)
+            (u.y + m - t, u.bottom() - m)
         }
     }
 
@@ -530,7 +544,7 @@ impl Proposer {
                 let nv = (vb - va + 1).max(0) as usize;
                 let (vertical, k) =
                     if c < nv { (true, va + c as i32) } else { (false, self.cut_range(u, false).0 + (c - nv) as i32) };
-                let (first, second) = split_at(u, vertical, k);
+                let (first, second) = split_at(u, vertical, k, self.wall);
                 Some((Move::Split { index: i, first, second }, q))
             }
             Kernel::Merge | Kernel::Interchange => {
@@ -542,10 +556,10 @@ impl Proposer {
                 let j = self.scratch.draw(rng)?;
                 let (r, t) = (s.units[i].rect(), s.units[j].rect());
                 let m = if kernel == Kernel::Merge {
-                    let (merged, _, _) = merge_of(r, t)?;
+                    let (merged, _, _) = merge_of(r, t, self.wall)?;
                     Move::Merge { i, j, merged }
                 } else {
-                    let (a, b) = interchange(r, t)?;
+                    let (a, b) = interchange(r, t, self.wall)?;
                     Move::Repartition { i, j, a, b }
                 };
                 let q = self.q_pair(s, i, j);
@@ -620,7 +634,7 @@ impl Proposer {
             (Move::Split { index, .. }, _) => self.q_pair(s, *index, s.units.len() - 1),
             (Move::Merge { i, j, .. }, Undo::Merged { ui, uj, .. }) => {
                 let mi = if i > j { i - 1 } else { *i };
-                match merge_of(ui.rect(), uj.rect()) {
+                match merge_of(ui.rect(), uj.rect(), self.wall) {
                     Some((_, vertical, k)) => self.q_split(s, mi, vertical, k),
                     None => 0.0,
                 }
@@ -653,42 +667,47 @@ mod tests {
 
     #[test]
     fn interchange_is_its_own_inverse() {
-        // Top band full width, bottom-left part: an L.
-        let r = Rect::new(0, 0, 10, 4);
-        let s = Rect::new(0, 4, 6, 5);
-        let (a, b) = interchange(r, s).unwrap();
-        assert_eq!(b, Rect::new(0, 0, 6, 9));
-        assert_eq!(a, Rect::new(6, 0, 4, 4));
-        assert_eq!(interchange(a, b), Some((r, s)));
-        // All eight L orientations round-trip.
-        for (r, s) in [
-            (Rect::new(0, 0, 10, 4), Rect::new(4, 4, 6, 5)),
-            (Rect::new(0, 5, 10, 4), Rect::new(0, 0, 6, 5)),
-            (Rect::new(0, 5, 10, 4), Rect::new(4, 0, 6, 5)),
-            (Rect::new(0, 0, 4, 10), Rect::new(4, 0, 5, 6)),
-            (Rect::new(0, 0, 4, 10), Rect::new(4, 4, 5, 6)),
-            (Rect::new(5, 0, 4, 10), Rect::new(0, 0, 5, 6)),
-            (Rect::new(5, 0, 4, 10), Rect::new(0, 4, 5, 6)),
-        ] {
-            let (a, b) = interchange(r, s).unwrap_or_else(|| panic!("{r:?} {s:?}"));
-            assert_eq!(a.area() + b.area(), r.area() + s.area());
-            assert!(a.intersection(&b).is_none());
-            assert_eq!(interchange(a, b), Some((r, s)), "{r:?} {s:?}");
+        for t in 1..=3 {
+            // Top band full width, bottom-left part sharing a wall t deep: an L.
+            let r = Rect::new(0, 0, 10, 4 + t);
+            let s = Rect::new(0, 4, 6, 5 + t);
+            let (a, b) = interchange(r, s, t).unwrap();
+            assert_eq!(b, Rect::new(0, 0, 6, 9 + t));
+            assert_eq!(interchange(a, b, t), Some((r, s)));
+            // All eight L orientations round-trip.
+            for (r, s) in [
+                (Rect::new(0, 0, 10, 4 + t), Rect::new(4, 4, 6, 5)),
+                (Rect::new(0, 5 - t, 10, 4 + t), Rect::new(0, 0, 6, 5)),
+                (Rect::new(0, 5 - t, 10, 4 + t), Rect::new(4, 0, 6, 5)),
+                (Rect::new(0, 0, 4 + t, 10), Rect::new(4, 0, 5, 6)),
+                (Rect::new(0, 0, 4 + t, 10), Rect::new(4, 4, 5, 6)),
+                (Rect::new(5 - t, 0, 4 + t, 10), Rect::new(0, 0, 5, 6)),
+                (Rect::new(5 - t, 0, 4 + t, 10), Rect::new(0, 4, 5, 6)),
+            ] {
+                let (a, b) = interchange(r, s, t).unwrap_or_else(|| panic!("{r:?} {s:?} t={t}"));
+                // The union is the same L: areas add up the same with the shared wall counted once.
+                let overlap = |p: Rect, q: Rect| p.intersection(&q).map_or(0, |i| i.area());
+                assert_eq!(a.area() + b.area() - overlap(a, b), r.area() + s.area() - overlap(r, s));
+                assert_eq!(interchange(a, b, t), Some((r, s)), "{r:?} {s:?} t={t}");
+            }
+            // Not an L: a plain split, a gap, a T.
+            assert_eq!(interchange(Rect::new(0, 0, 5 + t, 5), Rect::new(5, 0, 5, 5), t), None);
+            assert_eq!(interchange(Rect::new(0, 0, 10, 4), Rect::new(0, 5, 6, 5), t), None);
+            assert_eq!(interchange(Rect::new(0, 0, 10, 4 + t), Rect::new(2, 4, 6, 5), t), None);
         }
-        // Not an L: a plain split, a gap, a T.
-        assert_eq!(interchange(Rect::new(0, 0, 5, 5), Rect::new(5, 0, 5, 5)), None);
-        assert_eq!(interchange(Rect::new(0, 0, 10, 4), Rect::new(0, 5, 6, 5)), None);
-        assert_eq!(interchange(Rect::new(0, 0, 10, 4), Rect::new(2, 4, 6, 5)), None);
     }
 
     #[test]
     fn merge_and_split_are_inverse() {
         let u = Rect::new(3, 4, 20, 9);
-        for (vertical, k) in [(true, 10), (false, 8)] {
-            let (a, b) = split_at(u, vertical, k);
-            assert_eq!(merge_of(a, b), Some((u, vertical, k)));
-            assert_eq!(merge_of(b, a), Some((u, vertical, k)));
+        for t in 1..=3 {
+            for (vertical, k) in [(true, 10), (false, 8)] {
+                let (a, b) = split_at(u, vertical, k, t);
+                assert!(a.intersection(&b).is_some(), "the parts share a wall");
+                assert_eq!(merge_of(a, b, t), Some((u, vertical, k)));
+                assert_eq!(merge_of(b, a, t), Some((u, vertical, k)));
+            }
+            assert_eq!(merge_of(Rect::new(0, 0, 5, 5), Rect::new(6, 0, 5, 5), t), None);
         }
-        assert_eq!(merge_of(Rect::new(0, 0, 5, 5), Rect::new(6, 0, 5, 5)), None);
     }
 }

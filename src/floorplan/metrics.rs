@@ -80,3 +80,140 @@ pub fn prediction_rate_in(map: &Grid<Cell>, world: &World, region: Option<&Grid<
         hits as f64 / total as f64
     }
 }
+
+/// Segmentation quality by the room-segmentation benchmark's scoring (Bormann et al. 2016).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct SegmentationScore {
+    /// Mean over predicted segments of their best overlap with a truth segment, over their size.
+    pub precision: f64,
+    /// Mean over truth segments of their best overlap with a predicted segment, over their size.
+    pub recall: f64,
+    /// Predicted segments scored (after dropping small ones).
+    pub predicted: usize,
+    /// Truth segments scored.
+    pub truth: usize,
+}
+
+/// Segments of 100 cells or fewer are dropped on both sides, as the benchmark does.
+pub const MIN_SEGMENT_CELLS: usize = 101;
+
+/// Scores predicted labels against truth labels (0 = no segment on either side).
+pub fn score_segmentation(predicted: &Grid<u32>, truth: &Grid<u32>) -> SegmentationScore {
+    use std::collections::BTreeMap;
+    let mut pred_size: BTreeMap<u32, usize> = BTreeMap::new();
+    let mut truth_size: BTreeMap<u32, usize> = BTreeMap::new();
+    let mut overlap: BTreeMap<(u32, u32), usize> = BTreeMap::new();
+    for (&p, &t) in predicted.cells().iter().zip(truth.cells()) {
+        if p != 0 {
+            *pred_size.entry(p).or_default() += 1;
+        }
+        if t != 0 {
+            *truth_size.entry(t).or_default() += 1;
+        }
+        if p != 0 && t != 0 {
+            *overlap.entry((p, t)).or_default() += 1;
+        }
+    }
+    pred_size.retain(|_, n| *n >= MIN_SEGMENT_CELLS);
+    truth_size.retain(|_, n| *n >= MIN_SEGMENT_CELLS);
+    let mut best_for_pred: BTreeMap<u32, usize> = BTreeMap::new();
+    let mut best_for_truth: BTreeMap<u32, usize> = BTreeMap::new();
+    for (&(p, t), &n) in &overlap {
+        if pred_size.contains_key(&p) && truth_size.contains_key(&t) {
+            let b = best_for_pred.entry(p).or_default();
+            *b = (*b).max(n);
+            let b = best_for_truth.entry(t).or_default();
+            *b = (*b).max(n);
+        }
+    }
+    let mean = |sizes: &BTreeMap<u32, usize>, best: &BTreeMap<u32, usize>| {
+        if sizes.is_empty() {
+            return 0.0;
+        }
+        sizes.iter().map(|(k, &n)| *best.get(k).unwrap_or(&0) as f64 / n as f64).sum::<f64>() / sizes.len() as f64
+    };
+    SegmentationScore {
+        precision: mean(&pred_size, &best_for_pred),
+        recall: mean(&truth_size, &best_for_truth),
+        predicted: pred_size.len(),
+        truth: truth_size.len(),
+    }
+}
+
+/// Truth segments from a drawn ground-truth image: the 4-connected regions of cells marked
+/// `true` (white in the benchmark's images), numbered from 1.
+pub fn regions(white: &Grid<bool>) -> Grid<u32> {
+    let (w, h) = (white.width(), white.height());
+    let mut out = Grid::new(w, h, 0u32);
+    let mut next = 0;
+    let mut stack = Vec::new();
+    for start in 0..w * h {
+        if !white.cells()[start] || out.cells()[start] != 0 {
+            continue;
+        }
+        next += 1;
+        out.cells_mut()[start] = next;
+        stack.push(start);
+        while let Some(i) = stack.pop() {
+            let (x, y) = (i % w, i / w);
+            for (nx, ny) in [(x.wrapping_sub(1), y), (x + 1, y), (x, y.wrapping_sub(1)), (x, y + 1)] {
+                if nx < w && ny < h {
+                    let j = ny * w + nx;
+                    if white.cells()[j] && out.cells()[j] == 0 {
+                        out.cells_mut()[j] = next;
+                        stack.push(j);
+                    }
+                }
+            }
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn perfect_and_split_segmentations() {
+        // Truth: two 20x20 halves.
+        let truth = Grid::from_vec(40, 20, (0..800).map(|i| if i % 40 < 20 { 1 } else { 2 }).collect()).unwrap();
+        let s = score_segmentation(&truth, &truth);
+        assert_eq!((s.precision, s.recall, s.predicted, s.truth), (1.0, 1.0, 2, 2));
+        // One segment over everything: precision 0.5 (best overlap 400 of 800), recall 1.
+        let one = Grid::new(40, 20, 7u32);
+        let s = score_segmentation(&one, &truth);
+        assert_eq!((s.precision, s.recall), (0.5, 1.0));
+        // Over-segmentation into four: precision 1, recall 0.5.
+        let four = Grid::from_vec(40, 20, (0..800).map(|i| 1 + (i % 40 / 10) as u32).collect()).unwrap();
+        let s = score_segmentation(&four, &truth);
+        assert_eq!((s.precision, s.recall), (1.0, 0.5));
+        // Small segments (<= 100 cells) are dropped.
+        let tiny = Grid::from_vec(40, 20, (0..800).map(|i| if i < 100 { 9 } else { 0 }).collect()).unwrap();
+        assert_eq!(score_segmentation(&tiny, &truth).predicted, 0);
+    }
+
+    #[test]
+    fn regions_are_four_connected() {
+        let w = Grid::from_vec(
+            5,
+            3,
+            vec![true, true, false, true, true, false, false, true, false, false, true, false, false, true, true],
+        )
+        .unwrap();
+        let r = regions(&w);
+        assert_eq!(r.cells(), &[1, 1, 0, 2, 2, 0, 0, 3, 0, 0, 4, 0, 0, 5, 5]);
+    }
+}
+
+/// The confusion counts `n[C_M][C_W]` of a world on the map's own cells (classes indexed
+/// free 0, unknown 1, occupied 2): where the world's predictions (eq. 3.8) and the map agree
+/// (the diagonal, whose share is `K(W, M)`) and where they do not.
+pub fn confusion(map: &Grid<Cell>, world: &World) -> [[u64; 3]; 3] {
+    let p = predicted_map(map.width(), map.height(), world);
+    let mut n = [[0u64; 3]; 3];
+    for (&m, &w) in map.cells().iter().zip(p.cells()) {
+        n[m as usize][w as usize] += 1;
+    }
+    n
+}

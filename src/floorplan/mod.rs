@@ -5,9 +5,11 @@
 
 pub mod chain;
 pub mod explain;
+pub mod graph;
 pub mod kernels;
 pub mod metrics;
 pub mod posterior;
+pub mod rooms;
 pub mod state;
 pub mod synth;
 pub mod world;

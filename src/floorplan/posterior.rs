@@ -2,9 +2,15 @@
 //!
 //! * Likelihood (eq. 3.6): a product over cells of the sensor table `p(C_M | C_W)` (Tab. 3.1).
 //! * Prior (eq. 3.3): `α1 · α2`. `α2 = ψ2^Σ(σ(c)-1)` penalises cells covered by more than one
-//!   unit (eq. 3.5). `α1 = ψ1^θ` penalises corners that are not right angles (eq. 3.4); units
+//!   unit (eq. 3.5), except cells that are wall for every unit covering them: neighbouring
+//!   rooms share their walls, and a shared wall is not an overlap (an extension of the
+//!   dissertation's model, which left the question open). `α1 = ψ1^θ` penalises corners that are not right angles (eq. 3.4); units
 //!   here are exact axis-aligned rectangles in the world frame, so every corner is a right
 //!   angle, `θ = 0` and `α1 = 1` structurally — there is nothing for it to penalise.
+//!
+//! * A complexity prior `exp(-λ n)` on the number of units `n` (an extension): without it,
+//!   thin units lying along thick, jagged walls buy a few matched cells each, and the world
+//!   fills with slivers no person would draw.
 //!
 //! A temperature `T` flattens the posterior to `p^(1/T)`; `T = 1` is the papers' model.
 
@@ -60,11 +66,13 @@ pub struct PosteriorConfig {
     pub overlap_penalty: f64,
     /// Temperature `T`: the chain samples `p(W|M)^(1/T)`.
     pub temperature: f64,
+    /// `λ`: log prior cost of each unit (nats). 0 is the dissertation's prior.
+    pub unit_cost: f64,
 }
 
 impl Default for PosteriorConfig {
     fn default() -> Self {
-        PosteriorConfig { sensor: SensorModel::default(), overlap_penalty: 0.2, temperature: 1.0 }
+        PosteriorConfig { sensor: SensorModel::default(), overlap_penalty: 0.2, temperature: 1.0, unit_cost: 30.0 }
     }
 }
 
@@ -74,6 +82,9 @@ impl PosteriorConfig {
         self.sensor.validate()?;
         if !(self.overlap_penalty.is_finite() && self.overlap_penalty > 0.0 && self.overlap_penalty <= 1.0) {
             return Err(format!("overlap_penalty {} is not in (0, 1]", self.overlap_penalty));
+        }
+        if !(self.unit_cost.is_finite() && self.unit_cost >= 0.0) {
+            return Err(format!("unit_cost {} must be a non-negative number", self.unit_cost));
         }
         if !(self.temperature.is_finite() && self.temperature > 0.0) {
             return Err(format!("temperature {} must be a positive number", self.temperature));
@@ -87,6 +98,7 @@ impl PosteriorConfig {
 pub struct Posterior {
     log_sensor: [[f64; 3]; 3],
     log_overlap: f64,
+    unit_cost: f64,
     inv_temperature: f64,
 }
 
@@ -96,12 +108,13 @@ impl Posterior {
         Posterior {
             log_sensor: c.sensor.log_table(),
             log_overlap: libm::log(c.overlap_penalty),
+            unit_cost: c.unit_cost,
             inv_temperature: 1.0 / c.temperature,
         }
     }
 
-    /// `log p(M|W) + log α2` (untempered), up to the constant `log η`.
-    pub fn log_posterior(&self, e: &Explanation) -> f64 {
+    /// `log p(M|W) + log α2 - λ n` for a world of `units` units (untempered), up to a constant.
+    pub fn log_posterior(&self, e: &Explanation, units: usize) -> f64 {
         let n = e.confusion();
         let mut s = 0.0;
         for (counts, logs) in n.iter().zip(&self.log_sensor) {
@@ -109,12 +122,12 @@ impl Posterior {
                 s += *c as f64 * l;
             }
         }
-        s + e.overlap() as f64 * self.log_overlap
+        s + e.overlap() as f64 * self.log_overlap - self.unit_cost * units as f64
     }
 
     /// The tempered log density the chain targets.
-    pub fn log_target(&self, e: &Explanation) -> f64 {
-        self.log_posterior(e) * self.inv_temperature
+    pub fn log_target(&self, e: &Explanation, units: usize) -> f64 {
+        self.log_posterior(e, units) * self.inv_temperature
     }
 
     /// `1 / T`.

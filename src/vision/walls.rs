@@ -126,9 +126,14 @@ fn faces(lines: &[WallLine]) -> Vec<i32> {
     v
 }
 
-/// Unit candidates with their weights `ω_r` (eq. 3.10), strongest first.
+/// Unit candidates with their weights, strongest first: `ω_r` of eq. 3.10 (the weakest wall),
+/// times `(1 - f)^2` where `f` is the strongest detected wall line crossing the interior, so
+/// that rectangles spanning several rooms are proposed less often than the rooms, times the
+/// fourth power of the free share of the interior, so that rectangles over unexplored space
+/// are proposed less often than rooms.
 pub fn candidates(grid: &Grid<Cell>, min_side: i32, c: &WallConfig) -> Vec<(Rect, f64)> {
     let occ = AreaCounts::new(&dilate(grid, c.tolerance), Cell::Occupied);
+    let free = AreaCounts::new(grid, Cell::Free);
     let xs = faces(&wall_lines(grid, false, c));
     let ys = faces(&wall_lines(grid, true, c));
     let frac = |r: Rect| occ.count(r) as f64 / r.area().max(1) as f64;
@@ -155,7 +160,23 @@ pub fn candidates(grid: &Grid<Cell>, min_side: i32, c: &WallConfig) -> Vec<(Rect
                     let fr = frac(Rect::new(x1, y0, 1, h));
                     let weight = f0.min(f1).min(fl).min(fr);
                     if weight >= c.min_wall_weight {
-                        out.push((Rect::new(x0, y0, w, h), weight));
+                        // A wall line crossing the interior means the candidate spans two rooms:
+                        // keep it (the lines may be spurious) but propose it less often.
+                        let inner_h = ys
+                            .iter()
+                            .filter(|&&y| y > y0 + 2 && y < y1 - 2)
+                            .map(|&y| frac(Rect::new(x0, y, w, 1)))
+                            .fold(0.0, f64::max);
+                        let inner_v = xs
+                            .iter()
+                            .filter(|&&x| x > x0 + 2 && x < x1 - 2)
+                            .map(|&x| frac(Rect::new(x, y0, 1, h)))
+                            .fold(0.0, f64::max);
+                        let open = 1.0 - inner_h.max(inner_v);
+                        // Rooms are mostly free inside; a rectangle over unexplored space is not.
+                        let inside = Rect::new(x0 + 1, y0 + 1, w - 2, h - 2);
+                        let fill = free.count(inside) as f64 / inside.area().max(1) as f64;
+                        out.push((Rect::new(x0, y0, w, h), weight * open * open * fill.powi(4)));
                     }
                 }
             }
@@ -267,7 +288,7 @@ pub fn ring_depth(grid: &Grid<Cell>, angle: f64) -> i32 {
         acc += hist[d];
         2 * acc >= total
     });
-        (median.unwrap_or(2) as i32 - 1).clamp(1, 4)
+    (median.unwrap_or(2) as i32 - 1).clamp(1, 4)
 }
 
 #[cfg(test)]
@@ -300,7 +321,7 @@ mod tests {
                     }
                 }
             }
-                        assert_eq!(ring_depth(&g, 0.0), (d as i32 - 1).max(1));
+            assert_eq!(ring_depth(&g, 0.0), (d as i32 - 1).max(1));
         }
         assert_eq!(ring_depth(&Grid::new(5, 5, Cell::Free), 0.0), 1);
     }

@@ -4,8 +4,10 @@
 //! wrong.
 
 mod args;
+mod floorplan;
 mod info;
 mod render;
+mod score;
 mod synth;
 
 use std::process::ExitCode;
@@ -17,6 +19,9 @@ Usage:
   ksmcmc info MAP                          size and cell classes of a map
   ksmcmc render MAP [--world world.json] --out out.png
                                            draw a classified map, optionally with a world over it
+    ksmcmc floorplan MAP --out DIR [--iterations N] [--seed S] [--time-limit SEC]
+                                           explain a map with a semantic floor plan
+  ksmcmc score LABELS TRUTH                segmentation precision and recall
   ksmcmc synth --seed N --out DIR [options]
                                            generate a synthetic floor plan with ground truth
   ksmcmc help                              this text
@@ -39,6 +44,8 @@ fn main() -> ExitCode {
     let result = match command.to_str() {
         Some("info") => info::run(rest),
         Some("render") => render::run(rest),
+        Some("floorplan") => floorplan::run(rest),
+        Some("score") => score::run(rest),
         Some("synth") => synth::run(rest),
         Some("help" | "--help" | "-h") => {
             print!("{USAGE}");

@@ -447,12 +447,13 @@ fn unchecked_worlds_do_not_panic() {
         let p = render(&map, Some(&w), &options);
         assert_eq!((p.width(), p.height()), (32, 24));
     }
-    // What lies on the map is still drawn: door 3 runs across all of row 3; the diagonal door 2
-    // is skipped.
+    // What lies on the map is still drawn: door 3 runs across all of row 3; door 2 is the
+    // rectangle of cells (0, 0) to (5, 5) (doors are rectangles through thick walls).
     let p = render(&map, Some(&world), &no_labels(1));
     assert_eq!(rgb(&p, 0, 3), CYAN);
     assert_eq!(rgb(&p, 15, 3), CYAN);
-    assert_eq!(rgb(&p, 0, 0), WHITE);
+    assert_eq!(rgb(&p, 0, 0), CYAN);
+    assert_eq!(rgb(&p, 5, 5), CYAN);
 }
 
 /// `shared/datasets`, beside the repository.

@@ -359,9 +359,6 @@ impl World {
                     return bad(format!("world.json: door {} names unit {id}, which does not exist", d.id));
                 }
             }
-            if d.x0 != d.x1 && d.y0 != d.y1 {
-                return bad(format!("world.json: door {} is neither horizontal nor vertical", d.id));
-            }
             for (x, y) in [(d.x0, d.y0), (d.x1, d.y1)] {
                 if x < 0 || y < 0 || x as i64 >= ww || y as i64 >= wh {
                     return bad(format!("world.json: door {} has a cell ({x},{y}) outside the world", d.id));

@@ -31,6 +31,9 @@ pub struct WallConfig {
     /// jaggedly (more so after rotating the map), so a wall cell counts as matched when an
     /// occupied cell lies within this distance.
     pub tolerance: i32,
+    /// Exponent applied to candidate weights before ADD draws from them: above 1, clear rooms
+    /// are proposed (and so added) well before ambiguous rectangles.
+    pub sharpness: f64,
 }
 
 impl Default for WallConfig {
@@ -42,6 +45,7 @@ impl Default for WallConfig {
             min_wall_weight: 0.35,
             max_candidates: 60_000,
             tolerance: 2,
+            sharpness: 3.0,
         }
     }
 }
@@ -134,6 +138,9 @@ fn faces(lines: &[WallLine]) -> Vec<i32> {
 pub fn candidates(grid: &Grid<Cell>, min_side: i32, c: &WallConfig) -> Vec<(Rect, f64)> {
     let occ = AreaCounts::new(&dilate(grid, c.tolerance), Cell::Occupied);
     let free = AreaCounts::new(grid, Cell::Free);
+    // Walls crossing a candidate are judged on the raw map: dilation would close doors.
+    let raw = AreaCounts::new(grid, Cell::Occupied);
+    let raw_frac = |r: Rect| raw.count(r) as f64 / r.area().max(1) as f64;
     let xs = faces(&wall_lines(grid, false, c));
     let ys = faces(&wall_lines(grid, true, c));
     let frac = |r: Rect| occ.count(r) as f64 / r.area().max(1) as f64;
@@ -165,18 +172,21 @@ pub fn candidates(grid: &Grid<Cell>, min_side: i32, c: &WallConfig) -> Vec<(Rect
                         let inner_h = ys
                             .iter()
                             .filter(|&&y| y > y0 + 2 && y < y1 - 2)
-                            .map(|&y| frac(Rect::new(x0, y, w, 1)))
+                            .map(|&y| raw_frac(Rect::new(x0, y, w, 1)))
                             .fold(0.0, f64::max);
                         let inner_v = xs
                             .iter()
                             .filter(|&&x| x > x0 + 2 && x < x1 - 2)
-                            .map(|&x| frac(Rect::new(x, y0, 1, h)))
+                            .map(|&x| raw_frac(Rect::new(x, y0, 1, h)))
                             .fold(0.0, f64::max);
                         let open = 1.0 - inner_h.max(inner_v);
                         // Rooms are mostly free inside; a rectangle over unexplored space is not.
                         let inside = Rect::new(x0 + 1, y0 + 1, w - 2, h - 2);
                         let fill = free.count(inside) as f64 / inside.area().max(1) as f64;
-                        out.push((Rect::new(x0, y0, w, h), weight * open * open * fill.powi(4)));
+                        let score = libm::pow(weight * open * open * fill.powi(4), c.sharpness);
+                        if score > 0.0 {
+                            out.push((Rect::new(x0, y0, w, h), score));
+                        }
                     }
                 }
             }
@@ -233,15 +243,14 @@ pub fn dilate(grid: &Grid<Cell>, r: i32) -> Grid<Cell> {
 /// The depth of unit wall rings that best explains this map's walls: the typical wall
 /// thickness, measured on the original map along the two wall directions of its dominant
 /// orientation `angle` (radians): for each occupied cell, the shorter of the two runs of
-/// occupied cells through it along those axes; the median `d` over cells. The ring depth is
-/// `d - 1`, clamped to 1..=4.
+/// occupied cells through it along those axes; the median `d` over cells, clamped to 1..=4.
 ///
-/// Why `d - 1`: two units sharing a wall `d` thick each put a ring `d - 1` deep into it, so
-/// together they predict all of it while overlapping on only `d - 2` rows, and an outer wall
-/// loses one row at most. Scanned walls are thin and jagged and give 1, the dissertation's
-/// model; cleanly drawn walls are thicker. Measured on the original map, not the rotated
-/// world frame, so that resampling does not double thin walls. On our maps this rule picked
-/// the best or nearly the best depth for K(W, M) (see BENCHMARKS.md).
+/// Why the whole thickness: a ring as deep as the wall predicts every cell of an outer wall,
+/// and two units sharing an inner wall both lay their rings on it (a shared wall costs no
+/// overlap penalty, see [`crate::floorplan::posterior`]). Scanned walls are thin and give 1 or
+/// 2; the dissertation's model is 1. Measured on the original map, not the rotated world
+/// frame, so that resampling does not double thin walls. On our maps this rule picked the
+/// best or nearly the best depth for K(W, M) (see BENCHMARKS.md).
 pub fn ring_depth(grid: &Grid<Cell>, angle: f64) -> i32 {
     let (w, h) = (grid.width() as i64, grid.height() as i64);
     let occ = |x: f64, y: f64| {
@@ -288,7 +297,7 @@ pub fn ring_depth(grid: &Grid<Cell>, angle: f64) -> i32 {
         acc += hist[d];
         2 * acc >= total
     });
-    (median.unwrap_or(2) as i32 - 1).clamp(1, 4)
+    (median.unwrap_or(1) as i32).clamp(1, 4)
 }
 
 #[cfg(test)]
@@ -321,7 +330,7 @@ mod tests {
                     }
                 }
             }
-            assert_eq!(ring_depth(&g, 0.0), (d as i32 - 1).max(1));
+            assert_eq!(ring_depth(&g, 0.0), d as i32);
         }
         assert_eq!(ring_depth(&Grid::new(5, 5, Cell::Free), 0.0), 1);
     }
@@ -337,22 +346,31 @@ mod tests {
 
     #[test]
     fn two_rooms_give_their_rectangles() {
-        // Two rooms side by side sharing a 2-cell wall: columns 0, 20-21, 40; rows 0 and 15.
-        let mut g = Grid::new(41, 16, Cell::Free);
-        for y in 0..16 {
+        // Two rooms side by side sharing a 2-cell wall: columns 0, 20-21, 40; rows 0 and 39.
+        let mut g = Grid::new(41, 40, Cell::Free);
+        for y in 0..40 {
             for x in [0, 20, 21, 40] {
                 *g.at_mut(x, y) = Cell::Occupied;
             }
         }
         for x in 0..41 {
             *g.at_mut(x, 0) = Cell::Occupied;
-            *g.at_mut(x, 15) = Cell::Occupied;
+            *g.at_mut(x, 39) = Cell::Occupied;
+        }
+        // A door through the middle wall.
+        for y in 18..22 {
+            *g.at_mut(20, y) = Cell::Free;
+            *g.at_mut(21, y) = Cell::Free;
         }
         let c = candidates(&g, 5, &WallConfig::default());
         let rects: Vec<Rect> = c.iter().map(|x| x.0).collect();
-        assert!(rects.contains(&Rect::new(0, 0, 21, 16)), "left room with the wall's left face");
-        assert!(rects.contains(&Rect::new(21, 0, 20, 16)), "right room");
-        assert!(rects.contains(&Rect::new(0, 0, 41, 16)), "both rooms as one");
-        assert!(c.iter().all(|x| x.1 >= 0.35 && x.1 <= 1.0));
+        assert!(rects.contains(&Rect::new(0, 0, 21, 40)), "left room with the wall's left face");
+        assert!(rects.contains(&Rect::new(21, 0, 20, 40)), "right room");
+        assert!(rects.contains(&Rect::new(0, 0, 41, 40)), "both rooms as one");
+        assert!(c.iter().all(|x| x.1 > 0.0 && x.1 <= 1.0));
+        // The wall between the rooms crosses the combined rectangle: each room outweighs it.
+        let weight = |r: Rect| c.iter().find(|x| x.0 == r).unwrap().1;
+        assert!(weight(Rect::new(0, 0, 21, 40)) > 10.0 * weight(Rect::new(0, 0, 41, 40)));
+        assert!(weight(Rect::new(21, 0, 20, 40)) > 10.0 * weight(Rect::new(0, 0, 41, 40)));
     }
 }

@@ -170,6 +170,18 @@ pub fn regions(white: &Grid<bool>) -> Grid<u32> {
     out
 }
 
+/// The confusion counts `n[C_M][C_W]` of a world on the map's own cells (classes indexed
+/// free 0, unknown 1, occupied 2): where the world's predictions (eq. 3.8) and the map agree
+/// (the diagonal, whose share is `K(W, M)`) and where they do not.
+pub fn confusion(map: &Grid<Cell>, world: &World) -> [[u64; 3]; 3] {
+    let p = predicted_map(map.width(), map.height(), world);
+    let mut n = [[0u64; 3]; 3];
+    for (&m, &w) in map.cells().iter().zip(p.cells()) {
+        n[m as usize][w as usize] += 1;
+    }
+    n
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -204,16 +216,4 @@ mod tests {
         let r = regions(&w);
         assert_eq!(r.cells(), &[1, 1, 0, 2, 2, 0, 0, 3, 0, 0, 4, 0, 0, 5, 5]);
     }
-}
-
-/// The confusion counts `n[C_M][C_W]` of a world on the map's own cells (classes indexed
-/// free 0, unknown 1, occupied 2): where the world's predictions (eq. 3.8) and the map agree
-/// (the diagonal, whose share is `K(W, M)`) and where they do not.
-pub fn confusion(map: &Grid<Cell>, world: &World) -> [[u64; 3]; 3] {
-    let p = predicted_map(map.width(), map.height(), world);
-    let mut n = [[0u64; 3]; 3];
-    for (&m, &w) in map.cells().iter().zip(p.cells()) {
-        n[m as usize][w as usize] += 1;
-    }
-    n
 }

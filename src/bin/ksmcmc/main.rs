@@ -4,6 +4,8 @@
 //! wrong.
 
 mod args;
+mod bench;
+mod evaluate;
 mod floorplan;
 mod info;
 mod render;
@@ -21,7 +23,9 @@ Usage:
                                            draw a classified map, optionally with a world over it
     ksmcmc floorplan MAP --out DIR [--iterations N] [--seed S] [--time-limit SEC]
                                            explain a map with a semantic floor plan
-  ksmcmc score LABELS TRUTH                segmentation precision and recall
+    ksmcmc score LABELS TRUTH                segmentation precision and recall
+    ksmcmc bench                             speed of the engine (for BENCHMARKS.md)
+  ksmcmc evaluate                          quality on real and synthetic maps (BENCHMARKS.md)
   ksmcmc synth --seed N --out DIR [options]
                                            generate a synthetic floor plan with ground truth
   ksmcmc help                              this text
@@ -45,7 +49,9 @@ fn main() -> ExitCode {
         Some("info") => info::run(rest),
         Some("render") => render::run(rest),
         Some("floorplan") => floorplan::run(rest),
-        Some("score") => score::run(rest),
+                Some("score") => score::run(rest),
+                Some("bench") => bench::run(rest),
+        Some("evaluate") => evaluate::run(rest),
         Some("synth") => synth::run(rest),
         Some("help" | "--help" | "-h") => {
             print!("{USAGE}");

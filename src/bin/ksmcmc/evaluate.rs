@@ -1,0 +1,173 @@
+//! `ksmcmc evaluate`: quality on real and synthetic maps, for BENCHMARKS.md.
+
+use crate::args::{self, CliError};
+use crate::score::truth_regions;
+use ksmcmc::floorplan::metrics::{prediction_rate, score_segmentation};
+use ksmcmc::floorplan::rooms::RoomConfig;
+use ksmcmc::floorplan::synth::{generate, SynthConfig};
+use ksmcmc::floorplan::{Chain, ChainConfig};
+use ksmcmc::grid::{Classifier, Grid, OccupancyMap};
+use std::ffi::OsString;
+use std::path::{Path, PathBuf};
+
+const HELP: &str = "\
+Usage: ksmcmc evaluate [--datasets DIR] [--iterations N] [--seeds K] [--config FILE] [--only SET]
+
+Prints the quality tables of BENCHMARKS.md:
+  bormann    room-segmentation precision and recall on the Bormann et al. maps in DIR/bormann2016
+             (plain and furnished), scored as the benchmark does (see `ksmcmc score`)
+  synthetic  K(W,M), precision and recall against the truth of K generated maps per kind
+  cartesium  K(W,M) on DIR/radish/ubremen-cartesium.png over K seeds
+DIR defaults to ../shared/datasets, N to 20000 iterations, K to 6. --only runs one set.
+";
+
+struct Opts {
+    iterations: u64,
+    seeds: u64,
+    config: ChainConfig,
+}
+
+fn explain(map: &OccupancyMap, o: &Opts, seed: u64) -> Result<Chain, CliError> {
+    let mut chain = Chain::new(map, o.config.clone(), seed).map_err(|e| CliError::Failed(e.to_string()))?;
+    chain.step(o.iterations);
+    Ok(chain)
+}
+
+fn mean(v: &[f64]) -> f64 {
+    v.iter().sum::<f64>() / v.len().max(1) as f64
+}
+
+fn bormann(dir: &Path, o: &Opts) -> Result<(), CliError> {
+    let dir = dir.join("bormann2016");
+    let mut names: Vec<String> = std::fs::read_dir(&dir)
+        .map_err(|e| args::failed(dir.display(), e))?
+        .filter_map(|e| e.ok()?.file_name().into_string().ok())
+        .filter_map(|n| n.strip_suffix("_gt_segmentation.png").map(str::to_string))
+        .collect();
+    names.sort();
+    println!("\n### Room segmentation, Bormann et al. maps ({} iterations, seed 1)\n", o.iterations);
+    println!("| map | precision | recall | precision (furnished) | recall (furnished) |");
+    println!("|---|---|---|---|---|");
+    let (mut p, mut r, mut pf, mut rf) = (vec![], vec![], vec![], vec![]);
+    for name in &names {
+        let truth = truth_regions(&dir.join(format!("{name}_gt_segmentation.png")))?;
+        let mut cells = Vec::new();
+        for suffix in ["", "_furnitures"] {
+            let path = dir.join(format!("{name}{suffix}.png"));
+            let mut map = args::load_map(&path)?;
+            map.set_classifier(Classifier::auto()).map_err(|e| args::failed("classifier", e))?;
+            let chain = explain(&map, o, 1)?;
+            let labels = chain.best_labels(&RoomConfig::default()).map(|&l| l as u32);
+            let s = score_segmentation(&labels, &truth);
+            cells.push(s);
+        }
+        println!(
+            "| {name} | {:.3} | {:.3} | {:.3} | {:.3} |",
+            cells[0].precision, cells[0].recall, cells[1].precision, cells[1].recall
+        );
+        p.push(cells[0].precision);
+        r.push(cells[0].recall);
+        pf.push(cells[1].precision);
+        rf.push(cells[1].recall);
+    }
+    println!("| **mean** | **{:.3}** | **{:.3}** | **{:.3}** | **{:.3}** |", mean(&p), mean(&r), mean(&pf), mean(&rf));
+    Ok(())
+}
+
+fn synthetic(o: &Opts) -> Result<(), CliError> {
+    println!("\n### Synthetic maps ({} iterations, {} generator seeds per kind)\n", o.iterations, o.seeds);
+    println!("| kind | K(W,M) mean | K(W,M) min | precision | recall | units (truth) |");
+    println!("|---|---|---|---|---|---|");
+    let kinds: Vec<(&str, SynthConfig)> = vec![
+        ("office 400x300", SynthConfig::default()),
+        ("rotated 20 deg", SynthConfig { rotation_deg: 20.0, ..SynthConfig::default() }),
+        ("furnished", SynthConfig { clutter: 0.1, ..SynthConfig::default() }),
+        ("partly unexplored", SynthConfig { unexplored: 0.4, ..SynthConfig::default() }),
+        ("large 1237x672", SynthConfig { width: 1237, height: 672, halls: 1, ..SynthConfig::default() }),
+    ];
+    for (name, config) in kinds {
+        let (mut ks, mut ps, mut rs, mut units, mut truth_units) = (vec![], vec![], vec![], 0, 0);
+        for seed in 0..o.seeds {
+            let s = generate(&config, 100 + seed).map_err(|e| args::failed(name, e))?;
+            let chain = explain(&s.map, o, seed + 1)?;
+            let world = chain.best_world();
+            ks.push(prediction_rate(s.map.classified(), &world));
+            let labels = chain.best_labels(&RoomConfig::default()).map(|&l| l as u32);
+            let truth: Grid<u32> = s.labels.map(|&l| l as u32);
+            let score = score_segmentation(&labels, &truth);
+            ps.push(score.precision);
+            rs.push(score.recall);
+            units += world.units.len();
+            truth_units += s.truth.units.len();
+        }
+        let min = ks.iter().cloned().fold(f64::INFINITY, f64::min);
+        println!(
+            "| {name} | {:.4} | {:.4} | {:.3} | {:.3} | {:.1} ({:.1}) |",
+            mean(&ks),
+            min,
+            mean(&ps),
+            mean(&rs),
+            units as f64 / o.seeds as f64,
+            truth_units as f64 / o.seeds as f64
+        );
+    }
+    Ok(())
+}
+
+fn cartesium(dir: &Path, o: &Opts) -> Result<(), CliError> {
+    let path = dir.join("radish/ubremen-cartesium.png");
+    let mut map = args::load_map(&path)?;
+    map.set_classifier(Classifier::default()).map_err(|e| args::failed("classifier", e))?;
+    let ks: Vec<f64> = (1..=o.seeds)
+        .map(|seed| explain(&map, o, seed).map(|c| prediction_rate(map.classified(), &c.best_world())))
+        .collect::<Result<_, _>>()?;
+    let min = ks.iter().cloned().fold(f64::INFINITY, f64::min);
+    let max = ks.iter().cloned().fold(0.0, f64::max);
+    println!("\n### Radish ubremen-cartesium ({} iterations, seeds 1..={})\n", o.iterations, o.seeds);
+    println!("| K(W,M) mean | min | max | per seed |");
+    println!("|---|---|---|---|");
+    let per: Vec<String> = ks.iter().map(|k| format!("{k:.4}")).collect();
+    println!("| {:.4} | {:.4} | {:.4} | {} |", mean(&ks), min, max, per.join(" "));
+    Ok(())
+}
+
+pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
+    use lexopt::prelude::*;
+    let mut parser = lexopt::Parser::from_args(argv);
+    let mut dir = PathBuf::from("../shared/datasets");
+    let mut o = Opts { iterations: 20_000, seeds: 6, config: ChainConfig::default() };
+    let mut only: Option<String> = None;
+    while let Some(arg) = parser.next()? {
+        match arg {
+            Long("datasets") => dir = args::path(parser.value()?),
+            Long("iterations") => o.iterations = args::value("--iterations", parser.value()?)?,
+            Long("seeds") => o.seeds = args::value("--seeds", parser.value()?)?,
+            Long("only") => only = Some(args::value("--only", parser.value()?)?),
+            Long("config") => {
+                let p = args::path(parser.value()?);
+                let text = std::fs::read_to_string(&p).map_err(|e| args::failed(p.display(), e))?;
+                o.config = serde_json::from_str(&text).map_err(|e| args::failed(p.display(), e))?;
+            }
+            Long("help") | Short('h') => {
+                print!("{HELP}");
+                return Ok(());
+            }
+            _ => return Err(arg.unexpected().into()),
+        }
+    }
+    if o.seeds == 0 {
+        return Err(CliError::Usage("--seeds must be at least 1".into()));
+    }
+    let want = |s: &str| only.as_deref().is_none_or(|o| o == s);
+    if want("cartesium") {
+        cartesium(&dir, &o)?;
+    }
+    if want("synthetic") {
+        synthetic(&o)?;
+    }
+    if want("bormann") {
+        bormann(&dir, &o)?;
+    }
+    
+    Ok(())
+}

@@ -99,10 +99,10 @@ clean-pkg:
 
 demo: www-pkg serve
 
-# python's http.server maps .wasm to application/wasm, which streaming compilation needs.
+# Python's http.server, sending .wasm as application/wasm and nothing cached.
 serve:
-	@echo "serving www/ on http://$(HOST):$(PORT)/  (Ctrl+C to stop)"
-	python3 -m http.server --bind $(HOST) $(PORT) -d www
+	@test -f www/pkg/ksmcmc_bg.wasm || { echo "www/pkg is missing: run make demo" >&2; exit 1; }
+	python3 scripts/serve.py www $(HOST) $(PORT)
 
 # ---------------------------------------------------------------- checks
 

@@ -293,20 +293,21 @@ fn synth_is_deterministic() {
 
 #[wasm_bindgen_test]
 fn synth_config_is_merged_over_the_defaults() {
+    // Unrotated (the default), the map is the canvas the config asks for.
+    let defaults = ksmcmc::floorplan::synth::SynthConfig::default();
+    let size = |s: &wasm::Synthetic| (s.map().width(), s.map().height());
     let s = wasm::synth(
         JsValue::from(3),
-        Some(r#"{"width": 60, "height": 50}"#.into()),
+        Some(r#"{"width": 500, "height": 320}"#.into()),
     )
     .unwrap();
-    assert_eq!((s.map().width(), s.map().height()), (60, 50));
-    let defaults = ksmcmc::floorplan::synth::SynthConfig::default();
-    let s = wasm::synth(JsValue::from(3), Some(r#"{"width": 70}"#.into())).unwrap();
-    assert_eq!((s.map().width(), s.map().height()), (70, defaults.height));
+    assert_eq!(size(&s), (500, 320));
+    let s = wasm::synth(JsValue::from(3), Some(r#"{"width": 500}"#.into())).unwrap();
+    assert_eq!(size(&s), (500, defaults.height));
     let s = wasm::synth(JsValue::from(3), Some("  ".into())).unwrap();
-    assert_eq!(
-        (s.map().width(), s.map().height()),
-        (defaults.width, defaults.height)
-    );
+    assert_eq!(size(&s), (defaults.width, defaults.height));
+    let s = wasm::synth(JsValue::from(3), Some("{}".into())).unwrap();
+    assert_eq!(size(&s), (defaults.width, defaults.height));
 }
 
 #[wasm_bindgen_test]

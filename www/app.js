@@ -77,8 +77,9 @@ const state = {
 
 function showError(err) {
   const text = err instanceof Error ? err.message : String(err);
-  ui.messageText.textContent = text;
+  // Shown first, then filled, so that screen readers announce the alert's new text.
   ui.message.hidden = false;
+  ui.messageText.textContent = text;
   ui.status.textContent = '';
 }
 

@@ -45,6 +45,11 @@ async function assertShows(page, expected) {
   return shown;
 }
 
+/** Waits until painting has been drawn: the page redraws at most once per animation frame. */
+function settled(page) {
+  return page.evaluate(() => new Promise((ok) => requestAnimationFrame(() => requestAnimationFrame(ok))));
+}
+
 async function setFiles(page, files) {
   await page.setInputFiles('#file', files);
 }
@@ -194,6 +199,7 @@ describe('Maps page', () => {
     await page.mouse.down();
     await page.mouse.move(box.x + box.width * 0.9, y, { steps: 4 });
     await page.mouse.up();
+    await settled(page);
     await page.waitForFunction(() => !document.getElementById('count-occupied').textContent.startsWith('0 '));
     const stroke = await canvasClasses(page);
     assert.ok(stroke.occupied >= 3 * 30, `a continuous 3-cell-wide line: ${stroke.occupied} cells`);
@@ -211,6 +217,7 @@ describe('Maps page', () => {
     await page.keyboard.down(' ');
     for (let i = 0; i < 6; i++) await page.keyboard.press('ArrowRight');
     await page.keyboard.up(' ');
+    await settled(page);
     await page.waitForFunction(() => !document.getElementById('count-free').textContent.startsWith('0 '));
     assert.match(await page.textContent('#cursor-pos'), /column \d+, row \d+/);
     const keyed = await shownCounts(page);
@@ -223,6 +230,7 @@ describe('Maps page', () => {
     assert.equal(await page.inputValue('#brush'), '4');
     await page.keyboard.press('[');
     await page.keyboard.press('Control+z');
+    await settled(page);
     await page.waitForFunction(() => document.getElementById('count-free').textContent.startsWith('0 '));
     await assertShows(page, { width: 40, height: 30, free: 0, unknown: 1200 - stroke.occupied, occupied: stroke.occupied });
     await page.keyboard.press('4');
@@ -230,6 +238,7 @@ describe('Maps page', () => {
     await page.mouse.down();
     await page.mouse.move(box.x + box.width * 0.95, y, { steps: 4 });
     await page.mouse.up();
+    await settled(page);
     await page.waitForFunction(() => document.getElementById('count-occupied').textContent.startsWith('0 '));
     await assertShows(page, { width: 40, height: 30, free: 0, unknown: 1200, occupied: 0 });
 
@@ -237,6 +246,7 @@ describe('Maps page', () => {
     await page.keyboard.press('1');
     await page.focus('#map');
     await page.keyboard.press('Enter');
+    await settled(page);
     await page.waitForFunction(() => !document.getElementById('count-occupied').textContent.startsWith('0 '));
     const painted = await shownCounts(page);
     const out = await download(page, '#download-pgm');

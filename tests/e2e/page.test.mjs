@@ -257,6 +257,45 @@ describe('Maps page', () => {
     await done(page);
   });
 
+  test('the canvas shows the same pixels as the native `ksmcmc render`', async () => {
+    // A map with every gray level, so that every class and threshold is on it.
+    const [w, h] = [97, 61];
+    const samples = Array.from({ length: w * h }, (_, i) => (i * 7919) % 256);
+    const map = join(tmp, 'grays.pgm');
+    writeFileSync(map, pgm(w, h, samples));
+    const png = join(tmp, 'grays.png');
+    cli('render', map, '--out', png);
+
+    const page = await openPage(env);
+    await setFiles(page, map);
+    await page.waitForFunction(() => document.getElementById('map-name').textContent.includes('grays.pgm'));
+    const verdict = await page.evaluate(async (b64) => {
+      const bytes = Uint8Array.from(atob(b64), (c) => c.charCodeAt(0));
+      const bitmap = await createImageBitmap(new Blob([bytes], { type: 'image/png' }), {
+        colorSpaceConversion: 'none',
+        premultiplyAlpha: 'none',
+      });
+      const off = new OffscreenCanvas(bitmap.width, bitmap.height);
+      const octx = off.getContext('2d');
+      octx.drawImage(bitmap, 0, 0);
+      const want = octx.getImageData(0, 0, bitmap.width, bitmap.height).data;
+      const c = document.getElementById('map');
+      const got = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+      if (want.length !== got.length) return `native ${bitmap.width}x${bitmap.height}, canvas ${c.width}x${c.height}`;
+      let differ = 0;
+      let first = -1;
+      for (let i = 0; i < want.length; i++) {
+        if (want[i] !== got[i]) {
+          differ++;
+          if (first < 0) first = i;
+        }
+      }
+      return differ === 0 ? 'same' : `${differ} bytes differ, the first at pixel ${first >> 2}: native ${want.slice(first & ~3, (first & ~3) + 4)} canvas ${got.slice(first & ~3, (first & ~3) + 4)}`;
+    }, readFileSync(png).toString('base64'));
+    assert.equal(verdict, 'same');
+    await done(page);
+  });
+
   test('seed 7 gives the same files as the native `ksmcmc synth --seed 7`', async () => {
     const dir = join(tmp, 'synth-7');
     cli('synth', '--seed', '7', '--out', dir);

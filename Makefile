@@ -1,0 +1,136 @@
+# ksmcmc build and test entry points. GNU make.
+#
+#   make demo    build the WebAssembly package and serve the demo on http://127.0.0.1:8080
+#   make test    every check CI runs: fmt, clippy, native tests, wasm tests in headless
+#                Chromium, and the browser end-to-end tests
+#
+# Both install what is missing first (wasm32 target, the wasm-bindgen CLI at the version
+# Cargo.toml pins, Debian's chromium and chromium-driver, the e2e test's npm packages), so they
+# work on a fresh machine that has only rustup, Node, npm, Python 3 and apt.
+
+SHELL := bash
+.SHELLFLAGS := -eu -o pipefail -c
+.DEFAULT_GOAL := help
+MAKEFLAGS += --no-builtin-rules
+
+export PATH := $(HOME)/.cargo/bin:$(PATH)
+CARGO ?= cargo
+WASM_TARGET := wasm32-unknown-unknown
+# The wasm-bindgen CLI must match the wasm-bindgen crate to the patch version.
+WASM_BINDGEN_VERSION := $(shell sed -n 's/^wasm-bindgen *= *"=\([0-9][0-9.]*\)".*/\1/p' Cargo.toml)
+HOST ?= 127.0.0.1
+PORT ?= 8080
+CHROMIUM ?= /usr/bin/chromium
+CHROMEDRIVER ?= /usr/bin/chromedriver
+# Browser tests: wasm-bindgen-test-runner drives headless Chromium through chromedriver with
+# the capabilities in webdriver.json.
+WASM_TEST_ENV := CARGO_TARGET_WASM32_UNKNOWN_UNKNOWN_RUNNER=wasm-bindgen-test-runner \
+	CHROMEDRIVER=$(CHROMEDRIVER) WASM_BINDGEN_TEST_TIMEOUT=180 \
+	WASM_BINDGEN_TEST_WEBDRIVER_JSON=$(CURDIR)/webdriver.json
+WASM := target/$(WASM_TARGET)/release/ksmcmc.wasm
+
+.PHONY: help demo serve pkg www-pkg test lint fmt fmt-check clippy test-native test-wasm \
+	test-e2e cli tools rust-tools wasm-tools browser-tools e2e-deps clean-pkg
+
+help:
+	@echo "make demo      build pkg/ and serve www/ on http://$(HOST):$(PORT)"
+	@echo "make test      fmt, clippy, native tests, wasm tests (headless Chromium), e2e tests"
+	@echo "make pkg       build the npm package in pkg/ (release wasm + wasm-bindgen)"
+	@echo "make lint      cargo fmt --check and clippy (native and wasm32)"
+	@echo "make test-native | test-wasm | test-e2e    one part of make test"
+	@echo "make tools     install what the build and tests need"
+
+# ---------------------------------------------------------------- tools
+
+tools: rust-tools wasm-tools browser-tools e2e-deps
+
+rust-tools:
+	@command -v rustup >/dev/null || { echo "rustup is needed: https://rustup.rs" >&2; exit 1; }
+	@rustup component list --installed | grep -q '^rustfmt' || rustup component add rustfmt
+	@rustup component list --installed | grep -q '^clippy' || rustup component add clippy
+
+wasm-tools: rust-tools
+	@test -n "$(WASM_BINDGEN_VERSION)" || { echo "no wasm-bindgen = \"=X.Y.Z\" pin in Cargo.toml" >&2; exit 1; }
+	@rustup target list --installed | grep -qx '$(WASM_TARGET)' || rustup target add $(WASM_TARGET)
+	@if [ "$$(wasm-bindgen --version 2>/dev/null)" != "wasm-bindgen $(WASM_BINDGEN_VERSION)" ] || \
+	    [ "$$(wasm-bindgen-test-runner --version 2>/dev/null)" != "wasm-bindgen-test-runner $(WASM_BINDGEN_VERSION)" ]; then \
+	  echo "installing wasm-bindgen-cli $(WASM_BINDGEN_VERSION) (a few minutes, once)"; \
+	  $(CARGO) install wasm-bindgen-cli --version $(WASM_BINDGEN_VERSION); \
+	fi
+
+browser-tools:
+	@if [ ! -x $(CHROMIUM) ] || [ ! -x $(CHROMEDRIVER) ]; then \
+	  echo "installing Debian's chromium and chromium-driver"; \
+	  sudo=; [ "$$(id -u)" = 0 ] || sudo=sudo; \
+	  $$sudo apt-get update -q; \
+	  DEBIAN_FRONTEND=noninteractive $$sudo apt-get install -y -q chromium chromium-driver; \
+	fi
+
+# playwright-core only: it drives the Debian Chromium and never downloads a browser.
+e2e-deps: tests/e2e/node_modules/.package-lock.json
+
+tests/e2e/node_modules/.package-lock.json: tests/e2e/package.json tests/e2e/package-lock.json
+	cd tests/e2e && PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD=1 npm ci --no-audit --no-fund --loglevel=error
+	@touch $@
+
+# ---------------------------------------------------------------- build
+
+# The npm package: release wasm, wasm-bindgen's ES module and .d.ts, and package.json.
+pkg: wasm-tools
+	$(CARGO) build --lib --release --target $(WASM_TARGET)
+	wasm-bindgen --target web --out-dir pkg --out-name ksmcmc $(WASM)
+	node scripts/pkg-json.mjs Cargo.toml > pkg/package.json
+	@echo "pkg/: $$(du -h pkg/ksmcmc_bg.wasm | cut -f1) of wasm, version $$(node -p 'require("./pkg/package.json").version')"
+
+# The page loads the package from www/pkg (a copy, not committed).
+www-pkg: pkg
+	rm -rf www/pkg
+	mkdir -p www/pkg
+	cp pkg/ksmcmc.js pkg/ksmcmc_bg.wasm pkg/ksmcmc.d.ts pkg/package.json www/pkg/
+
+cli:
+	$(CARGO) build --bin ksmcmc
+
+clean-pkg:
+	rm -rf www/pkg
+	find pkg -mindepth 1 ! -name README.md -delete 2>/dev/null || true
+
+# ---------------------------------------------------------------- demo
+
+demo: www-pkg serve
+
+# Python's http.server, sending .wasm as application/wasm and nothing cached.
+serve:
+	@test -f www/pkg/ksmcmc_bg.wasm || { echo "www/pkg is missing: run make demo" >&2; exit 1; }
+	python3 scripts/serve.py www $(HOST) $(PORT)
+
+# ---------------------------------------------------------------- checks
+
+lint: fmt-check clippy
+
+fmt:
+	$(CARGO) fmt
+
+fmt-check: rust-tools
+	$(CARGO) fmt --check
+
+clippy: rust-tools wasm-tools
+	$(CARGO) clippy --all-targets -- -D warnings
+	$(CARGO) clippy --target $(WASM_TARGET) --no-default-features --lib --test wasm -- -D warnings
+
+test: tools
+	@start=$$(date +%s); \
+	$(MAKE) --no-print-directory lint test-native test-wasm test-e2e; \
+	echo "make test: all checks passed in $$(( $$(date +%s) - start )) s"
+
+test-native:
+	$(CARGO) test
+
+# The CLI binary is native only; --no-default-features leaves it out of the wasm build.
+test-wasm: wasm-tools browser-tools
+	$(WASM_TEST_ENV) $(CARGO) test --target $(WASM_TARGET) --no-default-features --test wasm
+
+# Serves www/ (with the release package) and drives Debian's Chromium through playwright-core;
+# compares with the native CLI (target/debug/ksmcmc).
+test-e2e: www-pkg cli browser-tools e2e-deps
+	cd tests/e2e && CHROMIUM=$(CHROMIUM) node --test --test-concurrency=1 --test-timeout=300000

@@ -94,11 +94,7 @@ impl Map {
         #[wasm_bindgen(js_name = yamlText)] yaml_text: &str,
         #[wasm_bindgen(js_name = imageBytes)] image_bytes: &[u8],
     ) -> Result<Map, JsError> {
-        Ok(Map::new(OccupancyMap::from_yaml_and_image(
-            yaml_text,
-            image_bytes,
-            &Limits::default(),
-        )?))
+        Ok(Map::new(OccupancyMap::from_yaml_and_image(yaml_text, image_bytes, &Limits::default())?))
     }
 
     /// A map from cell codes, e.g. one a person painted: `codes` holds `width * height` bytes,
@@ -124,8 +120,7 @@ impl Map {
             })?;
             cells.push(cell);
         }
-        let grid =
-            Grid::from_vec(w, h, cells).ok_or_else(|| JsError::new("cell count mismatch"))?;
+        let grid = Grid::from_vec(w, h, cells).ok_or_else(|| JsError::new("cell count mismatch"))?;
         Ok(Map::new(OccupancyMap::from_classified(grid)))
     }
 
@@ -150,12 +145,7 @@ impl Map {
     /// The cell codes, `width * height` bytes row-major: 0 free, 1 unknown, 2 occupied. A
     /// copy: change it and build a new map with `Map.fromCells`.
     pub fn cells(&self) -> Vec<u8> {
-        self.inner
-            .classified()
-            .cells()
-            .iter()
-            .map(|c| c.code())
-            .collect()
+        self.inner.classified().cells().iter().map(|c| c.code()).collect()
     }
 
     /// The classified map as an 8-bit binary PGM in the ROS convention (occupied 0, unknown
@@ -176,11 +166,7 @@ impl Map {
     /// The class counts as a Rust struct.
     pub fn counts_struct(&self) -> Counts {
         let n = |c| self.inner.count(c) as u32;
-        Counts {
-            free: n(Cell::Free),
-            unknown: n(Cell::Unknown),
-            occupied: n(Cell::Occupied),
-        }
+        Counts { free: n(Cell::Free), unknown: n(Cell::Unknown), occupied: n(Cell::Occupied) }
     }
 }
 
@@ -235,11 +221,7 @@ pub fn render_rgba(
     let options = options(map, scale, labels)?;
     let world = world_json.as_deref().map(World::from_json).transpose()?;
     let pixmap = render::render(map.inner.classified(), world.as_ref(), &options);
-    Ok(Rendered {
-        width: pixmap.width(),
-        height: pixmap.height(),
-        rgba: render::to_rgba(&pixmap),
-    })
+    Ok(Rendered { width: pixmap.width(), height: pixmap.height(), rgba: render::to_rgba(&pixmap) })
 }
 
 /// Renders like `renderRgba` and puts the pixels on `canvas` with `ImageData`, resizing the
@@ -265,15 +247,10 @@ pub fn draw_to_canvas(
     let context = canvas
         .get_context("2d")
         .map_err(|e| js("cannot get the canvas's 2d context", e))?
-        .ok_or_else(|| {
-            JsError::new("the canvas has no 2d context (is it already used for WebGL?)")
-        })?;
-    let context: web_sys::CanvasRenderingContext2d = context
-        .dyn_into()
-        .map_err(|e| js("not a 2d context", e.into()))?;
-    context
-        .put_image_data(&image, 0.0, 0.0)
-        .map_err(|e| js("cannot put the pixels", e))?;
+        .ok_or_else(|| JsError::new("the canvas has no 2d context (is it already used for WebGL?)"))?;
+    let context: web_sys::CanvasRenderingContext2d =
+        context.dyn_into().map_err(|e| js("not a 2d context", e.into()))?;
+    context.put_image_data(&image, 0.0, 0.0).map_err(|e| js("cannot put the pixels", e))?;
     Ok(())
 }
 
@@ -284,14 +261,9 @@ fn options(map: &Map, scale: Option<u32>, labels: Option<bool>) -> Result<Render
     let defaults = RenderOptions::default();
     let scale = scale.unwrap_or(defaults.scale);
     if scale == 0 {
-        return Err(JsError::new(
-            "scale must be at least 1 (output pixels per map cell)",
-        ));
+        return Err(JsError::new("scale must be at least 1 (output pixels per map cell)"));
     }
-    let (w, h) = (
-        map.inner.width() as u128 * scale as u128,
-        map.inner.height() as u128 * scale as u128,
-    );
+    let (w, h) = (map.inner.width() as u128 * scale as u128, map.inner.height() as u128 * scale as u128);
     if w * h > MAX_RENDER_PIXELS as u128 {
         return Err(JsError::new(&format!(
             "a {}x{} map at scale {scale} would be {w}x{h} = {} pixels, over the limit of \
@@ -301,11 +273,7 @@ fn options(map: &Map, scale: Option<u32>, labels: Option<bool>) -> Result<Render
             w * h
         )));
     }
-    Ok(RenderOptions {
-        scale,
-        labels: labels.unwrap_or(defaults.labels),
-        ..defaults
-    })
+    Ok(RenderOptions { scale, labels: labels.unwrap_or(defaults.labels), ..defaults })
 }
 
 /// The message of a thrown JavaScript value.
@@ -380,9 +348,7 @@ pub fn synth(
     // The generator allocates width x height cells: refuse what no map could hold, as the
     // loaders do, instead of aborting on a failed allocation.
     Limits::default().check(config.width.into(), config.height.into())?;
-    Ok(Synthetic {
-        inner: synth::generate(&config, seed)?,
-    })
+    Ok(Synthetic { inner: synth::generate(&config, seed)? })
 }
 
 /// Reads a seed: a safe non-negative integer `number`, or a `bigint` that fits in 64 bits.
@@ -394,24 +360,17 @@ pub fn seed_from_js(seed: &JsValue) -> Result<u64, JsError> {
         return u64::try_from(seed.clone())
             .map_err(|_| JsError::new("seed: a bigint seed must lie between 0 and 2^64 - 1"));
     }
-    Err(JsError::new(&format!(
-        "seed: expected a non-negative integer, got {}",
-        describe(seed)
-    )))
+    Err(JsError::new(&format!("seed: expected a non-negative integer, got {}", describe(seed))))
 }
 
 /// Reads a `number` seed.
 pub fn seed_from_f64(x: f64) -> Result<u64, JsError> {
     const MAX_SAFE: f64 = 9_007_199_254_740_991.0; // 2^53 - 1
     if x.is_nan() {
-        return Err(JsError::new(
-            "seed: NaN is not a seed; give a non-negative integer",
-        ));
+        return Err(JsError::new("seed: NaN is not a seed; give a non-negative integer"));
     }
     if x < 0.0 {
-        return Err(JsError::new(&format!(
-            "seed: {x} is negative; give a non-negative integer"
-        )));
+        return Err(JsError::new(&format!("seed: {x} is negative; give a non-negative integer")));
     }
     if x.is_infinite() || x > MAX_SAFE {
         return Err(JsError::new(&format!(
@@ -443,9 +402,7 @@ pub fn synth_config(json: Option<&str>) -> Result<SynthConfig, JsError> {
     let given: serde_json::Value =
         serde_json::from_str(text).map_err(|e| JsError::new(&format!("synth config: {e}")))?;
     let serde_json::Value::Object(given) = given else {
-        return Err(JsError::new(
-            "synth config: expected a JSON object such as {\"width\": 200}",
-        ));
+        return Err(JsError::new("synth config: expected a JSON object such as {\"width\": 200}"));
     };
     let mut config = serde_json::to_value(SynthConfig::default())?;
     if let serde_json::Value::Object(fields) = &mut config {

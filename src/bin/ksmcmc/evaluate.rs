@@ -168,6 +168,6 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     if want("bormann") {
         bormann(&dir, &o)?;
     }
-    
+
     Ok(())
 }

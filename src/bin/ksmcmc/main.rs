@@ -49,8 +49,8 @@ fn main() -> ExitCode {
         Some("info") => info::run(rest),
         Some("render") => render::run(rest),
         Some("floorplan") => floorplan::run(rest),
-                Some("score") => score::run(rest),
-                Some("bench") => bench::run(rest),
+        Some("score") => score::run(rest),
+        Some("bench") => bench::run(rest),
         Some("evaluate") => evaluate::run(rest),
         Some("synth") => synth::run(rest),
         Some("help" | "--help" | "-h") => {

@@ -1,0 +1,171 @@
+//! `ksmcmc floorplan` and `ksmcmc score` end to end: outputs, determinism, bad input.
+
+use ksmcmc::floorplan::World;
+use ksmcmc::grid::{Limits, OccupancyMap};
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn bin() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_ksmcmc"))
+}
+
+fn tmp(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("ksmcmc-cli-fp-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn sample(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("samples").join(name)
+}
+
+fn run(args: &[&str]) -> Output {
+    let out = bin().args(args).output().unwrap();
+    let text = format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+    assert!(!text.contains("panicked"), "{args:?}: {text}");
+    out
+}
+
+#[test]
+fn floorplan_writes_every_output_and_scores_its_labels() {
+    let d = tmp("outputs");
+    let map = sample("office-small/map.yaml");
+    let out = run(&["floorplan", map.to_str().unwrap(), "--out", d.to_str().unwrap(), "--iterations", "6000"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let m = OccupancyMap::load(&map, &Limits::default()).unwrap();
+    let world = World::from_json(&std::fs::read_to_string(d.join("world.json")).unwrap()).unwrap();
+    assert!(world.units.len() >= 5, "{} units", world.units.len());
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(d.join("report.json")).unwrap()).unwrap();
+    for key in [
+        "iterations",
+        "seconds",
+        "iterations_per_second",
+        "cell_prediction_rate",
+        "units",
+        "doors",
+        "rooms",
+        "log_posterior",
+        "seed",
+    ] {
+        assert!(report.get(key).is_some(), "report.json lacks {key}");
+    }
+    assert_eq!(report["iterations"], 6000);
+    assert!(report["cell_prediction_rate"].as_f64().unwrap() > 0.9);
+    // labels.pgm: 16-bit, map-sized, rooms numbered 1..=n on free cells only.
+    let labels = std::fs::read(d.join("labels.pgm")).unwrap();
+    let header = format!("P5\n{} {}\n65535\n", m.width(), m.height());
+    assert!(labels.starts_with(header.as_bytes()));
+    let ids: Vec<u16> = labels[header.len()..].chunks(2).map(|c| u16::from_be_bytes([c[0], c[1]])).collect();
+    assert_eq!(ids.len(), m.width() * m.height());
+    let n = report["rooms"].as_u64().unwrap() as u16;
+    assert_eq!(*ids.iter().max().unwrap(), n);
+    for (i, &id) in ids.iter().enumerate() {
+        if id != 0 {
+            assert_eq!(m.classified().cells()[i], ksmcmc::grid::Cell::Free, "label on a non-free cell");
+        }
+    }
+    let trace = std::fs::read_to_string(d.join("trace.csv")).unwrap();
+    assert!(trace.starts_with("iteration,log_posterior,acceptance,units\n") && trace.lines().count() > 10);
+    let overlay = OccupancyMap::from_bytes(&std::fs::read(d.join("overlay.png")).unwrap()).unwrap();
+    assert_eq!((overlay.width(), overlay.height()), (m.width(), m.height()));
+    let graph: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(d.join("graph.json")).unwrap()).unwrap();
+    assert_eq!(graph["nodes"].as_array().unwrap().len(), world.units.len());
+    // Scored against the generator's truth, the segmentation is good.
+    let truth = sample("office-small/truth_labels.pgm");
+    let out =
+        run(&["score", d.join("labels.pgm").to_str().unwrap(), truth.to_str().unwrap(), "--truth", "labels", "--json"]);
+    assert!(out.status.success());
+    let s: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert!(s["precision"].as_f64().unwrap() > 0.9 && s["recall"].as_f64().unwrap() > 0.85, "{s}");
+}
+
+#[test]
+fn same_seed_same_world() {
+    let map = sample("office-rotated/map.yaml");
+    let worlds: Vec<String> = (0..2)
+        .map(|i| {
+            let d = tmp(&format!("seed{i}"));
+            let out = run(&[
+                "floorplan",
+                map.to_str().unwrap(),
+                "--out",
+                d.to_str().unwrap(),
+                "--iterations",
+                "3000",
+                "--seed",
+                "9",
+            ]);
+            assert!(out.status.success());
+            std::fs::read_to_string(d.join("world.json")).unwrap()
+        })
+        .collect();
+    assert_eq!(worlds[0], worlds[1]);
+    let w = World::from_json(&worlds[0]).unwrap();
+    assert!((w.frame.angle.to_degrees().abs() - 20.0).abs() < 1.0, "rotation {}", w.frame.angle.to_degrees());
+}
+
+#[test]
+fn bad_input_is_a_clear_error() {
+    let d = tmp("bad");
+    let out_dir = d.join("out");
+    let o = out_dir.to_str().unwrap();
+    std::fs::write(
+        d.join("walls.pgm"),
+        b"P2 20 20 255\n".iter().chain(b"0 ".repeat(400).iter()).copied().collect::<Vec<u8>>(),
+    )
+    .unwrap();
+    std::fs::write(d.join("one.pgm"), b"P2 1 1 255 255").unwrap();
+    std::fs::write(d.join("huge.pgm"), b"P5 100000 100000 255\n").unwrap();
+    std::fs::write(d.join("nan.json"), br#"{"posterior": {"temperature": -1}}"#).unwrap();
+    std::fs::write(d.join("broken.json"), b"{ not json").unwrap();
+    let map = sample("office-small/map.yaml");
+    let m = map.to_str().unwrap();
+    let p = |f: &str| d.join(f).to_str().unwrap().to_string();
+    let cases: Vec<(Vec<String>, i32, &str)> = vec![
+        (vec!["floorplan".into(), p("walls.pgm"), "--out".into(), o.into()], 1, "no free cells"),
+        (vec!["floorplan".into(), p("one.pgm"), "--out".into(), o.into()], 1, "1x1"),
+        (vec!["floorplan".into(), p("huge.pgm"), "--out".into(), o.into()], 1, "over the limit"),
+        (
+            vec!["floorplan".into(), m.into(), "--out".into(), o.into(), "--config".into(), p("nan.json")],
+            1,
+            "temperature",
+        ),
+        (
+            vec!["floorplan".into(), m.into(), "--out".into(), o.into(), "--config".into(), p("broken.json")],
+            1,
+            "broken.json",
+        ),
+        (
+            vec!["floorplan".into(), m.into(), "--out".into(), o.into(), "--time-limit".into(), "-3".into()],
+            2,
+            "time-limit",
+        ),
+        (
+            vec!["floorplan".into(), m.into(), "--out".into(), o.into(), "--iterations".into(), "many".into()],
+            2,
+            "iterations",
+        ),
+        (vec!["floorplan".into(), m.into()], 2, "--out"),
+        (
+            vec!["floorplan".into(), m.into(), "--out".into(), o.into(), "--classify".into(), "magic".into()],
+            2,
+            "classify",
+        ),
+        (vec!["score".into(), p("one.pgm")], 2, "TRUTH"),
+        (
+            vec!["score".into(), p("one.pgm"), sample("office-small/truth_labels.pgm").to_str().unwrap().into()],
+            1,
+            "same map",
+        ),
+        (vec!["score".into(), p("missing.pgm"), p("one.pgm")], 1, "missing.pgm"),
+    ];
+    for (args, code, needle) in cases {
+        let out = run(&args.iter().map(String::as_str).collect::<Vec<_>>());
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(code), "{args:?}: {err}");
+        assert!(err.contains(needle), "{args:?}: {err}");
+    }
+}

@@ -123,8 +123,8 @@ impl ChainConfig {
             return bad("detectors.walls: min_segment >= 2, max_gap >= 0, min_wall_weight in [0, 1]".into());
         }
         if let Some(t) = self.wall_thickness {
-            if !(1..=8).contains(&t) {
-                return bad(format!("wall_thickness {t} must be between 1 and 8 cells"));
+            if !(1..=10).contains(&t) {
+                return bad(format!("wall_thickness {t} must be between 1 and 10 cells"));
             }
         }
         if self.detectors.free_space_every == 0 {

@@ -20,17 +20,37 @@ pub struct RoomConfig {
     pub max_wall_share: f64,
     /// Shortest open boundary, in cells, that joins two units (shorter ones are doors).
     pub min_open_len: i32,
+    /// How far (cells, through free space) the wavefront carries a room's label beyond its
+    /// units. Free regions farther from every unit are rooms of their own, numbered after
+    /// the units' rooms: a room the chain left unexplained is still a room, not an annex of
+    /// its neighbour through the door.
+    pub max_reach: u32,
 }
 
 impl Default for RoomConfig {
     fn default() -> Self {
-        RoomConfig { max_wall_share: 0.05, min_open_len: 30 }
+        RoomConfig { max_wall_share: 0.05, min_open_len: 30, max_reach: 20 }
     }
 }
 
-/// Room id (1-based) of every unit, by unit index.
+/// Whether a unit encloses space: at least half of its interior (inside the wall ring) is free
+/// in the map. Units lying on thick walls or over unexplored space are not rooms.
+pub fn encloses_space(u: &super::world::Unit, t: i32, world_map: &Grid<Cell>) -> bool {
+    let (mut free, mut total) = (0u64, 0u64);
+    for y in (u.y + t).max(0)..(u.y + u.h - t).min(world_map.height() as i32) {
+        for x in (u.x + t).max(0)..(u.x + u.w - t).min(world_map.width() as i32) {
+            total += 1;
+            free += (*world_map.at(x as usize, y as usize) == Cell::Free) as u64;
+        }
+    }
+    total > 0 && 2 * free >= total
+}
+
+/// Room id (1-based) of every unit, by unit index; 0 for units that enclose no space
+/// ([`encloses_space`]).
 pub fn group_units(world: &World, world_map: &Grid<Cell>, c: &RoomConfig) -> Vec<u16> {
     let n = world.units.len();
+    let space: Vec<bool> = world.units.iter().map(|u| encloses_space(u, world.wall_thickness, world_map)).collect();
     let mut parent: Vec<usize> = (0..n).collect();
     fn find(p: &mut [usize], mut i: usize) -> usize {
         while p[i] != i {
@@ -53,7 +73,7 @@ pub fn group_units(world: &World, world_map: &Grid<Cell>, c: &RoomConfig) -> Vec
     };
     for i in 0..n {
         for j in 0..n {
-            if i == j {
+            if i == j || !space[i] || !space[j] {
                 continue;
             }
             let (a, b) = (world.units[i].rect(), world.units[j].rect());
@@ -90,6 +110,9 @@ pub fn group_units(world: &World, world_map: &Grid<Cell>, c: &RoomConfig) -> Vec
     let mut next = 0u16;
     (0..n)
         .map(|i| {
+            if !space[i] {
+                return 0;
+            }
             let r = find(&mut parent, i);
             if id_of_root[r] == 0 {
                 next += 1;
@@ -109,6 +132,9 @@ pub fn room_labels(world: &World, map: &Grid<Cell>, world_map: &Grid<Cell>, c: &
     // Owner room of every world cell: the first unit covering it.
     let mut owner = vec![0u16; ww * wh];
     for (u, &room) in world.units.iter().zip(&rooms) {
+        if room == 0 {
+            continue;
+        }
         let r = u.rect();
         for y in r.y.max(0)..r.bottom().min(wh as i32) {
             for x in r.x.max(0)..r.right().min(ww as i32) {
@@ -140,14 +166,40 @@ pub fn room_labels(world: &World, map: &Grid<Cell>, world_map: &Grid<Cell>, c: &
             }
         }
     }
-    // Wavefront: unlabelled free cells take the label of the nearest labelled one.
+    // Wavefront: unlabelled free cells within reach take the label of the nearest labelled one.
     let (w, h) = (map.width(), map.height());
+    let mut dist = vec![0u32; w * h];
     while let Some((x, y)) = queue.pop_front() {
         let l = *labels.at(x, y);
+        let d = dist[y * w + x];
+        if d >= c.max_reach {
+            continue;
+        }
         for (nx, ny) in [(x.wrapping_sub(1), y), (x + 1, y), (x, y.wrapping_sub(1)), (x, y + 1)] {
             if nx < w && ny < h && *map.at(nx, ny) == Cell::Free && *labels.at(nx, ny) == 0 {
                 *labels.at_mut(nx, ny) = l;
+                dist[ny * w + nx] = d + 1;
                 queue.push_back((nx, ny));
+            }
+        }
+    }
+    // Free regions out of every unit's reach: rooms of their own.
+    let mut next = rooms.iter().copied().max().unwrap_or(0);
+    let mut stack = Vec::new();
+    for start in 0..w * h {
+        let (sx, sy) = (start % w, start / w);
+        if *map.at(sx, sy) != Cell::Free || *labels.at(sx, sy) != 0 {
+            continue;
+        }
+        next = next.saturating_add(1);
+        *labels.at_mut(sx, sy) = next;
+        stack.push((sx, sy));
+        while let Some((x, y)) = stack.pop() {
+            for (nx, ny) in [(x.wrapping_sub(1), y), (x + 1, y), (x, y.wrapping_sub(1)), (x, y + 1)] {
+                if nx < w && ny < h && *map.at(nx, ny) == Cell::Free && *labels.at(nx, ny) == 0 {
+                    *labels.at_mut(nx, ny) = next;
+                    stack.push((nx, ny));
+                }
             }
         }
     }
@@ -182,6 +234,23 @@ mod tests {
     }
 
     #[test]
+    fn far_free_space_is_a_room_of_its_own() {
+        // One unit on the left; a free region 60 cells away behind a doorway.
+        let mut map = Grid::new(120, 20, Cell::Free);
+        for y in 0..20 {
+            if !(8..12).contains(&y) {
+                *map.at_mut(40, y) = Cell::Occupied;
+            }
+        }
+        let mut world = World::empty(120, 20);
+        world.units = vec![unit(1, 0, 0, 20, 20)];
+        let labels = room_labels(&world, &map, &map, &RoomConfig::default());
+        assert_eq!(*labels.at(5, 5), 1);
+        assert_eq!(*labels.at(25, 5), 1, "within reach of the unit");
+        assert_eq!(*labels.at(100, 5), 2, "beyond reach: a room of its own");
+    }
+
+    #[test]
     fn wavefront_fills_free_cells_outside_units() {
         let mut map = Grid::new(50, 20, Cell::Unknown);
         for y in 2..18 {
@@ -191,11 +260,11 @@ mod tests {
         }
         let mut world = World::empty(50, 20);
         world.units = vec![unit(1, 0, 0, 20, 20), unit(2, 30, 0, 20, 20)];
-        *map.at_mut(25, 0) = Cell::Free; // isolated: unreachable, stays 0
+        *map.at_mut(25, 0) = Cell::Free; // isolated: unreachable
         let labels = room_labels(&world, &map, &map, &RoomConfig::default());
         assert_eq!(*labels.at(22, 10), 1, "nearer to the left unit");
         assert_eq!(*labels.at(27, 10), 2, "nearer to the right unit");
-        assert_eq!(*labels.at(25, 0), 0);
+        assert_eq!(*labels.at(25, 0), 3, "an isolated free cell is a region of its own");
         assert_eq!(*labels.at(0, 0), 0, "unknown cells are not labelled");
     }
 }

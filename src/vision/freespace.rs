@@ -7,8 +7,57 @@ use crate::floorplan::world::Rect;
 use crate::grid::Cell;
 
 /// Bounding boxes (grown by one cell for the walls) of 4-connected components of free cells
-/// covered by no unit, holding at least `min_cells` cells.
+/// covered by no unit, holding at least `min_cells` cells, each trimmed to its dense core: sides
+/// whose edge row or column is less than 40 % unexplained free space are moved inwards, so
+/// that a fan of scan rays yields the dense part near its source rather than a box that is
+/// mostly unknown.
 pub fn unexplained(e: &Explanation, min_cells: usize) -> Vec<Rect> {
+    let boxes = components(e, min_cells);
+    if boxes.is_empty() {
+        return boxes;
+    }
+    let (w, h) = (e.width(), e.height());
+    let mut mask = crate::grid::Grid::new(w, h, Cell::Unknown);
+    for y in 0..h {
+        for x in 0..w {
+            if e.map_class(x, y) == Cell::Free && e.cover(x, y) == 0 {
+                *mask.at_mut(x, y) = Cell::Free;
+            }
+        }
+    }
+    let sat = crate::floorplan::explain::AreaCounts::new(&mask, Cell::Free);
+    boxes.into_iter().filter_map(|b| dense_core(&sat, b)).collect()
+}
+
+fn dense_core(sat: &crate::floorplan::explain::AreaCounts, mut r: Rect) -> Option<Rect> {
+    let dense = |line: Rect| sat.count(line) as f64 >= 0.4 * line.area() as f64;
+    loop {
+        if r.w < 3 || r.h < 3 {
+            return None;
+        }
+        let sides = [
+            Rect::new(r.x + 1, r.y, 1, r.h),
+            Rect::new(r.right() - 2, r.y, 1, r.h),
+            Rect::new(r.x, r.y + 1, r.w, 1),
+            Rect::new(r.x, r.bottom() - 2, r.w, 1),
+        ];
+        // Trim the sparsest side first, one cell at a time.
+        let worst = (0..4).filter(|&i| !dense(sides[i])).min_by(|&a, &b| {
+            let fa = sat.count(sides[a]) as f64 / sides[a].area() as f64;
+            let fb = sat.count(sides[b]) as f64 / sides[b].area() as f64;
+            fa.total_cmp(&fb)
+        });
+        match worst {
+            None => return Some(r),
+            Some(0) => r = Rect::new(r.x + 1, r.y, r.w - 1, r.h),
+            Some(1) => r = Rect::new(r.x, r.y, r.w - 1, r.h),
+            Some(2) => r = Rect::new(r.x, r.y + 1, r.w, r.h - 1),
+            _ => r = Rect::new(r.x, r.y, r.w, r.h - 1),
+        }
+    }
+}
+
+fn components(e: &Explanation, min_cells: usize) -> Vec<Rect> {
     let (w, h) = (e.width(), e.height());
     let mut seen = vec![false; w * h];
     let mut stack = Vec::new();

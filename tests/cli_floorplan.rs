@@ -169,3 +169,44 @@ fn bad_input_is_a_clear_error() {
         assert!(err.contains(needle), "{args:?}: {err}");
     }
 }
+
+#[test]
+fn region_of_interest_scores_only_its_cells() {
+    let d = tmp("region");
+    let map = sample("office-small/map.yaml");
+    let m = OccupancyMap::load(&map, &Limits::default()).unwrap();
+    // The region: the left half of the map.
+    let (w, h) = (m.width(), m.height());
+    let samples: Vec<u8> = (0..w * h).map(|i| if i % w < w / 2 { 255 } else { 0 }).collect();
+    std::fs::write(d.join("roi.pgm"), ksmcmc::grid::pgm::encode_u8(w, h, &samples)).unwrap();
+    let o = d.join("out");
+    let out = run(&[
+        "floorplan",
+        map.to_str().unwrap(),
+        "--out",
+        o.to_str().unwrap(),
+        "--iterations",
+        "3000",
+        "--region",
+        d.join("roi.pgm").to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(o.join("report.json")).unwrap()).unwrap();
+    let world = World::from_json(&std::fs::read_to_string(o.join("world.json")).unwrap()).unwrap();
+    let mask = ksmcmc::grid::Grid::from_vec(w, h, samples.iter().map(|&s| s > 0).collect()).unwrap();
+    let expected = ksmcmc::floorplan::metrics::prediction_rate_in(m.classified(), &world, Some(&mask));
+    assert_eq!(report["cell_prediction_rate_region"].as_f64().unwrap(), expected);
+    // A region of another size is refused.
+    std::fs::write(d.join("small.pgm"), ksmcmc::grid::pgm::encode_u8(3, 3, &[255; 9])).unwrap();
+    let out = run(&[
+        "floorplan",
+        map.to_str().unwrap(),
+        "--out",
+        o.to_str().unwrap(),
+        "--region",
+        d.join("small.pgm").to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("the region is 3x3"));
+}

@@ -26,7 +26,9 @@ Options:
   --time-limit SEC   stop after this many seconds even if iterations remain
   --seed S           random seed (default 1); same seed, same result
   --config FILE      chain configuration JSON (any subset of fields; see the docs)
-    --rotation DEG     map rotation in degrees instead of estimating it
+      --rotation DEG     map rotation in degrees instead of estimating it
+  --region FILE      an image the size of the map whose non-black cells are a region of
+                     interest: report.json then also gives K(W,M) inside it
   --classify RULE    how plain images become cells: auto (default; background grays found
                      from the histogram, anti-aliased walls occupied) or fixed (eq. 3.7
                      thresholds only); a map.yaml always uses its own thresholds
@@ -38,6 +40,7 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     let (mut map, mut out, mut config_path) = (None, None, None::<PathBuf>);
     let (mut iterations, mut seed, mut time_limit, mut rotation) = (20_000u64, 1u64, None::<f64>, None::<f64>);
     let mut classify = String::from("auto");
+    let mut region_path: Option<PathBuf> = None;
     while let Some(arg) = parser.next()? {
         match arg {
             Value(v) if map.is_none() => map = Some(args::path(v)),
@@ -48,6 +51,7 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
             Long("config") => config_path = Some(args::path(parser.value()?)),
             Long("rotation") => rotation = Some(args::value("--rotation", parser.value()?)?),
             Long("classify") => classify = args::value("--classify", parser.value()?)?,
+            Long("region") => region_path = Some(args::path(parser.value()?)),
             Long("help") | Short('h') => {
                 print!("{HELP}");
                 return Ok(());
@@ -86,6 +90,25 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
         "auto" | "fixed" => {}
         other => return Err(CliError::Usage(format!("--classify must be auto or fixed, not {other:?}"))),
     }
+    let region = match &region_path {
+        Some(p) => {
+            let bytes = std::fs::read(p).map_err(|e| args::failed(p.display(), e))?;
+            let raster =
+                ksmcmc::grid::decode_image(&bytes, &Default::default()).map_err(|e| args::failed(p.display(), e))?;
+            if (raster.width(), raster.height()) != (map.width(), map.height()) {
+                return Err(CliError::Failed(format!(
+                    "{}: the region is {}x{} but the map is {}x{}",
+                    p.display(),
+                    raster.width(),
+                    raster.height(),
+                    map.width(),
+                    map.height()
+                )));
+            }
+            Some(raster.gray.map(|&g| g > 0))
+        }
+        None => None,
+    };
     let t0 = Instant::now();
     let mut chain = Chain::new(&map, config, seed).map_err(|e| args::failed(map_path.display(), e))?;
     let deadline = time_limit.map(|t| t0 + std::time::Duration::from_secs_f64(t));
@@ -121,7 +144,8 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
         "iterations": chain.iteration(),
         "seconds": seconds,
         "iterations_per_second": chain.iteration() as f64 / seconds.max(1e-9),
-                "cell_prediction_rate": k,
+                        "cell_prediction_rate": k,
+        "cell_prediction_rate_region": region.as_ref().map(|r| metrics::prediction_rate_in(map.classified(), &world, Some(r))),
         "confusion": metrics::confusion(map.classified(), &world),
         "units": world.units.len(),
         "doors": world.doors.len(),

@@ -6,6 +6,7 @@
 mod args;
 mod floorplan;
 mod info;
+mod mln;
 mod render;
 mod score;
 mod synth;
@@ -24,6 +25,8 @@ Usage:
   ksmcmc score LABELS TRUTH                segmentation precision and recall
   ksmcmc synth --seed N --out DIR [options]
                                            generate a synthetic floor plan with ground truth
+  ksmcmc mln query|map|info --mln KB.mln [--db EVIDENCE.db] [--query P,Q]
+                                           Markov logic marginals, most probable world, network size
   ksmcmc help                              this text
 
 MAP is a PGM (P2/P5, 8 or 16 bits), a PNG of any colour type, or a ROS map.yaml.
@@ -47,6 +50,7 @@ fn main() -> ExitCode {
         Some("floorplan") => floorplan::run(rest),
         Some("score") => score::run(rest),
         Some("synth") => synth::run(rest),
+        Some("mln") => mln::run(rest),
         Some("help" | "--help" | "-h") => {
             print!("{USAGE}");
             Ok(())

@@ -600,3 +600,127 @@ fn size_limits_are_errors_not_exhaustion() {
     let m = infer(&net, Method::Auto, 2_000, 1);
     assert!((m.get("P", &["C0"]).unwrap() - 0.5).abs() < 0.03);
 }
+
+// ---------------------------------------------------------------- hostile input
+
+#[test]
+fn hostile_input_gives_errors_not_panics() {
+    let deep = [
+        format!("A(t)\n1 {}A(x){}", "(".repeat(100_000), ")".repeat(100_000)),
+        format!("A(t)\n1 {}A(x)", "!".repeat(100_000)),
+        format!("A(t)\n1 {}A(x)", "A(x) => ".repeat(100_000)),
+        format!("A(t)\n{}1{} A(x)", "(".repeat(100_000), ")".repeat(100_000)),
+        format!("A(t)\n{}1 A(x)", "-".repeat(100_000)),
+        format!("A(t)\n1 {}A(x)", "EXIST y ".repeat(100_000)),
+    ];
+    for text in &deep {
+        let e = Mln::parse(text).unwrap_err();
+        assert!(e.to_string().contains("less nesting"), "{e}");
+    }
+    assert!(Mln::parse("A(t)\n1 /* never closed").is_err());
+    assert!(Mln::parse("A(t)\n1e999 A(x)").is_err(), "infinite weight");
+    assert!(Mln::parse("A(t)\nexp(1000) A(x)").is_err(), "infinite weight");
+
+    // Random statements from a vocabulary of fragments: whatever parses must ground and infer
+    // (or fail with an error) without panicking.
+    let kb_bits = [
+        "P(t)",
+        "Q(t,t)",
+        "R(t)",
+        "t = {A, B}",
+        "1",
+        "-2",
+        "log(0.9/0.1)",
+        "0",
+        "P(x)",
+        "Q(x,y)",
+        "R(y)",
+        "!",
+        "^",
+        " v ",
+        "=>",
+        "<=>",
+        "(",
+        ")",
+        ".",
+        "EXIST z",
+        "FORALL z",
+        "Q(z,x)",
+        "x = y",
+        "x != A",
+        "P(A)",
+        "//",
+        "\n",
+        "\n",
+        ",",
+    ];
+    let db_bits =
+        ["P(A)", "!P(B)", "0.7 R(A)", "Q(A,B)", "Q(B,A)", "!Q(A,A)", "P(C)", "\n", "\n", "\n", "R(x)", "0.2 !P(A)"];
+    fn formula(rng: &mut ksmcmc::mcmc::Rng, depth: u32) -> String {
+        const ATOMS: [&str; 9] = ["P(x)", "P(A)", "Q(x,y)", "Q(y,x)", "R(y)", "x = y", "x != A", "R(x)", "R(B)"];
+        if depth == 0 || rng.below(3) == 0 {
+            return ATOMS[rng.below(ATOMS.len() as u32) as usize].to_string();
+        }
+        let (a, b) = (formula(rng, depth - 1), formula(rng, depth - 1));
+        match rng.below(7) {
+            0 => format!("!{a}"),
+            1 => format!("({a} ^ {b})"),
+            2 => format!("({a} v {b})"),
+            3 => format!("({a} => {b})"),
+            4 => format!("({a} <=> {b})"),
+            5 => format!("EXIST z (Q(z,x) ^ {a})"),
+            _ => format!("FORALL z (Q(x,z) => {a} v {b})"),
+        }
+    }
+    let mut rng = ksmcmc::mcmc::Rng::seed(2024);
+    let mut parsed = 0;
+    for round in 0..3_000 {
+        let mut kb = String::from("P(t)\nQ(t,t)\nR(t)\n");
+        if round % 4 == 0 {
+            for _ in 0..rng.below(25) {
+                kb.push_str(kb_bits[rng.below(kb_bits.len() as u32) as usize]);
+                kb.push(' ');
+            }
+        } else {
+            if rng.below(2) == 0 {
+                kb.push_str("t = {A, B, C}\n");
+            }
+            for _ in 0..1 + rng.below(4) {
+                let f = formula(&mut rng, 3);
+                let line = match rng.below(4) {
+                    0 => format!("{f}.\n"),
+                    1 => format!("-1.5 {f}\n"),
+                    2 => format!("log(0.9/0.1) {f}\n"),
+                    _ => format!("0.7 {f}\n"),
+                };
+                kb.push_str(&line);
+            }
+        }
+        let Ok(mln) = Mln::parse(&kb) else { continue };
+        let mut db = String::new();
+        for _ in 0..rng.below(8) {
+            db.push_str(db_bits[rng.below(db_bits.len() as u32) as usize]);
+            db.push('\n');
+        }
+        let Ok(db) = Database::parse(&db, &mln) else { continue };
+        let cfg = GroundConfig { max_atoms: 64, max_clauses: 500, max_groundings: 5_000, ..GroundConfig::default() };
+        let Ok(net) = Network::ground(&mln, &db, &cfg) else { continue };
+        parsed += 1;
+        let mut exact = Vec::new();
+        for method in [Method::Auto, Method::Exact, Method::Enumerate, Method::McSat, Method::Gibbs] {
+            let c = InferenceConfig { method, samples: 20, burn_in: 2, walksat_flips: 2_000, ..Default::default() };
+            if let Ok(m) = net.infer_marginals(&c) {
+                assert!(m.iter().all(|(_, p)| (0.0..=1.0).contains(&p)), "{kb}");
+                if matches!(method, Method::Exact | Method::Enumerate) {
+                    exact.push(m);
+                }
+            }
+        }
+        if let [tree, enumerated] = &exact[..] {
+            let (d, at) = max_diff(tree, enumerated);
+            assert!(d < 1e-9, "junction tree and enumeration differ by {d} at {at} for\n{kb}");
+        }
+        let _ = net.map(&MapConfig { max_flips: 200, ..Default::default() });
+    }
+    assert!(parsed > 100, "the vocabulary makes enough valid knowledge bases ({parsed})");
+}

@@ -224,14 +224,19 @@ struct Parser<'a> {
     src: &'a str,
     toks: Vec<Token>,
     i: usize,
+    /// Recursion depth, bounded so that hostile input cannot overflow the stack.
+    depth: u32,
 }
+
+/// Most nested parentheses, negations, implications and quantifiers in one statement.
+const MAX_DEPTH: u32 = 200;
 
 const QUANTIFIERS: [&str; 4] = ["EXIST", "exist", "FORALL", "forall"];
 const FUNCTIONS: [&str; 3] = ["log", "ln", "exp"];
 
 impl<'a> Parser<'a> {
     fn new(src: &'a str) -> Result<Self, MlnError> {
-        Ok(Parser { src, toks: lex(src)?, i: 0 })
+        Ok(Parser { src, toks: lex(src)?, i: 0, depth: 0 })
     }
 
     fn peek(&self) -> &Tok {
@@ -252,6 +257,19 @@ impl<'a> Parser<'a> {
             self.i += 1;
         }
         t
+    }
+
+    /// Runs `f` one level deeper, refusing to go past [`MAX_DEPTH`].
+    fn nested<T>(&mut self, f: impl FnOnce(&mut Self) -> Result<T, MlnError>) -> Result<T, MlnError> {
+        if self.depth >= MAX_DEPTH {
+            return Err(self.error(format!(
+                "less nesting (at most {MAX_DEPTH} levels of parentheses, negations or implications)"
+            )));
+        }
+        self.depth += 1;
+        let r = f(self);
+        self.depth -= 1;
+        r
     }
 
     fn error(&self, expected: impl Into<String>) -> MlnError {
@@ -318,7 +336,7 @@ impl<'a> Parser<'a> {
         let left = self.disjunction()?;
         if *self.peek() == Tok::Implies {
             self.advance();
-            let right = self.implication()?;
+            let right = self.nested(|p| p.implication())?;
             return Ok(Raw::Implies(Box::new(left), Box::new(right)));
         }
         Ok(left)
@@ -345,7 +363,7 @@ impl<'a> Parser<'a> {
     fn unary(&mut self) -> Result<Raw, MlnError> {
         if *self.peek() == Tok::Not {
             self.advance();
-            return Ok(Raw::Not(Box::new(self.unary()?)));
+            return Ok(Raw::Not(Box::new(self.nested(|p| p.unary())?)));
         }
         self.primary()
     }
@@ -355,7 +373,7 @@ impl<'a> Parser<'a> {
         match &t.tok {
             Tok::LParen => {
                 self.advance();
-                let f = self.formula()?;
+                let f = self.nested(|p| p.formula())?;
                 if *self.peek() != Tok::RParen {
                     let at = t.at;
                     return Err(self.error(format!(
@@ -381,7 +399,7 @@ impl<'a> Parser<'a> {
                         format!("'{}'", c.text),
                     ));
                 }
-                let body = self.formula()?;
+                let body = self.nested(|p| p.formula())?;
                 Ok(Raw::Quant { exists, vars, body: Box::new(body) })
             }
             Tok::Ident(_) | Tok::Number(_) if matches!(self.peek_at(1), Tok::Eq | Tok::NotEq) => {
@@ -465,11 +483,11 @@ impl<'a> Parser<'a> {
         match self.peek() {
             Tok::Minus => {
                 self.advance();
-                Ok(-self.weight_unary()?)
+                Ok(-self.nested(|p| p.weight_unary())?)
             }
             Tok::Plus => {
                 self.advance();
-                self.weight_unary()
+                self.nested(|p| p.weight_unary())
             }
             _ => self.weight_primary(),
         }
@@ -484,7 +502,7 @@ impl<'a> Parser<'a> {
             }
             Tok::LParen => {
                 self.advance();
-                let v = self.weight_sum()?;
+                let v = self.nested(|p| p.weight_sum())?;
                 if *self.peek() != Tok::RParen {
                     return Err(self.error("an arithmetic operator (+ - * /) or ')' in the weight"));
                 }
@@ -493,7 +511,7 @@ impl<'a> Parser<'a> {
             }
             Tok::Ident(f) if FUNCTIONS.contains(&f.as_str()) && *self.peek_at(1) == Tok::LParen => {
                 self.advance();
-                let x = self.weight_primary()?;
+                let x = self.nested(|p| p.weight_primary())?;
                 match f.as_str() {
                     "exp" => Ok(libm::exp(x)),
                     _ if x > 0.0 => Ok(libm::log(x)),

@@ -46,6 +46,7 @@ fn project(x: usize, pos: &[u8]) -> usize {
 
 /// Elimination order by least fill-in (ties: fewest neighbours), and the resulting cliques.
 fn eliminate(net: &Network, max_clique: usize) -> Result<Vec<Clique>, TooWide> {
+    let max_clique = max_clique.min(30);
     let n = net.atom_count();
     let mut adj: Vec<Vec<u32>> = vec![Vec::new(); n];
     let mut scope = Vec::new();

@@ -1,0 +1,291 @@
+//! Exact marginals on a junction tree (variable elimination, two passes).
+//!
+//! Ground networks of the two use cases are large but thin: an indoor unit's type atoms
+//! interact only with those of its neighbours, through their `SaLe` atoms. Eliminating atoms
+//! one by one (min-fill order) turns the network into a tree of cliques, each an atom and the
+//! neighbours it had when eliminated; if every clique stays small, sum-product message passing
+//! on that tree gives every marginal exactly, in time linear in the number of cliques and
+//! exponential only in their size.
+//!
+//! Each feature becomes a factor over its atoms, `1` where satisfied and `exp(-w)` where not
+//! (hard features: `0`), which is `exp(w [F])` up to a constant. Messages are normalised as
+//! they are made, so nothing under- or overflows.
+
+use crate::mln::ground::Network;
+use std::cmp::Reverse;
+use std::collections::BinaryHeap;
+
+/// Why the tree could not be built: cliques would exceed the limit.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct TooWide {
+    /// Size of the clique that broke the limit.
+    pub clique: usize,
+}
+
+/// Total table entries allowed over all cliques (32 MB of `f64`).
+const MAX_ENTRIES: usize = 1 << 22;
+
+struct Clique {
+    /// `vars[0]` is the eliminated atom, the rest its separator; bit `j` of a table index is
+    /// the value of `vars[j]`.
+    vars: Vec<u32>,
+    parent: Option<usize>,
+    children: Vec<usize>,
+    /// Product of the factors assigned here.
+    potential: Vec<f64>,
+}
+
+/// Maps an entry of a table over `vars` to the entry of a table over a subset `sub`: gathers
+/// the bits of `sub`'s atoms, a byte of the index at a time through lookup tables.
+struct Projection {
+    bytes: Vec<[u32; 256]>,
+}
+
+impl Projection {
+    fn new(sub: &[u32], vars: &[u32]) -> Self {
+        let mut bytes = vec![[0u32; 256]; vars.len().div_ceil(8)];
+        for (j, a) in sub.iter().enumerate() {
+            let p = vars.iter().position(|v| v == a).expect("a sub-scope");
+            for (b, t) in bytes[p / 8].iter_mut().enumerate() {
+                *t |= ((b >> (p % 8)) as u32 & 1) << j;
+            }
+        }
+        Projection { bytes }
+    }
+
+    #[inline]
+    fn at(&self, x: usize) -> usize {
+        let mut i = 0;
+        for (k, t) in self.bytes.iter().enumerate() {
+            i |= t[(x >> (8 * k)) & 255];
+        }
+        i as usize
+    }
+}
+
+/// Elimination order by least fill-in (ties: fewest neighbours), and the resulting cliques.
+fn eliminate(net: &Network, max_clique: usize) -> Result<Vec<Clique>, TooWide> {
+    let max_clique = max_clique.min(30);
+    let n = net.atom_count();
+    let mut adj: Vec<Vec<u32>> = vec![Vec::new(); n];
+    let mut scope = Vec::new();
+    for f in 0..net.feature_count() {
+        feature_scope(net, f, &mut scope);
+        if scope.len() > max_clique {
+            return Err(TooWide { clique: scope.len() });
+        }
+        for &a in &scope {
+            for &b in &scope {
+                if a != b {
+                    adj[a as usize].push(b);
+                }
+            }
+        }
+    }
+    for v in adj.iter_mut() {
+        v.sort_unstable();
+        v.dedup();
+    }
+    let mut alive = vec![true; n];
+    let mut order_of = vec![usize::MAX; n];
+    let mut cliques = Vec::with_capacity(n);
+    let mut entries = 0usize;
+    // Fill-in of eliminating v (pairs of its neighbours not yet adjacent), then its degree.
+    // Atoms too wide to eliminate now wait at the back without their fill being counted.
+    let score = |adj: &[Vec<u32>], v: usize| -> (usize, usize) {
+        let nb = &adj[v];
+        if nb.len() + 1 > max_clique {
+            return (usize::MAX, nb.len());
+        }
+        let mut missing = 0;
+        for (i, &a) in nb.iter().enumerate() {
+            for &b in &nb[i + 1..] {
+                if adj[a as usize].binary_search(&b).is_err() {
+                    missing += 1;
+                }
+            }
+        }
+        (missing, nb.len())
+    };
+    let mut current: Vec<(usize, usize)> = (0..n).map(|v| score(&adj, v)).collect();
+    let mut heap: BinaryHeap<Reverse<(usize, usize, u32)>> =
+        (0..n).map(|v| Reverse((current[v].0, current[v].1, v as u32))).collect();
+    let mut dirty = Vec::new();
+    for step in 0..n {
+        let v = loop {
+            let Reverse((fill, degree, v)) = heap.pop().expect("an atom is left");
+            if alive[v as usize] && current[v as usize] == (fill, degree) {
+                break v as usize;
+            }
+        };
+        let nb = std::mem::take(&mut adj[v]);
+        if nb.len() + 1 > max_clique {
+            return Err(TooWide { clique: nb.len() + 1 });
+        }
+        entries += 1 << (nb.len() + 1);
+        if entries > MAX_ENTRIES {
+            return Err(TooWide { clique: nb.len() + 1 });
+        }
+        for &a in &nb {
+            let list = &mut adj[a as usize];
+            list.retain(|&b| b as usize != v);
+            for &b in &nb {
+                if b != a {
+                    if let Err(i) = list.binary_search(&b) {
+                        list.insert(i, b);
+                    }
+                }
+            }
+        }
+        // Only the neighbours and their neighbours can have a new score.
+        dirty.clear();
+        for &a in &nb {
+            dirty.push(a);
+            dirty.extend(&adj[a as usize]);
+        }
+        dirty.sort_unstable();
+        dirty.dedup();
+        for &a in &dirty {
+            let a = a as usize;
+            let s = score(&adj, a);
+            if s != current[a] {
+                current[a] = s;
+                heap.push(Reverse((s.0, s.1, a as u32)));
+            }
+        }
+        alive[v] = false;
+        order_of[v] = step;
+        let mut vars = vec![v as u32];
+        vars.extend(&nb);
+        cliques.push(Clique { vars, parent: None, children: Vec::new(), potential: Vec::new() });
+    }
+    // The parent of a clique is that of its separator atom eliminated first.
+    for i in 0..n {
+        let parent = cliques[i].vars[1..].iter().map(|&a| order_of[a as usize]).min();
+        if let Some(p) = parent {
+            cliques[i].parent = Some(p);
+            cliques[p].children.push(i);
+        }
+    }
+    // Each feature goes to the smallest clique that holds its atoms (the clique of its atom
+    // eliminated first always does).
+    for c in cliques.iter_mut() {
+        c.potential = vec![1.0; 1 << c.vars.len()];
+    }
+    let mut table = Vec::new();
+    for f in 0..net.feature_count() {
+        feature_scope(net, f, &mut scope);
+        let home = scope
+            .iter()
+            .map(|&a| order_of[a as usize])
+            .filter(|&i| scope.iter().all(|a| cliques[i].vars.contains(a)))
+            .min_by_key(|&i| (cliques[i].vars.len(), i))
+            .unwrap();
+        feature_table(net, f, &scope, &mut table);
+        let clique = &mut cliques[home];
+        let proj = Projection::new(&scope, &clique.vars);
+        for (x, p) in clique.potential.iter_mut().enumerate() {
+            *p *= table[proj.at(x)];
+        }
+    }
+    Ok(cliques)
+}
+
+/// The sorted atoms of a feature.
+fn feature_scope(net: &Network, f: usize, out: &mut Vec<u32>) {
+    out.clear();
+    for c in net.clauses_of(f) {
+        out.extend(net.clause_lits(c).iter().map(|&l| l >> 1));
+    }
+    out.sort_unstable();
+    out.dedup();
+}
+
+/// `exp(w [F]) / exp(w)` over the feature's atoms: 1 satisfied, `exp(-w)` (or 0 if hard) not.
+fn feature_table(net: &Network, f: usize, scope: &[u32], out: &mut Vec<f64>) {
+    let w = net.feature_weight[f];
+    let violated = if w.is_infinite() { 0.0 } else { libm::exp(-w) };
+    out.clear();
+    for x in 0..1usize << scope.len() {
+        let sat = net.clauses_of(f).all(|c| {
+            net.clause_lits(c).iter().any(|&l| {
+                let j = scope.binary_search(&(l >> 1)).unwrap();
+                (x >> j & 1 == 1) != (l & 1 == 1)
+            })
+        });
+        out.push(if sat { 1.0 } else { violated });
+    }
+}
+
+fn normalise(t: &mut [f64]) -> f64 {
+    let s: f64 = t.iter().sum();
+    if s > 0.0 {
+        for v in t.iter_mut() {
+            *v /= s;
+        }
+    }
+    s
+}
+
+/// Marginal probability of every unknown atom, or the clique size that made the tree too wide.
+/// `None` inside `Ok` means the hard features cannot all be satisfied.
+pub(crate) fn marginals(net: &Network, max_clique: usize) -> Result<Option<Vec<f64>>, TooWide> {
+    let mut cliques = eliminate(net, max_clique)?;
+    let n = cliques.len();
+    // Clique i's entries onto its separator, within its parent's table.
+    let to_parent: Vec<Option<Projection>> =
+        cliques.iter().map(|c| c.parent.map(|p| Projection::new(&c.vars[1..], &cliques[p].vars))).collect();
+    // Upward: full[i] = potential x messages from children; up[i] = full[i] summed over vars[0].
+    let mut up: Vec<Vec<f64>> = vec![Vec::new(); n];
+    let mut full: Vec<Vec<f64>> = vec![Vec::new(); n];
+    for i in 0..n {
+        let mut t = std::mem::take(&mut cliques[i].potential);
+        for &c in &cliques[i].children {
+            let proj = to_parent[c].as_ref().unwrap();
+            for (x, v) in t.iter_mut().enumerate() {
+                *v *= up[c][proj.at(x)];
+            }
+        }
+        let mut m = vec![0.0; t.len() / 2];
+        for (x, &v) in t.iter().enumerate() {
+            m[x >> 1] += v;
+        }
+        if normalise(&mut m) == 0.0 {
+            return Ok(None);
+        }
+        up[i] = m;
+        full[i] = t;
+    }
+    // Downward, parents before children: belief = full x message from the parent, and the
+    // message to a child is the belief summed onto its separator, divided by the child's own
+    // upward message (0 / 0 = 0: such entries have zero belief anyway).
+    let mut out = vec![0.0; n];
+    let mut down: Vec<Vec<f64>> = vec![Vec::new(); n];
+    for i in (0..n).rev() {
+        let mut belief = std::mem::take(&mut full[i]);
+        if cliques[i].parent.is_some() {
+            for (x, v) in belief.iter_mut().enumerate() {
+                *v *= down[i][x >> 1];
+            }
+        }
+        let z = normalise(&mut belief);
+        if z == 0.0 {
+            return Ok(None);
+        }
+        out[cliques[i].vars[0] as usize] = belief.iter().skip(1).step_by(2).sum::<f64>().clamp(0.0, 1.0);
+        for &c in &cliques[i].children {
+            let proj = to_parent[c].as_ref().unwrap();
+            let mut m = vec![0.0; up[c].len()];
+            for (x, &v) in belief.iter().enumerate() {
+                m[proj.at(x)] += v;
+            }
+            for (v, &u) in m.iter_mut().zip(&up[c]) {
+                *v = if u > 0.0 { *v / u } else { 0.0 };
+            }
+            normalise(&mut m);
+            down[c] = m;
+        }
+        down[i] = Vec::new();
+    }
+    Ok(Some(out))
+}

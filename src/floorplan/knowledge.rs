@@ -170,3 +170,161 @@ mod tests {
         assert_eq!(defects(&w), Some(0.0));
     }
 }
+
+/// The built-in knowledge base: the indoor rules of Tab. 3.3 - 3.5.
+pub const BUILTIN_INDOOR: &str = include_str!("../../samples/knowledge/indoor.mln");
+
+/// How knowledge supervises the chain.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct KnowledgeConfig {
+    /// Use knowledge in the chain (false: the weak-prior mode of the first paper; types are
+    /// then inferred on the final world only).
+    pub enabled: bool,
+    /// Knowledge base text in the Alchemy format; `None` is [`BUILTIN_INDOOR`]. Any knowledge
+    /// base works whose evidence predicates are among `RoLi`, `CoLi`, `HaLi`, `MulDoor`, `Adj`
+    /// and whose query predicates are among `Room`, `Corr`, `Hall`, `Other`, `SaLe`; others
+    /// are left to the open world.
+    pub kb: Option<String>,
+    /// Share of the map's free cells the world must cover before knowledge switches on.
+    pub coverage: f64,
+    /// Iterations between inferences (results are cached by their evidence).
+    pub every: u64,
+    /// `P(SaLe)` above which a pair's connecting walls are pulled to the same length.
+    pub same_length_threshold: f64,
+    /// `σ` of the same-length factor (eq. 3.34), cells.
+    pub same_length_sigma: f64,
+    /// `p(C_M | object)` for map classes free, unknown, occupied: how the semantic sensor
+    /// model scores a non-free cell inside a room, hall or other unit.
+    pub object: [f64; 3],
+    /// The geometry classifier (Tab. 3.6).
+    pub geometry: GeometryClassifier,
+    /// MC-SAT samples when the network is too large for exact inference.
+    pub samples: u32,
+}
+
+impl Default for KnowledgeConfig {
+    fn default() -> Self {
+        KnowledgeConfig {
+            enabled: true,
+            kb: None,
+            coverage: 0.8,
+            every: 500,
+            same_length_threshold: 0.5,
+            same_length_sigma: 10.0,
+            object: [0.1, 0.45, 0.45],
+            geometry: GeometryClassifier::default(),
+            samples: 2000,
+        }
+    }
+}
+
+impl KnowledgeConfig {
+    /// Checks every number.
+    pub fn validate(&self) -> Result<(), String> {
+        let unit = |v: f64| v.is_finite() && (0.0..=1.0).contains(&v);
+        if !unit(self.coverage) || !unit(self.same_length_threshold) {
+            return Err("knowledge: coverage and same_length_threshold must be in [0, 1]".into());
+        }
+        if self.every == 0 || self.samples == 0 {
+            return Err("knowledge: every and samples must be at least 1".into());
+        }
+        if !(self.same_length_sigma.is_finite() && self.same_length_sigma > 0.0) {
+            return Err(format!("knowledge: same_length_sigma {} must be positive", self.same_length_sigma));
+        }
+        if self.object.iter().any(|p| !(p.is_finite() && *p > 0.0 && *p <= 1.0)) {
+            return Err("knowledge: object probabilities must be in (0, 1]".into());
+        }
+        let g = &self.geometry;
+        if !(g.hall_area_m2.is_finite() && g.hall_area_m2 > 0.0 && g.corridor_ratio.is_finite() && g.corridor_ratio >= 1.0) {
+            return Err("knowledge: geometry needs hall_area_m2 > 0 and corridor_ratio >= 1".into());
+        }
+        Ok(())
+    }
+}
+
+/// What inference said about a world.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Inferred {
+    /// Unit id -> type (the most probable of Room, Corr, Hall, Other) and the four marginals.
+    pub types: std::collections::BTreeMap<u32, (UnitType, [f64; 4])>,
+    /// Unit pairs `(p, q)`, `p < q`, with `P(SaLe(p, q))` above the threshold.
+    pub same_length: Vec<(u32, u32, f64)>,
+}
+
+/// A knowledge base ready to answer for worlds, with a cache keyed by evidence.
+#[derive(Debug, Clone)]
+pub struct Knowledge {
+    mln: crate::mln::Mln,
+    config: KnowledgeConfig,
+    queries: Vec<&'static str>,
+    cache: std::collections::HashMap<String, Inferred>,
+    /// How many inferences ran (cache misses).
+    pub inferences: u64,
+}
+
+const TYPE_PREDICATES: [(&str, UnitType); 4] =
+    [("Room", UnitType::Room), ("Corr", UnitType::Corridor), ("Hall", UnitType::Hall), ("Other", UnitType::Other)];
+
+impl Knowledge {
+    /// Parses the configured knowledge base.
+    pub fn new(config: &KnowledgeConfig) -> Result<Knowledge, crate::mln::MlnError> {
+        let mln = crate::mln::Mln::parse(config.kb.as_deref().unwrap_or(BUILTIN_INDOOR))?;
+        let queries = ["Room", "Corr", "Hall", "Other", "SaLe"].into_iter().filter(|q| mln.predicate(q).is_some()).collect();
+        Ok(Knowledge { mln, config: config.clone(), queries, cache: Default::default(), inferences: 0 })
+    }
+
+    /// The configuration.
+    pub fn config(&self) -> &KnowledgeConfig {
+        &self.config
+    }
+
+    /// Types and same-length pairs for `world` (unit ids as constants `U<id>`).
+    pub fn infer(&mut self, world: &World, resolution: f64) -> Result<Inferred, crate::mln::MlnError> {
+        use crate::mln::{Database, Evidence, GroundConfig, InferenceConfig, Network};
+        let facts: Vec<Fact> = evidence(world, resolution, &self.config.geometry)
+            .into_iter()
+            .filter(|f| self.mln.predicate(f.0).is_some())
+            .collect();
+        let mut key = String::new();
+        for f in &facts {
+            key.push_str(&format!("{}({}){};", f.0, f.1.join(","), f.2 as u8));
+        }
+        if let Some(hit) = self.cache.get(&key) {
+            return Ok(hit.clone());
+        }
+        let mut db = Database::new();
+        for (pred, args, value) in &facts {
+            let args: Vec<&str> = args.iter().map(String::as_str).collect();
+            db.insert(&self.mln, pred, &args, if *value { Evidence::True } else { Evidence::False })?;
+        }
+        let mut ground = GroundConfig::query(&self.queries);
+        let units: Vec<String> = world.units.iter().map(|u| constant(u.id)).collect();
+        if let Some(p) = self.mln.predicate("Room").or_else(|| self.mln.predicate("SaLe")) {
+            if let Some(ty) = self.mln.argument_types(p).first() {
+                ground.domains.push((ty.to_string(), units.clone()));
+            }
+        }
+        let net = Network::ground(&self.mln, &db, &ground)?;
+        let marginals = net.infer_marginals(&InferenceConfig { samples: self.config.samples, ..Default::default() })?;
+        let mut out = Inferred::default();
+        for u in &world.units {
+            let c = constant(u.id);
+            let p = TYPE_PREDICATES.map(|(q, _)| marginals.get(q, &[c.as_str()]).unwrap_or(0.0));
+            let best = (0..4).max_by(|&a, &b| p[a].total_cmp(&p[b])).unwrap_or(0);
+            let kind = if p[best] > 0.0 { TYPE_PREDICATES[best].1 } else { UnitType::Unknown };
+            out.types.insert(u.id, (kind, p));
+        }
+        for (i, a) in world.units.iter().enumerate() {
+            for b in &world.units[i + 1..] {
+                let p = marginals.get("SaLe", &[constant(a.id).as_str(), constant(b.id).as_str()]).unwrap_or(0.0);
+                if p > self.config.same_length_threshold {
+                    out.same_length.push((a.id.min(b.id), a.id.max(b.id), p));
+                }
+            }
+        }
+        self.inferences += 1;
+        self.cache.insert(key, out.clone());
+        Ok(out)
+    }
+}

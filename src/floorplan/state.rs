@@ -180,8 +180,9 @@ pub enum Undo {
 pub struct State {
     /// The incremental likelihood bookkeeping.
     pub explanation: Explanation,
-    occupied: AreaCounts,
+        occupied: AreaCounts,
     free: AreaCounts,
+    unknown: AreaCounts,
     /// The units, in slot order.
     pub units: Vec<Unit>,
     /// The doors.
@@ -205,7 +206,8 @@ impl State {
         State {
             explanation: Explanation::new(map),
             occupied: AreaCounts::new(map, Cell::Occupied),
-            free: AreaCounts::new(map, Cell::Free),
+                        free: AreaCounts::new(map, Cell::Free),
+            unknown: AreaCounts::new(map, Cell::Unknown),
             units: Vec::new(),
             doors: Vec::new(),
             next_id: 1,
@@ -233,9 +235,14 @@ impl State {
         self.occupied.count(r)
     }
 
-    /// Free cells inside a rectangle.
+        /// Free cells inside a rectangle.
     pub fn free_in(&self, r: Rect) -> u32 {
         self.free.count(r)
+    }
+
+    /// Unknown cells inside a rectangle.
+    pub fn unknown_in(&self, r: Rect) -> u32 {
+        self.unknown.count(r)
     }
 
     /// Wall weights `ω_w` of eq. 3.11 for the four walls (left, right, top, bottom): the share

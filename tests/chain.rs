@@ -170,3 +170,37 @@ fn config_json_accepts_partial_objects() {
     assert_eq!(c.kernels.min_side, 4);
     assert_eq!(c.posterior.overlap_penalty, ChainConfig::default().posterior.overlap_penalty);
 }
+
+#[test]
+fn knowledge_types_units_and_stays_deterministic() {
+    let map = OccupancyMap::from_classified(rooms_map());
+    let mut c = ChainConfig::default();
+    c.knowledge.enabled = true;
+    c.knowledge.every = 200;
+    let run = |seed| {
+        let mut chain = Chain::new(&map, c.clone(), seed).unwrap();
+        chain.step(4000);
+        assert!(chain.knowledge_error().is_none(), "{:?}", chain.knowledge_error());
+        assert!(chain.inferences() > 0, "inference never ran");
+        (chain.best_world().to_json(), chain.inferred().types.len())
+    };
+    let (a, typed) = run(5);
+    assert!(typed > 0);
+    let world = ksmcmc::floorplan::World::from_json(&a).unwrap();
+    assert!(world.units.iter().any(|u| u.kind != ksmcmc::floorplan::UnitType::Unknown), "no unit got a type");
+    assert_eq!(run(5).0, a, "same seed, same world with knowledge");
+}
+
+#[test]
+fn a_broken_knowledge_base_is_a_clear_error() {
+    let map = OccupancyMap::from_classified(rooms_map());
+    let mut c = ChainConfig::default();
+    c.knowledge.enabled = true;
+    c.knowledge.kb = Some("Room(unit)\nRoom(x) => Corr(x)\n".into());
+    let e = Chain::new(&map, c, 1).unwrap_err();
+    assert!(matches!(e, ChainError::Knowledge(_)), "{e}");
+    assert!(e.to_string().contains("line 2"), "{e}");
+    let mut c = ChainConfig::default();
+    c.knowledge.object_share = f64::NAN;
+    assert!(matches!(Chain::new(&map, c, 1).unwrap_err(), ChainError::Config(_)));
+}

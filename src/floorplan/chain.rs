@@ -79,7 +79,7 @@ pub struct ChainConfig {
     /// ([`vision::walls::ring_depth`]). The dissertation's model is 1; thicker rings let units
     /// predict thick walls.
     pub wall_thickness: Option<i32>,
-        /// Output bookkeeping.
+    /// Output bookkeeping.
     pub output: OutputConfig,
     /// Knowledge supervision (section 3.8).
     pub knowledge: super::knowledge::KnowledgeConfig,
@@ -129,7 +129,7 @@ impl ChainConfig {
                 return bad(format!("wall_thickness {t} must be between 1 and 10 cells"));
             }
         }
-                self.knowledge.validate().or_else(bad)?;
+        self.knowledge.validate().or_else(bad)?;
         if self.detectors.free_space_every == 0 {
             return bad("detectors.free_space_every must be at least 1".into());
         }
@@ -148,7 +148,7 @@ impl ChainConfig {
 /// Why a chain could not start.
 #[derive(Debug, Clone, PartialEq)]
 pub enum ChainError {
-        /// A configuration value is unusable.
+    /// A configuration value is unusable.
     Config(String),
     /// The knowledge base does not parse or ground.
     Knowledge(String),
@@ -159,7 +159,7 @@ pub enum ChainError {
 impl std::fmt::Display for ChainError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-                        ChainError::Config(m) => write!(f, "invalid chain configuration: {m}"),
+            ChainError::Config(m) => write!(f, "invalid chain configuration: {m}"),
             ChainError::Knowledge(m) => write!(f, "knowledge base: {m}"),
             ChainError::Map(m) => write!(f, "cannot explain this map: {m}"),
         }
@@ -194,7 +194,7 @@ pub struct Chain {
     best_iteration: u64,
     trace: Trace,
     samples: Ring<Vec<Rect>>,
-        phase_tables: Vec<Cumulative>,
+    phase_tables: Vec<Cumulative>,
     phase_index: usize,
     knowledge: Option<super::knowledge::Knowledge>,
     inferred: super::knowledge::Inferred,
@@ -202,6 +202,7 @@ pub struct Chain {
     /// `log p(C_M | object) - log p(C_M | free)` for unknown and occupied map cells, floored at
     /// zero: a cell is an object only where that explains it better.
     object_gain: [f64; 2],
+    knowledge_error: Option<String>,
 }
 
 impl Chain {
@@ -243,7 +244,7 @@ impl Chain {
         let wall = config.wall_thickness.unwrap_or_else(|| vision::walls::ring_depth(classified, angle));
         let min_side = config.kernels.min_side.max(2 * wall + 1);
         let candidates = Candidates::new(found.into_iter().filter(|(r, _)| r.w >= min_side && r.h >= min_side));
-                let mut chain = Self::with_parts(config, frame, world_map, classified.clone(), candidates, wall, seed)?;
+        let mut chain = Self::with_parts(config, frame, world_map, classified.clone(), candidates, wall, seed)?;
         chain.resolution = map.yaml().resolution;
         Ok(chain)
     }
@@ -259,7 +260,7 @@ impl Chain {
         config.validate()?;
         let frame = Frame::identity(map.width() as u32, map.height() as u32);
         let wall = config.wall_thickness.unwrap_or(1);
-                Self::with_parts(config, frame, map.clone(), map.clone(), Candidates::new(candidates), wall, seed)
+        Self::with_parts(config, frame, map.clone(), map.clone(), Candidates::new(candidates), wall, seed)
     }
 
     fn with_parts(
@@ -268,11 +269,14 @@ impl Chain {
         world_map: Grid<Cell>,
         map: Grid<Cell>,
         candidates: Candidates,
-                wall: i32,
+        wall: i32,
         seed: u64,
     ) -> Result<Chain, ChainError> {
         let knowledge = if config.knowledge.enabled {
-            Some(super::knowledge::Knowledge::new(&config.knowledge).map_err(|e| ChainError::Knowledge(e.to_string()))?)
+            Some(
+                super::knowledge::Knowledge::new(&config.knowledge)
+                    .map_err(|e| ChainError::Knowledge(e.to_string()))?,
+            )
         } else {
             None
         };
@@ -287,7 +291,7 @@ impl Chain {
         let posterior = Posterior::new(&config.posterior);
         let log_target = posterior.log_target(&state.explanation, 0);
         let phase_tables = config.schedule.phases.iter().map(|p| Cumulative::new(p.weights.0)).collect();
-                let best_log_posterior = posterior.log_posterior(&state.explanation, 0);
+        let best_log_posterior = posterior.log_posterior(&state.explanation, 0);
         Ok(Chain {
             trace: Trace::new(config.output.acceptance_window, config.output.trace_every),
             samples: Ring::new(config.output.samples),
@@ -305,37 +309,43 @@ impl Chain {
             best: Snapshot::default(),
             best_log_posterior,
             best_iteration: 0,
-                        phase_tables,
+            phase_tables,
             phase_index: 0,
             knowledge,
             inferred: Default::default(),
             resolution: 0.05,
             object_gain,
+            knowledge_error: None,
         })
     }
 
     /// The knowledge terms of the log posterior (untempered): the semantic sensor model's
     /// object cells in rooms, halls and other units, and the same-length factors of eq. 3.34.
     fn knowledge_term(&self) -> f64 {
+        self.knowledge_term_for(&self.state.units)
+    }
+
+    fn knowledge_term_for(&self, units: &[Unit]) -> f64 {
         if self.inferred.types.is_empty() {
             return 0.0;
         }
         let t = self.state.wall;
         let mut s = 0.0;
-        for u in &self.state.units {
-            let tolerant = matches!(
-                self.inferred.types.get(&u.id),
-                Some((UnitType::Room | UnitType::Hall | UnitType::Other, _))
-            );
+        for u in units {
+            let tolerant =
+                matches!(self.inferred.types.get(&u.id), Some((UnitType::Room | UnitType::Hall | UnitType::Other, _)));
             if tolerant && u.w > 2 * t && u.h > 2 * t {
                 let inside = Rect::new(u.x + t, u.y + t, u.w - 2 * t, u.h - 2 * t);
-                s += self.state.unknown_in(inside) as f64 * self.object_gain[0]
-                    + self.state.occupied_in(inside) as f64 * self.object_gain[1];
+                // Object cells, up to the allowed share of the interior, unknown ones first.
+                let cap = (self.config.knowledge.object_share * inside.area() as f64) as u32;
+                let unknown = self.state.unknown_in(inside).min(cap);
+                let occupied = self.state.occupied_in(inside).min(cap - unknown);
+                s += unknown as f64 * self.object_gain[0] + occupied as f64 * self.object_gain[1];
             }
         }
         let sigma = self.config.knowledge.same_length_sigma;
         for &(p, q, _) in &self.inferred.same_length {
-            let (Some(a), Some(b)) = (self.state.units.iter().find(|u| u.id == p), self.state.units.iter().find(|u| u.id == q)) else {
+            let (Some(a), Some(b)) = (units.iter().find(|u| u.id == p), units.iter().find(|u| u.id == q)) else {
                 continue;
             };
             if let Some((la, lb)) = super::knowledge::connecting_walls(a, b, t) {
@@ -370,7 +380,14 @@ impl Chain {
         w.units = self.state.units.clone();
         for (k, d) in self.state.doors.iter().enumerate() {
             if let Some(r) = self.state.door_rect_of(d) {
-                w.doors.push(Door { id: k as u32 + 1, units: [d.lo, d.hi], x0: r.x, y0: r.y, x1: r.right() - 1, y1: r.bottom() - 1 });
+                w.doors.push(Door {
+                    id: k as u32 + 1,
+                    units: [d.lo, d.hi],
+                    x0: r.x,
+                    y0: r.y,
+                    x1: r.right() - 1,
+                    y1: r.bottom() - 1,
+                });
             }
         }
         w
@@ -387,17 +404,25 @@ impl Chain {
             u.kind = inferred.types.get(&u.id).map_or(UnitType::Unknown, |t| t.0);
         }
         if inferred != self.inferred {
+            // The target changed: rescore the current world and the best one under it.
+            let best_base = self.best_log_posterior - self.knowledge_term_for(&self.best.units);
             self.inferred = inferred;
-            // The target changed: rescore the current world, and let the best world restart
-            // from it (worlds scored under different knowledge are not comparable).
             let lp = self.full_log_posterior();
             self.log_target = lp * self.posterior.inv_temperature();
-            self.best_log_posterior = lp;
-            self.best_iteration = self.iteration;
-            self.best.units.clone_from(&self.state.units);
-            self.best.doors.clone_from(&self.state.doors);
+            self.best_log_posterior = best_base + self.knowledge_term_for(&self.best.units);
+            if lp > self.best_log_posterior || self.best.units.is_empty() {
+                self.best_log_posterior = lp;
+                self.best_iteration = self.iteration;
+                self.best.units.clone_from(&self.state.units);
+                self.best.doors.clone_from(&self.state.doors);
+            }
         }
         Ok(())
+    }
+
+    /// Why knowledge inference stopped, if it failed (the chain goes on without it).
+    pub fn knowledge_error(&self) -> Option<&str> {
+        self.knowledge_error.as_deref()
     }
 
     /// Unit types and same-length pairs from the last inference.
@@ -455,7 +480,7 @@ impl Chain {
         &self.state.explanation
     }
 
-        /// `log p(W|M)` of the current world (untempered, up to a constant), knowledge terms
+    /// `log p(W|M)` of the current world (untempered, up to a constant), knowledge terms
     /// included once knowledge is active.
     pub fn log_posterior(&self) -> f64 {
         self.full_log_posterior()
@@ -603,6 +628,15 @@ impl Chain {
         if self.iteration >= d.free_space_start && (self.iteration - d.free_space_start) % d.free_space_every == 0 {
             self.refresh_free_space();
         }
+        if self.knowledge.is_some()
+            && self.iteration % self.config.knowledge.every == 0
+            && self.coverage() >= self.config.knowledge.coverage
+        {
+            if let Err(e) = self.infer_knowledge() {
+                self.knowledge_error = Some(e.to_string());
+                self.knowledge = None;
+            }
+        }
         let phase = self.current_weights();
         let table = &self.phase_tables[phase];
         let Some(k) = table.draw(&mut self.rng) else { return };
@@ -630,11 +664,11 @@ impl Chain {
         }
         let (undo, generation, next_id) = self.state.apply(&mv);
         let q_rev = self.proposer.reverse_q(&mv, &undo, &self.state);
-                let new_target = self.full_log_posterior() * self.posterior.inv_temperature();
+        let new_target = self.full_log_posterior() * self.posterior.inv_temperature();
         let log_ratio = new_target - self.log_target + libm::log(phi_rev * q_rev) - libm::log(phi_fwd * q_fwd);
         if q_rev > 0.0 && accept(log_ratio, &mut self.rng) {
             self.log_target = new_target;
-                        let lp = new_target / self.posterior.inv_temperature();
+            let lp = new_target / self.posterior.inv_temperature();
             if lp > self.best_log_posterior {
                 self.best_log_posterior = lp;
                 self.best_iteration = self.iteration;

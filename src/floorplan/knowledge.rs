@@ -68,9 +68,9 @@ pub fn constant(id: u32) -> String {
 /// Whether two units are adjacent: facing walls at most two wall depths apart with a shared
 /// stretch (the relation R of eq. 3.31).
 pub fn adjacent(a: &Unit, b: &Unit, t: i32) -> bool {
-    [Axis::Horizontal, Axis::Vertical]
-        .iter()
-        .any(|&axis| facing(a.rect(), b.rect(), axis, 2 * t, t).is_some() || facing(b.rect(), a.rect(), axis, 2 * t, t).is_some())
+    [Axis::Horizontal, Axis::Vertical].iter().any(|&axis| {
+        facing(a.rect(), b.rect(), axis, 2 * t, t).is_some() || facing(b.rect(), a.rect(), axis, 2 * t, t).is_some()
+    })
 }
 
 /// The lengths of the connecting walls of two adjacent units (their facing sides), cells.
@@ -179,7 +179,8 @@ pub const BUILTIN_INDOOR: &str = include_str!("../../samples/knowledge/indoor.ml
 #[serde(default)]
 pub struct KnowledgeConfig {
     /// Use knowledge in the chain (false: the weak-prior mode of the first paper; types are
-    /// then inferred on the final world only).
+    /// then inferred on the final world only). Off by default for now: on our maps it does not
+    /// yet improve K(W, M) or the defects over the weak prior (BENCHMARKS.md).
     pub enabled: bool,
     /// Knowledge base text in the Alchemy format; `None` is [`BUILTIN_INDOOR`]. Any knowledge
     /// base works whose evidence predicates are among `RoLi`, `CoLi`, `HaLi`, `MulDoor`, `Adj`
@@ -197,6 +198,9 @@ pub struct KnowledgeConfig {
     /// `p(C_M | object)` for map classes free, unknown, occupied: how the semantic sensor
     /// model scores a non-free cell inside a room, hall or other unit.
     pub object: [f64; 3],
+    /// Largest share of a unit's interior that may be object cells: furniture fills part of
+    /// a room; a "room" whose interior is mostly unseen is not furnished, it is too big.
+    pub object_share: f64,
     /// The geometry classifier (Tab. 3.6).
     pub geometry: GeometryClassifier,
     /// MC-SAT samples when the network is too large for exact inference.
@@ -206,13 +210,14 @@ pub struct KnowledgeConfig {
 impl Default for KnowledgeConfig {
     fn default() -> Self {
         KnowledgeConfig {
-            enabled: true,
+            enabled: false,
             kb: None,
             coverage: 0.8,
             every: 500,
-            same_length_threshold: 0.5,
+            same_length_threshold: 0.4,
             same_length_sigma: 10.0,
             object: [0.1, 0.45, 0.45],
+            object_share: 0.15,
             geometry: GeometryClassifier::default(),
             samples: 2000,
         }
@@ -223,8 +228,8 @@ impl KnowledgeConfig {
     /// Checks every number.
     pub fn validate(&self) -> Result<(), String> {
         let unit = |v: f64| v.is_finite() && (0.0..=1.0).contains(&v);
-        if !unit(self.coverage) || !unit(self.same_length_threshold) {
-            return Err("knowledge: coverage and same_length_threshold must be in [0, 1]".into());
+        if !unit(self.coverage) || !unit(self.same_length_threshold) || !unit(self.object_share) {
+            return Err("knowledge: coverage, same_length_threshold and object_share must be in [0, 1]".into());
         }
         if self.every == 0 || self.samples == 0 {
             return Err("knowledge: every and samples must be at least 1".into());
@@ -236,7 +241,11 @@ impl KnowledgeConfig {
             return Err("knowledge: object probabilities must be in (0, 1]".into());
         }
         let g = &self.geometry;
-        if !(g.hall_area_m2.is_finite() && g.hall_area_m2 > 0.0 && g.corridor_ratio.is_finite() && g.corridor_ratio >= 1.0) {
+        if !(g.hall_area_m2.is_finite()
+            && g.hall_area_m2 > 0.0
+            && g.corridor_ratio.is_finite()
+            && g.corridor_ratio >= 1.0)
+        {
             return Err("knowledge: geometry needs hall_area_m2 > 0 and corridor_ratio >= 1".into());
         }
         Ok(())
@@ -270,7 +279,8 @@ impl Knowledge {
     /// Parses the configured knowledge base.
     pub fn new(config: &KnowledgeConfig) -> Result<Knowledge, crate::mln::MlnError> {
         let mln = crate::mln::Mln::parse(config.kb.as_deref().unwrap_or(BUILTIN_INDOOR))?;
-        let queries = ["Room", "Corr", "Hall", "Other", "SaLe"].into_iter().filter(|q| mln.predicate(q).is_some()).collect();
+        let queries =
+            ["Room", "Corr", "Hall", "Other", "SaLe"].into_iter().filter(|q| mln.predicate(q).is_some()).collect();
         Ok(Knowledge { mln, config: config.clone(), queries, cache: Default::default(), inferences: 0 })
     }
 
@@ -299,6 +309,12 @@ impl Knowledge {
             db.insert(&self.mln, pred, &args, if *value { Evidence::True } else { Evidence::False })?;
         }
         let mut ground = GroundConfig::query(&self.queries);
+        // Evidence is complete for the predicates the world supplies: closed world.
+        ground.closed_world = ["RoLi", "CoLi", "HaLi", "MulDoor", "Adj"]
+            .iter()
+            .filter(|p| self.mln.predicate(p).is_some())
+            .map(|p| p.to_string())
+            .collect();
         let units: Vec<String> = world.units.iter().map(|u| constant(u.id)).collect();
         if let Some(p) = self.mln.predicate("Room").or_else(|| self.mln.predicate("SaLe")) {
             if let Some(ty) = self.mln.argument_types(p).first() {

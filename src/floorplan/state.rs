@@ -180,7 +180,7 @@ pub enum Undo {
 pub struct State {
     /// The incremental likelihood bookkeeping.
     pub explanation: Explanation,
-        occupied: AreaCounts,
+    occupied: AreaCounts,
     free: AreaCounts,
     unknown: AreaCounts,
     /// The units, in slot order.
@@ -206,7 +206,7 @@ impl State {
         State {
             explanation: Explanation::new(map),
             occupied: AreaCounts::new(map, Cell::Occupied),
-                        free: AreaCounts::new(map, Cell::Free),
+            free: AreaCounts::new(map, Cell::Free),
             unknown: AreaCounts::new(map, Cell::Unknown),
             units: Vec::new(),
             doors: Vec::new(),
@@ -235,7 +235,7 @@ impl State {
         self.occupied.count(r)
     }
 
-        /// Free cells inside a rectangle.
+    /// Free cells inside a rectangle.
     pub fn free_in(&self, r: Rect) -> u32 {
         self.free.count(r)
     }

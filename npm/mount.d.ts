@@ -32,7 +32,7 @@ export interface MountOptions {
   show?: 'current' | 'best';
   /** Overlay the posterior cloud (the last accepted worlds as thin lines; default false). */
   cloud?: boolean;
-  /** Unit type and id labels on the map (default true). */
+  /** Unit type and id labels on the map (default false). */
   labels?: boolean;
   /** Draw the scene graph beside the map (default true). */
   graph?: boolean;

@@ -126,7 +126,7 @@ export async function mount(element, options = {}) {
   if (!(element instanceof Element)) throw new Error('mount: the first argument must be a DOM element');
   checkOptions(options);
   await ready(options.wasm);
-  const { budgetMs = 8, iterationsPerFrame, labels = true, graph = true, controls = true } = options;
+  const { budgetMs = 8, iterationsPerFrame, labels = false, graph = true, controls = true } = options;
   let show = options.show ?? 'current';
   let cloud = Boolean(options.cloud);
   const name = options.sample ?? (options.url !== undefined ? String(options.url).split('/').pop() : options.map ? 'map' : 'office-small');
@@ -210,11 +210,12 @@ export async function mount(element, options = {}) {
     options.onError?.(err);
   };
 
+  // Enough pixels per cell for the screen (at most 3): shrunk smoothly, never blown up blurred.
   const scale = () => {
-    const shown = mapCanvas.clientWidth || mapper.width;
-    const s = Math.floor((shown * (globalThis.devicePixelRatio || 1)) / mapper.width);
-    mapCanvas.classList.toggle('ksmcmc-smooth', s < 1);
-    return Math.min(3, Math.max(1, s));
+    const ratio = ((mapCanvas.clientWidth || mapper.width) * (globalThis.devicePixelRatio || 1)) / mapper.width;
+    const s = Math.min(3, Math.max(1, Math.ceil(ratio - 0.01)));
+    mapCanvas.classList.toggle('ksmcmc-smooth', s >= ratio);
+    return s;
   };
 
   const draw = () => {

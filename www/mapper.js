@@ -72,9 +72,8 @@ const state = {
   /** Frames in which the chain advanced, and when it last started: for iterations/s. */
   frames: 0,
   rate: { iteration: 0, time: 0, perSecond: 0 },
-  /** Milliseconds a redraw takes (a running average), and the chain's budget per frame. */
+  /** Milliseconds a redraw takes (a running average). */
   drawMs: 4,
-  budgetMs: FRAME_MS - 4,
   scale: 1,
   /** Painting: cell codes as loaded and as painted, the stroke's last cell. */
   painting: false,
@@ -205,16 +204,22 @@ function toggle() {
   else play();
 }
 
-/** One animation frame: advance the chain by the budget, then draw once. */
+/**
+ * One animation frame: advance the chain, then draw. Drawing a large map takes longer than a
+ * frame can spare, so it is spread out: with a redraw of `drawMs`, only every
+ * ceil(drawMs / 7)-th frame draws, and the other frames give the chain the whole budget.
+ */
 function frame() {
   state.raf = 0;
   if (!state.running || !state.mapper) {
     if (state.redrawPending) redraw();
     return;
   }
+  const every = Math.max(1, Math.ceil(state.drawMs / (FRAME_MS / 2)));
+  const draws = state.frames % every === 0;
   try {
-    if (state.ipf === 'auto') state.mapper.runFor(state.budgetMs);
-    else state.mapper.step(state.ipf);
+    if (state.ipf !== 'auto') state.mapper.step(state.ipf);
+    else state.mapper.runFor(draws ? Math.max(MIN_BUDGET_MS, FRAME_MS - state.drawMs) : FRAME_MS - 2);
   } catch (err) {
     pause();
     showError(err);
@@ -226,10 +231,11 @@ function frame() {
     const it = state.mapper.iteration;
     state.rate = { iteration: it, time: now, perSecond: ((it - state.rate.iteration) * 1000) / (now - state.rate.time) };
   }
-  const t0 = performance.now();
-  redraw();
-  state.drawMs = 0.9 * state.drawMs + 0.1 * (performance.now() - t0);
-  state.budgetMs = Math.max(MIN_BUDGET_MS, FRAME_MS - state.drawMs);
+  if (draws) {
+    const t0 = performance.now();
+    redraw();
+    state.drawMs = 0.8 * state.drawMs + 0.2 * (performance.now() - t0);
+  }
   state.raf = requestAnimationFrame(frame);
 }
 
@@ -710,7 +716,6 @@ function expose() {
         scale: state.scale,
         ipf: state.ipf,
         drawMs: state.drawMs,
-        budgetMs: state.budgetMs,
         painting: state.painting,
         error: ui.message.hidden ? null : ui.messageText.textContent,
       };

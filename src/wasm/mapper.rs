@@ -62,6 +62,9 @@ pub struct Mapper {
     /// The best world, exported once per improvement, keyed by (best iteration, best log
     /// posterior), with its K(W, M) on the map.
     best: Option<((u64, u64), World, f64)>,
+    /// The current world, exported once per iteration count: a frame draws it twice (map and
+    /// scene graph), and exporting a large world costs milliseconds.
+    current: Option<(u64, World)>,
     reference: Option<World>,
     setup_ms: f64,
     busy_ms: f64,
@@ -85,9 +88,18 @@ impl Mapper {
         (world, *k)
     }
 
+    /// The current world (cached until the chain moves).
+    fn current(&mut self) -> &World {
+        let it = self.chain.iteration();
+        if self.current.as_ref().is_none_or(|(k, _)| *k != it) {
+            self.current = Some((it, self.chain.world()));
+        }
+        &self.current.as_ref().expect("just filled").1
+    }
+
     fn world_for(&mut self, show: Show) -> Option<World> {
         match show {
-            Show::Current => Some(self.chain.world()),
+            Show::Current => Some(self.current().clone()),
             Show::Best => Some(self.best().0.clone()),
             Show::Reference => self.reference.clone(),
             Show::None => None,
@@ -97,6 +109,7 @@ impl Mapper {
     fn restart(&mut self, chain: Chain) {
         self.chain = chain;
         self.best = None;
+        self.current = None;
         self.busy_ms = 0.0;
     }
 
@@ -180,6 +193,7 @@ impl Mapper {
             config,
             base: None,
             best: None,
+            current: None,
             reference: None,
             setup_ms,
             busy_ms: 0.0,
@@ -358,8 +372,8 @@ impl Mapper {
 
     /// The current world as `world.json` text.
     #[wasm_bindgen(js_name = worldJson)]
-    pub fn world_json(&self) -> String {
-        self.chain.world().to_json()
+    pub fn world_json(&mut self) -> String {
+        self.current().to_json()
     }
 
     /// The best world as `world.json` text: what `ksmcmc floorplan` writes to `world.json`
@@ -442,7 +456,7 @@ impl Mapper {
     ) -> Result<String, JsError> {
         let world = match which.as_deref() {
             None | Some("best") => self.best().0.clone(),
-            Some("current") => self.chain.world(),
+            Some("current") => self.current().clone(),
             Some(other) => return Err(JsError::new(&format!("graphJson: {other:?} is neither 'best' nor 'current'"))),
         };
         Ok(serde_json::to_string_pretty(&graph::to_json(&graph::scene_graph(&world)))?)

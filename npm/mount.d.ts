@@ -3,7 +3,7 @@
 import type { Map as OccupancyMap, Mapper } from './ksmcmc.js';
 import type { SAMPLES } from './samples.js';
 
-export { SAMPLES };
+export { SAMPLES } from './samples.js';
 
 /** A sample name: office-small, office-rotated, furnished, partial, two-corridors, building-large. */
 export type SampleName = keyof typeof SAMPLES;

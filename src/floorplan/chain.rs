@@ -599,14 +599,15 @@ impl Chain {
     }
 
     /// Runs iterations until `budget_ms` milliseconds have passed by `now` (a clock in
-    /// milliseconds, e.g. `performance.now()` in a browser), checking the clock every 64
-    /// iterations. Returns the number of iterations run.
+    /// milliseconds, e.g. `performance.now()` in a browser), checking the clock every 16
+    /// iterations, so a frame's budget is overrun by at most a few milliseconds even on large
+    /// maps. Returns the number of iterations run.
     pub fn run_for(&mut self, budget_ms: f64, now: &mut dyn FnMut() -> f64) -> u64 {
         let start = now();
         let mut done = 0;
         loop {
-            self.step(64);
-            done += 64;
+            self.step(16);
+            done += 16;
             // A clock that returns NaN stops the loop rather than spinning forever.
             let elapsed = now() - start;
             if elapsed >= budget_ms || elapsed.is_nan() {

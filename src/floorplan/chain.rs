@@ -203,6 +203,8 @@ pub struct Chain {
     /// zero: a cell is an object only where that explains it better.
     object_gain: [f64; 2],
     knowledge_error: Option<String>,
+    /// Types final worlds in the weak-prior mode (built-in rules), created on first use.
+    typer: Option<super::knowledge::Knowledge>,
 }
 
 impl Chain {
@@ -316,6 +318,7 @@ impl Chain {
             resolution: 0.05,
             object_gain,
             knowledge_error: None,
+            typer: None,
         })
     }
 
@@ -418,6 +421,26 @@ impl Chain {
             }
         }
         Ok(())
+    }
+
+    /// The best world with unit types: the chain's own when knowledge supervised it, otherwise
+    /// inferred now on this final world with the built-in indoor rules (the weak-prior mode
+    /// types its result only at the end). What `ksmcmc floorplan` writes as `world.json`.
+    pub fn best_world_typed(&mut self) -> World {
+        let mut world = self.best_world();
+        if self.config.knowledge.enabled {
+            return world;
+        }
+        if self.typer.is_none() {
+            self.typer = super::knowledge::Knowledge::new(&Default::default()).ok();
+        }
+        let resolution = self.resolution;
+        if let Some(Ok(inferred)) = self.typer.as_mut().map(|k| k.infer(&world, resolution)) {
+            for u in &mut world.units {
+                u.kind = inferred.types.get(&u.id).map_or(u.kind, |t| t.0);
+            }
+        }
+        world
     }
 
     /// Why knowledge inference stopped, if it failed (the chain goes on without it).

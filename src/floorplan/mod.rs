@@ -10,6 +10,7 @@ pub mod kernels;
 pub mod knowledge;
 pub mod metrics;
 pub mod posterior;
+pub mod report;
 pub mod rooms;
 pub mod state;
 pub mod synth;

@@ -17,10 +17,10 @@
 //! ```
 
 use super::{js_message, put_rgba, seed_from_js, Map, Rendered, MAX_RENDER_PIXELS};
+use crate::floorplan::report::report as ksmcmc_report;
 use crate::floorplan::rooms::RoomConfig;
 use crate::floorplan::{graph, metrics, Chain, ChainConfig, Rect, World};
 use crate::grid::OccupancyMap;
-use crate::mcmc::Kernel;
 use crate::render::{self, RenderOptions};
 use serde::Deserialize;
 use tiny_skia::Pixmap;
@@ -80,7 +80,7 @@ impl Mapper {
     fn best(&mut self) -> (&World, f64) {
         let key = (self.chain.best_iteration(), self.chain.best_log_posterior().to_bits());
         if self.best.as_ref().is_none_or(|(k, _, _)| *k != key) {
-            let world = self.chain.best_world();
+            let world = self.chain.best_world_typed();
             let k = metrics::prediction_rate(self.map.classified(), &world);
             self.best = Some((key, world, k));
         }
@@ -469,40 +469,10 @@ impl Mapper {
     #[wasm_bindgen(js_name = reportJson)]
     pub fn report_json(&mut self) -> Result<String, JsError> {
         let labels = self.chain.best_labels(&RoomConfig::default());
-        let rooms = labels.cells().iter().copied().max().unwrap_or(0);
         let seconds = self.busy_ms / 1000.0;
-        let (world, k) = self.best();
-        let world = world.clone();
-        let confusion = metrics::confusion(self.map.classified(), &world);
-        let (units, doors) = (world.units.len(), world.doors.len());
-        let t = self.chain.trace();
-        let kernels: serde_json::Map<String, serde_json::Value> = Kernel::ALL
-            .iter()
-            .map(|kernel| {
-                let i = kernel.index();
-                (
-                    kernel.name().to_lowercase(),
-                    serde_json::json!({"proposed": t.proposed[i], "accepted": t.accepted[i]}),
-                )
-            })
-            .collect();
-        let report = serde_json::json!({
-            "iterations": self.chain.iteration(),
-            "seconds": seconds,
-            "iterations_per_second": self.chain.iteration() as f64 / seconds.max(1e-9),
-            "setup_seconds": self.setup_ms / 1000.0,
-            "cell_prediction_rate": k,
-            "confusion": confusion,
-            "units": units,
-            "doors": doors,
-            "rooms": rooms,
-            "log_posterior": self.chain.best_log_posterior(),
-            "best_iteration": self.chain.best_iteration(),
-            "seed": self.chain.seed(),
-            "rotation_deg": self.chain.frame().angle.to_degrees(),
-            "wall_thickness": self.chain.wall_thickness(),
-            "kernels": kernels,
-        });
+        let world = self.best().0.clone();
+        let mut report = ksmcmc_report(&self.chain, &self.map, &world, &labels, seconds);
+        report["setup_seconds"] = (self.setup_ms / 1000.0).into();
         Ok(serde_json::to_string_pretty(&report)?)
     }
 

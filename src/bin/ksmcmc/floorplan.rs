@@ -3,7 +3,6 @@
 use crate::args::{self, CliError};
 use ksmcmc::floorplan::rooms::RoomConfig;
 use ksmcmc::floorplan::{graph, metrics, Chain, ChainConfig};
-use ksmcmc::mcmc::Kernel;
 use std::ffi::OsString;
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -137,21 +136,7 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
         chain.step((iterations - chain.iteration()).min(500));
     }
     let seconds = t0.elapsed().as_secs_f64();
-    let mut world = chain.best_world();
-    if !chain.config().knowledge.enabled {
-        // Weak-prior mode: type the final world with the built-in rules, for the report.
-        let mut k = ksmcmc::floorplan::knowledge::Knowledge::new(&Default::default())
-            .map_err(|e| args::failed("knowledge", e))?;
-        let inferred = k.infer(&world, map.yaml().resolution).map_err(|e| args::failed("knowledge", e))?;
-        for u in &mut world.units {
-            u.kind = inferred.types.get(&u.id).map_or(u.kind, |t| t.0);
-        }
-    }
-    let mut types = std::collections::BTreeMap::new();
-    for u in &world.units {
-        *types.entry(u.kind.name()).or_insert(0u32) += 1;
-    }
-    let defects = ksmcmc::floorplan::knowledge::defects(&world);
+    let world = chain.best_world_typed();
     let labels = chain.best_labels(&RoomConfig::default());
     let rooms = labels.cells().iter().copied().max().unwrap_or(0);
     let k = metrics::prediction_rate(map.classified(), &world);
@@ -161,40 +146,10 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     for p in &chain.trace().points {
         let _ = writeln!(trace, "{},{:.3},{:.4},{}", p.iteration, p.log_posterior, p.acceptance, p.size);
     }
-    let t = chain.trace();
-    let kernels: serde_json::Map<String, serde_json::Value> = Kernel::ALL
-        .iter()
-        .map(|k| {
-            (
-                k.name().to_lowercase(),
-                serde_json::json!({"proposed": t.proposed[k.index()], "accepted": t.accepted[k.index()]}),
-            )
-        })
-        .collect();
-    let report = serde_json::json!({
-        "map": map_path.display().to_string(),
-        "iterations": chain.iteration(),
-        "seconds": seconds,
-        "iterations_per_second": chain.iteration() as f64 / seconds.max(1e-9),
-                        "cell_prediction_rate": k,
-        "cell_prediction_rate_region": region.as_ref().map(|r| metrics::prediction_rate_in(map.classified(), &world, Some(r))),
-        "confusion": metrics::confusion(map.classified(), &world),
-        "units": world.units.len(),
-        "doors": world.doors.len(),
-        "rooms": rooms,
-        "log_posterior": chain.best_log_posterior(),
-        "best_iteration": chain.best_iteration(),
-        "seed": seed,
-        "rotation_deg": chain.frame().angle.to_degrees(),
-                "wall_thickness": chain.wall_thickness(),
-        "knowledge": chain.config().knowledge.enabled,
-        "knowledge_error": chain.knowledge_error(),
-                "inferences": chain.inferences(),
-        "same_length_pairs": chain.inferred().same_length.len(),
-        "types": types,
-        "defects": defects,
-        "kernels": kernels,
-    });
+    let mut report = ksmcmc::floorplan::report::report(&chain, &map, &world, &labels, seconds);
+    report["map"] = map_path.display().to_string().into();
+    report["cell_prediction_rate_region"] =
+        serde_json::json!(region.as_ref().map(|r| metrics::prediction_rate_in(map.classified(), &world, Some(r))));
     args::write(&out.join("world.json"), world.to_json().as_bytes())?;
     args::write(&out.join("overlay.png"), &ksmcmc::render::encode_png(&overlay))?;
     let graph = serde_json::to_string_pretty(&graph::to_json(&graph::scene_graph(&world))).expect("json");

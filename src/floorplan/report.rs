@@ -1,0 +1,52 @@
+//! The summary of a run, `report.json`, shared by the command line and the browser so that
+//! both write the same fields.
+
+use super::knowledge::defects;
+use super::metrics;
+use super::world::World;
+use super::Chain;
+use crate::grid::{Grid, OccupancyMap};
+use crate::mcmc::Kernel;
+
+/// `report.json` for a chain's typed best `world` on `map`, with its room `labels` and the
+/// `seconds` spent iterating: iterations and speed, K(W,M) and the confusion counts, units,
+/// doors, rooms, types, defects, log posterior, seed, rotation, wall thickness, knowledge
+/// status and per-kernel counts.
+pub fn report(chain: &Chain, map: &OccupancyMap, world: &World, labels: &Grid<u16>, seconds: f64) -> serde_json::Value {
+    let t = chain.trace();
+    let kernels: serde_json::Map<String, serde_json::Value> = Kernel::ALL
+        .iter()
+        .map(|k| {
+            (
+                k.name().to_lowercase(),
+                serde_json::json!({"proposed": t.proposed[k.index()], "accepted": t.accepted[k.index()]}),
+            )
+        })
+        .collect();
+    let mut types = std::collections::BTreeMap::new();
+    for u in &world.units {
+        *types.entry(u.kind.name()).or_insert(0u32) += 1;
+    }
+    serde_json::json!({
+        "iterations": chain.iteration(),
+        "seconds": seconds,
+        "iterations_per_second": chain.iteration() as f64 / seconds.max(1e-9),
+        "cell_prediction_rate": metrics::prediction_rate(map.classified(), world),
+        "confusion": metrics::confusion(map.classified(), world),
+        "units": world.units.len(),
+        "doors": world.doors.len(),
+        "rooms": labels.cells().iter().copied().max().unwrap_or(0),
+        "types": types,
+        "defects": defects(world),
+        "log_posterior": chain.best_log_posterior(),
+        "best_iteration": chain.best_iteration(),
+        "seed": chain.seed(),
+        "rotation_deg": chain.frame().angle.to_degrees(),
+        "wall_thickness": chain.wall_thickness(),
+        "knowledge": chain.config().knowledge.enabled,
+        "knowledge_error": chain.knowledge_error(),
+        "inferences": chain.inferences(),
+        "same_length_pairs": chain.inferred().same_length.len(),
+        "kernels": kernels,
+    })
+}

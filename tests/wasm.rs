@@ -310,7 +310,7 @@ fn mapper_runs_and_finds_units() {
     chain.step(3000);
     let mut fresh = Mapper::new(&map, None, None).unwrap();
     fresh.step(3000.0).unwrap();
-    assert_eq!(fresh.best_world_json(), chain.best_world().to_json(), "seed 1 is the default");
+    assert_eq!(fresh.best_world_json(), chain.best_world_typed().to_json(), "seed 1 is the default");
     assert_eq!(fresh.seed(), 1);
 }
 
@@ -327,7 +327,7 @@ fn mapper_matches_the_library_on_a_sample() {
     m.step(500.0).unwrap();
     let mut chain = Chain::new(map.inner(), ChainConfig::default(), 3).unwrap();
     chain.step(2000);
-    assert_eq!(m.best_world_json(), chain.best_world().to_json());
+    assert_eq!(m.best_world_json(), chain.best_world_typed().to_json());
     let labels = chain.best_labels(&Default::default());
     assert_eq!(m.labels_pgm(), ksmcmc::grid::pgm::encode_u16(labels.width(), labels.height(), labels.cells()));
     assert!(m.best_units() >= 3, "{} units", m.best_units());
@@ -516,7 +516,8 @@ fn mapper_draws_on_canvases() {
     err_contains(wasm::draw_mapper(&canvas, &mut m, Some(JsValue::from(3))), "expected an object");
     assert_eq!((canvas.width(), canvas.height()), (64, 40));
 
-    // The scene graph: the canvas's size by default; nodes in the unknown type's gray.
+    // The scene graph: the canvas's size by default; nodes in their types' colours (the best
+    // world is typed with the built-in rules).
     let graph: web_sys::HtmlCanvasElement = document.create_element("canvas").unwrap().dyn_into().unwrap();
     graph.set_width(200);
     graph.set_height(130);
@@ -524,8 +525,9 @@ fn mapper_draws_on_canvases() {
     assert_eq!((graph.width(), graph.height()), (200, 130));
     let gctx: web_sys::CanvasRenderingContext2d = graph.get_context("2d").unwrap().unwrap().dyn_into().unwrap();
     let pixels = gctx.get_image_data(0.0, 0.0, 200.0, 130.0).unwrap().data().0;
-    let node = ksmcmc::render::unit_type_rgb(ksmcmc::floorplan::UnitType::Unknown);
-    assert!(pixels.chunks(4).filter(|p| p[..3] == node).count() > 20, "nodes are drawn");
+    let nodes: Vec<[u8; 3]> =
+        ksmcmc::floorplan::UnitType::ALL.iter().map(|&t| ksmcmc::render::unit_type_rgb(t)).collect();
+    assert!(pixels.chunks(4).filter(|p| nodes.iter().any(|n| p[..3] == *n)).count() > 20, "nodes are drawn");
     let same = wasm::render_scene_graph_rgba(&mut m, 200, 130, Some("best".into())).unwrap();
     assert_eq!(pixels, same.rgba().0);
     wasm::draw_scene_graph(&graph, &mut m, opts(r#"{"width": 90, "height": 60}"#)).unwrap();

@@ -35,6 +35,7 @@
 pub mod floorplan;
 pub mod grid;
 pub mod mcmc;
+pub mod mln;
 pub mod render;
 pub mod vision;
 

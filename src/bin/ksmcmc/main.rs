@@ -8,6 +8,7 @@ mod bench;
 mod evaluate;
 mod floorplan;
 mod info;
+mod mln;
 mod render;
 mod score;
 mod synth;
@@ -28,6 +29,8 @@ Usage:
   ksmcmc evaluate                          quality on real and synthetic maps (BENCHMARKS.md)
   ksmcmc synth --seed N --out DIR [options]
                                            generate a synthetic floor plan with ground truth
+  ksmcmc mln query|map|info --mln KB.mln [--db EVIDENCE.db] [--query P,Q]
+                                           Markov logic marginals, most probable world, network size
   ksmcmc help                              this text
 
 MAP is a PGM (P2/P5, 8 or 16 bits), a PNG of any colour type, or a ROS map.yaml.
@@ -53,6 +56,7 @@ fn main() -> ExitCode {
         Some("bench") => bench::run(rest),
         Some("evaluate") => evaluate::run(rest),
         Some("synth") => synth::run(rest),
+        Some("mln") => mln::run(rest),
         Some("help" | "--help" | "-h") => {
             print!("{USAGE}");
             Ok(())

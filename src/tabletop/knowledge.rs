@@ -173,6 +173,16 @@ impl Knowledge {
             return Ok(v);
         }
         self.misses += 1;
+        let v = self.map_log_weight(ev)?;
+        if self.cache.len() >= CACHE_LIMIT {
+            self.cache.clear();
+        }
+        self.cache.insert(key, v);
+        Ok(v)
+    }
+
+    /// [`Knowledge::log_prior`] without the cache.
+    pub fn map_log_weight(&self, ev: &Evidence) -> Result<f64, MlnError> {
         let net = self.network(ev)?;
         let exact = MapConfig { method: MapMethod::Exact, ..Default::default() };
         let world = match net.map(&exact) {
@@ -181,12 +191,7 @@ impl Knowledge {
             // result is still a function of the evidence).
             Err(_) => net.map(&MapConfig { method: MapMethod::MaxWalkSat, tries: 5, ..Default::default() })?,
         };
-        let v = world.log_weight();
-        if self.cache.len() >= CACHE_LIMIT {
-            self.cache.clear();
-        }
-        self.cache.insert(key, v);
-        Ok(v)
+        Ok(world.log_weight())
     }
 
     /// The query probabilities of every box (objects in order, then the table), exactly

@@ -11,14 +11,16 @@
 //!   "table":  { "size": [sx, sy],                  // table top [-sx/2, sx/2] x [-sy/2, sy/2]
 //!               "thickness": 0.05 },               // optional, default 0.05: the table is a box
 //!   "camera": { "fx": f, "fy": f, "cx": u0, "cy": v0, "width": w, "height": h,
-//!               "pose": { "t": [x, y, z], "q": [qx, qy, qz, qw] } },
+//!               "pose": { "t": [x, y, z], "q": [qx, qy, qz, qw] },
+//!               "baseline": 0.12 },                // optional: a rectified stereo pair
 //!   "objects": [
 //!     { "id": "cup",                               // unique, not "table"
 //!       "size": [sx, sy, sz],                      // full extents of the oriented box
 //!       "pose": { "t": [x, y, z], "q": [...] },    // estimated pose of the box centre
 //!       "keypoints": [                             // optional matched keypoints
 //!         { "model": [x, y, z],                    // in the box frame (origin at its centre)
-//!           "image": [u, v] } ],                   // where the camera saw it, pixels
+//!           "image": [u, v],                       // where the camera saw it, pixels
+//!           "image_right": [u, v] } ],             // optional: in the right image
 //!       "truth": { "hidden": false,                // optional ground truth, for evaluation:
 //!                  "false": false,                 //   hidden object under it? false estimate?
 //!                  "pose": { ... },                //   optional true pose
@@ -33,6 +35,12 @@
 //! vision axes: `x` right, `y` down, `z` forward (the optical axis). A point `p` of the table
 //! frame is seen at pixel `u = fx * x / z + cx`, `v = fy * y / z + cy` where `(x, y, z)` are
 //! its camera coordinates (the pinhole model of section 4.8).
+//!
+//! The dissertation's sensor is a stereo camera, and eq. 4.4 runs over the keypoints of both
+//! images. A `baseline` makes the camera the left one of a rectified pair: the right camera
+//! sits `baseline` metres further along the left camera's `x` axis, with the same intrinsics,
+//! and sees the point at `u - fx * baseline / z`, same `v`. Keypoints may then give their
+//! right-image position too; the second view fixes the depth that one view leaves uncertain.
 //!
 //! Unknown fields are errors (a misspelt `"keypoint"` would otherwise silently drop the data).
 //!
@@ -169,6 +177,10 @@ pub struct Camera {
     /// Camera to table: the camera centre and orientation in the table frame (`x` right, `y`
     /// down, `z` forward).
     pub pose: Pose,
+    /// For a rectified stereo pair: the distance of the right camera from this (left) one
+    /// along its `x` axis, metres. The right camera has the same intrinsics and orientation.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub baseline: Option<f64>,
 }
 
 /// The smallest depth in front of the camera (metres) at which a point is projected.
@@ -184,7 +196,15 @@ impl Camera {
     /// A projector for points in the table frame.
     pub fn projector(&self) -> Projector {
         let (rot, center) = self.frame();
-        Projector { rot, center, fx: self.fx, fy: self.fy, cx: self.cx, cy: self.cy }
+        Projector {
+            rot,
+            center,
+            fx: self.fx,
+            fy: self.fy,
+            cx: self.cx,
+            cy: self.cy,
+            baseline: self.baseline.unwrap_or(0.0),
+        }
     }
 }
 
@@ -203,6 +223,8 @@ pub struct Projector {
     pub cx: f64,
     /// Principal point `y`.
     pub cy: f64,
+    /// Stereo baseline, metres (0 without a right camera).
+    pub baseline: f64,
 }
 
 impl Projector {
@@ -219,6 +241,18 @@ impl Projector {
         let c = self.to_camera(p);
         (c.z >= NEAR).then(|| Vector2::new(self.fx * c.x / c.z + self.cx, self.fy * c.y / c.z + self.cy))
     }
+
+    /// Both pixels of a table-frame point: in this (left) camera and in the right camera of the
+    /// stereo pair, `baseline` further along `x` (rectified: same row, shifted column).
+    #[inline]
+    pub fn project_stereo(&self, p: &Vector3<f64>) -> Option<(Vector2<f64>, Vector2<f64>)> {
+        let c = self.to_camera(p);
+        if c.z < NEAR {
+            return None;
+        }
+        let (u, v) = (self.fx * c.x / c.z + self.cx, self.fy * c.y / c.z + self.cy);
+        Some((Vector2::new(u, v), Vector2::new(u - self.fx * self.baseline / c.z, v)))
+    }
 }
 
 /// A model keypoint matched to an image point.
@@ -229,6 +263,10 @@ pub struct Keypoint {
     pub model: [f64; 3],
     /// Where it was seen in the image, pixels.
     pub image: [f64; 2],
+    /// Where it was seen in the right image of a stereo pair, pixels (needs
+    /// `camera.baseline`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub image_right: Option<[f64; 2]>,
 }
 
 /// Ground truth of one object, for evaluation.
@@ -367,6 +405,11 @@ pub enum SceneError {
         /// Why.
         reason: &'static str,
     },
+    /// A keypoint gives a right-image position but the camera is not a stereo pair.
+    NoBaseline {
+        /// The keypoint field.
+        field: String,
+    },
     /// More than [`MAX_OBJECTS`] objects.
     TooManyObjects {
         /// How many.
@@ -405,6 +448,11 @@ impl std::fmt::Display for SceneError {
                  are in the table frame, whose top is the plane z = 0 with z up"
             ),
             SceneError::BadId { id, reason } => write!(f, "object id {id:?} {reason}"),
+            SceneError::NoBaseline { field } => write!(
+                f,
+                "{field} is a right-image position, but camera.baseline is missing: give the stereo \
+                 baseline in metres, or leave image_right out"
+            ),
             SceneError::TooManyObjects { count } => {
                 write!(f, "the scene has {count} objects; at most {MAX_OBJECTS} are supported")
             }
@@ -477,6 +525,10 @@ impl Scene {
             }
         }
         check_pose(&mut c.pose, &|| "camera.pose".into())?;
+        if let Some(b) = c.baseline {
+            check_positive(&|| "camera.baseline".into(), &[b])?;
+        }
+        let stereo = c.baseline.is_some();
         if c.pose.t[2] <= 0.0 {
             return Err(SceneError::CameraBelowTable { z: c.pose.t[2] });
         }
@@ -502,6 +554,13 @@ impl Scene {
             for (k, kp) in o.keypoints.iter().enumerate() {
                 check_finite(&|| name(&format!("keypoints[{k}].model")), &kp.model)?;
                 check_finite(&|| name(&format!("keypoints[{k}].image")), &kp.image)?;
+                if let Some(right) = kp.image_right {
+                    let field = || name(&format!("keypoints[{k}].image_right"));
+                    check_finite(&field, &right)?;
+                    if !stereo {
+                        return Err(SceneError::NoBaseline { field: field() });
+                    }
+                }
             }
             if let Some(truth) = &mut o.truth {
                 if let Some(p) = &mut truth.pose {

@@ -20,6 +20,10 @@
 //! chain move a pose only as far as the knowledge (the prior of eq. 4.3) makes worthwhile:
 //! typically the few millimetres that resolve an intersection of two stable objects.
 //!
+//! With a stereo camera, keypoints that give a right-image position contribute a second pair
+//! of factors for the right image (the product of eq. 4.4 runs over the keypoints of both
+//! images).
+//!
 //! Both are returned as logarithms. A model keypoint that the pose puts behind the camera
 //! cannot be seen; it counts as a residual of [`BEHIND_CAMERA_RESIDUAL`] pixels in each
 //! direction, far worse than any visible point, so the chain never prefers such poses.
@@ -31,10 +35,10 @@
 //!
 //! // A camera 1 m above the origin looking straight down (x right, y down, z forward).
 //! let camera = Camera { fx: 500.0, fy: 500.0, cx: 320.0, cy: 240.0, width: 640, height: 480,
-//!     pose: Pose { t: [0.0, 0.0, 1.0], q: [1.0, 0.0, 0.0, 0.0] } };
+//!     pose: Pose { t: [0.0, 0.0, 1.0], q: [1.0, 0.0, 0.0, 0.0] }, baseline: None };
 //! let projector = camera.projector();
 //! // The model point at the object origin is seen at the principal point, 1 pixel off in x.
-//! let kp = [Keypoint { model: [0.0, 0.0, 0.0], image: [321.0, 240.0] }];
+//! let kp = [Keypoint { model: [0.0, 0.0, 0.0], image: [321.0, 240.0], image_right: None }];
 //! let config = SensorConfig::default();
 //! let at_origin = keypoint_log_likelihood(&projector, &Isometry3::identity(), &kp, &config);
 //! let two_mm = Isometry3::translation(0.002, 0.0, 0.0); // 1 px to the right: a perfect fit
@@ -43,7 +47,7 @@
 //! ```
 
 use super::scene::{Keypoint, Projector};
-use nalgebra::{Isometry3, UnitQuaternion, Vector3};
+use nalgebra::{Isometry3, Matrix6, Quaternion, Translation3, UnitQuaternion, Vector3, Vector6};
 use serde::{Deserialize, Serialize};
 
 /// The residual, in pixels in each direction, of a keypoint the pose puts behind the camera.
@@ -86,7 +90,8 @@ impl SensorConfig {
 }
 
 /// `log p(D|M)` of eq. 4.4 for one object at `pose` (box frame to table frame) with matched
-/// `keypoints`, including the normalising constants.
+/// `keypoints`, over both images of a stereo pair where keypoints give both, including the
+/// normalising constants.
 pub fn keypoint_log_likelihood(
     projector: &Projector,
     pose: &Isometry3<f64>,
@@ -97,15 +102,83 @@ pub fn keypoint_log_likelihood(
     let norm = libm::log(std::f64::consts::TAU * sx * sy);
     let (ix, iy) = (0.5 / (sx * sx), 0.5 / (sy * sy));
     let mut total = 0.0;
+    let far = BEHIND_CAMERA_RESIDUAL;
     for kp in keypoints {
         let p = pose * nalgebra::Point3::from(Vector3::from(kp.model));
-        let (dx, dy) = match projector.project(&p.coords) {
-            Some(px) => (px.x - kp.image[0], px.y - kp.image[1]),
-            None => (BEHIND_CAMERA_RESIDUAL, BEHIND_CAMERA_RESIDUAL),
-        };
-        total -= dx * dx * ix + dy * dy * iy + norm;
+        match projector.project_stereo(&p.coords) {
+            Some((left, right)) => {
+                let (dx, dy) = (left.x - kp.image[0], left.y - kp.image[1]);
+                total -= dx * dx * ix + dy * dy * iy + norm;
+                if let Some(r) = kp.image_right {
+                    let (dx, dy) = (right.x - r[0], right.y - r[1]);
+                    total -= dx * dx * ix + dy * dy * iy + norm;
+                }
+            }
+            None => {
+                let views = 1.0 + kp.image_right.is_some() as u8 as f64;
+                total -= views * (far * far * (ix + iy) + norm);
+            }
+        }
     }
     total
+}
+
+/// The rotation by rotation vector `w` (axis times angle, radians).
+pub fn rotation_from_vector(w: &Vector3<f64>) -> UnitQuaternion<f64> {
+    let theta = w.norm();
+    if theta == 0.0 {
+        return UnitQuaternion::identity();
+    }
+    let s = libm::sin(theta / 2.0) / theta;
+    UnitQuaternion::new_normalize(Quaternion::new(libm::cos(theta / 2.0), w.x * s, w.y * s, w.z * s))
+}
+
+/// A pose moved by a tangent vector `d`: `d[0..3]` added to the translation (table frame),
+/// `d[3..6]` a rotation vector applied in the table frame about the box centre.
+pub fn retract(pose: &Isometry3<f64>, d: &Vector6<f64>) -> Isometry3<f64> {
+    let t = pose.translation.vector + Vector3::new(d[0], d[1], d[2]);
+    let r = rotation_from_vector(&Vector3::new(d[3], d[4], d[5])) * pose.rotation;
+    Isometry3::from_parts(Translation3::from(t), r)
+}
+
+/// The Fisher information of eq. 4.4 about the pose, `J^T J` for the residuals of all
+/// keypoints scaled by their deviations, with `J` their derivative along the six tangent
+/// directions of [`retract`] (central differences). Its inverse is the covariance of the pose
+/// that the keypoints determine: tight across the line of sight, loose along it.
+pub fn keypoint_information(
+    projector: &Projector,
+    pose: &Isometry3<f64>,
+    keypoints: &[Keypoint],
+    config: &SensorConfig,
+) -> Matrix6<f64> {
+    let residuals = |p: &Isometry3<f64>, out: &mut Vec<f64>| {
+        out.clear();
+        for kp in keypoints {
+            let q = p * nalgebra::Point3::from(Vector3::from(kp.model));
+            match projector.project_stereo(&q.coords) {
+                Some((l, r)) => {
+                    out.push(l.x / config.sigma_x);
+                    out.push(l.y / config.sigma_y);
+                    if kp.image_right.is_some() {
+                        out.push(r.x / config.sigma_x);
+                        out.push(r.y / config.sigma_y);
+                    }
+                }
+                None => out.extend([0.0; 4].iter().take(2 + 2 * kp.image_right.is_some() as usize)),
+            }
+        }
+    };
+    let h = [1e-6, 1e-6, 1e-6, 1e-6, 1e-6, 1e-6];
+    let (mut plus, mut minus) = (Vec::new(), Vec::new());
+    let mut columns: Vec<Vec<f64>> = Vec::with_capacity(6);
+    for k in 0..6 {
+        let mut d = Vector6::zeros();
+        d[k] = h[k];
+        residuals(&retract(pose, &d), &mut plus);
+        residuals(&retract(pose, &-d), &mut minus);
+        columns.push(plus.iter().zip(&minus).map(|(a, b)| (a - b) / (2.0 * h[k])).collect());
+    }
+    Matrix6::from_fn(|a, b| columns[a].iter().zip(&columns[b]).map(|(x, y)| x * y).sum())
 }
 
 /// The angle of the rotation between two unit quaternions, radians in `[0, pi]`.

@@ -47,6 +47,7 @@
 //! ```
 
 pub mod font;
+pub mod tabletop;
 mod world;
 
 pub use world::{

@@ -147,7 +147,7 @@ impl Evidence {
     pub fn to_database_text(&self, names: &[String]) -> String {
         let mut out = String::new();
         for line in self.atoms(names) {
-            out.push_str(&line.0);
+            out.push_str(line.0);
             out.push('(');
             out.push_str(&line.1.join(","));
             out.push_str(")\n");

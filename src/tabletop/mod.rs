@@ -1,5 +1,6 @@
 //! Table-top scene analysis (chapter 4): scene graphs from noisy 6D object poses.
 pub mod chain;
+pub mod eval;
 pub mod evidence;
 pub mod geometry;
 pub mod graph;

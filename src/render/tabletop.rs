@@ -24,7 +24,7 @@
 //! ```
 
 use super::font;
-use super::{draw_tag, label_rgb};
+use super::draw_tag;
 use crate::tabletop::graph::{levels, EdgeKind, SceneGraph};
 use crate::tabletop::scene::{Pose, Scene, NEAR};
 use crate::tabletop::{Analysis, Decision};
@@ -52,6 +52,18 @@ pub const OBSERVED_RGBA: [u8; 4] = [0, 170, 255, 255];
 pub const PROJECTED_RGBA: [u8; 4] = [255, 0, 0, 255];
 /// Lines joining observed and projected keypoints (Fig. 4.15 b).
 pub const MATCH_RGBA: [u8; 4] = [230, 200, 0, 255];
+
+/// Colours of the other objects in the view, in turn: muted hues far from red and cyan.
+pub const OBJECT_PALETTE: [[u8; 3]; 8] = [
+    [120, 170, 90],
+    [110, 130, 200],
+    [205, 165, 95],
+    [150, 110, 190],
+    [230, 190, 70],
+    [150, 150, 150],
+    [175, 120, 80],
+    [200, 130, 190],
+];
 
 /// Radius of an object node, pixels.
 const NODE_RADIUS: f32 = 24.0;
@@ -104,8 +116,8 @@ fn polygon(pixmap: &mut Pixmap, pts: &[(f32, f32)], fill: Option<[u8; 4]>, outli
     }
 }
 
-/// Where the nodes of a graph go: table on top, objects in rows by support depth
-/// ([`levels`]).
+/// Where the nodes of a graph go: the table on top, objects in rows ([`levels`]), each row
+/// ordered by the mean position of the nodes above it is joined to (fewer crossings).
 fn layout(g: &SceneGraph) -> (Vec<(f32, f32)>, f32, f32) {
     let level = levels(g);
     let rows = level.iter().copied().max().unwrap_or(0) as usize + 1;
@@ -116,11 +128,26 @@ fn layout(g: &SceneGraph) -> (Vec<(f32, f32)>, f32, f32) {
     let widest = members.iter().map(|m| m.len()).max().unwrap_or(1).max(1) as f32;
     let width = (2.0 * MARGIN + (widest - 1.0) * NODE_DX + 2.0 * NODE_RADIUS).max(2.0 * MARGIN + TABLE_W);
     let height = 2.0 * MARGIN + TABLE_H / 2.0 + (rows as f32 - 1.0) * ROW_DY + NODE_RADIUS + 16.0;
-    let mut pos = vec![(0.0, 0.0); g.node_count()];
-    for (r, m) in members.iter().enumerate() {
+    let mut pos = vec![(f32::NAN, 0.0); g.node_count()];
+    for (r, m) in members.iter_mut().enumerate() {
+        // Mean x of the already placed neighbours; nodes without any keep their order at the end.
+        let key = |i: usize| {
+            let xs: Vec<f32> = g
+                .neighbors_undirected(petgraph::graph::NodeIndex::new(i))
+                .map(|j| pos[j.index()].0)
+                .filter(|x: &f32| x.is_finite())
+                .collect();
+            if xs.is_empty() {
+                f32::INFINITY
+            } else {
+                xs.iter().sum::<f32>() / xs.len() as f32
+            }
+        };
+        let mut keyed: Vec<(f32, usize)> = m.iter().map(|&i| (key(i), i)).collect();
+        keyed.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
         let y = MARGIN + TABLE_H / 2.0 + r as f32 * ROW_DY;
         let span = (m.len() as f32 - 1.0).max(0.0) * NODE_DX;
-        for (k, &i) in m.iter().enumerate() {
+        for (k, &(_, i)) in keyed.iter().enumerate() {
             pos[i] = (width / 2.0 - span / 2.0 + k as f32 * NODE_DX, y);
         }
     }
@@ -290,8 +317,9 @@ impl Default for ViewOptions {
 
 /// Draws the table and the objects' boxes at `poses` as the camera sees them, over an empty
 /// image plane: the table top, then the boxes from far to near with their camera-facing sides
-/// filled (red for false estimates, cyan for objects with a hidden one under them, a distinct
-/// colour otherwise) and their edges outlined.
+/// filled (red for false estimates, cyan for objects with a hidden one under them, colours of
+/// [`OBJECT_PALETTE`] otherwise) and their edges outlined. Boxes are drawn in order of the
+/// depth of their centres, semi-transparent, so that overlaps stay readable.
 pub fn draw_view(scene: &Scene, poses: &[Pose], marks: &[Mark], options: &ViewOptions) -> Pixmap {
     let cam = &scene.camera;
     let scale = (options.max_width.max(1) as f64 / cam.width.max(1) as f64).min(1.0);
@@ -341,7 +369,7 @@ pub fn draw_view(scene: &Scene, poses: &[Pose], marks: &[Mark], options: &ViewOp
         } else if mark.hidden {
             [HIDDEN_RGBA[0], HIDDEN_RGBA[1], HIDDEN_RGBA[2]]
         } else {
-            label_rgb(i as u16 + 1)
+            OBJECT_PALETTE[i % OBJECT_PALETTE.len()]
         };
         let v = obb.vertices();
         for k in 0..3 {
@@ -385,7 +413,7 @@ pub fn draw_view(scene: &Scene, poses: &[Pose], marks: &[Mark], options: &ViewOp
         for (i, o) in scene.objects.iter().enumerate().take(n) {
             if let Some(px) = proj.project(&Vector3::from(poses[i].t)) {
                 let (x, y) = to_px(px);
-                draw_tag(&mut pixmap, x as f64, y as f64, &o.id, 1);
+                draw_tag(&mut pixmap, x as f64, y as f64, &o.id, 2);
             }
         }
     }

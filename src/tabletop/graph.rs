@@ -146,15 +146,24 @@ pub fn build(
     g
 }
 
-/// The depth of every node in the support hierarchy: 0 for the table, 1 + the deepest
-/// supporter for supported objects, 1 for objects nothing supports. Support follows `higher`,
-/// a strict order, so there are no cycles.
+/// The row of every node when the graph is drawn as a hierarchy, as in the dissertation's
+/// figures: 0 for the table; for a supported object one below its lowest supporter (support
+/// follows `higher`, a strict order, so there are no cycles); for an object nothing supports
+/// one below the lowest supported object (or the table) it touches, so a box leaning on two
+/// others hangs under them; 1 for the rest.
 pub fn levels(g: &SceneGraph) -> Vec<u32> {
-    let mut level = vec![1u32; g.node_count()];
-    if let Some(l) = level.first_mut() {
-        *l = 0;
+    let n = g.node_count();
+    let mut level = vec![1u32; n];
+    if n == 0 {
+        return level;
     }
-    for _ in 0..g.node_count() {
+    level[0] = 0;
+    let mut supported = vec![false; n];
+    supported[0] = true;
+    for e in g.edge_references().filter(|e| e.weight().kind == EdgeKind::Support) {
+        supported[e.target().index()] = true;
+    }
+    for _ in 0..n {
         let mut changed = false;
         for e in g.edge_references().filter(|e| e.weight().kind == EdgeKind::Support) {
             let want = level[e.source().index()] + 1;
@@ -165,6 +174,14 @@ pub fn levels(g: &SceneGraph) -> Vec<u32> {
         }
         if !changed {
             break;
+        }
+    }
+    let settled = level.clone();
+    for e in g.edge_references().filter(|e| e.weight().kind == EdgeKind::Contact) {
+        for (a, b) in [(e.source().index(), e.target().index()), (e.target().index(), e.source().index())] {
+            if !supported[a] && supported[b] {
+                level[a] = level[a].max(settled[b] + 1);
+            }
         }
     }
     level

@@ -23,8 +23,8 @@
 //! assert_eq!(view.width(), 1024); // the 1280-pixel image scaled to fit
 //! ```
 
-use super::font;
 use super::draw_tag;
+use super::font;
 use crate::tabletop::graph::{levels, EdgeKind, SceneGraph};
 use crate::tabletop::scene::{Pose, Scene, NEAR};
 use crate::tabletop::{Analysis, Decision};

@@ -9,10 +9,9 @@
 //! 1. draw `n` new estimates `e_{t,i}` by adding Gaussian noise to `e_{t,0}` (Fig. 4.16;
 //!    see *The noise* below);
 //! 2. weight each by the sensor model, `weight(e) = p(D|e)` (eq. 4.4, [`super::sensor`]);
-//! 3. the best of the `n + 1` estimates, `e*`, makes the new scene graph `M_{t+1}`: the
-//!    evidence of the moved box is recomputed ([`super::evidence`]) and with it the prior
-//!    `p(M_{t+1})` (eq. 4.3, [`super::knowledge`]). The current estimate competes too, as the
-//!    denominators of eqs. 4.6 and 4.7 range over all `n + 1`; when it wins, `M_{t+1} = M_t`;
+//! 3. the best of them, `e*`, makes the new scene graph `M_{t+1}`: the evidence of the moved
+//!    box is recomputed ([`super::evidence`]) and with it the prior `p(M_{t+1})` (eq. 4.3,
+//!    [`super::knowledge`]);
 //! 4. accept `M_{t+1}` with the Metropolis-Hastings probability of eq. 4.5, whose proposal
 //!    probabilities are eqs. 4.6 and 4.7:
 //!
@@ -28,7 +27,9 @@
 //! ratio `p(M_{t+1}) / p(M_t)` alone. The data steer the chain through the choice of the best
 //! of `n` candidates, the knowledge through acceptance: a move that makes the scene less
 //! plausible (say, pushes a stable object into another) is accepted only with the ratio of
-//! the two worlds' probabilities.
+//! the two worlds' probabilities, one that makes it more plausible always. The chain thus
+//! wanders around the poses the data favour, drawn towards the configurations the knowledge
+//! favours; the state of highest posterior it visits is the answer.
 //!
 //! # The noise
 //!
@@ -254,23 +255,20 @@ impl Analysis {
 pub struct ProposalStats {
     /// Data-driven proposals made (one per object per iteration).
     pub proposals: u64,
-    /// Proposals whose best estimate was a new one rather than the current (the others leave
-    /// the state as it is).
-    pub moves: u64,
-    /// Moves accepted by eq. 4.5.
+    /// Proposals accepted by eq. 4.5.
     pub accepted: u64,
-    /// Moves rejected because the knowledge base could not evaluate their evidence (0 unless a
-    /// custom knowledge base is broken).
+    /// Proposals rejected because the knowledge base could not evaluate their evidence (0
+    /// unless a custom knowledge base is broken).
     pub prior_failures: u64,
 }
 
 impl ProposalStats {
-    /// Accepted moves per move (0 before the first).
+    /// Accepted proposals per proposal (0 before the first).
     pub fn acceptance(&self) -> f64 {
-        if self.moves == 0 {
+        if self.proposals == 0 {
             0.0
         } else {
-            self.accepted as f64 / self.moves as f64
+            self.accepted as f64 / self.proposals as f64
         }
     }
 }
@@ -443,7 +441,7 @@ impl TabletopChain {
         let p = self.config.proposal;
         let current = self.poses[i];
         let w0 = self.log_lik[i];
-        let (mut e_star, mut w_star, mut moved) = (current, w0, false);
+        let (mut e_star, mut w_star) = (current, f64::NEG_INFINITY);
         self.candidate_lik.clear();
         for c in 0..p.candidates {
             let z = Vector6::from_fn(|_, _| self.rng.normal());
@@ -451,15 +449,14 @@ impl TabletopChain {
             let w = self.likelihood(i, &e);
             self.candidate_lik.push(w);
             if w > w_star {
-                (e_star, w_star, moved) = (e, w, true);
+                (e_star, w_star) = (e, w);
             }
         }
-        self.stats.proposals += 1;
-        if !moved {
-            // The current estimate is the best: M_{t+1} = M_t, accepted with lambda = 1.
+        if !w_star.is_finite() {
+            // No candidate can be evaluated (only with absurd input): stay.
             return;
         }
-        self.stats.moves += 1;
+        self.stats.proposals += 1;
         // Eqs. 4.6 and 4.7 share the denominator.
         let denom = log_sum_exp(self.candidate_lik.iter().copied().chain(std::iter::once(w0)));
         let (log_q_forward, log_q_back) = (w_star - denom, w0 - denom);
@@ -514,7 +511,7 @@ impl TabletopChain {
         self.iteration
     }
 
-    /// Counts of proposals, moves and acceptances so far.
+    /// Counts of proposals and acceptances so far.
     pub fn stats(&self) -> ProposalStats {
         self.stats
     }

@@ -173,22 +173,22 @@ pub fn graph_signature(analysis: &Analysis) -> String {
     out
 }
 
-/// The generator settings of the dissertation's test (section 4.10.1): 25 scenes holding 10
-/// objects with a hidden object under them and 5 false estimates in all. Scene `k` (0-based)
-/// has one hovering box if `k < 10`, one false estimate if `10 <= k < 15`, and 3 to 8 visible
-/// objects.
-pub fn dissertation_config(k: u32) -> SynthConfig {
+/// The generator settings of the dissertation's test (section 4.10.1) on top of `base`: 25
+/// scenes holding 10 objects with a hidden object under them and 5 false estimates in all.
+/// Scene `k` (0-based) has one hovering box if `k < 10`, one false estimate if
+/// `10 <= k < 15`, and 3 to 8 visible objects.
+pub fn dissertation_config(k: u32, base: &SynthConfig) -> SynthConfig {
     SynthConfig {
         min_objects: 3,
         max_objects: 8,
         hovering: Some((k < 10) as u32),
         false_estimates: Some((10..15).contains(&k) as u32),
-        ..SynthConfig::default()
+        ..base.clone()
     }
 }
 
 /// The 25 labelled scenes of the dissertation's test, generated from `seed` (scene `k` from
 /// `seed + k`, see [`dissertation_config`]).
-pub fn dissertation_scenes(seed: u64) -> Result<Vec<Scene>, SynthError> {
-    (0..25u32).map(|k| generate(&dissertation_config(k), seed.wrapping_add(k as u64))).collect()
+pub fn dissertation_scenes(seed: u64, base: &SynthConfig) -> Result<Vec<Scene>, SynthError> {
+    (0..25u32).map(|k| generate(&dissertation_config(k, base), seed.wrapping_add(k as u64))).collect()
 }

@@ -49,7 +49,8 @@
 //! [`Scene::from_json`] parses and validates; [`Scene::validate`] checks a scene built in code.
 //! Every problem is a [`SceneError`] naming the field at fault:
 //!
-//! * every number must be finite; sizes, the table thickness and the focal lengths positive;
+//! * every number must be finite and at most [`MAX_MAGNITUDE`] in magnitude; sizes, the table
+//!   thickness, the focal lengths and the stereo baseline positive;
 //!   the image at least 1 x 1 pixel;
 //! * quaternions are normalised when their norm is within [`QUATERNION_TOLERANCE`] of 1
 //!   (rounding in files written with few digits); others, and the zero quaternion, are
@@ -90,8 +91,13 @@ use serde::{Deserialize, Serialize};
 /// work per iteration grows with the square of the count.
 pub const MAX_OBJECTS: usize = 64;
 
-/// Quaternions whose norm differs from 1 by at most this are normalised; others are rejected.
+/// Quaternions whose norm differs from 1 by at most this are accepted (and normalised where
+/// used, see [`Pose::rotation`]); others are rejected.
 pub const QUATERNION_TOLERANCE: f64 = 0.01;
+
+/// The largest magnitude of any number in a scene (metres, pixels): beyond it, squares and
+/// products of coordinates would lose all precision.
+pub const MAX_MAGNITUDE: f64 = 1e6;
 
 /// The default table thickness, metres.
 pub const DEFAULT_TABLE_THICKNESS: f64 = 0.05;
@@ -112,7 +118,8 @@ impl Pose {
         Pose { t, q: [0.0, 0.0, 0.0, 1.0] }
     }
 
-    /// The rotation (normalising the quaternion; the identity for a zero quaternion).
+    /// The rotation, from the quaternion normalised (the identity for a zero quaternion, which
+    /// validation rejects).
     pub fn rotation(&self) -> UnitQuaternion<f64> {
         let [x, y, z, w] = self.q;
         let q = Quaternion::new(w, x, y, z);
@@ -463,8 +470,10 @@ impl std::fmt::Display for SceneError {
 impl std::error::Error for SceneError {}
 
 fn check_finite(field: &dyn Fn() -> String, values: &[f64]) -> Result<(), SceneError> {
-    match values.iter().find(|v| !v.is_finite()) {
-        Some(&value) => Err(SceneError::BadNumber { field: field(), value, expected: "a finite number" }),
+    match values.iter().find(|v| !(v.is_finite() && v.abs() <= MAX_MAGNITUDE)) {
+        Some(&value) => {
+            Err(SceneError::BadNumber { field: field(), value, expected: "a finite number of magnitude at most 1e6" })
+        }
         None => Ok(()),
     }
 }
@@ -488,7 +497,12 @@ fn check_pose(pose: &mut Pose, field: &dyn Fn() -> String) -> Result<(), SceneEr
     if (norm - 1.0).abs() > QUATERNION_TOLERANCE {
         return Err(SceneError::NotUnitQuaternion { field: format!("{}.q", field()), norm });
     }
-    pose.q = pose.q.map(|v| v / norm);
+    // Quaternions are normalised again wherever they are used ([`Pose::rotation`]); the
+    // stored value changes only when it is visibly off, so that a scene written with a few
+    // digits reads back as the same scene.
+    if (norm - 1.0).abs() > 1e-6 {
+        pose.q = pose.q.map(|v| v / norm);
+    }
     Ok(())
 }
 

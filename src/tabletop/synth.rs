@@ -175,9 +175,13 @@ impl SynthConfig {
         if !(0.0..=1.0).contains(&self.false_probability) {
             return Err(format!("false_probability must be in [0, 1], not {}", self.false_probability));
         }
-        let forced = self.hovering.unwrap_or(0) + self.false_estimates.unwrap_or(0);
+        let falses = self.false_estimates.unwrap_or(0);
+        let forced = self.hovering.unwrap_or(0) + falses + (falses > 0) as u32;
         if forced > self.max_objects {
-            return Err(format!("hovering + false_estimates ({forced}) exceed max_objects ({})", self.max_objects));
+            return Err(format!(
+                "hovering + false_estimates + 1 object for them to cut into ({forced}) exceed max_objects ({})",
+                self.max_objects
+            ));
         }
         Ok(())
     }
@@ -446,20 +450,28 @@ pub fn generate(config: &SynthConfig, seed: u64) -> Result<Scene, SynthError> {
         }
     }
     let n_false = n_false.min(config.max_objects);
-    let budget = target.max(n_false + config.hovering.unwrap_or(0)).min(config.max_objects);
+    let budget = target.max(n_false + config.hovering.unwrap_or(0) + (n_false > 0) as u32).min(config.max_objects);
     let mut items: Vec<Item> = Vec::new();
     let mut discs: Vec<(f64, f64, f64)> = Vec::new();
     let mut visible = 0u32;
     let mut hovering_left = config.hovering.unwrap_or(0);
     let mut failures = 0;
-    // Leave room for the false estimates, and for at least one object they can cut into.
+    // Leave room for the false estimates, and make sure they have an object to cut into.
     let reserve = |visible: u32| budget.saturating_sub(visible).saturating_sub(n_false);
-    while reserve(visible) > 0 && failures < 40 {
+    let has_target =
+        |items: &[Item]| items.iter().any(|i| i.visible && matches!(i.kind, Kind::Resting | Kind::Stacked));
+    while failures < 40 {
+        let need_target = n_false > 0 && !has_target(&items);
+        if reserve(visible) == 0 && !need_target {
+            break;
+        }
         let left = reserve(visible);
-        let forced_hover = hovering_left > 0;
+        let forced_hover = hovering_left > 0 && (left > 1 || !need_target);
         let group = if forced_hover {
             hovering_left -= 1;
             group_hovering(&mut rng)
+        } else if need_target && left <= 1 {
+            group_resting(&mut rng)
         } else {
             let mut w = config.group_weights;
             if config.hovering.is_some() {
@@ -469,8 +481,7 @@ pub fn generate(config: &SynthConfig, seed: u64) -> Result<Scene, SynthError> {
                 w[1] = 0.0;
                 w[2] = 0.0;
             }
-            let total: f64 = w.iter().sum();
-            if total <= 0.0 {
+            if w.iter().sum::<f64>() <= 0.0 {
                 w = [1.0, 0.0, 0.0, 0.0];
             }
             let mut pick = rng.uniform() * w.iter().sum::<f64>();
@@ -520,14 +531,6 @@ pub fn generate(config: &SynthConfig, seed: u64) -> Result<Scene, SynthError> {
     if let Some(h) = config.hovering {
         if placed_hovering < h {
             return Err(SynthError::NoRoom(format!("placed {placed_hovering} of {h} hovering boxes")));
-        }
-    }
-    if n_false > 0 && !items.iter().any(|i| i.visible && matches!(i.kind, Kind::Resting | Kind::Stacked)) {
-        let mut it = group_resting(&mut rng);
-        let r = radius(&it);
-        if discs.iter().all(|&(u, v, s)| (u * u + v * v).sqrt() > r + s + 0.03) {
-            visible += 1;
-            items.append(&mut it);
         }
     }
     let tol = Tolerances::default();

@@ -166,6 +166,8 @@ Options:
   --repeats R       runs per scene in part 2 (default 20)
   --speed N         scenes for part 3 (default 20)
   --config FILE     chain configuration JSON
+  --synth FILE      generator configuration JSON for all parts (any subset of the fields of
+                    the library's SynthConfig; part 2 keeps its own object counts)
   --json FILE       also write the results as JSON
   --quick           parts 1 and 3 only
 ";
@@ -175,6 +177,7 @@ pub fn eval(argv: Vec<OsString>) -> Result<(), CliError> {
     let mut parser = lexopt::Parser::from_args(argv);
     let (mut scenes, mut iterations, mut seed, mut repeats, mut speed) = (200u32, 100u32, 1u64, 20u32, 20u32);
     let (mut config_path, mut json_path, mut quick) = (None::<PathBuf>, None::<PathBuf>, false);
+    let mut synth_path = None::<PathBuf>;
     while let Some(arg) = parser.next()? {
         match arg {
             Long("scenes") => scenes = args::value("--scenes", parser.value()?)?,
@@ -184,6 +187,7 @@ pub fn eval(argv: Vec<OsString>) -> Result<(), CliError> {
             Long("speed") => speed = args::value("--speed", parser.value()?)?,
             Long("config") => config_path = Some(args::path(parser.value()?)),
             Long("json") => json_path = Some(args::path(parser.value()?)),
+            Long("synth") => synth_path = Some(args::path(parser.value()?)),
             Long("quick") => quick = true,
             Long("help") | Short('h') => {
                 print!("{EVAL_HELP}");
@@ -195,8 +199,16 @@ pub fn eval(argv: Vec<OsString>) -> Result<(), CliError> {
     let config = read_config(config_path.as_ref())?;
     let fail = |e: &dyn std::fmt::Display| CliError::Failed(e.to_string());
 
+    let synth = match &synth_path {
+        Some(p) => {
+            let text = std::fs::read_to_string(p).map_err(|e| args::failed(p.display(), e))?;
+            serde_json::from_str::<SynthConfig>(&text).map_err(|e| args::failed(p.display(), e))?
+        }
+        None => SynthConfig::default(),
+    };
+    synth.validate().map_err(|m| CliError::Usage(format!("invalid generator configuration: {m}")))?;
+
     // 1. Accuracy on generated scenes.
-    let synth = SynthConfig::default();
     let mut total = Score::default();
     let mut objects = 0usize;
     let mut by_kind: std::collections::BTreeMap<String, [u32; 3]> = Default::default();
@@ -243,7 +255,7 @@ pub fn eval(argv: Vec<OsString>) -> Result<(), CliError> {
     // 2. The dissertation's test.
     let mut dissertation = serde_json::Value::Null;
     if !quick {
-        let set = dissertation_scenes(seed).map_err(|e| fail(&e))?;
+        let set = dissertation_scenes(seed, &synth).map_err(|e| fail(&e))?;
         let (mut hidden, mut falses) = (0, 0);
         for s in &set {
             for o in &s.objects {
@@ -289,7 +301,7 @@ pub fn eval(argv: Vec<OsString>) -> Result<(), CliError> {
     }
 
     // 3. Speed with 8 objects.
-    let eight = SynthConfig { min_objects: 8, max_objects: 8, ..SynthConfig::default() };
+    let eight = SynthConfig { min_objects: 8, max_objects: 8, ..synth.clone() };
     let (mut per_iteration, mut whole, mut worst) = (Vec::new(), Vec::new(), 0f64);
     for k in 0..speed {
         let scene = generate(&eight, 10_000 + seed + k as u64).map_err(|e| fail(&e))?;

@@ -506,7 +506,7 @@ pub fn generate(config: &SynthConfig, seed: u64) -> Result<Scene, SynthError> {
         if ax > 0.0 && ay > 0.0 {
             for _ in 0..60 {
                 let (x, y) = (uniform(&mut rng, -ax, ax), uniform(&mut rng, -ay, ay));
-                if discs.iter().all(|&(u, v, s)| ((x - u).powi(2) + (y - v).powi(2)).sqrt() > r + s + 0.03) {
+                if discs.iter().all(|&(u, v, s)| ((x - u) * (x - u) + (y - v) * (y - v)).sqrt() > r + s + 0.03) {
                     let place = at(Vector3::new(x, y, 0.0), yaw(uniform(&mut rng, 0.0, 2.0 * PI)));
                     discs.push((x, y, r));
                     for mut it in group {

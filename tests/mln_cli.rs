@@ -156,6 +156,16 @@ fn bad_knowledge_bases_and_evidence_fail_with_positions() {
     // Too large for exact inference, and a size limit.
     let e = run_err(&["mln", "query", "--mln", KB, "--db", DB, "--query", QUERY, "--max-atoms", "5"], 1);
     assert!(e.contains("more than 5 ground atoms"), "{e}");
+    let e = run_err(&["mln", "query", "--mln", KB, "--query", "Kitchen"], 1);
+    assert_eq!(e, "ksmcmc: grounding: Kitchen is not a declared predicate (declare it first, e.g. `Kitchen(type)`)\n");
+    let wide = scratch("wide.mln", "P(t)\n1 EXIST x P(x)\n");
+    let consts: Vec<String> = (0..30).map(|i| format!("C{i}")).collect();
+    let domain = format!("t={}", consts.join(","));
+    let e = run_err(
+        &["mln", "query", "--mln", wide.to_str().unwrap(), "--query", "P", "--domain", &domain, "--method", "exact"],
+        1,
+    );
+    assert!(e.starts_with("ksmcmc: inference: exact inference enumerates 2^n worlds"), "{e}");
     let e = run_err(&["mln", "query", "--mln", "no/such.mln", "--query", "A"], 1);
     assert!(e.contains("no/such.mln"), "{e}");
 }

@@ -396,8 +396,10 @@ impl Network {
     }
 
     /// `sum_i w_i n_i(x)` of eq. (2.4) / (4.3) for the world that gives the unknown atoms the
-    /// values `state` (indexed like [`Network::atom`]) and the rest their evidence values;
-    /// `-inf` if the world violates a hard formula. Includes soft-evidence unit clauses.
+    /// values `state` (indexed like [`Network::atom`]), atoms fixed by the evidence their
+    /// evidence values and atoms forced by hard formulas (when grounded with `simplify`) their
+    /// forced values; `-inf` if the world violates a hard formula. Includes soft-evidence unit
+    /// clauses, which [`Mln::log_weight`] knows nothing of.
     ///
     /// # Panics
     /// If `state.len() != atom_count()`.
@@ -1097,6 +1099,11 @@ impl Mln {
             if sizes.contains(&0) {
                 continue;
             }
+            let count = sizes.iter().try_fold(1u64, |acc, &s| acc.checked_mul(s as u64)).unwrap_or(u64::MAX);
+            groundings = groundings.saturating_add(count);
+            if groundings > config.max_groundings {
+                return Err(MlnError::too_large("groundings", config.max_groundings));
+            }
             let mut assign = vec![0u32; f.vars.len()];
             let mut n_true = 0u64;
             let mut eval = Evaluator {
@@ -1112,7 +1119,6 @@ impl Mln {
                 } else if f.weight == Weight::Hard {
                     return Ok(f64::NEG_INFINITY);
                 }
-                *eval.count += 1;
                 if !next_assignment(&mut assign, &f.free, &sizes) {
                     break;
                 }

@@ -133,23 +133,24 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     }
 
     let kb_text = read(&kb_path)?;
-    let locate = |e: MlnError| -> CliError {
+    // Name the file a positioned error is in; otherwise the step that failed.
+    let locate = |step: &str, e: MlnError| -> CliError {
         let file = match e.source {
             Some(Source::KnowledgeBase) => kb_path.display().to_string(),
             Some(Source::Evidence) => o.db.as_deref().map_or("evidence".into(), |p| p.display().to_string()),
-            None => "mln".into(),
+            None => step.to_string(),
         };
         args::failed(file, e)
     };
-    let mln = Mln::parse(&kb_text).map_err(locate)?;
+    let mln = Mln::parse(&kb_text).map_err(|e| locate("", e))?;
     let db = match &o.db {
-        Some(p) => Database::parse(&read(p)?, &mln).map_err(locate)?,
+        Some(p) => Database::parse(&read(p)?, &mln).map_err(|e| locate("", e))?,
         None => Database::new(),
     };
-    let net = Network::ground(&mln, &db, &o.ground).map_err(locate)?;
+    let net = Network::ground(&mln, &db, &o.ground).map_err(|e| locate("grounding", e))?;
     match command.as_str() {
         "query" => {
-            let m = net.infer_marginals(&o.inference).map_err(locate)?;
+            let m = net.infer_marginals(&o.inference).map_err(|e| locate("inference", e))?;
             let mut out = String::new();
             for (atom, p) in m.iter() {
                 out.push_str(&format!("{atom} {p:.4}\n"));
@@ -157,7 +158,7 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
             print!("{out}");
         }
         "map" => {
-            let w = net.map(&o.map).map_err(locate)?;
+            let w = net.map(&o.map).map_err(|e| locate("MAP inference", e))?;
             let mut out = String::new();
             for (atom, v) in w.iter() {
                 if !o.true_only {

@@ -12,6 +12,8 @@
 //! they are made, so nothing under- or overflows.
 
 use crate::mln::ground::Network;
+use std::cmp::Reverse;
+use std::collections::BinaryHeap;
 
 /// Why the tree could not be built: cliques would exceed the limit.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -33,15 +35,32 @@ struct Clique {
     potential: Vec<f64>,
 }
 
-/// Bit positions of `sub`'s atoms within `vars`.
-fn positions(sub: &[u32], vars: &[u32]) -> Vec<u8> {
-    sub.iter().map(|a| vars.iter().position(|v| v == a).expect("sub-scope") as u8).collect()
+/// Maps an entry of a table over `vars` to the entry of a table over a subset `sub`: gathers
+/// the bits of `sub`'s atoms, a byte of the index at a time through lookup tables.
+struct Projection {
+    bytes: Vec<[u32; 256]>,
 }
 
-/// The index into a table over `sub` of the entry `x` of a table over `vars`.
-#[inline]
-fn project(x: usize, pos: &[u8]) -> usize {
-    pos.iter().enumerate().fold(0, |i, (j, &p)| i | ((x >> p) & 1) << j)
+impl Projection {
+    fn new(sub: &[u32], vars: &[u32]) -> Self {
+        let mut bytes = vec![[0u32; 256]; vars.len().div_ceil(8)];
+        for (j, a) in sub.iter().enumerate() {
+            let p = vars.iter().position(|v| v == a).expect("a sub-scope");
+            for (b, t) in bytes[p / 8].iter_mut().enumerate() {
+                *t |= ((b >> (p % 8)) as u32 & 1) << j;
+            }
+        }
+        Projection { bytes }
+    }
+
+    #[inline]
+    fn at(&self, x: usize) -> usize {
+        let mut i = 0;
+        for (k, t) in self.bytes.iter().enumerate() {
+            i |= t[(x >> (8 * k)) & 255];
+        }
+        i as usize
+    }
 }
 
 /// Elimination order by least fill-in (ties: fewest neighbours), and the resulting cliques.
@@ -52,6 +71,9 @@ fn eliminate(net: &Network, max_clique: usize) -> Result<Vec<Clique>, TooWide> {
     let mut scope = Vec::new();
     for f in 0..net.feature_count() {
         feature_scope(net, f, &mut scope);
+        if scope.len() > max_clique {
+            return Err(TooWide { clique: scope.len() });
+        }
         for &a in &scope {
             for &b in &scope {
                 if a != b {
@@ -68,9 +90,13 @@ fn eliminate(net: &Network, max_clique: usize) -> Result<Vec<Clique>, TooWide> {
     let mut order_of = vec![usize::MAX; n];
     let mut cliques = Vec::with_capacity(n);
     let mut entries = 0usize;
-    // Fill-in of eliminating v: pairs of its neighbours that are not yet adjacent.
-    let fill = |adj: &[Vec<u32>], v: usize| -> usize {
+    // Fill-in of eliminating v (pairs of its neighbours not yet adjacent), then its degree.
+    // Atoms too wide to eliminate now wait at the back without their fill being counted.
+    let score = |adj: &[Vec<u32>], v: usize| -> (usize, usize) {
         let nb = &adj[v];
+        if nb.len() + 1 > max_clique {
+            return (usize::MAX, nb.len());
+        }
         let mut missing = 0;
         for (i, &a) in nb.iter().enumerate() {
             for &b in &nb[i + 1..] {
@@ -79,12 +105,19 @@ fn eliminate(net: &Network, max_clique: usize) -> Result<Vec<Clique>, TooWide> {
                 }
             }
         }
-        missing
+        (missing, nb.len())
     };
-    let mut score: Vec<(usize, usize)> = (0..n).map(|v| (fill(&adj, v), adj[v].len())).collect();
+    let mut current: Vec<(usize, usize)> = (0..n).map(|v| score(&adj, v)).collect();
+    let mut heap: BinaryHeap<Reverse<(usize, usize, u32)>> =
+        (0..n).map(|v| Reverse((current[v].0, current[v].1, v as u32))).collect();
     let mut dirty = Vec::new();
     for step in 0..n {
-        let v = (0..n).filter(|&v| alive[v]).min_by_key(|&v| (score[v], v)).unwrap();
+        let v = loop {
+            let Reverse((fill, degree, v)) = heap.pop().expect("an atom is left");
+            if alive[v as usize] && current[v as usize] == (fill, degree) {
+                break v as usize;
+            }
+        };
         let nb = std::mem::take(&mut adj[v]);
         if nb.len() + 1 > max_clique {
             return Err(TooWide { clique: nb.len() + 1 });
@@ -113,7 +146,12 @@ fn eliminate(net: &Network, max_clique: usize) -> Result<Vec<Clique>, TooWide> {
         dirty.sort_unstable();
         dirty.dedup();
         for &a in &dirty {
-            score[a as usize] = (fill(&adj, a as usize), adj[a as usize].len());
+            let a = a as usize;
+            let s = score(&adj, a);
+            if s != current[a] {
+                current[a] = s;
+                heap.push(Reverse((s.0, s.1, a as u32)));
+            }
         }
         alive[v] = false;
         order_of[v] = step;
@@ -129,19 +167,25 @@ fn eliminate(net: &Network, max_clique: usize) -> Result<Vec<Clique>, TooWide> {
             cliques[p].children.push(i);
         }
     }
-    // Each feature goes to the clique of its atom eliminated first.
+    // Each feature goes to the smallest clique that holds its atoms (the clique of its atom
+    // eliminated first always does).
     for c in cliques.iter_mut() {
         c.potential = vec![1.0; 1 << c.vars.len()];
     }
     let mut table = Vec::new();
     for f in 0..net.feature_count() {
         feature_scope(net, f, &mut scope);
-        let home = scope.iter().map(|&a| order_of[a as usize]).min().unwrap();
+        let home = scope
+            .iter()
+            .map(|&a| order_of[a as usize])
+            .filter(|&i| scope.iter().all(|a| cliques[i].vars.contains(a)))
+            .min_by_key(|&i| (cliques[i].vars.len(), i))
+            .unwrap();
         feature_table(net, f, &scope, &mut table);
         let clique = &mut cliques[home];
-        let pos = positions(&scope, &clique.vars);
+        let proj = Projection::new(&scope, &clique.vars);
         for (x, p) in clique.potential.iter_mut().enumerate() {
-            *p *= table[project(x, &pos)];
+            *p *= table[proj.at(x)];
         }
     }
     Ok(cliques)
@@ -188,15 +232,18 @@ fn normalise(t: &mut [f64]) -> f64 {
 pub(crate) fn marginals(net: &Network, max_clique: usize) -> Result<Option<Vec<f64>>, TooWide> {
     let mut cliques = eliminate(net, max_clique)?;
     let n = cliques.len();
+    // Clique i's entries onto its separator, within its parent's table.
+    let to_parent: Vec<Option<Projection>> =
+        cliques.iter().map(|c| c.parent.map(|p| Projection::new(&c.vars[1..], &cliques[p].vars))).collect();
     // Upward: full[i] = potential x messages from children; up[i] = full[i] summed over vars[0].
     let mut up: Vec<Vec<f64>> = vec![Vec::new(); n];
     let mut full: Vec<Vec<f64>> = vec![Vec::new(); n];
     for i in 0..n {
         let mut t = std::mem::take(&mut cliques[i].potential);
         for &c in &cliques[i].children {
-            let pos = positions(&cliques[c].vars[1..], &cliques[i].vars);
+            let proj = to_parent[c].as_ref().unwrap();
             for (x, v) in t.iter_mut().enumerate() {
-                *v *= up[c][project(x, &pos)];
+                *v *= up[c][proj.at(x)];
             }
         }
         let mut m = vec![0.0; t.len() / 2];
@@ -227,10 +274,10 @@ pub(crate) fn marginals(net: &Network, max_clique: usize) -> Result<Option<Vec<f
         }
         out[cliques[i].vars[0] as usize] = belief.iter().skip(1).step_by(2).sum::<f64>().clamp(0.0, 1.0);
         for &c in &cliques[i].children {
-            let pos = positions(&cliques[c].vars[1..], &cliques[i].vars);
+            let proj = to_parent[c].as_ref().unwrap();
             let mut m = vec![0.0; up[c].len()];
             for (x, &v) in belief.iter().enumerate() {
-                m[project(x, &pos)] += v;
+                m[proj.at(x)] += v;
             }
             for (v, &u) in m.iter_mut().zip(&up[c]) {
                 *v = if u > 0.0 { *v / u } else { 0.0 };

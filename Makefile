@@ -29,13 +29,14 @@ WASM_TEST_ENV := CARGO_TARGET_WASM32_UNKNOWN_UNKNOWN_RUNNER=wasm-bindgen-test-ru
 	WASM_BINDGEN_TEST_WEBDRIVER_JSON=$(CURDIR)/webdriver.json
 WASM := target/$(WASM_TARGET)/release/ksmcmc.wasm
 
-.PHONY: help demo serve pkg www-pkg test lint fmt fmt-check clippy test-native test-wasm \
-	test-e2e cli tools rust-tools wasm-tools browser-tools e2e-deps clean-pkg
+.PHONY: help demo serve pkg www-pkg www-samples test lint fmt fmt-check clippy test-native test-wasm \
+	test-e2e cli release-cli bench-wasm tools rust-tools wasm-tools browser-tools e2e-deps clean-pkg
 
 help:
 	@echo "make demo      build pkg/ and serve www/ on http://$(HOST):$(PORT)"
 	@echo "make test      fmt, clippy, native tests, wasm tests (headless Chromium), e2e tests"
-	@echo "make pkg       build the npm package in pkg/ (release wasm + wasm-bindgen)"
+	@echo "make pkg       build the npm package in pkg/ (release wasm + wasm-bindgen + the mount embed)"
+	@echo "make bench-wasm  chain speed in headless Chromium (compare: ./target/release/ksmcmc bench)"
 	@echo "make lint      cargo fmt --check and clippy (native and wasm32)"
 	@echo "make test-native | test-wasm | test-e2e    one part of make test"
 	@echo "make tools     install what the build and tests need"
@@ -75,24 +76,34 @@ tests/e2e/node_modules/.package-lock.json: tests/e2e/package.json tests/e2e/pack
 
 # ---------------------------------------------------------------- build
 
-# The npm package: release wasm, wasm-bindgen's ES module and .d.ts, and package.json.
+# The npm package: release wasm, wasm-bindgen's ES module and .d.ts, the hand-written modules
+# in npm/ (the `mount` embed, the sample recipes) and package.json.
 pkg: wasm-tools
 	$(CARGO) build --lib --release --target $(WASM_TARGET)
 	wasm-bindgen --target web --out-dir pkg --out-name ksmcmc $(WASM)
-	node scripts/pkg-json.mjs Cargo.toml > pkg/package.json
+	cp npm/*.js npm/*.d.ts pkg/
+	node scripts/pkg-json.mjs Cargo.toml npm > pkg/package.json
 	@echo "pkg/: $$(du -h pkg/ksmcmc_bg.wasm | cut -f1) of wasm, version $$(node -p 'require("./pkg/package.json").version')"
 
-# The page loads the package from www/pkg (a copy, not committed).
-www-pkg: pkg
+# The pages load the package from www/pkg and the live mapper its samples from www/samples
+# (copies, not committed).
+www-pkg: pkg www-samples
 	rm -rf www/pkg
 	mkdir -p www/pkg
 	cp pkg/ksmcmc.js pkg/ksmcmc_bg.wasm pkg/ksmcmc.d.ts pkg/package.json www/pkg/
+	cp npm/*.js npm/*.d.ts www/pkg/
+
+www-samples:
+	node scripts/www-samples.mjs samples www/samples
 
 cli:
 	$(CARGO) build --bin ksmcmc
 
+release-cli:
+	$(CARGO) build --release --bin ksmcmc
+
 clean-pkg:
-	rm -rf www/pkg
+	rm -rf www/pkg www/samples
 	find pkg -mindepth 1 ! -name README.md -delete 2>/dev/null || true
 
 # ---------------------------------------------------------------- demo
@@ -100,7 +111,7 @@ clean-pkg:
 demo: www-pkg serve
 
 # Python's http.server, sending .wasm as application/wasm and nothing cached.
-serve:
+serve: www-samples
 	@test -f www/pkg/ksmcmc_bg.wasm || { echo "www/pkg is missing: run make demo" >&2; exit 1; }
 	python3 scripts/serve.py www $(HOST) $(PORT)
 
@@ -134,3 +145,12 @@ test-wasm: wasm-tools browser-tools
 # compares with the native CLI (target/debug/ksmcmc).
 test-e2e: www-pkg cli browser-tools e2e-deps
 	cd tests/e2e && CHROMIUM=$(CHROMIUM) node --test --test-concurrency=1 --test-timeout=300000
+
+# ---------------------------------------------------------------- speed
+
+# The chain's speed in headless Chromium: 20000 iterations on the Radish Cartesium map and on
+# synthetic 556x322 and 1237x672 maps, as `ksmcmc bench` runs them natively. Prints
+# iterations/s and setup time; not a test (numbers depend on the machine). Compare with
+# `./target/release/ksmcmc bench` (make release-cli), run while the machine is otherwise idle.
+bench-wasm: www-pkg browser-tools e2e-deps
+	CHROMIUM=$(CHROMIUM) node scripts/bench-wasm.mjs $(BENCH_ARGS)

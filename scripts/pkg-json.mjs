@@ -1,10 +1,13 @@
 #!/usr/bin/env node
 // Writes pkg/package.json for the npm package that wasm-bindgen generated into pkg/.
-// Usage: node scripts/pkg-json.mjs [Cargo.toml] > pkg/package.json
+// Usage: node scripts/pkg-json.mjs [Cargo.toml] [npm-dir] > pkg/package.json
 // Name, version, description and licence come from Cargo.toml's [package] section, so the
-// npm package and the crate never disagree.
+// npm package and the crate never disagree. The hand-written ES modules in npm/ (the `mount`
+// embed and the sample recipes, copied into pkg/ by `make pkg`) are listed as exports
+// `./NAME.js`, with their `NAME.d.ts` types.
 
-import { readFileSync } from 'node:fs';
+import { existsSync, readdirSync, readFileSync } from 'node:fs';
+import { join } from 'node:path';
 
 const cargo = readFileSync(process.argv[2] ?? 'Cargo.toml', 'utf8');
 const pkgSection = cargo.split(/^\[/m).find((s) => s.startsWith('package]'));
@@ -20,6 +23,11 @@ const list = (key) => {
 };
 
 const name = field('name');
+const npmDir = process.argv[3] ?? 'npm';
+const extras = existsSync(npmDir) ? readdirSync(npmDir).filter((f) => f.endsWith('.js')).sort() : [];
+for (const f of extras) {
+  if (!existsSync(join(npmDir, f.replace(/\.js$/, '.d.ts')))) throw new Error(`${npmDir}/${f} has no .d.ts beside it`);
+}
 const json = {
   name,
   version: field('version'),
@@ -33,8 +41,15 @@ const json = {
   exports: {
     '.': { types: `./${name}.d.ts`, default: `./${name}.js` },
     [`./${name}_bg.wasm`]: `./${name}_bg.wasm`,
+    ...Object.fromEntries(
+      extras.map((f) => [`./${f}`, { types: `./${f.replace(/\.js$/, '.d.ts')}`, default: `./${f}` }]),
+    ),
   },
-  files: [`${name}_bg.wasm`, `${name}.js`, `${name}.d.ts`, `${name}_bg.wasm.d.ts`, 'README.md'],
+  files: [
+    `${name}_bg.wasm`, `${name}.js`, `${name}.d.ts`, `${name}_bg.wasm.d.ts`,
+    ...extras.flatMap((f) => [f, f.replace(/\.js$/, '.d.ts')]),
+    'README.md',
+  ],
   sideEffects: ['./snippets/*'],
 };
 process.stdout.write(`${JSON.stringify(json, null, 2)}\n`);

@@ -108,14 +108,14 @@ fn same_seed_same_chain_different_seed_different_chain() {
 fn run_for_respects_its_budget_and_clock() {
     let map = OccupancyMap::from_classified(rooms_map());
     let mut chain = Chain::new(&map, ChainConfig::default(), 1).unwrap();
-    // A fake clock advancing 1 ms per reading: a 10 ms budget allows a few 64-step rounds.
+    // A fake clock advancing 1 ms per reading: a 10 ms budget allows about ten 16-step rounds.
     let mut t = 0.0;
     let n = chain.run_for(10.0, &mut || {
         t += 1.0;
         t
     });
-    assert_eq!(n % 64, 0);
-    assert!((64..=64 * 11).contains(&n), "{n}");
+    assert_eq!(n % 16, 0);
+    assert!((16..=16 * 11).contains(&n), "{n}");
     assert_eq!(chain.iteration(), n);
 }
 
@@ -169,4 +169,38 @@ fn config_json_accepts_partial_objects() {
     assert_eq!(c.posterior.temperature, 2.0);
     assert_eq!(c.kernels.min_side, 4);
     assert_eq!(c.posterior.overlap_penalty, ChainConfig::default().posterior.overlap_penalty);
+}
+
+#[test]
+fn knowledge_types_units_and_stays_deterministic() {
+    let map = OccupancyMap::from_classified(rooms_map());
+    let mut c = ChainConfig::default();
+    c.knowledge.enabled = true;
+    c.knowledge.every = 200;
+    let run = |seed| {
+        let mut chain = Chain::new(&map, c.clone(), seed).unwrap();
+        chain.step(4000);
+        assert!(chain.knowledge_error().is_none(), "{:?}", chain.knowledge_error());
+        assert!(chain.inferences() > 0, "inference never ran");
+        (chain.best_world().to_json(), chain.inferred().types.len())
+    };
+    let (a, typed) = run(5);
+    assert!(typed > 0);
+    let world = ksmcmc::floorplan::World::from_json(&a).unwrap();
+    assert!(world.units.iter().any(|u| u.kind != ksmcmc::floorplan::UnitType::Unknown), "no unit got a type");
+    assert_eq!(run(5).0, a, "same seed, same world with knowledge");
+}
+
+#[test]
+fn a_broken_knowledge_base_is_a_clear_error() {
+    let map = OccupancyMap::from_classified(rooms_map());
+    let mut c = ChainConfig::default();
+    c.knowledge.enabled = true;
+    c.knowledge.kb = Some("Room(unit)\nRoom(x) => Corr(x)\n".into());
+    let e = Chain::new(&map, c, 1).unwrap_err();
+    assert!(matches!(e, ChainError::Knowledge(_)), "{e}");
+    assert!(e.to_string().contains("line 2"), "{e}");
+    let mut c = ChainConfig::default();
+    c.knowledge.object_share = f64::NAN;
+    assert!(matches!(Chain::new(&map, c, 1).unwrap_err(), ChainError::Config(_)));
 }

@@ -215,3 +215,42 @@ fn region_of_interest_scores_only_its_cells() {
     assert_eq!(out.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&out.stderr).contains("the region is 3x3"));
 }
+
+#[test]
+fn knowledge_modes() {
+    let d = tmp("knowledge");
+    let map = sample("office-small/map.yaml");
+    for mode in ["builtin", "none"] {
+        let o = d.join(mode);
+        let out = run(&[
+            "floorplan",
+            map.to_str().unwrap(),
+            "--out",
+            o.to_str().unwrap(),
+            "--iterations",
+            "4000",
+            "--knowledge",
+            mode,
+        ]);
+        assert!(out.status.success(), "{mode}: {}", String::from_utf8_lossy(&out.stderr));
+        let report: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(o.join("report.json")).unwrap()).unwrap();
+        assert_eq!(report["knowledge"], mode == "builtin");
+        // Both modes type the final world; the weak mode only at the end.
+        let types = report["types"].as_object().unwrap();
+        assert!(types.keys().any(|k| k != "unknown"), "{mode}: {types:?}");
+        assert!(report.get("defects").is_some());
+    }
+    std::fs::write(d.join("bad.mln"), "Room(unit)\nRoom(x) =>\n").unwrap();
+    let out = run(&[
+        "floorplan",
+        map.to_str().unwrap(),
+        "--out",
+        d.join("x").to_str().unwrap(),
+        "--knowledge",
+        d.join("bad.mln").to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("bad.mln") && err.contains("line 2"), "{err}");
+}

@@ -257,3 +257,304 @@ fn bad_seeds_and_configs_are_errors() {
     err_contains(wasm::synth(seed(), Some(r#"{"width": 0}"#.into())), "0x");
     err_contains(wasm::synth(seed(), Some(r#"{"width": 100000, "height": 100000}"#.into())), "over the limit");
 }
+
+// ---------------------------------------------------------------- the live mapper
+
+use ksmcmc::floorplan::{Chain, ChainConfig, World};
+use ksmcmc::wasm::Mapper;
+
+/// Two rooms side by side in a 64x40 map: walls all round, a wall between them with a door.
+fn two_rooms() -> Map {
+    let (w, h) = (64u32, 40u32);
+    let mut codes = vec![0u8; (w * h) as usize];
+    for y in 0..h {
+        for x in 0..w {
+            let wall = x == 0 || y == 0 || x == w - 1 || y == h - 1 || (x == 31 && !(15..25).contains(&y));
+            if wall {
+                codes[(y * w + x) as usize] = 2;
+            }
+        }
+    }
+    Map::from_cells(w, h, &codes).unwrap()
+}
+
+fn get(v: &JsValue, key: &str) -> JsValue {
+    js_sys::Reflect::get(v, &JsValue::from_str(key)).unwrap()
+}
+
+#[wasm_bindgen_test]
+fn mapper_runs_and_finds_units() {
+    let map = two_rooms();
+    let mut m = Mapper::new(&map, None, Some(JsValue::from(1))).unwrap();
+    assert_eq!((m.width(), m.height(), m.iteration()), (64, 40, 0.0));
+    let start = m.log_posterior();
+    assert_eq!(m.best_units(), 0, "the chain starts from the empty world");
+    assert_eq!(m.step(3000.0).unwrap(), 3000.0);
+    assert_eq!(m.iteration(), 3000.0);
+    assert!(m.best_log_posterior() > start, "{} should rise above {start}", m.best_log_posterior());
+    assert!(m.best_log_posterior() >= m.log_posterior());
+    assert!(m.best_units() >= 1 && m.units() >= 1, "units appeared");
+    assert!((0.0..=1.0).contains(&m.acceptance()));
+    assert!(m.best_prediction_rate() > 0.8, "K = {}", m.best_prediction_rate());
+    assert!(m.elapsed_ms() >= 0.0 && m.setup_ms() >= 0.0);
+    assert!(m.run_for(5.0).unwrap() >= 64.0, "runFor runs at least 64 iterations");
+
+    // Both worlds are valid world.json for this map, and the best one is the library's.
+    let current = World::from_json(&m.world_json()).expect("worldJson parses and validates");
+    assert_eq!(current.units.len() as u32, m.units());
+    let best = World::from_json(&m.best_world_json()).expect("bestWorldJson parses and validates");
+    assert_eq!(best.frame.map_size, [64, 40]);
+    assert_eq!(best.units.len() as u32, m.best_units());
+    assert_eq!(best.doors.len() as u32, m.best_doors());
+    let mut chain = Chain::new(map.inner(), ChainConfig::default(), 1).unwrap();
+    chain.step(3000);
+    let mut fresh = Mapper::new(&map, None, None).unwrap();
+    fresh.step(3000.0).unwrap();
+    assert_eq!(fresh.best_world_json(), chain.best_world().to_json(), "seed 1 is the default");
+    assert_eq!(fresh.seed(), 1);
+}
+
+#[wasm_bindgen_test]
+fn mapper_matches_the_library_on_a_sample() {
+    // The sample the browser test compares with the native CLI: same seed, same world.
+    let map = Map::from_yaml(
+        include_str!("../samples/office-small/map.yaml"),
+        include_bytes!("../samples/office-small/map.pgm"),
+    )
+    .unwrap();
+    let mut m = Mapper::new(&map, None, Some(JsValue::from(3))).unwrap();
+    m.step(1500.0).unwrap();
+    m.step(500.0).unwrap();
+    let mut chain = Chain::new(map.inner(), ChainConfig::default(), 3).unwrap();
+    chain.step(2000);
+    assert_eq!(m.best_world_json(), chain.best_world().to_json());
+    let labels = chain.best_labels(&Default::default());
+    assert_eq!(m.labels_pgm(), ksmcmc::grid::pgm::encode_u16(labels.width(), labels.height(), labels.cells()));
+    assert!(m.best_units() >= 3, "{} units", m.best_units());
+}
+
+#[wasm_bindgen_test]
+fn mapper_exports_trace_samples_labels_graph_and_report() {
+    let mut m = Mapper::new(&two_rooms(), Some(r#"{"output": {"trace_every": 50}}"#.into()), None).unwrap();
+    m.step(2000.0).unwrap();
+
+    let trace = m.trace(None).unwrap();
+    let it: js_sys::Float64Array = get(&trace, "iteration").dyn_into().unwrap();
+    let lp: js_sys::Float64Array = get(&trace, "logPosterior").dyn_into().unwrap();
+    let acc: js_sys::Float64Array = get(&trace, "acceptance").dyn_into().unwrap();
+    let units: js_sys::Uint32Array = get(&trace, "units").dyn_into().unwrap();
+    assert_eq!(m.trace_length(), 40);
+    for a in [it.length(), lp.length(), acc.length(), units.length()] {
+        assert_eq!(a, 40);
+    }
+    assert_eq!((it.get_index(0), it.get_index(39)), (50.0, 2000.0));
+    let tail = m.trace(Some(38)).unwrap();
+    let tail_it: js_sys::Float64Array = get(&tail, "iteration").dyn_into().unwrap();
+    assert_eq!(tail_it.to_vec(), vec![1950.0, 2000.0]);
+    assert_eq!(get(&m.trace(Some(999)).unwrap(), "iteration").dyn_into::<js_sys::Float64Array>().unwrap().length(), 0);
+
+    let samples = m.samples().unwrap();
+    let rects: js_sys::Int32Array = get(&samples, "rects").dyn_into().unwrap();
+    let offsets: js_sys::Uint32Array = get(&samples, "offsets").dyn_into().unwrap();
+    let offsets = offsets.to_vec();
+    assert!(offsets.len() >= 2, "accepted samples were kept");
+    assert_eq!(offsets[0], 0);
+    assert!(offsets.windows(2).all(|w| w[0] <= w[1]));
+    assert_eq!(*offsets.last().unwrap() * 4, rects.length());
+    let frame = get(&samples, "frame");
+    assert_eq!(get(&frame, "angle").as_f64(), Some(0.0));
+    let size: js_sys::Array = get(&frame, "mapSize").dyn_into().unwrap();
+    assert_eq!((size.get(0).as_f64(), size.get(1).as_f64()), (Some(64.0), Some(40.0)));
+
+    let pgm = m.labels_pgm();
+    let header = b"P5\n64 40\n65535\n";
+    assert!(pgm.starts_with(header), "{:?}", String::from_utf8_lossy(&pgm[..16]));
+    assert_eq!(pgm.len(), header.len() + 64 * 40 * 2);
+
+    let graph: serde_json::Value = serde_json::from_str(&m.graph_json(None).unwrap()).unwrap();
+    assert_eq!(graph["nodes"].as_array().unwrap().len() as u32, m.best_units());
+    let current: serde_json::Value = serde_json::from_str(&m.graph_json(Some("current".into())).unwrap()).unwrap();
+    assert_eq!(current["nodes"].as_array().unwrap().len() as u32, m.units());
+    err_contains(m.graph_json(Some("worst".into())), "'best' nor 'current'");
+
+    let report: serde_json::Value = serde_json::from_str(&m.report_json().unwrap()).unwrap();
+    assert_eq!(report["iterations"], 2000);
+    assert_eq!(report["seed"], 1);
+    assert_eq!(report["units"].as_u64().unwrap() as u32, m.best_units());
+    assert!(report["kernels"]["add"]["proposed"].as_u64().unwrap() > 0);
+}
+
+#[wasm_bindgen_test]
+fn mapper_refuses_bad_maps_configs_and_arguments() {
+    let map = two_rooms();
+    let seed = || Some(JsValue::from(1));
+    let bad = |json: &str| Mapper::new(&map, Some(json.into()), seed()).map(|_| ());
+    err_contains(bad("{"), "chain config");
+    err_contains(bad("[1, 2]"), "JSON object");
+    err_contains(bad(r#"{"posterior": {"temperature": NaN}}"#), "NaN");
+    err_contains(bad(r#"{"posterior": {"temperature": -1}}"#), "temperature -1");
+    err_contains(bad(r#"{"posterior": {"temperature": 0}}"#), "positive");
+    err_contains(bad(r#"{"posterior": {"unit_cost": -5}}"#), "unit_cost");
+    err_contains(bad(r#"{"posterior": {"temprature": 2}}"#), "unknown field `posterior.temprature`");
+    err_contains(bad(r#"{"iterations": 5}"#), "unknown field `iterations`");
+    err_contains(bad(r#"{"output": {"samples": -1}}"#), "-1");
+    err_contains(bad(r#"{"kernels": {"min_side": "big"}}"#), "chain config");
+    // Whitespace and an empty object are the defaults.
+    Mapper::new(&map, Some(" ".into()), seed()).unwrap();
+    Mapper::new(&map, Some("{}".into()), seed()).unwrap();
+
+    err_contains(Mapper::new(&map, None, Some(JsValue::from(f64::NAN))).map(|_| ()), "NaN");
+    err_contains(Mapper::new(&map, None, Some(JsValue::from(-2))).map(|_| ()), "negative");
+
+    let one = Map::from_cells(1, 1, &[0]).unwrap();
+    err_contains(Mapper::new(&one, None, seed()).map(|_| ()), "1x1");
+    let walls = Map::from_cells(50, 50, &[2; 2500]).unwrap();
+    err_contains(Mapper::new(&walls, None, seed()).map(|_| ()), "no free cells");
+    let unknown = Map::from_cells(50, 50, &[1; 2500]).unwrap();
+    err_contains(Mapper::new(&unknown, None, seed()).map(|_| ()), "no free cells");
+    let huge = Map::from_cells(4097, 2048, &vec![0; 4097 * 2048]).unwrap();
+    err_contains(Mapper::new(&huge, None, seed()).map(|_| ()), "at most 8388608");
+
+    let mut m = Mapper::new(&map, None, seed()).unwrap();
+    for n in [f64::NAN, -1.0, 1.5, f64::INFINITY, 1e12] {
+        err_contains(m.step(n), "step");
+    }
+    for ms in [f64::NAN, -1.0, f64::INFINITY, 1e9] {
+        err_contains(m.run_for(ms), "runFor");
+    }
+    err_contains(m.reset(Some(JsValue::from(-1))), "negative");
+    assert_eq!(m.iteration(), 0.0, "failed calls change nothing");
+    m.step(10.0).unwrap();
+    assert_eq!(m.iteration(), 10.0, "and the mapper still works");
+}
+
+#[wasm_bindgen_test]
+fn mapper_reset_replays_the_same_chain() {
+    let map = two_rooms();
+    let mut m = Mapper::new(&map, None, Some(JsValue::from(5))).unwrap();
+    m.step(1500.0).unwrap();
+    let first = m.best_world_json();
+    m.reset(None).unwrap();
+    assert_eq!((m.iteration(), m.best_units(), m.trace_length()), (0.0, 0, 0));
+    m.step(1000.0).unwrap();
+    m.step(500.0).unwrap();
+    assert_eq!(m.best_world_json(), first, "same seed, same chunks or not: same result");
+    m.reset(Some(JsValue::from(6))).unwrap();
+    assert_eq!(m.seed(), 6);
+    m.step(1500.0).unwrap();
+    m.reset(Some(JsValue::bigint_from_str("5"))).unwrap();
+    m.step(1500.0).unwrap();
+    assert_eq!(m.best_world_json(), first);
+}
+
+#[wasm_bindgen_test]
+fn mapper_reference_worlds_are_checked() {
+    let mut m = Mapper::new(&two_rooms(), None, None).unwrap();
+    err_contains(m.set_reference(Some("{".into())), "world.json");
+    err_contains(m.set_reference(Some("{\"format\": \"nope\"}".into())), "world.json");
+    let mut other = World::empty(100, 100);
+    err_contains(m.set_reference(Some(other.to_json())), "explains a 100x100 map, but the map is 64x40");
+    other = World::empty(64, 40);
+    other.units.push(ksmcmc::floorplan::Unit { id: 1, x: 60, y: 0, w: 10, h: 10, kind: Default::default() });
+    err_contains(m.set_reference(Some(other.to_json())), "outside");
+    assert!(!m.has_reference());
+    other.units[0].x = 0;
+    other.units[0].w = 32;
+    other.units[0].h = 40;
+    m.set_reference(Some(other.to_json())).unwrap();
+    assert!(m.has_reference());
+    let opts = |show: &str| {
+        let o = js_sys::Object::new();
+        js_sys::Reflect::set(&o, &"show".into(), &show.into()).unwrap();
+        js_sys::Reflect::set(&o, &"labels".into(), &false.into()).unwrap();
+        Some(JsValue::from(o))
+    };
+    // The reference's unit has a blue wall ring at (5, 0); with no world the map is black there.
+    let shown = wasm::render_mapper_rgba(&mut m, opts("reference")).unwrap().rgba().0;
+    assert_eq!(&shown[5 * 4..5 * 4 + 4], &[0, 0, 255, 255]);
+    let bare = wasm::render_mapper_rgba(&mut m, opts("none")).unwrap().rgba().0;
+    assert_eq!(&bare[5 * 4..5 * 4 + 4], &[0, 0, 0, 255]);
+    m.set_reference(None).unwrap();
+    assert!(!m.has_reference());
+}
+
+#[wasm_bindgen_test]
+fn mapper_draws_on_canvases() {
+    let document = web_sys::window().unwrap().document().unwrap();
+    let canvas: web_sys::HtmlCanvasElement = document.create_element("canvas").unwrap().dyn_into().unwrap();
+    let mut m = Mapper::new(&two_rooms(), None, None).unwrap();
+    m.step(3000.0).unwrap();
+    let opts = |json: &str| Some(js_sys::JSON::parse(json).unwrap());
+
+    wasm::draw_mapper(&canvas, &mut m, opts(r#"{"show": "best", "cloud": true, "scale": 3}"#)).unwrap();
+    assert_eq!((canvas.width(), canvas.height()), (192, 120));
+    let ctx: web_sys::CanvasRenderingContext2d = canvas.get_context("2d").unwrap().unwrap().dyn_into().unwrap();
+    let shown = ctx.get_image_data(0.0, 0.0, 192.0, 120.0).unwrap().data().0;
+    let want = wasm::render_mapper_rgba(&mut m, opts(r#"{"show": "best", "cloud": true, "scale": 3}"#)).unwrap();
+    assert_eq!(shown, want.rgba().0);
+    let blue = shown.chunks(4).filter(|p| p == &[0, 0, 255, 255]).count();
+    assert!(blue > 100, "the best world's walls are drawn: {blue} blue pixels");
+    let magenta = |rgba: &[u8]| {
+        rgba.chunks(4).filter(|p| p[0] as u16 > p[1] as u16 + 60 && p[2] as u16 > p[1] as u16 + 30).count()
+    };
+    assert!(magenta(&shown) > 50, "the cloud is drawn");
+    let plain = wasm::render_mapper_rgba(&mut m, opts(r#"{"show": "best", "scale": 3}"#)).unwrap();
+    assert_eq!(magenta(&plain.rgba().0), 0, "no cloud unless asked for");
+    // PNG export: the same picture.
+    let png = m.to_png(opts(r#"{"show": "best"}"#)).unwrap();
+    assert!(png.starts_with(b"\x89PNG"));
+    // Defaults: current world, scale 1.
+    wasm::draw_mapper(&canvas, &mut m, None).unwrap();
+    assert_eq!((canvas.width(), canvas.height()), (64, 40));
+
+    // Bad options are errors, and the canvas keeps its picture.
+    err_contains(wasm::draw_mapper(&canvas, &mut m, opts(r#"{"show": "worst"}"#)), "unknown variant `worst`");
+    err_contains(wasm::draw_mapper(&canvas, &mut m, opts(r#"{"scale": 0}"#)), "scale 0");
+    err_contains(wasm::draw_mapper(&canvas, &mut m, opts(r#"{"scale": 100000}"#)), "over the limit");
+    err_contains(wasm::draw_mapper(&canvas, &mut m, opts(r#"{"colour": "red"}"#)), "unknown field `colour`");
+    err_contains(wasm::draw_mapper(&canvas, &mut m, opts(r#"{"cloud": "yes"}"#)), "options");
+    err_contains(wasm::draw_mapper(&canvas, &mut m, Some(JsValue::from(3))), "expected an object");
+    assert_eq!((canvas.width(), canvas.height()), (64, 40));
+
+    // The scene graph: the canvas's size by default; nodes in the unknown type's gray.
+    let graph: web_sys::HtmlCanvasElement = document.create_element("canvas").unwrap().dyn_into().unwrap();
+    graph.set_width(200);
+    graph.set_height(130);
+    wasm::draw_scene_graph(&graph, &mut m, opts(r#"{"show": "best"}"#)).unwrap();
+    assert_eq!((graph.width(), graph.height()), (200, 130));
+    let gctx: web_sys::CanvasRenderingContext2d = graph.get_context("2d").unwrap().unwrap().dyn_into().unwrap();
+    let pixels = gctx.get_image_data(0.0, 0.0, 200.0, 130.0).unwrap().data().0;
+    let node = ksmcmc::render::unit_type_rgb(ksmcmc::floorplan::UnitType::Unknown);
+    assert!(pixels.chunks(4).filter(|p| p[..3] == node).count() > 20, "nodes are drawn");
+    let same = wasm::render_scene_graph_rgba(&mut m, 200, 130, Some("best".into())).unwrap();
+    assert_eq!(pixels, same.rgba().0);
+    wasm::draw_scene_graph(&graph, &mut m, opts(r#"{"width": 90, "height": 60}"#)).unwrap();
+    assert_eq!((graph.width(), graph.height()), (90, 60));
+    err_contains(wasm::draw_scene_graph(&graph, &mut m, opts(r#"{"width": 0}"#)), "scene graph");
+    err_contains(wasm::render_scene_graph_rgba(&mut m, 10, 10, Some("all".into())), "show");
+}
+
+#[wasm_bindgen_test]
+fn maps_reclassify_like_the_cli() {
+    // A gray PNG whose background gray (230) the fixed rule calls unknown.
+    let mut pixels = vec![230u8; 20 * 10];
+    pixels[..20].fill(0);
+    pixels[45] = 255;
+    let map = Map::from_bytes(&gray_png(20, 10, &pixels)).unwrap();
+    let fixed = map.reclassify("fixed").unwrap();
+    assert_eq!(fixed.cells(), map.cells(), "fixed is what fromBytes does");
+    let auto = map.reclassify("auto").unwrap();
+    assert_eq!((auto.width(), auto.height()), (20, 10));
+    let mut native = ksmcmc::grid::OccupancyMap::from_bytes(&gray_png(20, 10, &pixels)).unwrap();
+    native.set_classifier(ksmcmc::grid::Classifier::auto()).unwrap();
+    let codes: Vec<u8> = native.classified().cells().iter().map(|c| c.code()).collect();
+    assert_eq!(auto.cells(), codes);
+    err_contains(map.reclassify("smart"), "neither 'auto' nor 'fixed'");
+}
+
+#[wasm_bindgen_test]
+fn chain_config_defaults_parse_back() {
+    let text = wasm::chain_config_defaults();
+    let config = wasm::chain_config(Some(&text)).unwrap();
+    assert_eq!(config, ChainConfig::default());
+}

@@ -26,7 +26,7 @@ use super::explain::Explanation;
 use super::kernels::{Candidates, KernelConfig, Proposer};
 use super::posterior::{Posterior, PosteriorConfig};
 use super::state::{DoorLimits, DoorSpec, State};
-use super::world::{Door, Frame, Rect, Unit, World, WORLD_FORMAT};
+use super::world::{Door, Frame, Rect, Unit, UnitType, World, WORLD_FORMAT};
 use crate::grid::{Cell, Grid, OccupancyMap};
 use crate::mcmc::{accept, Cumulative, Kernel, Ring, Rng, Schedule, Trace, TracePoint};
 use crate::vision;
@@ -81,6 +81,8 @@ pub struct ChainConfig {
     pub wall_thickness: Option<i32>,
     /// Output bookkeeping.
     pub output: OutputConfig,
+    /// Knowledge supervision (section 3.8).
+    pub knowledge: super::knowledge::KnowledgeConfig,
 }
 
 /// What the chain records for display.
@@ -127,6 +129,7 @@ impl ChainConfig {
                 return bad(format!("wall_thickness {t} must be between 1 and 10 cells"));
             }
         }
+        self.knowledge.validate().or_else(bad)?;
         if self.detectors.free_space_every == 0 {
             return bad("detectors.free_space_every must be at least 1".into());
         }
@@ -147,6 +150,8 @@ impl ChainConfig {
 pub enum ChainError {
     /// A configuration value is unusable.
     Config(String),
+    /// The knowledge base does not parse or ground.
+    Knowledge(String),
     /// The map cannot be explained (too small, no free space).
     Map(String),
 }
@@ -155,6 +160,7 @@ impl std::fmt::Display for ChainError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             ChainError::Config(m) => write!(f, "invalid chain configuration: {m}"),
+            ChainError::Knowledge(m) => write!(f, "knowledge base: {m}"),
             ChainError::Map(m) => write!(f, "cannot explain this map: {m}"),
         }
     }
@@ -190,6 +196,13 @@ pub struct Chain {
     samples: Ring<Vec<Rect>>,
     phase_tables: Vec<Cumulative>,
     phase_index: usize,
+    knowledge: Option<super::knowledge::Knowledge>,
+    inferred: super::knowledge::Inferred,
+    resolution: f64,
+    /// `log p(C_M | object) - log p(C_M | free)` for unknown and occupied map cells, floored at
+    /// zero: a cell is an object only where that explains it better.
+    object_gain: [f64; 2],
+    knowledge_error: Option<String>,
 }
 
 impl Chain {
@@ -231,7 +244,9 @@ impl Chain {
         let wall = config.wall_thickness.unwrap_or_else(|| vision::walls::ring_depth(classified, angle));
         let min_side = config.kernels.min_side.max(2 * wall + 1);
         let candidates = Candidates::new(found.into_iter().filter(|(r, _)| r.w >= min_side && r.h >= min_side));
-        Ok(Self::with_parts(config, frame, world_map, classified.clone(), candidates, wall, seed))
+        let mut chain = Self::with_parts(config, frame, world_map, classified.clone(), candidates, wall, seed)?;
+        chain.resolution = map.yaml().resolution;
+        Ok(chain)
     }
 
     /// A chain on an upright world-frame map with an explicit ADD candidate pool (no detectors,
@@ -245,7 +260,7 @@ impl Chain {
         config.validate()?;
         let frame = Frame::identity(map.width() as u32, map.height() as u32);
         let wall = config.wall_thickness.unwrap_or(1);
-        Ok(Self::with_parts(config, frame, map.clone(), map.clone(), Candidates::new(candidates), wall, seed))
+        Self::with_parts(config, frame, map.clone(), map.clone(), Candidates::new(candidates), wall, seed)
     }
 
     fn with_parts(
@@ -256,14 +271,28 @@ impl Chain {
         candidates: Candidates,
         wall: i32,
         seed: u64,
-    ) -> Chain {
+    ) -> Result<Chain, ChainError> {
+        let knowledge = if config.knowledge.enabled {
+            Some(
+                super::knowledge::Knowledge::new(&config.knowledge)
+                    .map_err(|e| ChainError::Knowledge(e.to_string()))?,
+            )
+        } else {
+            None
+        };
+        let sensor = config.posterior.sensor.table;
+        let k = &config.knowledge;
+        let object_gain = [
+            (libm::log(k.object[1]) - libm::log(sensor[0][1])).max(0.0),
+            (libm::log(k.object[2]) - libm::log(sensor[0][2])).max(0.0),
+        ];
         let state = State::new(&world_map, config.doors, wall);
         let proposer = Proposer::new(config.kernels, candidates, state.width(), state.height(), wall);
         let posterior = Posterior::new(&config.posterior);
         let log_target = posterior.log_target(&state.explanation, 0);
         let phase_tables = config.schedule.phases.iter().map(|p| Cumulative::new(p.weights.0)).collect();
         let best_log_posterior = posterior.log_posterior(&state.explanation, 0);
-        Chain {
+        Ok(Chain {
             trace: Trace::new(config.output.acceptance_window, config.output.trace_every),
             samples: Ring::new(config.output.samples),
             config,
@@ -282,7 +311,133 @@ impl Chain {
             best_iteration: 0,
             phase_tables,
             phase_index: 0,
+            knowledge,
+            inferred: Default::default(),
+            resolution: 0.05,
+            object_gain,
+            knowledge_error: None,
+        })
+    }
+
+    /// The knowledge terms of the log posterior (untempered): the semantic sensor model's
+    /// object cells in rooms, halls and other units, and the same-length factors of eq. 3.34.
+    fn knowledge_term(&self) -> f64 {
+        self.knowledge_term_for(&self.state.units)
+    }
+
+    fn knowledge_term_for(&self, units: &[Unit]) -> f64 {
+        if self.inferred.types.is_empty() {
+            return 0.0;
         }
+        let t = self.state.wall;
+        let mut s = 0.0;
+        for u in units {
+            let tolerant =
+                matches!(self.inferred.types.get(&u.id), Some((UnitType::Room | UnitType::Hall | UnitType::Other, _)));
+            if tolerant && u.w > 2 * t && u.h > 2 * t {
+                let inside = Rect::new(u.x + t, u.y + t, u.w - 2 * t, u.h - 2 * t);
+                // Object cells, up to the allowed share of the interior, unknown ones first.
+                let cap = (self.config.knowledge.object_share * inside.area() as f64) as u32;
+                let unknown = self.state.unknown_in(inside).min(cap);
+                let occupied = self.state.occupied_in(inside).min(cap - unknown);
+                s += unknown as f64 * self.object_gain[0] + occupied as f64 * self.object_gain[1];
+            }
+        }
+        let sigma = self.config.knowledge.same_length_sigma;
+        for &(p, q, _) in &self.inferred.same_length {
+            let (Some(a), Some(b)) = (units.iter().find(|u| u.id == p), units.iter().find(|u| u.id == q)) else {
+                continue;
+            };
+            if let Some((la, lb)) = super::knowledge::connecting_walls(a, b, t) {
+                let d = (la - lb) as f64;
+                s -= d * d / (2.0 * sigma * sigma);
+            }
+        }
+        s
+    }
+
+    /// The full log posterior of the current world: likelihood, prior and knowledge terms.
+    fn full_log_posterior(&self) -> f64 {
+        self.posterior.log_posterior(&self.state.explanation, self.state.units.len()) + self.knowledge_term()
+    }
+
+    /// Share of the map's free cells covered by units (knowledge switches on above a threshold).
+    pub fn coverage(&self) -> f64 {
+        let n = self.state.explanation.confusion()[0];
+        let free: i64 = n.iter().sum();
+        if free == 0 {
+            0.0
+        } else {
+            1.0 - n[1] as f64 / free as f64
+        }
+    }
+
+    /// The current world with the chain's own unit ids (exports renumber them).
+    fn internal_world(&self) -> World {
+        let mut w = World::empty(self.frame.map_size[0], self.frame.map_size[1]);
+        w.frame = self.frame;
+        w.wall_thickness = self.state.wall;
+        w.units = self.state.units.clone();
+        for (k, d) in self.state.doors.iter().enumerate() {
+            if let Some(r) = self.state.door_rect_of(d) {
+                w.doors.push(Door {
+                    id: k as u32 + 1,
+                    units: [d.lo, d.hi],
+                    x0: r.x,
+                    y0: r.y,
+                    x1: r.right() - 1,
+                    y1: r.bottom() - 1,
+                });
+            }
+        }
+        w
+    }
+
+    /// Runs knowledge inference on the current world now, if knowledge is enabled; the types
+    /// and same-length pairs then shape the posterior until the next inference.
+    pub fn infer_knowledge(&mut self) -> Result<(), ChainError> {
+        let world = self.internal_world();
+        let resolution = self.resolution;
+        let Some(k) = self.knowledge.as_mut() else { return Ok(()) };
+        let inferred = k.infer(&world, resolution).map_err(|e| ChainError::Knowledge(e.to_string()))?;
+        for u in &mut self.state.units {
+            u.kind = inferred.types.get(&u.id).map_or(UnitType::Unknown, |t| t.0);
+        }
+        if inferred != self.inferred {
+            // The target changed: rescore the current world and the best one under it.
+            let best_base = self.best_log_posterior - self.knowledge_term_for(&self.best.units);
+            self.inferred = inferred;
+            let lp = self.full_log_posterior();
+            self.log_target = lp * self.posterior.inv_temperature();
+            self.best_log_posterior = best_base + self.knowledge_term_for(&self.best.units);
+            if lp > self.best_log_posterior || self.best.units.is_empty() {
+                self.best_log_posterior = lp;
+                self.best_iteration = self.iteration;
+                self.best.units.clone_from(&self.state.units);
+                self.best.doors.clone_from(&self.state.doors);
+            }
+        }
+        Ok(())
+    }
+
+    /// Why knowledge inference stopped, if it failed (the chain goes on without it).
+    pub fn knowledge_error(&self) -> Option<&str> {
+        self.knowledge_error.as_deref()
+    }
+
+    /// Unit types and same-length pairs from the last inference.
+    pub fn inferred(&self) -> &super::knowledge::Inferred {
+        &self.inferred
+    }
+
+    /// How many knowledge inferences ran (cache misses).
+    pub fn inferences(&self) -> u64 {
+        self.knowledge.as_ref().map_or(0, |k| k.inferences)
+    }
+
+    /// Metres per cell of the map.
+    pub fn resolution(&self) -> f64 {
+        self.resolution
     }
 
     /// The seed the chain started from.
@@ -325,9 +480,10 @@ impl Chain {
         &self.state.explanation
     }
 
-    /// `log p(W|M)` of the current world (untempered, up to a constant).
+    /// `log p(W|M)` of the current world (untempered, up to a constant), knowledge terms
+    /// included once knowledge is active.
     pub fn log_posterior(&self) -> f64 {
-        self.posterior.log_posterior(&self.state.explanation, self.state.units.len())
+        self.full_log_posterior()
     }
 
     /// The best log posterior seen.
@@ -443,14 +599,15 @@ impl Chain {
     }
 
     /// Runs iterations until `budget_ms` milliseconds have passed by `now` (a clock in
-    /// milliseconds, e.g. `performance.now()` in a browser), checking the clock every 64
-    /// iterations. Returns the number of iterations run.
+    /// milliseconds, e.g. `performance.now()` in a browser), checking the clock every 16
+    /// iterations, so a frame's budget is overrun by at most a few milliseconds even on large
+    /// maps. Returns the number of iterations run.
     pub fn run_for(&mut self, budget_ms: f64, now: &mut dyn FnMut() -> f64) -> u64 {
         let start = now();
         let mut done = 0;
         loop {
-            self.step(64);
-            done += 64;
+            self.step(16);
+            done += 16;
             // A clock that returns NaN stops the loop rather than spinning forever.
             let elapsed = now() - start;
             if elapsed >= budget_ms || elapsed.is_nan() {
@@ -471,6 +628,15 @@ impl Chain {
         let d = &self.config.detectors;
         if self.iteration >= d.free_space_start && (self.iteration - d.free_space_start) % d.free_space_every == 0 {
             self.refresh_free_space();
+        }
+        if self.knowledge.is_some()
+            && self.iteration % self.config.knowledge.every == 0
+            && self.coverage() >= self.config.knowledge.coverage
+        {
+            if let Err(e) = self.infer_knowledge() {
+                self.knowledge_error = Some(e.to_string());
+                self.knowledge = None;
+            }
         }
         let phase = self.current_weights();
         let table = &self.phase_tables[phase];
@@ -499,11 +665,11 @@ impl Chain {
         }
         let (undo, generation, next_id) = self.state.apply(&mv);
         let q_rev = self.proposer.reverse_q(&mv, &undo, &self.state);
-        let new_target = self.posterior.log_target(&self.state.explanation, self.state.units.len());
+        let new_target = self.full_log_posterior() * self.posterior.inv_temperature();
         let log_ratio = new_target - self.log_target + libm::log(phi_rev * q_rev) - libm::log(phi_fwd * q_fwd);
         if q_rev > 0.0 && accept(log_ratio, &mut self.rng) {
             self.log_target = new_target;
-            let lp = self.posterior.log_posterior(&self.state.explanation, self.state.units.len());
+            let lp = new_target / self.posterior.inv_temperature();
             if lp > self.best_log_posterior {
                 self.best_log_posterior = lp;
                 self.best_iteration = self.iteration;

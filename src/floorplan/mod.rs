@@ -7,6 +7,7 @@ pub mod chain;
 pub mod explain;
 pub mod graph;
 pub mod kernels;
+pub mod knowledge;
 pub mod metrics;
 pub mod posterior;
 pub mod rooms;

@@ -25,11 +25,14 @@ pub struct RoomConfig {
     /// the units' rooms: a room the chain left unexplained is still a room, not an annex of
     /// its neighbour through the door.
     pub max_reach: u32,
+    /// Smallest free region (cells) beyond every unit's reach that counts as a room; smaller
+    /// ones (specks, scan rays) are not part of any room.
+    pub min_room_cells: usize,
 }
 
 impl Default for RoomConfig {
     fn default() -> Self {
-        RoomConfig { max_wall_share: 0.05, min_open_len: 30, max_reach: 20 }
+        RoomConfig { max_wall_share: 0.05, min_open_len: 30, max_reach: 20, min_room_cells: 400 }
     }
 }
 
@@ -191,16 +194,32 @@ pub fn room_labels(world: &World, map: &Grid<Cell>, world_map: &Grid<Cell>, c: &
         if *map.at(sx, sy) != Cell::Free || *labels.at(sx, sy) != 0 {
             continue;
         }
-        next = next.saturating_add(1);
-        *labels.at_mut(sx, sy) = next;
+        // Flood the region with a provisional id, then keep it only if it is big enough.
+        let id = next.saturating_add(1);
+        let mut region = vec![(sx, sy)];
+        *labels.at_mut(sx, sy) = id;
         stack.push((sx, sy));
         while let Some((x, y)) = stack.pop() {
             for (nx, ny) in [(x.wrapping_sub(1), y), (x + 1, y), (x, y.wrapping_sub(1)), (x, y + 1)] {
                 if nx < w && ny < h && *map.at(nx, ny) == Cell::Free && *labels.at(nx, ny) == 0 {
-                    *labels.at_mut(nx, ny) = next;
+                    *labels.at_mut(nx, ny) = id;
                     stack.push((nx, ny));
+                    region.push((nx, ny));
                 }
             }
+        }
+        if region.len() >= c.min_room_cells {
+            next = id;
+        } else {
+            // u16::MAX marks "seen, not a room" until the end.
+            for (x, y) in region {
+                *labels.at_mut(x, y) = u16::MAX;
+            }
+        }
+    }
+    for l in labels.cells_mut() {
+        if *l == u16::MAX {
+            *l = 0;
         }
     }
     labels
@@ -264,7 +283,7 @@ mod tests {
         let labels = room_labels(&world, &map, &map, &RoomConfig::default());
         assert_eq!(*labels.at(22, 10), 1, "nearer to the left unit");
         assert_eq!(*labels.at(27, 10), 2, "nearer to the right unit");
-        assert_eq!(*labels.at(25, 0), 3, "an isolated free cell is a region of its own");
+        assert_eq!(*labels.at(25, 0), 0, "an isolated free cell is no room");
         assert_eq!(*labels.at(0, 0), 0, "unknown cells are not labelled");
     }
 }

@@ -56,17 +56,20 @@ impl Default for DoorLimits {
 /// `hi` lies beyond `lo` (their wall rings of depth `t` may overlap, their rectangles may be
 /// up to `max_gap` cells apart), and their interiors overlap along the walls.
 pub fn facing(lo: Rect, hi: Rect, axis: Axis, max_gap: i32, t: i32) -> Option<(i32, i32)> {
+    // In i64: unchecked worlds (a world.json from anywhere) may hold extreme coordinates.
+    let end = |a: i32, len: i32| a as i64 + len as i64;
     let (gap, a0, a1, b0, b1) = match axis {
-        Axis::Horizontal => (hi.x - lo.right(), lo.y, lo.bottom(), hi.y, hi.bottom()),
-        Axis::Vertical => (hi.y - lo.bottom(), lo.x, lo.right(), hi.x, hi.right()),
+        Axis::Horizontal => (hi.x as i64 - end(lo.x, lo.w), lo.y as i64, end(lo.y, lo.h), hi.y as i64, end(hi.y, hi.h)),
+        Axis::Vertical => (hi.y as i64 - end(lo.y, lo.h), lo.x as i64, end(lo.x, lo.w), hi.x as i64, end(hi.x, hi.w)),
     };
-    if gap < -t || gap > max_gap {
+    let t = t as i64;
+    if gap < -t || gap > max_gap as i64 {
         return None;
     }
     // Interior rows (or columns) of both: exclude each unit's corner walls.
     let s = (a0 + t).max(b0 + t);
     let e = (a1 - 1 - t).min(b1 - 1 - t);
-    (s <= e).then_some((s, e))
+    (s <= e && s >= i32::MIN as i64 && e <= i32::MAX as i64).then_some((s as i32, e as i32))
 }
 
 /// The rectangle of a door between `lo` and `hi`, or `None` if they no longer face each other
@@ -182,6 +185,7 @@ pub struct State {
     pub explanation: Explanation,
     occupied: AreaCounts,
     free: AreaCounts,
+    unknown: AreaCounts,
     /// The units, in slot order.
     pub units: Vec<Unit>,
     /// The doors.
@@ -206,6 +210,7 @@ impl State {
             explanation: Explanation::new(map),
             occupied: AreaCounts::new(map, Cell::Occupied),
             free: AreaCounts::new(map, Cell::Free),
+            unknown: AreaCounts::new(map, Cell::Unknown),
             units: Vec::new(),
             doors: Vec::new(),
             next_id: 1,
@@ -236,6 +241,11 @@ impl State {
     /// Free cells inside a rectangle.
     pub fn free_in(&self, r: Rect) -> u32 {
         self.free.count(r)
+    }
+
+    /// Unknown cells inside a rectangle.
+    pub fn unknown_in(&self, r: Rect) -> u32 {
+        self.unknown.count(r)
     }
 
     /// Wall weights `ω_w` of eq. 3.11 for the four walls (left, right, top, bottom): the share

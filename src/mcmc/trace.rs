@@ -29,6 +29,8 @@ pub struct Trace {
     /// Record a point every this many iterations.
     pub every: u64,
     window: Vec<bool>,
+    /// The window's size, kept apart from the vector's capacity, which a clone does not keep.
+    window_size: usize,
     window_pos: usize,
     window_accepted: u32,
 }
@@ -42,6 +44,7 @@ impl Trace {
             points: Vec::new(),
             every: every.max(1),
             window: Vec::with_capacity(window.max(1)),
+            window_size: window.max(1),
             window_pos: 0,
             window_accepted: 0,
         }
@@ -53,7 +56,7 @@ impl Trace {
         if accepted {
             self.accepted[kernel.index()] += 1;
         }
-        let cap = self.window.capacity();
+        let cap = self.window_size;
         if self.window.len() < cap {
             self.window.push(accepted);
         } else {
@@ -85,5 +88,26 @@ impl Trace {
     /// Total accepted.
     pub fn total_accepted(&self) -> u64 {
         self.accepted.iter().sum()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_cloned_trace_keeps_its_window() {
+        let mut t = Trace::new(4, 10);
+        for i in 0..10 {
+            t.record(Kernel::Add, i % 2 == 0);
+        }
+        assert_eq!(t.acceptance(), 0.5);
+        let mut c = t.clone();
+        for _ in 0..4 {
+            c.record(Kernel::Remove, true);
+        }
+        assert_eq!(c.acceptance(), 1.0);
+        assert_eq!(c.total_proposed(), 14);
+        assert_eq!(t.total_proposed(), 10);
     }
 }

@@ -15,7 +15,12 @@
 //! * doors in cyan ([`DOOR_RGBA`]) and object cells (unknown cells inside units, furniture) in
 //!   semi-transparent green ([`OBJECT_RGBA`]);
 //! * optionally each unit's type and id at its centre ("room 3"), in a small built-in bitmap
-//!   font ([`font`]) on a light box, because tiny-skia draws no text.
+//!   font ([`font`]) on a light box, because tiny-skia draws no text;
+//! * for a running chain, the posterior cloud: the last accepted worlds as thin
+//!   semi-transparent magenta outlines ([`draw_cloud`]), as the papers overlay 1000 samples.
+//!
+//! [`render_scene_graph`] draws a world's scene graph (units as nodes in their type's colour,
+//! doors as solid edges, shared walls as dashed ones) for display beside the map.
 //!
 //! Anti-aliasing is off everywhere. A map is a grid of cells, so a pixel that is half wall and
 //! half floor would claim a colour no cell has; with aliased drawing every pixel is exactly a
@@ -46,10 +51,17 @@
 //! assert_eq!([p.red(), p.green(), p.blue()], [WALL_RGBA[0], WALL_RGBA[1], WALL_RGBA[2]]);
 //! ```
 
+mod cloud;
 pub mod font;
+mod graph;
 pub mod tabletop;
 mod world;
 
+pub use cloud::{cloud_alpha, draw_cloud, CLOUD_RGB};
+pub use graph::{
+    draw_scene_graph, graph_node_radius, render_scene_graph, scene_graph_layout, unit_type_rgb, GraphLayout,
+    GRAPH_ADJACENT_RGBA, GRAPH_BACKGROUND_RGBA, GRAPH_DOOR_RGBA, GRAPH_FRAME_RGBA,
+};
 pub use world::{
     draw_tag, draw_world, label_text_scale, unit_label, DOOR_RGBA, LABEL_BACKGROUND_RGBA, LABEL_OUTLINE_RGBA,
     LABEL_TEXT_RGBA, OBJECT_RGBA, WALL_RGBA,

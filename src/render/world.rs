@@ -54,8 +54,9 @@ pub fn draw_world(pixmap: &mut Pixmap, map_width: usize, map_height: usize, worl
     };
 
     // Object cells first, so that walls and doors stay their pure colours where they meet.
-    let objects = world.object_cells.iter().map(|&[x, y]| CellRect::cell(x as i64, y as i64));
-    place.fill(pixmap, objects, OBJECT_RGBA);
+    // Merged into rectangles: a furnished building has thousands, and one quad per cell made
+    // them the slowest part of a frame.
+    place.fill(pixmap, object_rects(&world.object_cells).into_iter(), OBJECT_RGBA);
 
     let walls = world.units.iter().filter(|u| u.w >= 1 && u.h >= 1).flat_map(|u| {
         CellRect::new(u.x as i64, u.y as i64, u.w as i64, u.h as i64).ring(world.wall_thickness.max(1) as i64)
@@ -128,6 +129,35 @@ fn solid(rgba: [u8; 4]) -> Paint<'static> {
     paint
 }
 
+/// Object cells as few rectangles covering exactly the same cells: runs down each column,
+/// then runs of equal column runs side by side.
+fn object_rects(cells: &[[i32; 2]]) -> Vec<CellRect> {
+    let mut v: Vec<(i64, i64)> = cells.iter().map(|&[x, y]| (x as i64, y as i64)).collect();
+    v.sort_unstable();
+    v.dedup();
+    let mut columns = Vec::new();
+    let mut i = 0;
+    while i < v.len() {
+        let (x, y0) = v[i];
+        let mut y1 = y0 + 1;
+        while i + 1 < v.len() && v[i + 1] == (x, y1) {
+            i += 1;
+            y1 += 1;
+        }
+        columns.push(CellRect { x0: x, y0, x1: x + 1, y1 });
+        i += 1;
+    }
+    columns.sort_unstable_by_key(|r| (r.y0, r.y1, r.x0));
+    let mut out: Vec<CellRect> = Vec::with_capacity(columns.len());
+    for r in columns {
+        match out.last_mut() {
+            Some(last) if last.y0 == r.y0 && last.y1 == r.y1 && last.x1 == r.x0 => last.x1 = r.x1,
+            _ => out.push(r),
+        }
+    }
+    out
+}
+
 /// A rectangle of world cells: columns `x0..x1`, rows `y0..y1` (end exclusive). `i64` so that
 /// sums of `i32` coordinates from an unchecked world cannot overflow.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -141,10 +171,6 @@ struct CellRect {
 impl CellRect {
     fn new(x: i64, y: i64, w: i64, h: i64) -> Self {
         CellRect { x0: x, y0: y, x1: x + w, y1: y + h }
-    }
-
-    fn cell(x: i64, y: i64) -> Self {
-        CellRect::new(x, y, 1, 1)
     }
 
     /// The outer ring of cells `t` deep (eq. 3.8's walls) as four strips: top, bottom, left,
@@ -234,5 +260,23 @@ impl Placement {
         if let Some(path) = pb.finish() {
             pixmap.fill_path(&path, &solid(rgba), FillRule::Winding, Transform::identity(), None);
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn object_rects_cover_exactly_the_cells() {
+        let cells = [[3, 3], [4, 3], [3, 4], [4, 4], [5, 3], [9, 9], [3, 3], [i32::MAX, i32::MIN], [7, 1], [7, 2]];
+        let rects = object_rects(&cells);
+        let covered: std::collections::BTreeSet<(i64, i64)> =
+            rects.iter().flat_map(|r| (r.x0..r.x1).flat_map(move |x| (r.y0..r.y1).map(move |y| (x, y)))).collect();
+        let want: std::collections::BTreeSet<(i64, i64)> = cells.iter().map(|&[x, y]| (x as i64, y as i64)).collect();
+        assert_eq!(covered, want);
+        assert_eq!(rects.iter().map(|r| (r.x1 - r.x0) * (r.y1 - r.y0)).sum::<i64>(), want.len() as i64, "no overlaps");
+        assert!(rects.len() <= 5, "{rects:?}");
+        assert!(object_rects(&[]).is_empty());
     }
 }

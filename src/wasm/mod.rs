@@ -19,13 +19,35 @@
 //! Objects returned as classes (`Map`, `Rendered`, `Synthetic`) live in wasm memory; call
 //! `.free()` on them when done, or let the garbage collector's finaliser do it.
 
+mod mapper;
+
+pub use mapper::{
+    chain_config, chain_config_defaults, draw_mapper, draw_scene_graph, now_ms, render_mapper_rgba,
+    render_scene_graph_rgba, DrawOptions, GraphOptions, Mapper, Show, MAX_BUDGET_MS, MAX_MAPPER_CELLS, MAX_STEP,
+};
+
 use crate::floorplan::synth::{self, SynthConfig};
 use crate::floorplan::World;
-use crate::grid::{Cell, Grid, Limits, OccupancyMap};
+use crate::grid::{Cell, Classifier, Grid, Limits, OccupancyMap};
 use crate::render::{self, RenderOptions};
 use serde::{Deserialize, Serialize};
 use wasm_bindgen::prelude::*;
 use wasm_bindgen::Clamped;
+
+#[wasm_bindgen(typescript_custom_section)]
+const TS_TYPES: &str = r#"
+/** Options of `drawMapper`, `renderMapperRgba` and `Mapper.toPng`. */
+export interface MapperDrawOptions {
+  /** Which world to draw over the map (default 'current'). */
+  show?: 'current' | 'best' | 'reference' | 'none';
+  /** Overlay the posterior cloud: the last accepted worlds as thin lines (default false). */
+  cloud?: boolean;
+  /** Output pixels per map cell (default 1). */
+  scale?: number;
+  /** Each unit's type and id at its centre (default true). */
+  labels?: boolean;
+}
+"#;
 
 /// Installs the panic hook, so that a bug prints its message to the console instead of an
 /// opaque `unreachable` trap. Runs by itself when the module is initialised.
@@ -155,6 +177,24 @@ impl Map {
         self.inner.to_pgm()
     }
 
+    /// The same image classified by another rule, as a new map: `'auto'` finds the background
+    /// grays from the histogram and counts anti-aliased wall edges as occupied (what
+    /// `ksmcmc floorplan --classify auto`, its default, does to plain images), `'fixed'` applies
+    /// the default intensity thresholds (what `Map.fromBytes` does).
+    pub fn reclassify(
+        &self,
+        #[wasm_bindgen(unchecked_param_type = "'auto' | 'fixed'")] rule: &str,
+    ) -> Result<Map, JsError> {
+        let classifier = match rule {
+            "auto" => Classifier::auto(),
+            "fixed" => Classifier::default(),
+            other => return Err(JsError::new(&format!("classify: {other:?} is neither 'auto' nor 'fixed'"))),
+        };
+        let mut inner = self.inner.clone();
+        inner.set_classifier(classifier)?;
+        Ok(Map::new(inner))
+    }
+
     /// The `map.yaml` text for `toPgm()` saved under the file name `imageName`.
     #[wasm_bindgen(js_name = toYaml)]
     pub fn to_yaml(&self, #[wasm_bindgen(js_name = imageName)] image_name: &str) -> String {
@@ -202,6 +242,11 @@ impl Rendered {
 }
 
 impl Rendered {
+    /// Wraps straight RGBA pixels.
+    pub fn new(width: u32, height: u32, rgba: Vec<u8>) -> Rendered {
+        Rendered { width, height, rgba }
+    }
+
     /// The pixels without a copy.
     pub fn rgba_bytes(&self) -> &[u8] {
         &self.rgba
@@ -235,21 +280,25 @@ pub fn draw_to_canvas(
     labels: Option<bool>,
 ) -> Result<(), JsError> {
     let rendered = render_rgba(map, world_json, scale, labels)?;
+    put_rgba(canvas, rendered.width, rendered.height, rendered.rgba_bytes())
+}
+
+/// Puts straight RGBA pixels on a canvas with `ImageData`, resizing it to `width` x `height`.
+/// The canvas is left as it was if the pixels cannot be put there.
+pub fn put_rgba(canvas: &web_sys::HtmlCanvasElement, width: u32, height: u32, rgba: &[u8]) -> Result<(), JsError> {
     let js = |what: &str, e: JsValue| JsError::new(&format!("{what}: {}", js_message(&e)));
-    let image = web_sys::ImageData::new_with_u8_clamped_array_and_sh(
-        Clamped(rendered.rgba_bytes()),
-        rendered.width,
-        rendered.height,
-    )
-    .map_err(|e| js("cannot make ImageData", e))?;
-    canvas.set_width(rendered.width);
-    canvas.set_height(rendered.height);
+    let image = web_sys::ImageData::new_with_u8_clamped_array_and_sh(Clamped(rgba), width, height)
+        .map_err(|e| js("cannot make ImageData", e))?;
     let context = canvas
         .get_context("2d")
         .map_err(|e| js("cannot get the canvas's 2d context", e))?
         .ok_or_else(|| JsError::new("the canvas has no 2d context (is it already used for WebGL?)"))?;
     let context: web_sys::CanvasRenderingContext2d =
         context.dyn_into().map_err(|e| js("not a 2d context", e.into()))?;
+    if canvas.width() != width || canvas.height() != height {
+        canvas.set_width(width);
+        canvas.set_height(height);
+    }
     context.put_image_data(&image, 0.0, 0.0).map_err(|e| js("cannot put the pixels", e))?;
     Ok(())
 }

@@ -88,3 +88,77 @@ test('seeds are whole numbers, bigints above 2^53', () => {
   assert.equal(parseSeed('18446744073709551615'), 18446744073709551615n);
   for (const bad of ['', '-1', '1.5', '1e3', 'abc', '0x10']) assert.throws(() => parseSeed(bad), /whole number/);
 });
+
+// ---------------------------------------------------------------- live mapper helpers
+
+import { readFileSync as readText } from 'node:fs';
+import { formatNumber, parseIterationsPerFrame, plotPoints, yRange } from '../../www/lib/plot.js';
+import { SAMPLES, SYNTH_FLAGS, sampleRecipe } from '../../npm/samples.js';
+import { descriptions, pgmSize } from '../../scripts/www-samples.mjs';
+
+test('iterations per frame: auto or a whole number from 1 to 100000', () => {
+  assert.equal(parseIterationsPerFrame('auto'), 'auto');
+  assert.equal(parseIterationsPerFrame(' AUTO '), 'auto');
+  assert.equal(parseIterationsPerFrame(''), 'auto');
+  assert.equal(parseIterationsPerFrame('250'), 250);
+  assert.equal(parseIterationsPerFrame('100000'), 100000);
+  for (const bad of ['0', '-5', 'NaN', '2.5', '1e3', '100001', 'fast', 'Infinity']) {
+    assert.throws(() => parseIterationsPerFrame(bad), /Iterations per frame: .* is not allowed/, bad);
+  }
+});
+
+test('plots fit the trace into the box and thin out long traces', () => {
+  assert.deepEqual(yRange([]), [0, 1]);
+  assert.deepEqual(yRange([5, 5]), [4, 6]);
+  assert.deepEqual(yRange([0, 10]), [-0.5, 10.5]);
+  assert.deepEqual(yRange([NaN, 2, Infinity, 4]), [1.9, 4.1]);
+  assert.deepEqual(yRange([3], [0, 1]), [0, 1]);
+  assert.deepEqual(plotPoints([], [], 100, 50), []);
+  assert.deepEqual(plotPoints([1], [1], 4, 4), [], 'no room inside the padding');
+  const pts = plotPoints([0, 50, 100], [0, 5, 10], 108, 58, { pad: 4 });
+  assert.deepEqual(pts[0], [4, 4 + 50 - (0.5 / 11) * 50]);
+  assert.equal(pts[2][0], 104, 'the last point at the right edge');
+  assert.ok(pts[2][1] < pts[1][1] && pts[1][1] < pts[0][1], 'larger values plot higher');
+  const n = 100000;
+  const xs = Array.from({ length: n }, (_, i) => i);
+  const long = plotPoints(xs, xs, 208, 50);
+  assert.ok(long.length <= 2 * 200 + 2, `${long.length} points for 200 pixels`);
+  assert.equal(long.at(-1)[0], 204, 'the newest point is kept');
+  const clamped = plotPoints([0, 1], [-5, 5], 20, 20, { pad: 0, range: [0, 1] });
+  assert.deepEqual(clamped.map((p) => p[1]), [20, 0], 'values outside a fixed range stay on the frame');
+  assert.equal(formatNumber(12345.678, 1), '12,345.7');
+  assert.equal(formatNumber(NaN), '–');
+});
+
+test('the embed\'s sample recipes are the commands in samples/README.md', () => {
+  const readme = readText(new URL('../../samples/README.md', import.meta.url), 'utf8');
+  const commands = readme.split('\n').filter((l) => l.startsWith('ksmcmc synth '));
+  assert.equal(commands.length, Object.keys(SAMPLES).length, 'one recipe per sample');
+  const byFlag = Object.fromEntries(Object.entries(SYNTH_FLAGS).map(([k, v]) => [v, k]));
+  for (const line of commands) {
+    const words = line.trim().split(/\s+/).slice(2);
+    const opts = {};
+    for (let i = 0; i < words.length; i += 2) opts[words[i]] = words[i + 1];
+    const name = opts['--out'].split('/').pop();
+    const recipe = sampleRecipe(name);
+    assert.equal(recipe.seed, Number(opts['--seed']), `${name}: seed`);
+    const config = {};
+    for (const [flag, value] of Object.entries(opts)) {
+      if (flag === '--seed' || flag === '--out') continue;
+      assert.ok(byFlag[flag], `${name}: ${flag} has a config field in SYNTH_FLAGS`);
+      config[byFlag[flag]] = Number(value);
+    }
+    assert.deepEqual(recipe.config, config, `${name}: config`);
+    assert.equal(recipe.command, line.replace(/\s+--out\s+\S+/, '').trim(), `${name}: command`);
+  }
+  assert.throws(() => sampleRecipe('nope'), /unknown sample "nope"; the samples are office-small/);
+  assert.throws(() => sampleRecipe('constructor'), /unknown sample/);
+});
+
+test('the page\'s sample index reads sizes and descriptions', () => {
+  assert.deepEqual(pgmSize(Buffer.from('P5\n# made by hand\n400 300\n255\n')), [400, 300]);
+  assert.deepEqual(pgmSize(Buffer.from('P2 3 1 255\n0 0 0\n')), [3, 1]);
+  assert.throws(() => pgmSize(Buffer.from('P6 1 1 255\n')), /not a PGM/);
+  const d = descriptions('| `map.pgm` | the map |\n| `office-small` | 400 x 300 | the defaults: `one` corridor |\n');
+  assert.deepEqual(d, { 'office-small': 'the defaults: one corridor' });
+});

@@ -17,7 +17,10 @@ Prints the quality tables of BENCHMARKS.md:
   bormann    room-segmentation precision and recall on the Bormann et al. maps in DIR/bormann2016
              (plain and furnished), scored as the benchmark does (see `ksmcmc score`)
   synthetic  K(W,M), precision and recall against the truth of K generated maps per kind
-  cartesium  K(W,M) on DIR/radish/ubremen-cartesium.png over K seeds
+    cartesium  K(W,M) on DIR/radish/ubremen-cartesium.png over K seeds
+  knowledge  weak prior versus knowledge supervision (Fig. 3.34): K(W,M), unit-count error,
+             defects (adjacent room pairs whose connecting walls differ by over 10 %) and
+             type accuracy against the synthetic truth
 DIR defaults to ../shared/datasets, N to 20000 iterations, K to 6. --only runs one set.
 ";
 
@@ -114,6 +117,90 @@ fn synthetic(o: &Opts) -> Result<(), CliError> {
     Ok(())
 }
 
+/// Weak prior versus knowledge supervision (the comparison of Fig. 3.34).
+fn knowledge(dir: &Path, o: &Opts) -> Result<(), CliError> {
+    use ksmcmc::floorplan::knowledge::{defects, Knowledge};
+    println!("\n### Weak prior versus knowledge supervision ({} iterations)\n", o.iterations);
+    println!("| maps | mode | K(W,M) | unit count error | defects | type accuracy |");
+    println!("|---|---|---|---|---|---|");
+    // Type the final world (weak mode) or keep the chain's types (knowledge mode).
+    let finish = |chain: &Chain, resolution: f64| -> Result<ksmcmc::floorplan::World, CliError> {
+        let mut w = chain.best_world();
+        if !chain.config().knowledge.enabled {
+            let mut k = Knowledge::new(&Default::default()).map_err(|e| args::failed("knowledge", e))?;
+            let inferred = k.infer(&w, resolution).map_err(|e| args::failed("knowledge", e))?;
+            for u in &mut w.units {
+                u.kind = inferred.types.get(&u.id).map_or(u.kind, |t| t.0);
+            }
+        }
+        Ok(w)
+    };
+    for enabled in [false, true] {
+        let mode = if enabled { "knowledge" } else { "weak prior" };
+        let mut config = o.config.clone();
+        config.knowledge.enabled = enabled;
+        let o2 = Opts { iterations: o.iterations, seeds: o.seeds, config };
+        let (mut ks, mut errs, mut defs, mut typed, mut right) = (vec![], vec![], vec![], 0u32, 0u32);
+        for seed in 0..o.seeds {
+            let s = generate(&SynthConfig::default(), 200 + seed).map_err(|e| args::failed("synth", e))?;
+            let chain = explain(&s.map, &o2, seed + 1)?;
+            let w = finish(&chain, s.map.yaml().resolution)?;
+            ks.push(prediction_rate(s.map.classified(), &w));
+            errs.push((w.units.len() as f64 - s.truth.units.len() as f64).abs());
+            if let Some(d) = defects(&w) {
+                defs.push(d);
+            }
+            // Type accuracy: each unit against the truth unit it overlaps most (IoU > 0.5).
+            for u in &w.units {
+                let best = s
+                    .truth
+                    .units
+                    .iter()
+                    .map(|t| {
+                        let inter = u.rect().intersection(&t.rect()).map_or(0, |i| i.area());
+                        (inter as f64 / (u.rect().area() + t.rect().area() - inter) as f64, t.kind)
+                    })
+                    .max_by(|a, b| a.0.total_cmp(&b.0));
+                if let Some((_, kind)) = best.filter(|b| b.0 > 0.5) {
+                    typed += 1;
+                    right += (kind == u.kind) as u32;
+                }
+            }
+        }
+        println!(
+            "| synthetic office, {} seeds | {mode} | {:.4} | {:.1} | {:.3} | {:.3} ({typed} matched units) |",
+            o.seeds,
+            mean(&ks),
+            mean(&errs),
+            mean(&defs),
+            right as f64 / typed.max(1) as f64
+        );
+        let path = dir.join("radish/ubremen-cartesium.png");
+        if path.exists() {
+            let mut map = args::load_map(&path)?;
+            map.set_classifier(Classifier::default()).map_err(|e| args::failed("classifier", e))?;
+            let (mut ks, mut defs, mut units) = (vec![], vec![], vec![]);
+            for seed in 1..=o.seeds.min(3) {
+                let chain = explain(&map, &o2, seed)?;
+                let w = finish(&chain, map.yaml().resolution)?;
+                ks.push(prediction_rate(map.classified(), &w));
+                units.push(w.units.len() as f64);
+                if let Some(d) = defects(&w) {
+                    defs.push(d);
+                }
+            }
+            println!(
+                "| ubremen-cartesium, {} seeds | {mode} | {:.4} | ({:.1} units) | {:.3} | no truth |",
+                o.seeds.min(3),
+                mean(&ks),
+                mean(&units),
+                mean(&defs)
+            );
+        }
+    }
+    Ok(())
+}
+
 fn cartesium(dir: &Path, o: &Opts) -> Result<(), CliError> {
     let path = dir.join("radish/ubremen-cartesium.png");
     let mut map = args::load_map(&path)?;
@@ -167,6 +254,9 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     }
     if want("bormann") {
         bormann(&dir, &o)?;
+    }
+    if want("knowledge") {
+        knowledge(&dir, &o)?;
     }
 
     Ok(())

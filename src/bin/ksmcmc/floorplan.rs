@@ -27,6 +27,10 @@ Options:
   --seed S           random seed (default 1); same seed, same result
   --config FILE      chain configuration JSON (any subset of fields; see the docs)
       --rotation DEG     map rotation in degrees instead of estimating it
+      --knowledge KB     knowledge supervision during the chain: `builtin` (the indoor rules of
+                     Tab. 3.5), a knowledge base file (Alchemy format), or `none` (default:
+                     the weak prior of the first paper; types are then inferred on the final
+                     world with the built-in rules)
   --region FILE      an image the size of the map whose non-black cells are a region of
                      interest: report.json then also gives K(W,M) inside it
   --classify RULE    how plain images become cells: auto (default; background grays found
@@ -41,6 +45,7 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     let (mut iterations, mut seed, mut time_limit, mut rotation) = (20_000u64, 1u64, None::<f64>, None::<f64>);
     let mut classify = String::from("auto");
     let mut region_path: Option<PathBuf> = None;
+    let mut knowledge: Option<String> = None;
     while let Some(arg) = parser.next()? {
         match arg {
             Value(v) if map.is_none() => map = Some(args::path(v)),
@@ -52,6 +57,7 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
             Long("rotation") => rotation = Some(args::value("--rotation", parser.value()?)?),
             Long("classify") => classify = args::value("--classify", parser.value()?)?,
             Long("region") => region_path = Some(args::path(parser.value()?)),
+            Long("knowledge") => knowledge = Some(args::value("--knowledge", parser.value()?)?),
             Long("help") | Short('h') => {
                 print!("{HELP}");
                 return Ok(());
@@ -80,6 +86,18 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     };
     if rotation.is_some() {
         config.detectors.rotation_deg = rotation;
+    }
+    match knowledge.as_deref() {
+        Some("none") => config.knowledge.enabled = false,
+        Some("builtin") => config.knowledge.enabled = true,
+        Some(path) => {
+            let text = std::fs::read_to_string(path).map_err(|e| args::failed(path, e))?;
+            // Parse now, so that a broken knowledge base is reported with its file name.
+            ksmcmc::mln::Mln::parse(&text).map_err(|e| args::failed(path, e))?;
+            config.knowledge.enabled = true;
+            config.knowledge.kb = Some(text);
+        }
+        None => {}
     }
     let mut map = args::load_map(&map_path)?;
     let is_yaml = matches!(map_path.extension().and_then(|e| e.to_str()), Some("yaml" | "yml"));
@@ -119,7 +137,21 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
         chain.step((iterations - chain.iteration()).min(500));
     }
     let seconds = t0.elapsed().as_secs_f64();
-    let world = chain.best_world();
+    let mut world = chain.best_world();
+    if !chain.config().knowledge.enabled {
+        // Weak-prior mode: type the final world with the built-in rules, for the report.
+        let mut k = ksmcmc::floorplan::knowledge::Knowledge::new(&Default::default())
+            .map_err(|e| args::failed("knowledge", e))?;
+        let inferred = k.infer(&world, map.yaml().resolution).map_err(|e| args::failed("knowledge", e))?;
+        for u in &mut world.units {
+            u.kind = inferred.types.get(&u.id).map_or(u.kind, |t| t.0);
+        }
+    }
+    let mut types = std::collections::BTreeMap::new();
+    for u in &world.units {
+        *types.entry(u.kind.name()).or_insert(0u32) += 1;
+    }
+    let defects = ksmcmc::floorplan::knowledge::defects(&world);
     let labels = chain.best_labels(&RoomConfig::default());
     let rooms = labels.cells().iter().copied().max().unwrap_or(0);
     let k = metrics::prediction_rate(map.classified(), &world);
@@ -154,7 +186,13 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
         "best_iteration": chain.best_iteration(),
         "seed": seed,
         "rotation_deg": chain.frame().angle.to_degrees(),
-        "wall_thickness": chain.wall_thickness(),
+                "wall_thickness": chain.wall_thickness(),
+        "knowledge": chain.config().knowledge.enabled,
+        "knowledge_error": chain.knowledge_error(),
+                "inferences": chain.inferences(),
+        "same_length_pairs": chain.inferred().same_length.len(),
+        "types": types,
+        "defects": defects,
         "kernels": kernels,
     });
     args::write(&out.join("world.json"), world.to_json().as_bytes())?;

@@ -1,0 +1,363 @@
+// A small live-mapper widget for documentation pages:
+//
+//   import { mount } from 'ksmcmc/mount.js';
+//   const widget = await mount(document.getElementById('demo'), { sample: 'office-small', seed: 1, autoplay: true });
+//
+// builds, inside the element, the map with the chain's current world drawn over it, the scene
+// graph beside it, Start/Pause, Step and Reset buttons, cloud and best-world switches and a
+// line of statistics, and runs the chain in requestAnimationFrame with a time budget per frame
+// so the page stays responsive. Plain DOM, no framework, no network: samples are remade by the
+// synthetic generator (see samples.js), and the styles are injected once, scoped to the
+// widget's class.
+
+import init, { Map as OccupancyMap, Mapper, drawMapper, drawSceneGraph, synth } from './ksmcmc.js';
+import { SAMPLES, sampleRecipe } from './samples.js';
+
+export { SAMPLES };
+
+const OPTIONS = [
+  'sample', 'map', 'url', 'seed', 'config', 'autoplay', 'budgetMs', 'iterationsPerFrame', 'show', 'cloud',
+  'labels', 'graph', 'controls', 'wasm', 'onUpdate', 'onError',
+];
+const STYLE_ID = 'ksmcmc-mount-style';
+const CSS = `
+.ksmcmc-mapper { font: 14px/1.4 system-ui, sans-serif; color: inherit; display: grid; gap: .5rem; max-width: 100%; }
+.ksmcmc-mapper .ksmcmc-views { display: grid; grid-template-columns: minmax(0, 3fr) minmax(0, 1.4fr); gap: .5rem; align-items: start; }
+.ksmcmc-mapper.ksmcmc-nograph .ksmcmc-views { grid-template-columns: minmax(0, 1fr); }
+.ksmcmc-mapper canvas { width: 100%; height: auto; display: block; border: 1px solid #c8ccd2; border-radius: 3px; background: #fff; }
+.ksmcmc-mapper .ksmcmc-map { image-rendering: pixelated; }
+.ksmcmc-mapper .ksmcmc-map.ksmcmc-smooth { image-rendering: auto; }
+.ksmcmc-mapper .ksmcmc-bar { display: flex; flex-wrap: wrap; gap: .4rem .8rem; align-items: center; }
+.ksmcmc-mapper button { font: inherit; padding: .2rem .7rem; border: 1px solid #9aa1ab; border-radius: 3px; background: #f4f5f7; color: #1c1f23; cursor: pointer; }
+.ksmcmc-mapper button:focus-visible, .ksmcmc-mapper input:focus-visible, .ksmcmc-mapper canvas:focus-visible { outline: 3px solid #f0a500; outline-offset: 2px; }
+.ksmcmc-mapper label { display: inline-flex; gap: .3rem; align-items: center; }
+.ksmcmc-mapper .ksmcmc-stats { font-variant-numeric: tabular-nums; opacity: .85; }
+.ksmcmc-mapper .ksmcmc-error { color: #b00020; margin: 0; }
+.ksmcmc-mapper .ksmcmc-error:empty { display: none; }
+@media (max-width: 520px) { .ksmcmc-mapper .ksmcmc-views { grid-template-columns: minmax(0, 1fr); } }
+`;
+
+let initialised = null;
+
+/**
+ * Initialises the WebAssembly module once (later calls share the first one's promise).
+ * @param {string | URL | Request | BufferSource | WebAssembly.Module} [wasm] where the .wasm
+ *   is, if not next to ksmcmc.js
+ */
+export function ready(wasm) {
+  initialised ??= init(wasm === undefined ? undefined : { module_or_path: wasm });
+  return initialised;
+}
+
+/**
+ * A sample map, remade by the synthetic generator from its recipe: the same cells as the
+ * repository's samples/NAME/map.pgm + map.yaml. Call after `ready()`.
+ * @param {string} name one of Object.keys(SAMPLES)
+ * @returns {OccupancyMap}
+ */
+export function loadSample(name) {
+  const { seed, config } = sampleRecipe(name);
+  const made = synth(seed, JSON.stringify(config));
+  try {
+    return OccupancyMap.fromYaml(made.mapYaml, made.mapPgm);
+  } finally {
+    made.free();
+  }
+}
+
+/** Fetches a map: a PGM or PNG, or a map.yaml and the image it names (relative to it). */
+async function fetchMap(url) {
+  const get = async (u) => {
+    const r = await fetch(u);
+    if (!r.ok) throw new Error(`${u}: ${r.status} ${r.statusText}`);
+    return r;
+  };
+  const base = new URL(String(url), document.baseURI);
+  if (!/\.ya?ml$/i.test(base.pathname)) {
+    return OccupancyMap.fromBytes(new Uint8Array(await (await get(base)).arrayBuffer()));
+  }
+  const yaml = await (await get(base)).text();
+  const m = /^\s*image\s*:\s*["']?([^"'#\r\n]+?)["']?\s*(#.*)?$/m.exec(yaml);
+  if (!m) throw new Error(`${base}: no \`image:\` line, so it is not a ROS map.yaml`);
+  const image = new Uint8Array(await (await get(new URL(m[1].trim(), base))).arrayBuffer());
+  return OccupancyMap.fromYaml(yaml, image);
+}
+
+function checkOptions(options) {
+  if (options === null || typeof options !== 'object') throw new Error('mount: options must be an object');
+  for (const key of Object.keys(options)) {
+    if (!OPTIONS.includes(key)) {
+      throw new Error(`mount: unknown option ${JSON.stringify(key)}; the options are ${OPTIONS.join(', ')}`);
+    }
+  }
+  const sources = ['sample', 'map', 'url'].filter((k) => options[k] !== undefined);
+  if (sources.length > 1) throw new Error(`mount: give one of sample, map and url, not ${sources.join(' and ')}`);
+  const { budgetMs = 8, iterationsPerFrame } = options;
+  if (!(Number.isFinite(budgetMs) && budgetMs > 0 && budgetMs <= 1000)) {
+    throw new Error(`mount: budgetMs ${budgetMs} must be a number of milliseconds above 0 and at most 1000`);
+  }
+  if (iterationsPerFrame !== undefined && !(Number.isInteger(iterationsPerFrame) && iterationsPerFrame >= 1 && iterationsPerFrame <= 1e6)) {
+    throw new Error(`mount: iterationsPerFrame ${iterationsPerFrame} must be a whole number from 1 to 1000000`);
+  }
+  if (options.show !== undefined && !['current', 'best'].includes(options.show)) {
+    throw new Error(`mount: show ${JSON.stringify(options.show)} must be 'current' or 'best'`);
+  }
+}
+
+function el(tag, props = {}, children = []) {
+  const e = document.createElement(tag);
+  for (const [k, v] of Object.entries(props)) {
+    if (k === 'class') e.className = v;
+    else if (k.startsWith('aria-') || k === 'role' || k.startsWith('data-')) e.setAttribute(k, v);
+    else e[k] = v;
+  }
+  e.append(...children);
+  return e;
+}
+
+/**
+ * Builds a live mapper inside `element` and resolves to its controller. See mount.d.ts for
+ * the options and the controller.
+ * @param {HTMLElement} element
+ * @param {import('./mount.js').MountOptions} [options]
+ * @returns {Promise<import('./mount.js').MapperWidget>}
+ */
+export async function mount(element, options = {}) {
+  if (!(element instanceof Element)) throw new Error('mount: the first argument must be a DOM element');
+  checkOptions(options);
+  await ready(options.wasm);
+  const { budgetMs = 8, iterationsPerFrame, labels = false, graph = true, controls = true } = options;
+  let show = options.show ?? 'current';
+  let cloud = Boolean(options.cloud);
+  const name = options.sample ?? (options.url !== undefined ? String(options.url).split('/').pop() : options.map ? 'map' : 'office-small');
+
+  let map;
+  let ownMap = true;
+  if (options.map instanceof OccupancyMap) {
+    map = options.map;
+    ownMap = false;
+  } else if (options.map && typeof options.map === 'object' && 'yaml' in options.map) {
+    map = OccupancyMap.fromYaml(String(options.map.yaml), new Uint8Array(options.map.image));
+  } else if (options.map instanceof Uint8Array || options.map instanceof ArrayBuffer) {
+    map = OccupancyMap.fromBytes(new Uint8Array(options.map));
+  } else if (options.map !== undefined) {
+    throw new Error('mount: map must be a Map, the bytes of a PGM or PNG, or { yaml, image }');
+  } else if (options.url !== undefined) {
+    map = await fetchMap(options.url);
+  } else {
+    map = loadSample(options.sample ?? 'office-small');
+  }
+  const config = options.config === undefined || typeof options.config === 'string' ? options.config : JSON.stringify(options.config);
+  let mapper;
+  try {
+    mapper = new Mapper(map, config, options.seed ?? 1);
+  } finally {
+    if (ownMap) map.free();
+  }
+
+  if (!document.getElementById(STYLE_ID)) {
+    document.head.append(el('style', { id: STYLE_ID, textContent: CSS }));
+  }
+  const mapCanvas = el('canvas', {
+    class: 'ksmcmc-map', tabIndex: 0, role: 'img',
+    'aria-label': `Occupancy map ${name}, ${mapper.width} by ${mapper.height} cells, with the chain's world`,
+  });
+  const graphCanvas = el('canvas', { class: 'ksmcmc-graph', role: 'img', 'aria-label': 'Scene graph of the world' });
+  const toggleButton = el('button', { type: 'button', textContent: 'Start', 'aria-keyshortcuts': 'Space' });
+  const stepButton = el('button', { type: 'button', textContent: 'Step', 'aria-keyshortcuts': 'S' });
+  const resetButton = el('button', { type: 'button', textContent: 'Reset', 'aria-keyshortcuts': 'R' });
+  const cloudBox = el('input', { type: 'checkbox', checked: cloud });
+  const bestBox = el('input', { type: 'checkbox', checked: show === 'best' });
+  const statsLine = el('span', { class: 'ksmcmc-stats' });
+  const errorLine = el('p', { class: 'ksmcmc-error', role: 'alert' });
+  const bar = el('div', { class: 'ksmcmc-bar' }, [
+    toggleButton, stepButton, resetButton,
+    el('label', {}, [cloudBox, 'posterior cloud']),
+    el('label', {}, [bestBox, 'best world']),
+    statsLine,
+  ]);
+  const root = el('div', { class: `ksmcmc-mapper${graph ? '' : ' ksmcmc-nograph'}`, role: 'group', 'aria-label': `Live mapper: ${name}` }, [
+    el('div', { class: 'ksmcmc-views' }, graph ? [mapCanvas, graphCanvas] : [mapCanvas]),
+    ...(controls ? [bar] : [statsLine]),
+    errorLine,
+  ]);
+  element.replaceChildren(root);
+
+  let running = false;
+  let visible = true;
+  let raf = 0;
+  let destroyed = false;
+  let lastStats = 0;
+  let rate = { iteration: 0, time: performance.now(), perSecond: 0 };
+
+  const stats = () => ({
+    iteration: mapper.iteration,
+    logPosterior: mapper.logPosterior,
+    bestLogPosterior: mapper.bestLogPosterior,
+    acceptance: mapper.acceptance,
+    units: mapper.units,
+    bestUnits: mapper.bestUnits,
+    doors: mapper.doors,
+    predictionRate: mapper.predictionRate,
+    bestPredictionRate: mapper.bestPredictionRate,
+    iterationsPerSecond: rate.perSecond,
+    running,
+  });
+
+  const fail = (err) => {
+    pause();
+    errorLine.textContent = err instanceof Error ? err.message : String(err);
+    options.onError?.(err);
+  };
+
+  // Enough pixels per cell for the screen (at most 3): shrunk smoothly, never blown up blurred.
+  const scale = () => {
+    const ratio = ((mapCanvas.clientWidth || mapper.width) * (globalThis.devicePixelRatio || 1)) / mapper.width;
+    const s = Math.min(3, Math.max(1, Math.ceil(ratio - 0.01)));
+    mapCanvas.classList.toggle('ksmcmc-smooth', s >= ratio);
+    return s;
+  };
+
+  const draw = () => {
+    if (destroyed) return;
+    try {
+      drawMapper(mapCanvas, mapper, { show, cloud, labels, scale: scale() });
+      if (graph) {
+        const dpr = globalThis.devicePixelRatio || 1;
+        const w = Math.max(60, Math.round((graphCanvas.clientWidth || 240) * dpr));
+        const h = Math.max(40, Math.round(w * Math.min(1.2, Math.max(0.4, mapper.height / mapper.width))));
+        drawSceneGraph(graphCanvas, mapper, { show, width: w, height: h });
+      }
+    } catch (err) {
+      fail(err);
+      return;
+    }
+    const now = performance.now();
+    if (now - rate.time >= 500) {
+      rate = { iteration: mapper.iteration, time: now, perSecond: ((mapper.iteration - rate.iteration) * 1000) / (now - rate.time) };
+    }
+    if (now - lastStats >= 250 || !running) {
+      lastStats = now;
+      const s = stats();
+      statsLine.textContent =
+        `iteration ${s.iteration.toLocaleString('en-US')} · log p ${s.bestLogPosterior.toFixed(0)} · ` +
+        `${s.bestUnits} units · K ${s.bestPredictionRate.toFixed(3)}` +
+        (running ? ` · ${Math.round(s.iterationsPerSecond).toLocaleString('en-US')}/s` : '');
+    }
+    options.onUpdate?.(stats());
+  };
+
+  const schedule = () => {
+    if (!raf && running && visible && !destroyed) raf = requestAnimationFrame(frame);
+  };
+  function frame() {
+    raf = 0;
+    if (!running || destroyed) return;
+    try {
+      if (iterationsPerFrame) mapper.step(iterationsPerFrame);
+      else mapper.runFor(budgetMs);
+    } catch (err) {
+      fail(err);
+      return;
+    }
+    draw();
+    schedule();
+  }
+
+  function play() {
+    if (destroyed || running) return;
+    running = true;
+    errorLine.textContent = '';
+    toggleButton.textContent = 'Pause';
+    rate = { iteration: mapper.iteration, time: performance.now(), perSecond: 0 };
+    schedule();
+  }
+  function pause() {
+    running = false;
+    toggleButton.textContent = 'Start';
+    if (raf) cancelAnimationFrame(raf);
+    raf = 0;
+    if (!destroyed) draw();
+  }
+  const toggle = () => (running ? pause() : play());
+  function step(n = iterationsPerFrame ?? 500) {
+    try {
+      mapper.step(n);
+    } catch (err) {
+      fail(err);
+      return;
+    }
+    draw();
+  }
+  function reset(seed) {
+    try {
+      mapper.reset(seed);
+    } catch (err) {
+      fail(err);
+      return;
+    }
+    errorLine.textContent = '';
+    rate = { iteration: 0, time: performance.now(), perSecond: 0 };
+    draw();
+  }
+
+  toggleButton.addEventListener('click', toggle);
+  stepButton.addEventListener('click', () => step());
+  resetButton.addEventListener('click', () => reset());
+  cloudBox.addEventListener('change', () => {
+    cloud = cloudBox.checked;
+    if (!running) draw();
+  });
+  bestBox.addEventListener('change', () => {
+    show = bestBox.checked ? 'best' : 'current';
+    if (!running) draw();
+  });
+  mapCanvas.addEventListener('keydown', (e) => {
+    if (e.ctrlKey || e.metaKey || e.altKey) return;
+    const key = e.key.toLowerCase();
+    if (key === ' ') toggle();
+    else if (key === 's') step();
+    else if (key === 'r') reset();
+    else return;
+    e.preventDefault();
+  });
+
+  // Run only while on screen: a documentation page may hold several widgets.
+  const observer = typeof IntersectionObserver === 'function'
+    ? new IntersectionObserver((entries) => {
+      visible = entries.some((e) => e.isIntersecting);
+      schedule();
+    })
+    : null;
+  observer?.observe(root);
+  const resized = typeof ResizeObserver === 'function' ? new ResizeObserver(() => running || draw()) : null;
+  resized?.observe(root);
+
+  draw();
+  const reduced = globalThis.matchMedia?.('(prefers-reduced-motion: reduce)').matches;
+  if (options.autoplay === 'always' || (options.autoplay && !reduced)) play();
+
+  return {
+    element: root,
+    mapper,
+    get running() {
+      return running;
+    },
+    play,
+    pause,
+    toggle,
+    step,
+    reset,
+    stats,
+    redraw: draw,
+    destroy() {
+      if (destroyed) return;
+      pause();
+      destroyed = true;
+      observer?.disconnect();
+      resized?.disconnect();
+      root.remove();
+      mapper.free();
+    },
+  };
+}

@@ -1,0 +1,346 @@
+//! Knowledge supervision of the floor-plan chain (section 3.8): evidence from the world, unit
+//! types and same-length relations from Markov logic, and the terms they add to the posterior.
+//!
+//! * Evidence (Tab. 3.3): `RoLi`/`CoLi`/`HaLi` from the size and aspect-ratio classifier of
+//!   Tab. 3.6, `MulDoor` from the doors, `Adj` from the relation detector (facing walls close
+//!   together, the dissertation's dilated-walls test).
+//! * Queries (Tab. 3.4): `Room`/`Corr`/`Hall`/`Other` give unit types; `SaLe(p, q)` says two
+//!   adjacent units should have connecting walls of the same length.
+//! * Prior (eqs. 3.33 - 3.34): for pairs with `P(SaLe) > threshold`, a Gaussian factor on the
+//!   difference `d` of the connecting walls' lengths, `exp(-d² / 2σ²)`.
+//! * Semantic sensor model (the companion paper's 3x4 table): inside rooms, halls and other
+//!   units a cell the map does not see as free may be an *object* (furniture) and is scored
+//!   by `p(C_M | object)`; inside corridors it is a mismatch as before.
+
+use super::state::{facing, Axis};
+use super::world::{Unit, UnitType, World};
+use serde::{Deserialize, Serialize};
+
+/// The geometry classifier of Tab. 3.6.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct GeometryClassifier {
+    /// Free area (m², inside the walls) above which a unit is big: hall-like.
+    pub hall_area_m2: f64,
+    /// Length / width ratio above which a small unit is corridor-like rather than room-like.
+    pub corridor_ratio: f64,
+}
+
+impl Default for GeometryClassifier {
+    /// Halls from 60 m²; corridors at least 3.5 times as long as they are wide.
+    fn default() -> Self {
+        GeometryClassifier { hall_area_m2: 60.0, corridor_ratio: 3.5 }
+    }
+}
+
+/// The geometry class of a unit.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Geometry {
+    /// `RoLi`: small and compact.
+    RoomLike,
+    /// `CoLi`: small and elongated.
+    CorridorLike,
+    /// `HaLi`: big.
+    HallLike,
+}
+
+impl GeometryClassifier {
+    /// Classifies a unit whose walls are `t` cells deep, at `resolution` metres per cell.
+    pub fn classify(&self, u: &Unit, t: i32, resolution: f64) -> Geometry {
+        let (w, h) = ((u.w - 2 * t).max(1) as f64, (u.h - 2 * t).max(1) as f64);
+        let area = w * h * resolution * resolution;
+        let ratio = w.max(h) / w.min(h);
+        if area >= self.hall_area_m2 {
+            Geometry::HallLike
+        } else if ratio >= self.corridor_ratio {
+            Geometry::CorridorLike
+        } else {
+            Geometry::RoomLike
+        }
+    }
+}
+
+/// The constant naming unit `id` in the knowledge base: `U1`, `U2`, ...
+pub fn constant(id: u32) -> String {
+    format!("U{id}")
+}
+
+/// Whether two units are adjacent: facing walls at most two wall depths apart with a shared
+/// stretch (the relation R of eq. 3.31).
+pub fn adjacent(a: &Unit, b: &Unit, t: i32) -> bool {
+    [Axis::Horizontal, Axis::Vertical].iter().any(|&axis| {
+        facing(a.rect(), b.rect(), axis, 2 * t, t).is_some() || facing(b.rect(), a.rect(), axis, 2 * t, t).is_some()
+    })
+}
+
+/// The lengths of the connecting walls of two adjacent units (their facing sides), cells.
+pub fn connecting_walls(a: &Unit, b: &Unit, t: i32) -> Option<(i32, i32)> {
+    let faces = |axis| {
+        facing(a.rect(), b.rect(), axis, 2 * t, t).is_some() || facing(b.rect(), a.rect(), axis, 2 * t, t).is_some()
+    };
+    // Side by side, the connecting walls are the vertical sides; one above the other, the
+    // horizontal ones.
+    if faces(Axis::Horizontal) {
+        Some((a.h, b.h))
+    } else if faces(Axis::Vertical) {
+        Some((a.w, b.w))
+    } else {
+        None
+    }
+}
+
+/// One ground evidence atom: predicate, arguments, truth value.
+pub type Fact = (&'static str, Vec<String>, bool);
+
+/// The evidence a world gives (Tab. 3.3), with the world's units named by [`constant`].
+pub fn evidence(world: &World, resolution: f64, classifier: &GeometryClassifier) -> Vec<Fact> {
+    let t = world.wall_thickness;
+    let mut facts = Vec::new();
+    for u in &world.units {
+        let g = classifier.classify(u, t, resolution);
+        let c = constant(u.id);
+        facts.push(("RoLi", vec![c.clone()], g == Geometry::RoomLike));
+        facts.push(("CoLi", vec![c.clone()], g == Geometry::CorridorLike));
+        facts.push(("HaLi", vec![c.clone()], g == Geometry::HallLike));
+        let doors = world.doors.iter().filter(|d| d.units.contains(&u.id)).count();
+        facts.push(("MulDoor", vec![c], doors >= 2));
+    }
+    for a in &world.units {
+        for b in &world.units {
+            if a.id != b.id {
+                facts.push(("Adj", vec![constant(a.id), constant(b.id)], adjacent(a, b, t)));
+            }
+        }
+    }
+    facts
+}
+
+/// The share of adjacent room-room pairs whose connecting walls differ in length by more than
+/// 10 % of the longer one: the topological defects of section 3.7 (Fig. 3.27). `None` when the
+/// world has no adjacent room pairs.
+pub fn defects(world: &World) -> Option<f64> {
+    let t = world.wall_thickness;
+    let rooms: Vec<&Unit> = world.units.iter().filter(|u| u.kind == UnitType::Room).collect();
+    let (mut pairs, mut bad) = (0u32, 0u32);
+    for (i, a) in rooms.iter().enumerate() {
+        for b in &rooms[i + 1..] {
+            if let Some((la, lb)) = connecting_walls(a, b, t) {
+                pairs += 1;
+                if (la - lb).abs() as f64 > 0.1 * la.max(lb) as f64 {
+                    bad += 1;
+                }
+            }
+        }
+    }
+    (pairs > 0).then(|| bad as f64 / pairs as f64)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn unit(id: u32, x: i32, y: i32, w: i32, h: i32, kind: UnitType) -> Unit {
+        Unit { id, x, y, w, h, kind }
+    }
+
+    #[test]
+    fn classifier_follows_tab_3_6() {
+        let c = GeometryClassifier::default();
+        // At 5 cm: a 4 x 5 m room, a 2 x 20 m corridor, a 10 x 12 m hall.
+        assert_eq!(c.classify(&unit(1, 0, 0, 82, 102, UnitType::Unknown), 1, 0.05), Geometry::RoomLike);
+        assert_eq!(c.classify(&unit(1, 0, 0, 42, 402, UnitType::Unknown), 1, 0.05), Geometry::CorridorLike);
+        assert_eq!(c.classify(&unit(1, 0, 0, 202, 242, UnitType::Unknown), 1, 0.05), Geometry::HallLike);
+    }
+
+    #[test]
+    fn evidence_and_defects() {
+        let mut w = World::empty(200, 100);
+        w.units = vec![
+            unit(1, 0, 0, 60, 80, UnitType::Room),
+            unit(2, 59, 0, 60, 80, UnitType::Room),  // same height: no defect
+            unit(3, 118, 0, 60, 40, UnitType::Room), // half the height: a defect
+        ];
+        let facts = evidence(&w, 0.05, &GeometryClassifier::default());
+        let has = |p: &str, a: &[&str], v: bool| facts.iter().any(|f| f.0 == p && f.1 == a && f.2 == v);
+        assert!(has("Adj", &["U1", "U2"], true) && has("Adj", &["U2", "U1"], true));
+        assert!(has("Adj", &["U1", "U3"], false));
+        assert!(has("RoLi", &["U1"], true) && has("MulDoor", &["U1"], false));
+        assert_eq!(defects(&w), Some(0.5));
+        w.units[2].kind = UnitType::Corridor;
+        assert_eq!(defects(&w), Some(0.0));
+    }
+}
+
+/// The built-in knowledge base: the indoor rules of Tab. 3.3 - 3.5.
+pub const BUILTIN_INDOOR: &str = include_str!("../../samples/knowledge/indoor.mln");
+
+/// How knowledge supervises the chain.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct KnowledgeConfig {
+    /// Use knowledge in the chain (false: the weak-prior mode of the first paper; types are
+    /// then inferred on the final world only). Off by default for now: on our maps it does not
+    /// yet improve K(W, M) or the defects over the weak prior (BENCHMARKS.md).
+    pub enabled: bool,
+    /// Knowledge base text in the Alchemy format; `None` is [`BUILTIN_INDOOR`]. Any knowledge
+    /// base works whose evidence predicates are among `RoLi`, `CoLi`, `HaLi`, `MulDoor`, `Adj`
+    /// and whose query predicates are among `Room`, `Corr`, `Hall`, `Other`, `SaLe`; others
+    /// are left to the open world.
+    pub kb: Option<String>,
+    /// Share of the map's free cells the world must cover before knowledge switches on.
+    pub coverage: f64,
+    /// Iterations between inferences (results are cached by their evidence).
+    pub every: u64,
+    /// `P(SaLe)` above which a pair's connecting walls are pulled to the same length.
+    pub same_length_threshold: f64,
+    /// `σ` of the same-length factor (eq. 3.34), cells.
+    pub same_length_sigma: f64,
+    /// `p(C_M | object)` for map classes free, unknown, occupied: how the semantic sensor
+    /// model scores a non-free cell inside a room, hall or other unit.
+    pub object: [f64; 3],
+    /// Largest share of a unit's interior that may be object cells: furniture fills part of
+    /// a room; a "room" whose interior is mostly unseen is not furnished, it is too big.
+    pub object_share: f64,
+    /// The geometry classifier (Tab. 3.6).
+    pub geometry: GeometryClassifier,
+    /// MC-SAT samples when the network is too large for exact inference.
+    pub samples: u32,
+}
+
+impl Default for KnowledgeConfig {
+    fn default() -> Self {
+        KnowledgeConfig {
+            enabled: false,
+            kb: None,
+            coverage: 0.8,
+            every: 500,
+            same_length_threshold: 0.4,
+            same_length_sigma: 10.0,
+            object: [0.1, 0.45, 0.45],
+            object_share: 0.15,
+            geometry: GeometryClassifier::default(),
+            samples: 2000,
+        }
+    }
+}
+
+impl KnowledgeConfig {
+    /// Checks every number.
+    pub fn validate(&self) -> Result<(), String> {
+        let unit = |v: f64| v.is_finite() && (0.0..=1.0).contains(&v);
+        if !unit(self.coverage) || !unit(self.same_length_threshold) || !unit(self.object_share) {
+            return Err("knowledge: coverage, same_length_threshold and object_share must be in [0, 1]".into());
+        }
+        if self.every == 0 || self.samples == 0 {
+            return Err("knowledge: every and samples must be at least 1".into());
+        }
+        if !(self.same_length_sigma.is_finite() && self.same_length_sigma > 0.0) {
+            return Err(format!("knowledge: same_length_sigma {} must be positive", self.same_length_sigma));
+        }
+        if self.object.iter().any(|p| !(p.is_finite() && *p > 0.0 && *p <= 1.0)) {
+            return Err("knowledge: object probabilities must be in (0, 1]".into());
+        }
+        let g = &self.geometry;
+        if !(g.hall_area_m2.is_finite()
+            && g.hall_area_m2 > 0.0
+            && g.corridor_ratio.is_finite()
+            && g.corridor_ratio >= 1.0)
+        {
+            return Err("knowledge: geometry needs hall_area_m2 > 0 and corridor_ratio >= 1".into());
+        }
+        Ok(())
+    }
+}
+
+/// What inference said about a world.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Inferred {
+    /// Unit id -> type (the most probable of Room, Corr, Hall, Other) and the four marginals.
+    pub types: std::collections::BTreeMap<u32, (UnitType, [f64; 4])>,
+    /// Unit pairs `(p, q)`, `p < q`, with `P(SaLe(p, q))` above the threshold.
+    pub same_length: Vec<(u32, u32, f64)>,
+}
+
+/// A knowledge base ready to answer for worlds, with a cache keyed by evidence.
+#[derive(Debug, Clone)]
+pub struct Knowledge {
+    mln: crate::mln::Mln,
+    config: KnowledgeConfig,
+    queries: Vec<&'static str>,
+    cache: std::collections::HashMap<String, Inferred>,
+    /// How many inferences ran (cache misses).
+    pub inferences: u64,
+}
+
+const TYPE_PREDICATES: [(&str, UnitType); 4] =
+    [("Room", UnitType::Room), ("Corr", UnitType::Corridor), ("Hall", UnitType::Hall), ("Other", UnitType::Other)];
+
+impl Knowledge {
+    /// Parses the configured knowledge base.
+    pub fn new(config: &KnowledgeConfig) -> Result<Knowledge, crate::mln::MlnError> {
+        let mln = crate::mln::Mln::parse(config.kb.as_deref().unwrap_or(BUILTIN_INDOOR))?;
+        let queries =
+            ["Room", "Corr", "Hall", "Other", "SaLe"].into_iter().filter(|q| mln.predicate(q).is_some()).collect();
+        Ok(Knowledge { mln, config: config.clone(), queries, cache: Default::default(), inferences: 0 })
+    }
+
+    /// The configuration.
+    pub fn config(&self) -> &KnowledgeConfig {
+        &self.config
+    }
+
+    /// Types and same-length pairs for `world` (unit ids as constants `U<id>`).
+    pub fn infer(&mut self, world: &World, resolution: f64) -> Result<Inferred, crate::mln::MlnError> {
+        use crate::mln::{Database, Evidence, GroundConfig, InferenceConfig, Network};
+        let facts: Vec<Fact> = evidence(world, resolution, &self.config.geometry)
+            .into_iter()
+            .filter(|f| self.mln.predicate(f.0).is_some())
+            .collect();
+        let mut key = String::new();
+        for f in &facts {
+            key.push_str(&format!("{}({}){};", f.0, f.1.join(","), f.2 as u8));
+        }
+        if let Some(hit) = self.cache.get(&key) {
+            return Ok(hit.clone());
+        }
+        let mut db = Database::new();
+        for (pred, args, value) in &facts {
+            let args: Vec<&str> = args.iter().map(String::as_str).collect();
+            db.insert(&self.mln, pred, &args, if *value { Evidence::True } else { Evidence::False })?;
+        }
+        let mut ground = GroundConfig::query(&self.queries);
+        // Evidence is complete for the predicates the world supplies: closed world.
+        ground.closed_world = ["RoLi", "CoLi", "HaLi", "MulDoor", "Adj"]
+            .iter()
+            .filter(|p| self.mln.predicate(p).is_some())
+            .map(|p| p.to_string())
+            .collect();
+        let units: Vec<String> = world.units.iter().map(|u| constant(u.id)).collect();
+        if let Some(p) = self.mln.predicate("Room").or_else(|| self.mln.predicate("SaLe")) {
+            if let Some(ty) = self.mln.argument_types(p).first() {
+                ground.domains.push((ty.to_string(), units.clone()));
+            }
+        }
+        let net = Network::ground(&self.mln, &db, &ground)?;
+        let marginals = net.infer_marginals(&InferenceConfig { samples: self.config.samples, ..Default::default() })?;
+        let mut out = Inferred::default();
+        for u in &world.units {
+            let c = constant(u.id);
+            let p = TYPE_PREDICATES.map(|(q, _)| marginals.get(q, &[c.as_str()]).unwrap_or(0.0));
+            let best = (0..4).max_by(|&a, &b| p[a].total_cmp(&p[b])).unwrap_or(0);
+            let kind = if p[best] > 0.0 { TYPE_PREDICATES[best].1 } else { UnitType::Unknown };
+            out.types.insert(u.id, (kind, p));
+        }
+        for (i, a) in world.units.iter().enumerate() {
+            for b in &world.units[i + 1..] {
+                let p = marginals.get("SaLe", &[constant(a.id).as_str(), constant(b.id).as_str()]).unwrap_or(0.0);
+                if p > self.config.same_length_threshold {
+                    out.same_length.push((a.id.min(b.id), a.id.max(b.id), p));
+                }
+            }
+        }
+        self.inferences += 1;
+        self.cache.insert(key, out.clone());
+        Ok(out)
+    }
+}

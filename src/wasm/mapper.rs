@@ -1,0 +1,771 @@
+//! The live mapper's bindings: a running [`Chain`] as the JavaScript class `Mapper`, and the
+//! drawing helpers that show it on a `<canvas>`.
+//!
+//! As in the rest of this layer there is no logic here beyond converting and checking
+//! arguments: stepping, the best world, the trace, the samples, the room labels and the scene
+//! graph are the library's; the pictures are [`crate::render`]'s. A page drives the chain from
+//! `requestAnimationFrame`:
+//!
+//! ```js
+//! const mapper = new Mapper(map, undefined, 1);
+//! function frame() {
+//!   mapper.runFor(8);                                   // about 8 ms of iterations
+//!   drawMapper(canvas, mapper, { show: 'current', cloud: false });
+//!   requestAnimationFrame(frame);
+//! }
+//! requestAnimationFrame(frame);
+//! ```
+
+use super::{js_message, put_rgba, seed_from_js, Map, Rendered, MAX_RENDER_PIXELS};
+use crate::floorplan::rooms::RoomConfig;
+use crate::floorplan::{graph, metrics, Chain, ChainConfig, Rect, World};
+use crate::grid::OccupancyMap;
+use crate::mcmc::Kernel;
+use crate::render::{self, RenderOptions};
+use serde::Deserialize;
+use tiny_skia::Pixmap;
+use wasm_bindgen::prelude::*;
+
+/// The largest map the live mapper takes, in cells: 2^23 (e.g. 4096 x 2048). The chain keeps
+/// several per-cell grids and the canvas a picture of the map; beyond this a browser tab runs
+/// short of memory before the chain gets anywhere.
+pub const MAX_MAPPER_CELLS: usize = 1 << 23;
+
+/// The most iterations one `step` call may run: about a second natively on a large map. A page
+/// that wants more calls `step` again from its next frame.
+pub const MAX_STEP: f64 = 10_000_000.0;
+
+/// The longest time budget of one `runFor` call, in milliseconds.
+pub const MAX_BUDGET_MS: f64 = 60_000.0;
+
+#[wasm_bindgen]
+extern "C" {
+    /// `performance.now()`: milliseconds, sub-millisecond where the browser allows.
+    #[wasm_bindgen(catch, js_namespace = performance, js_name = now)]
+    fn performance_now() -> Result<f64, JsValue>;
+}
+
+/// The clock `runFor` uses: `performance.now()`, or `Date.now()` where there is no
+/// `performance` object.
+pub fn now_ms() -> f64 {
+    performance_now().unwrap_or_else(|_| js_sys::Date::now())
+}
+
+/// A floor-plan chain running on one map, for a page's frame loop.
+#[wasm_bindgen]
+pub struct Mapper {
+    chain: Chain,
+    map: OccupancyMap,
+    config: ChainConfig,
+    /// The map drawn at some scale, reused by every frame.
+    base: Option<(u32, Pixmap)>,
+    /// The best world, exported once per improvement, keyed by (best iteration, best log
+    /// posterior), with its K(W, M) on the map.
+    best: Option<((u64, u64), World, f64)>,
+    /// The current world, exported once per iteration count: a frame draws it twice (map and
+    /// scene graph), and exporting a large world costs milliseconds.
+    current: Option<(u64, World)>,
+    reference: Option<World>,
+    setup_ms: f64,
+    busy_ms: f64,
+}
+
+impl Mapper {
+    /// The library chain.
+    pub fn chain(&self) -> &Chain {
+        &self.chain
+    }
+
+    /// The best world found so far (cached between improvements) and its K(W, M).
+    fn best(&mut self) -> (&World, f64) {
+        let key = (self.chain.best_iteration(), self.chain.best_log_posterior().to_bits());
+        if self.best.as_ref().is_none_or(|(k, _, _)| *k != key) {
+            let world = self.chain.best_world();
+            let k = metrics::prediction_rate(self.map.classified(), &world);
+            self.best = Some((key, world, k));
+        }
+        let (_, world, k) = self.best.as_ref().expect("just filled");
+        (world, *k)
+    }
+
+    /// The current world (cached until the chain moves).
+    fn current(&mut self) -> &World {
+        let it = self.chain.iteration();
+        if self.current.as_ref().is_none_or(|(k, _)| *k != it) {
+            self.current = Some((it, self.chain.world()));
+        }
+        &self.current.as_ref().expect("just filled").1
+    }
+
+    fn world_for(&mut self, show: Show) -> Option<World> {
+        match show {
+            Show::Current => Some(self.current().clone()),
+            Show::Best => Some(self.best().0.clone()),
+            Show::Reference => self.reference.clone(),
+            Show::None => None,
+        }
+    }
+
+    fn restart(&mut self, chain: Chain) {
+        self.chain = chain;
+        self.best = None;
+        self.current = None;
+        self.busy_ms = 0.0;
+    }
+
+    /// The picture `drawMapper` shows.
+    pub fn picture(&mut self, options: &DrawOptions) -> Result<Pixmap, JsError> {
+        let (w, h) = (self.map.width(), self.map.height());
+        let scale = options.scale;
+        let pixels = w as u128 * h as u128 * scale as u128 * scale as u128;
+        let most = ((MAX_RENDER_PIXELS as f64 / (w * h).max(1) as f64).sqrt() as u32).max(1);
+        if scale == 0 {
+            return Err(JsError::new(&format!("scale 0: give a whole number of pixels per cell from 1 to {most}")));
+        }
+        if pixels > MAX_RENDER_PIXELS as u128 {
+            return Err(JsError::new(&format!(
+                "scale {scale}: a {w}x{h} map at that scale would be over the limit of {MAX_RENDER_PIXELS} \
+                 pixels; give a scale from 1 to {most}"
+            )));
+        }
+        if self.base.as_ref().is_none_or(|(s, _)| *s != scale) {
+            let opts = RenderOptions { scale, labels: false };
+            let base =
+                render::try_render(self.map.classified(), None, &opts).map_err(|e| JsError::new(&e.to_string()))?;
+            self.base = Some((scale, base));
+        }
+        let mut pixmap = self.base.as_ref().expect("just drawn").1.clone();
+        if let Some(world) = self.world_for(options.show) {
+            render::draw_world(&mut pixmap, w, h, &world, scale, options.labels);
+        }
+        if options.cloud {
+            let samples: Vec<&[Rect]> = self.chain.samples().map(|s| s.as_slice()).collect();
+            render::draw_cloud(&mut pixmap, w, h, self.chain.frame(), &samples, scale);
+        }
+        Ok(pixmap)
+    }
+
+    /// The scene graph picture `drawSceneGraph` shows.
+    pub fn graph_picture(&mut self, show: Show, width: u32, height: u32) -> Result<Pixmap, JsError> {
+        let world =
+            self.world_for(show).unwrap_or_else(|| World::empty(self.map.width() as u32, self.map.height() as u32));
+        render::render_scene_graph(&world, width, height).map_err(|e| JsError::new(&format!("scene graph: {e}")))
+    }
+}
+
+#[wasm_bindgen]
+impl Mapper {
+    /// Starts a chain on `map`: estimates the map's orientation (unless the config gives it),
+    /// runs the wall detector and starts from the empty world.
+    ///
+    /// `configJson` is a JSON object with any subset of the chain's settings (see
+    /// `chainConfigDefaults()`); fields it leaves out keep their defaults, unknown fields and
+    /// values out of range are errors. `seed` is a whole number ≥ 0 as for `synth` (default 1,
+    /// as `ksmcmc floorplan`). Throws if the map cannot be explained (no free cells, smaller
+    /// than one unit, over 2^23 cells) or the config is bad.
+    #[wasm_bindgen(constructor)]
+    pub fn new(
+        map: &Map,
+        #[wasm_bindgen(js_name = configJson, unchecked_optional_param_type = "string")] config_json: Option<String>,
+        #[wasm_bindgen(unchecked_optional_param_type = "number | bigint")] seed: Option<JsValue>,
+    ) -> Result<Mapper, JsError> {
+        let config = chain_config(config_json.as_deref())?;
+        let seed = match seed {
+            Some(s) if !s.is_undefined() && !s.is_null() => seed_from_js(&s)?,
+            _ => 1,
+        };
+        let inner = map.inner();
+        let cells = inner.width() * inner.height();
+        if cells > MAX_MAPPER_CELLS {
+            return Err(JsError::new(&format!(
+                "the map is {}x{} = {cells} cells; the live mapper takes at most {MAX_MAPPER_CELLS} \
+                 (e.g. 4096x2048): crop or downsample it",
+                inner.width(),
+                inner.height()
+            )));
+        }
+        let t0 = now_ms();
+        let chain = Chain::new(inner, config.clone(), seed).map_err(|e| JsError::new(&e.to_string()))?;
+        let setup_ms = now_ms() - t0;
+        Ok(Mapper {
+            chain,
+            map: inner.clone(),
+            config,
+            base: None,
+            best: None,
+            current: None,
+            reference: None,
+            setup_ms,
+            busy_ms: 0.0,
+        })
+    }
+
+    /// Runs `n` iterations (a whole number, 0 to 10^7). Returns `n`.
+    pub fn step(&mut self, n: f64) -> Result<f64, JsError> {
+        if !(n.is_finite() && n >= 0.0 && n.fract() == 0.0 && n <= MAX_STEP) {
+            return Err(JsError::new(&format!(
+                "step: {n} is not a number of iterations; give a whole number from 0 to {MAX_STEP}"
+            )));
+        }
+        let t0 = now_ms();
+        self.chain.step(n as u64);
+        self.busy_ms += now_ms() - t0;
+        Ok(n)
+    }
+
+    /// Runs iterations until `budgetMs` milliseconds have passed by `performance.now()`,
+    /// checking the clock every 64 iterations (so at least 64 run). Returns how many ran.
+    /// `budgetMs` is a number from 0 to 60000.
+    #[wasm_bindgen(js_name = runFor)]
+    pub fn run_for(&mut self, #[wasm_bindgen(js_name = budgetMs)] budget_ms: f64) -> Result<f64, JsError> {
+        if !(budget_ms.is_finite() && (0.0..=MAX_BUDGET_MS).contains(&budget_ms)) {
+            return Err(JsError::new(&format!(
+                "runFor: {budget_ms} is not a time budget; give milliseconds from 0 to {MAX_BUDGET_MS}"
+            )));
+        }
+        let t0 = now_ms();
+        let done = self.chain.run_for(budget_ms, &mut now_ms);
+        self.busy_ms += now_ms() - t0;
+        Ok(done as f64)
+    }
+
+    /// Starts over from the empty world, with the same seed or another one: the chain is
+    /// exactly the one the constructor makes for that seed (so the detectors run again).
+    pub fn reset(
+        &mut self,
+        #[wasm_bindgen(unchecked_optional_param_type = "number | bigint")] seed: Option<JsValue>,
+    ) -> Result<(), JsError> {
+        let seed = match seed {
+            Some(s) if !s.is_undefined() && !s.is_null() => seed_from_js(&s)?,
+            _ => self.chain.seed(),
+        };
+        // A new chain rather than a clone of the first one: `Chain::clone` does not keep the
+        // capacity of the trace's acceptance window, which the trace reads as its size.
+        let t0 = now_ms();
+        let chain = Chain::new(&self.map, self.config.clone(), seed).map_err(|e| JsError::new(&e.to_string()))?;
+        self.setup_ms = now_ms() - t0;
+        self.restart(chain);
+        Ok(())
+    }
+
+    /// Iterations run since the start (or the last reset).
+    #[wasm_bindgen(getter)]
+    pub fn iteration(&self) -> f64 {
+        self.chain.iteration() as f64
+    }
+
+    /// The seed the chain started from.
+    #[wasm_bindgen(getter)]
+    pub fn seed(&self) -> u64 {
+        self.chain.seed()
+    }
+
+    /// `log p(W|M)` of the current world (up to a constant).
+    #[wasm_bindgen(getter, js_name = logPosterior)]
+    pub fn log_posterior(&self) -> f64 {
+        self.chain.log_posterior()
+    }
+
+    /// The best log posterior seen.
+    #[wasm_bindgen(getter, js_name = bestLogPosterior)]
+    pub fn best_log_posterior(&self) -> f64 {
+        self.chain.best_log_posterior()
+    }
+
+    /// The iteration at which the best world was found.
+    #[wasm_bindgen(getter, js_name = bestIteration)]
+    pub fn best_iteration(&self) -> f64 {
+        self.chain.best_iteration() as f64
+    }
+
+    /// Acceptance rate over the recent window of proposals (0 to 1).
+    #[wasm_bindgen(getter)]
+    pub fn acceptance(&self) -> f64 {
+        self.chain.trace().acceptance()
+    }
+
+    /// Units in the current world.
+    #[wasm_bindgen(getter)]
+    pub fn units(&self) -> u32 {
+        self.chain.units().len() as u32
+    }
+
+    /// Doors in the current world.
+    #[wasm_bindgen(getter)]
+    pub fn doors(&self) -> u32 {
+        self.chain.current_rects().1.len() as u32
+    }
+
+    /// Units in the best world.
+    #[wasm_bindgen(getter, js_name = bestUnits)]
+    pub fn best_units(&mut self) -> u32 {
+        self.best().0.units.len() as u32
+    }
+
+    /// Doors in the best world.
+    #[wasm_bindgen(getter, js_name = bestDoors)]
+    pub fn best_doors(&mut self) -> u32 {
+        self.best().0.doors.len() as u32
+    }
+
+    /// `K(W, M)` (eq. 3.39) of the current world: the share of cells whose class it predicts,
+    /// in the world frame.
+    #[wasm_bindgen(getter, js_name = predictionRate)]
+    pub fn prediction_rate(&self) -> f64 {
+        self.chain.prediction_rate()
+    }
+
+    /// `K(W, M)` of the best world on the map's own cells, as `ksmcmc floorplan` reports it.
+    #[wasm_bindgen(getter, js_name = bestPredictionRate)]
+    pub fn best_prediction_rate(&mut self) -> f64 {
+        self.best().1
+    }
+
+    /// Map width in cells.
+    #[wasm_bindgen(getter)]
+    pub fn width(&self) -> u32 {
+        self.map.width() as u32
+    }
+
+    /// Map height in cells.
+    #[wasm_bindgen(getter)]
+    pub fn height(&self) -> u32 {
+        self.map.height() as u32
+    }
+
+    /// The map's rotation the chain works in, degrees (estimated unless configured).
+    #[wasm_bindgen(getter, js_name = rotationDeg)]
+    pub fn rotation_deg(&self) -> f64 {
+        self.chain.frame().angle.to_degrees()
+    }
+
+    /// Depth of the units' wall rings, cells.
+    #[wasm_bindgen(getter, js_name = wallThickness)]
+    pub fn wall_thickness(&self) -> i32 {
+        self.chain.wall_thickness()
+    }
+
+    /// How many unit candidates the detectors proposed so far.
+    #[wasm_bindgen(getter)]
+    pub fn candidates(&self) -> u32 {
+        self.chain.candidates().len() as u32
+    }
+
+    /// Milliseconds the constructor (or the last reset) spent setting up:
+    /// orientation and detectors.
+    #[wasm_bindgen(getter, js_name = setupMs)]
+    pub fn setup_ms(&self) -> f64 {
+        self.setup_ms
+    }
+
+    /// Milliseconds spent in `step` and `runFor` since the start or the last reset.
+    #[wasm_bindgen(getter, js_name = elapsedMs)]
+    pub fn elapsed_ms(&self) -> f64 {
+        self.busy_ms
+    }
+
+    /// The map (a new `Map` on each read).
+    #[wasm_bindgen(getter)]
+    pub fn map(&self) -> Map {
+        Map::new(self.map.clone())
+    }
+
+    /// The current world as `world.json` text.
+    #[wasm_bindgen(js_name = worldJson)]
+    pub fn world_json(&mut self) -> String {
+        self.current().to_json()
+    }
+
+    /// The best world as `world.json` text: what `ksmcmc floorplan` writes to `world.json`
+    /// after as many iterations with the same seed.
+    #[wasm_bindgen(js_name = bestWorldJson)]
+    pub fn best_world_json(&mut self) -> String {
+        self.best().0.to_json()
+    }
+
+    /// The recorded trace from point `from` on (default 0): one point every
+    /// `output.trace_every` iterations (100 by default) with the iteration, the current log
+    /// posterior, the acceptance rate and the unit count. Pass the number of points already
+    /// read to fetch only new ones.
+    #[wasm_bindgen(
+        unchecked_return_type = "{ iteration: Float64Array; logPosterior: Float64Array; acceptance: Float64Array; units: Uint32Array }"
+    )]
+    pub fn trace(&self, from: Option<u32>) -> Result<JsValue, JsError> {
+        let points = &self.chain.trace().points;
+        let from = (from.unwrap_or(0) as usize).min(points.len());
+        let points = &points[from..];
+        let it: Vec<f64> = points.iter().map(|p| p.iteration as f64).collect();
+        let lp: Vec<f64> = points.iter().map(|p| p.log_posterior).collect();
+        let acc: Vec<f64> = points.iter().map(|p| p.acceptance).collect();
+        let units: Vec<u32> = points.iter().map(|p| p.size).collect();
+        object(&[
+            ("iteration", js_sys::Float64Array::from(&it[..]).into()),
+            ("logPosterior", js_sys::Float64Array::from(&lp[..]).into()),
+            ("acceptance", js_sys::Float64Array::from(&acc[..]).into()),
+            ("units", js_sys::Uint32Array::from(&units[..]).into()),
+        ])
+    }
+
+    /// Number of recorded trace points.
+    #[wasm_bindgen(getter, js_name = traceLength)]
+    pub fn trace_length(&self) -> u32 {
+        self.chain.trace().points.len() as u32
+    }
+
+    /// The last accepted worlds (up to `output.samples`, 1000 by default), oldest first, as
+    /// unit rectangles in the world frame: sample `i` holds units `offsets[i]` to
+    /// `offsets[i + 1] - 1`, unit `u` is `rects[4u .. 4u + 4]` = x, y, w, h in cells. `frame`
+    /// says how the world frame sits on the map (`angle` in radians; see `world.json`).
+    #[wasm_bindgen(
+        unchecked_return_type = "{ rects: Int32Array; offsets: Uint32Array; frame: { angle: number; worldSize: [number, number]; mapSize: [number, number] } }"
+    )]
+    pub fn samples(&self) -> Result<JsValue, JsError> {
+        let mut rects = Vec::new();
+        let mut offsets = vec![0u32];
+        for sample in self.chain.samples() {
+            for r in sample {
+                rects.extend_from_slice(&[r.x, r.y, r.w, r.h]);
+            }
+            offsets.push((rects.len() / 4) as u32);
+        }
+        let f = self.chain.frame();
+        let pair = |v: [u32; 2]| -> JsValue { js_sys::Array::of2(&v[0].into(), &v[1].into()).into() };
+        let frame =
+            object(&[("angle", f.angle.into()), ("worldSize", pair(f.world_size)), ("mapSize", pair(f.map_size))])?;
+        object(&[
+            ("rects", js_sys::Int32Array::from(&rects[..]).into()),
+            ("offsets", js_sys::Uint32Array::from(&offsets[..]).into()),
+            ("frame", frame),
+        ])
+    }
+
+    /// The room segmentation of the best world as a 16-bit binary PGM of the map's size (room
+    /// id per free cell, 0 elsewhere): `labels.pgm` of `ksmcmc floorplan`.
+    #[wasm_bindgen(js_name = labelsPgm)]
+    pub fn labels_pgm(&self) -> Vec<u8> {
+        let labels = self.chain.best_labels(&RoomConfig::default());
+        crate::grid::pgm::encode_u16(labels.width(), labels.height(), labels.cells())
+    }
+
+    /// The scene graph of the best world (or the current one, `which = 'current'`) as
+    /// `graph.json` text: `{"nodes": [{"id", "type"}], "edges": [{"from", "to", "kind", "door"?}]}`.
+    #[wasm_bindgen(js_name = graphJson)]
+    pub fn graph_json(
+        &mut self,
+        #[wasm_bindgen(unchecked_optional_param_type = "'best' | 'current'")] which: Option<String>,
+    ) -> Result<String, JsError> {
+        let world = match which.as_deref() {
+            None | Some("best") => self.best().0.clone(),
+            Some("current") => self.current().clone(),
+            Some(other) => return Err(JsError::new(&format!("graphJson: {other:?} is neither 'best' nor 'current'"))),
+        };
+        Ok(serde_json::to_string_pretty(&graph::to_json(&graph::scene_graph(&world)))?)
+    }
+
+    /// A summary of the run as JSON text, with the fields of `ksmcmc floorplan`'s
+    /// `report.json` (the map's path aside): iterations, seconds spent iterating, K(W,M),
+    /// confusion counts, units, doors, rooms, best log posterior and iteration, seed, rotation,
+    /// wall thickness and per-kernel proposal counts.
+    #[wasm_bindgen(js_name = reportJson)]
+    pub fn report_json(&mut self) -> Result<String, JsError> {
+        let labels = self.chain.best_labels(&RoomConfig::default());
+        let rooms = labels.cells().iter().copied().max().unwrap_or(0);
+        let seconds = self.busy_ms / 1000.0;
+        let (world, k) = self.best();
+        let world = world.clone();
+        let confusion = metrics::confusion(self.map.classified(), &world);
+        let (units, doors) = (world.units.len(), world.doors.len());
+        let t = self.chain.trace();
+        let kernels: serde_json::Map<String, serde_json::Value> = Kernel::ALL
+            .iter()
+            .map(|kernel| {
+                let i = kernel.index();
+                (
+                    kernel.name().to_lowercase(),
+                    serde_json::json!({"proposed": t.proposed[i], "accepted": t.accepted[i]}),
+                )
+            })
+            .collect();
+        let report = serde_json::json!({
+            "iterations": self.chain.iteration(),
+            "seconds": seconds,
+            "iterations_per_second": self.chain.iteration() as f64 / seconds.max(1e-9),
+            "setup_seconds": self.setup_ms / 1000.0,
+            "cell_prediction_rate": k,
+            "confusion": confusion,
+            "units": units,
+            "doors": doors,
+            "rooms": rooms,
+            "log_posterior": self.chain.best_log_posterior(),
+            "best_iteration": self.chain.best_iteration(),
+            "seed": self.chain.seed(),
+            "rotation_deg": self.chain.frame().angle.to_degrees(),
+            "wall_thickness": self.chain.wall_thickness(),
+            "kernels": kernels,
+        });
+        Ok(serde_json::to_string_pretty(&report)?)
+    }
+
+    /// Sets a world to compare with (`show: 'reference'`), e.g. a sample's `truth.json` or a
+    /// saved result, or clears it with no argument. The world must be valid `world.json` for a
+    /// map of this map's size; otherwise this throws and keeps the old reference.
+    #[wasm_bindgen(js_name = setReference)]
+    pub fn set_reference(
+        &mut self,
+        #[wasm_bindgen(js_name = worldJson)] world_json: Option<String>,
+    ) -> Result<(), JsError> {
+        let Some(text) = world_json else {
+            self.reference = None;
+            return Ok(());
+        };
+        let world = World::from_json(&text)?;
+        let (w, h) = (self.map.width() as u32, self.map.height() as u32);
+        if world.frame.map_size != [w, h] {
+            let [mw, mh] = world.frame.map_size;
+            return Err(JsError::new(&format!(
+                "world.json: this world explains a {mw}x{mh} map, but the map is {w}x{h}; its units \
+                 would lie outside the map"
+            )));
+        }
+        self.reference = Some(world);
+        Ok(())
+    }
+
+    /// Whether a reference world is set.
+    #[wasm_bindgen(getter, js_name = hasReference)]
+    pub fn has_reference(&self) -> bool {
+        self.reference.is_some()
+    }
+
+    /// The picture `drawMapper` shows, as PNG bytes. With the default options but
+    /// `show: 'best'` it is the `overlay.png` of `ksmcmc floorplan`.
+    #[wasm_bindgen(js_name = toPng)]
+    pub fn to_png(
+        &mut self,
+        #[wasm_bindgen(unchecked_optional_param_type = "MapperDrawOptions")] options: Option<JsValue>,
+    ) -> Result<Vec<u8>, JsError> {
+        let options = DrawOptions::from_js(options.as_ref())?;
+        let pixmap = self.picture(&options)?;
+        Ok(render::encode_png(&pixmap))
+    }
+}
+
+/// Which world a picture shows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum Show {
+    /// The chain's current world.
+    #[default]
+    Current,
+    /// The best world found so far.
+    Best,
+    /// The world set with `setReference`.
+    Reference,
+    /// No world: the map alone (with the cloud, if asked for).
+    None,
+}
+
+/// Options of `drawMapper`, `renderMapperRgba` and `Mapper.toPng`.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct DrawOptions {
+    /// Which world to draw over the map.
+    pub show: Show,
+    /// Overlay the posterior cloud (the last accepted worlds as thin lines).
+    pub cloud: bool,
+    /// Output pixels per map cell.
+    pub scale: u32,
+    /// Each unit's type and id at its centre.
+    pub labels: bool,
+}
+
+impl Default for DrawOptions {
+    fn default() -> Self {
+        DrawOptions { show: Show::Current, cloud: false, scale: 1, labels: true }
+    }
+}
+
+impl DrawOptions {
+    /// Reads options from a JavaScript object (`undefined` or `null`: the defaults).
+    pub fn from_js(v: Option<&JsValue>) -> Result<DrawOptions, JsError> {
+        let Some(v) = v.filter(|v| !v.is_undefined() && !v.is_null()) else {
+            return Ok(DrawOptions::default());
+        };
+        if !v.is_object() {
+            return Err(JsError::new("options: expected an object such as { show: 'best', cloud: true }"));
+        }
+        from_object(v).map_err(|e| {
+            JsError::new(&format!(
+                "options: {e} (show is 'current', 'best', 'reference' or 'none'; cloud and labels are \
+                 booleans; scale is a whole number of pixels per cell)"
+            ))
+        })
+    }
+}
+
+/// Options of `drawSceneGraph`.
+#[derive(Debug, Clone, PartialEq, Deserialize, Default)]
+#[serde(default, deny_unknown_fields)]
+pub struct GraphOptions {
+    /// Which world's graph to draw (default: the current one).
+    pub show: Show,
+    /// Picture width in pixels (default: the canvas's width).
+    pub width: Option<u32>,
+    /// Picture height in pixels (default: the canvas's height).
+    pub height: Option<u32>,
+}
+
+impl GraphOptions {
+    fn from_js(v: Option<&JsValue>) -> Result<GraphOptions, JsError> {
+        let Some(v) = v.filter(|v| !v.is_undefined() && !v.is_null()) else {
+            return Ok(GraphOptions::default());
+        };
+        if !v.is_object() {
+            return Err(JsError::new("options: expected an object such as { show: 'best' }"));
+        }
+        from_object(v).map_err(|e| {
+            JsError::new(&format!(
+                "options: {e} (show is 'current', 'best', 'reference' or 'none'; width and height are \
+                 whole numbers of pixels)"
+            ))
+        })
+    }
+}
+
+/// Draws the map with the mapper's current or best world (or the reference, or none) and
+/// optionally the posterior cloud on `canvas`, resizing it to the map's size times `scale`.
+/// `options`: `{ show?: 'current' | 'best' | 'reference' | 'none', cloud?: boolean,
+/// scale?: number, labels?: boolean }`, by default the current world, no cloud, scale 1, with
+/// labels. Call it at most once per animation frame.
+#[wasm_bindgen(js_name = drawMapper)]
+pub fn draw_mapper(
+    canvas: &web_sys::HtmlCanvasElement,
+    mapper: &mut Mapper,
+    #[wasm_bindgen(unchecked_optional_param_type = "MapperDrawOptions")] options: Option<JsValue>,
+) -> Result<(), JsError> {
+    let options = DrawOptions::from_js(options.as_ref())?;
+    let pixmap = mapper.picture(&options)?;
+    put_rgba(canvas, pixmap.width(), pixmap.height(), &render::to_rgba(&pixmap))
+}
+
+/// The pixels `drawMapper` would put on a canvas.
+#[wasm_bindgen(js_name = renderMapperRgba)]
+pub fn render_mapper_rgba(
+    mapper: &mut Mapper,
+    #[wasm_bindgen(unchecked_optional_param_type = "MapperDrawOptions")] options: Option<JsValue>,
+) -> Result<Rendered, JsError> {
+    let options = DrawOptions::from_js(options.as_ref())?;
+    let pixmap = mapper.picture(&options)?;
+    Ok(Rendered::new(pixmap.width(), pixmap.height(), render::to_rgba(&pixmap)))
+}
+
+/// Draws the scene graph of the mapper's current world (or `show: 'best'` / `'reference'`) on
+/// `canvas`: units as discs in their type's colour at their place on the map, doors as solid
+/// edges, shared walls as dashed ones. The picture is `width` x `height` pixels (default: the
+/// canvas's current size), and the canvas is resized to it.
+#[wasm_bindgen(js_name = drawSceneGraph)]
+pub fn draw_scene_graph(
+    canvas: &web_sys::HtmlCanvasElement,
+    mapper: &mut Mapper,
+    #[wasm_bindgen(
+        unchecked_optional_param_type = "{ show?: 'current' | 'best' | 'reference' | 'none'; width?: number; height?: number }"
+    )]
+    options: Option<JsValue>,
+) -> Result<(), JsError> {
+    let options = GraphOptions::from_js(options.as_ref())?;
+    let width = options.width.unwrap_or(canvas.width());
+    let height = options.height.unwrap_or(canvas.height());
+    let pixmap = mapper.graph_picture(options.show, width, height)?;
+    put_rgba(canvas, pixmap.width(), pixmap.height(), &render::to_rgba(&pixmap))
+}
+
+/// The pixels `drawSceneGraph` would draw, `width` x `height`.
+#[wasm_bindgen(js_name = renderSceneGraphRgba)]
+pub fn render_scene_graph_rgba(
+    mapper: &mut Mapper,
+    width: u32,
+    height: u32,
+    #[wasm_bindgen(unchecked_optional_param_type = "'current' | 'best' | 'reference' | 'none'")] show: Option<String>,
+) -> Result<Rendered, JsError> {
+    let show = match show.as_deref() {
+        None | Some("current") => Show::Current,
+        Some("best") => Show::Best,
+        Some("reference") => Show::Reference,
+        Some("none") => Show::None,
+        Some(other) => {
+            return Err(JsError::new(&format!("show: {other:?} is not 'current', 'best', 'reference' or 'none'")))
+        }
+    };
+    let pixmap = mapper.graph_picture(show, width, height)?;
+    Ok(Rendered::new(pixmap.width(), pixmap.height(), render::to_rgba(&pixmap)))
+}
+
+/// The chain's default settings as pretty JSON text: the fields a `configJson` may give.
+#[wasm_bindgen(js_name = chainConfigDefaults)]
+pub fn chain_config_defaults() -> String {
+    serde_json::to_string_pretty(&ChainConfig::default()).unwrap_or_default()
+}
+
+/// Parses a chain configuration: a JSON object whose fields override the defaults. Unknown
+/// fields are refused (a typo would otherwise be silently ignored), and every value is checked.
+pub fn chain_config(json: Option<&str>) -> Result<ChainConfig, JsError> {
+    let Some(text) = json.filter(|t| !t.trim().is_empty()) else {
+        return Ok(ChainConfig::default());
+    };
+    let given: serde_json::Value = serde_json::from_str(text).map_err(|e| {
+        let hint = if text.contains("NaN") || text.contains("Infinity") {
+            " (NaN and Infinity are not numbers in JSON, nor allowed values: give finite numbers)"
+        } else {
+            ""
+        };
+        JsError::new(&format!("chain config: {e}{hint}"))
+    })?;
+    if !given.is_object() {
+        return Err(JsError::new("chain config: expected a JSON object such as {\"posterior\": {\"temperature\": 2}}"));
+    }
+    let defaults = serde_json::to_value(ChainConfig::default())?;
+    unknown_fields(&given, &defaults, "")?;
+    let config: ChainConfig = serde_json::from_value(given).map_err(|e| JsError::new(&format!("chain config: {e}")))?;
+    config.validate().map_err(|e| JsError::new(&e.to_string()))?;
+    Ok(config)
+}
+
+/// Refuses object keys that the defaults do not have, naming the path and the known keys.
+fn unknown_fields(given: &serde_json::Value, known: &serde_json::Value, path: &str) -> Result<(), JsError> {
+    let (serde_json::Value::Object(g), serde_json::Value::Object(k)) = (given, known) else {
+        return Ok(());
+    };
+    for (key, value) in g {
+        let here = if path.is_empty() { key.clone() } else { format!("{path}.{key}") };
+        match k.get(key) {
+            Some(default) => unknown_fields(value, default, &here)?,
+            None => {
+                let names: Vec<&str> = k.keys().map(String::as_str).collect();
+                return Err(JsError::new(&format!(
+                    "chain config: unknown field `{here}`; the fields here are {}",
+                    names.join(", ")
+                )));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Reads an options object through its JSON text, so that unknown fields are refused
+/// (serde-wasm-bindgen looks up only the fields it knows) and NaN, which JSON writes as
+/// `null`, is no number.
+fn from_object<T: serde::de::DeserializeOwned>(v: &JsValue) -> Result<T, String> {
+    let text = js_sys::JSON::stringify(v).map_err(|e| js_message(&e))?;
+    let text = text.as_string().unwrap_or_default();
+    serde_json::from_str(&text).map_err(|e| e.to_string())
+}
+
+/// A plain JavaScript object with the given properties.
+fn object(fields: &[(&str, JsValue)]) -> Result<JsValue, JsError> {
+    let o = js_sys::Object::new();
+    for (k, v) in fields {
+        js_sys::Reflect::set(&o, &JsValue::from_str(k), v)
+            .map_err(|e| JsError::new(&format!("cannot build the result: {}", js_message(&e))))?;
+    }
+    Ok(o.into())
+}

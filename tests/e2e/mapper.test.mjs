@@ -1,0 +1,469 @@
+// The live mapper (www/mapper.html) and the mount() embed (www/embed.html) in headless
+// Chromium: the chain runs in animation frames and improves the world, the page stays
+// responsive, exports are the files the native `ksmcmc floorplan` writes for the same seed,
+// and bad input shows a message while the page keeps working.
+
+import { after, before, describe, test } from 'node:test';
+import assert from 'node:assert/strict';
+import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { REPO, cli, download, openPage, pgm, startBrowser } from './harness.mjs';
+
+let env;
+let tmp;
+before(async () => {
+  env = await startBrowser();
+  tmp = mkdtempSync(join(tmpdir(), 'ksmcmc-mapper-'));
+});
+after(async () => {
+  await env?.close();
+  if (tmp) rmSync(tmp, { recursive: true, force: true });
+});
+
+const SAMPLE = join(REPO, 'samples/office-small');
+
+/** Fails on console errors and uncaught exceptions, then closes the page. */
+async function done(page) {
+  const problems = page.problems;
+  await page.context().close();
+  assert.deepEqual(problems, [], 'the page logged errors');
+}
+
+/** The page's numbers (window.__ksmcmc.snapshot()). */
+const snap = (page) => page.evaluate(() => window.__ksmcmc.snapshot());
+
+/** Waits until `predicate(snapshot)` holds; on timeout fails with the last snapshot. */
+async function until(page, predicate, arg, timeout = 20_000) {
+  try {
+    await page.waitForFunction(([src, a]) => new Function('s', 'a', `return (${src})(s, a)`)(window.__ksmcmc.snapshot(), a), [predicate.toString(), arg], { timeout });
+  } catch (err) {
+    assert.fail(`waited for ${predicate} (${JSON.stringify(arg)}): ${err.message.split('\n')[0]}; the page is at ${JSON.stringify(await snap(page))}`);
+  }
+}
+
+/** Waits for two animation frames: the page redraws at most once per frame. */
+const settled = (page) => page.evaluate(() => new Promise((ok) => requestAnimationFrame(() => requestAnimationFrame(ok))));
+
+/** Pixels of a canvas by kind: wall blue, cloud magenta, unit-node gray, and not white. */
+function pixels(page, selector) {
+  return page.evaluate((sel) => {
+    const c = document.querySelector(sel);
+    const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+    const n = { width: c.width, height: c.height, blue: 0, magenta: 0, node: 0, inked: 0, opaque: 0 };
+    for (let i = 0; i < d.length; i += 4) {
+      const [r, g, b, a] = [d[i], d[i + 1], d[i + 2], d[i + 3]];
+      if (r === 0 && g === 0 && b === 255) n.blue++;
+      if (r > g + 60 && b > g + 30) n.magenta++;
+      if (r === 175 && g === 175 && b === 175) n.node++;
+      if (a > 0 && (r < 235 || g < 235 || b < 235)) n.inked++;
+      if (a > 0) n.opaque++;
+    }
+    return n;
+  }, selector);
+}
+
+/**
+ * Waits until the alert shows a message matching `pattern` (the page may still be reading a
+ * file when the call that caused it returns), and fails with the message it shows otherwise.
+ */
+async function expectAlert(page, pattern) {
+  try {
+    await page.waitForFunction(
+      ([src, flags]) => {
+        const m = document.getElementById('message');
+        return !m.hidden && new RegExp(src, flags).test(document.getElementById('message-text').textContent);
+      },
+      [pattern.source, pattern.flags],
+      { timeout: 10_000 },
+    );
+  } catch {
+    const shown = await page.isVisible('#message') ? await page.textContent('#message-text') : '(no message)';
+    assert.fail(`expected an alert matching ${pattern}, the page shows: ${shown}`);
+  }
+  assert.equal(await page.getAttribute('#message', 'role'), 'alert');
+}
+
+async function dismiss(page) {
+  await page.click('#message-close');
+  await page.waitForSelector('#message', { state: 'hidden' });
+}
+
+/** Presses a shortcut with the focus on the page body (not in a text field). */
+async function key(page, k) {
+  await page.evaluate(() => document.activeElement?.blur());
+  await page.keyboard.press(k);
+}
+
+async function openMapper(query = '') {
+  const page = await openPage(env, `mapper.html${query}`);
+  await page.waitForFunction(() => window.__ksmcmc.snapshot().width > 0);
+  return page;
+}
+
+describe('Live mapper', () => {
+  test('runs a sample for two seconds: the log posterior rises, units appear, the page stays responsive', async () => {
+    const page = await openMapper();
+    const start = await snap(page);
+    assert.equal(start.sample, 'office-small');
+    assert.deepEqual([start.width, start.height, start.iteration, start.bestUnits, start.running], [400, 300, 0, 0, false]);
+    assert.equal((await pixels(page, '#map')).blue, 0, 'no world drawn before the chain runs');
+
+    // Count animation frames independently of the page while the chain runs.
+    await page.evaluate(() => {
+      window.__frames = 0;
+      const tick = () => {
+        window.__frames++;
+        if (window.__counting) requestAnimationFrame(tick);
+      };
+      window.__counting = true;
+      requestAnimationFrame(tick);
+    });
+    await key(page, 'Space');
+    await page.waitForFunction(() => document.documentElement.dataset.running === 'true');
+    await page.waitForTimeout(2000);
+    await key(page, 'Space');
+    await page.waitForFunction(() => document.documentElement.dataset.running === 'false');
+    const frames = await page.evaluate(() => {
+      window.__counting = false;
+      return window.__frames;
+    });
+    await settled(page);
+
+    const end = await snap(page);
+    assert.ok(end.iteration >= 1000, `the chain ran: ${end.iteration} iterations`);
+    assert.ok(end.bestLogPosterior > start.initialLogPosterior + 1000, `log posterior rose: ${start.initialLogPosterior} -> ${end.bestLogPosterior}`);
+    assert.ok(end.logPosterior > start.initialLogPosterior, 'the current world is better than the empty one');
+    assert.ok(end.bestUnits >= 3 && end.units >= 1, `units appeared: ${end.units} now, ${end.bestUnits} in the best world`);
+    assert.ok(end.frames >= 10, `the chain advanced in ${end.frames} animation frames`);
+    assert.ok(frames >= 20, `the page kept drawing frames while the chain ran: ${frames} in two seconds`);
+    assert.ok(end.traceLength >= 5, 'the trace was read');
+    assert.equal(end.error, null);
+
+    // What the page shows agrees with the chain.
+    const stats = await page.$eval('#stats', (e) => ({ ...e.dataset }));
+    assert.equal(Number(stats.iteration), end.iteration);
+    assert.equal(Number(stats.bestUnits), end.bestUnits);
+    assert.equal((await page.textContent('#stat-iteration')).replace(/\D/g, ''), String(end.iteration));
+    const map = await pixels(page, '#map');
+    assert.equal(map.width, 400 * end.scale);
+    assert.ok(map.blue > 1000, `the world's walls are drawn: ${map.blue} blue pixels`);
+    assert.equal(map.magenta, 0, 'no posterior cloud unless asked for');
+    const graph = await pixels(page, '#graph');
+    assert.ok(graph.node > 20 * end.bestUnits, `the scene graph has a node per unit: ${graph.node} node pixels`);
+    const lp = await pixels(page, '#plot-lp');
+    const acc = await pixels(page, '#plot-acc');
+    assert.ok(lp.inked > 100 && acc.inked > 100, 'both plots are drawn');
+    assert.match(await page.getAttribute('#plot-lp', 'aria-label'), /Log posterior over [\d,]+ iterations/);
+
+    // The posterior cloud on demand (U), over the best world (B).
+    await key(page, 'u');
+    await key(page, 'b');
+    await settled(page);
+    assert.equal(await page.isChecked('#cloud'), true);
+    assert.equal(await page.isChecked('input[name="show"][value="best"]'), true);
+    const cloud = await pixels(page, '#map');
+    assert.ok(cloud.magenta > 500, `the cloud is drawn: ${cloud.magenta} magenta pixels`);
+    await done(page);
+  });
+
+  test('the same seed gives the files of the native `ksmcmc floorplan`', async () => {
+    const out = join(tmp, 'native-3');
+    cli('floorplan', join(SAMPLE, 'map.yaml'), '--iterations', '2000', '--seed', '3', '--out', out);
+    const page = await openMapper();
+    await page.fill('#seed', '3');
+    await page.fill('#ipf', '2000');
+    await page.click('#reset');
+    await until(page, (s, v) => s.seed === v, '3');
+    await page.click('#step');
+    await until(page, (s, v) => s.iteration === v, 2000);
+    await key(page, 'b');
+    const files = {
+      'world.json': '#export-world',
+      'labels.pgm': '#export-labels',
+      'overlay.png': '#export-png',
+      'graph.json': '#export-graph',
+    };
+    for (const [name, button] of Object.entries(files)) {
+      const got = await download(page, button);
+      assert.equal(got.name, name);
+      const want = readFileSync(join(out, name));
+      assert.ok(got.bytes.equals(want), `${name}: the browser's ${got.bytes.length} bytes differ from the native ${want.length}`);
+    }
+    const report = JSON.parse((await download(page, '#export-report')).bytes.toString('utf8'));
+    const native = JSON.parse(readFileSync(join(out, 'report.json'), 'utf8'));
+    for (const k of ['iterations', 'units', 'doors', 'rooms', 'cell_prediction_rate', 'log_posterior', 'best_iteration', 'seed', 'confusion', 'kernels']) {
+      assert.deepEqual(report[k], native[k], `report.json ${k}`);
+    }
+    await done(page);
+  });
+
+  test('keyboard: Space, S, R and the view keys; Step runs the iterations per frame', async () => {
+    const page = await openMapper();
+    await page.fill('#ipf', '150');
+    await page.focus('#step');
+    await page.keyboard.press('Enter');
+    await until(page, (s, v) => s.iteration === v, 150);
+    await key(page, 's');
+    await until(page, (s, v) => s.iteration === v, 300);
+    // Space on a focused button presses that button only.
+    await page.focus('#step');
+    await page.keyboard.press(' ');
+    await until(page, (s, v) => s.iteration === v, 450);
+    assert.equal((await snap(page)).running, false);
+    // Letters typed into a field are text, not shortcuts.
+    await page.focus('#seed');
+    await page.keyboard.press('s');
+    assert.equal((await snap(page)).iteration, 450);
+    await page.fill('#seed', '1');
+    await key(page, 'r');
+    await until(page, (s, v) => s.iteration === v, 0);
+    await key(page, 'c');
+    assert.equal((await snap(page)).show, 'current');
+    await key(page, 'l');
+    assert.equal(await page.isChecked('#labels'), false);
+    await key(page, 'p');
+    assert.equal((await snap(page)).painting, true);
+    await key(page, 'p');
+    // Tab reaches the controls in order, each with a visible label.
+    for (const id of ['run', 'step', 'reset', 'seed', 'ipf', 'sample', 'file', 'cloud', 'labels']) {
+      const label = await page.evaluate((i) => {
+        const e = document.getElementById(i);
+        return e.labels?.[0]?.textContent.trim() || e.textContent.trim() || e.getAttribute('aria-label');
+      }, id);
+      assert.ok(label, `#${id} has a label`);
+    }
+    await done(page);
+  });
+
+  test('bad maps, settings and worlds show a message, and the page keeps working', async () => {
+    const page = await openMapper();
+    const before = await snap(page);
+    const shown = await pixels(page, '#map');
+
+    // A map with no free space, a map of one cell, a map far over the cell limit.
+    await page.setInputFiles('#file', { name: 'walls.pgm', mimeType: 'image/x-portable-graymap', buffer: pgm(30, 30, new Array(900).fill(0)) });
+    await expectAlert(page, /no free cells/);
+    await page.setInputFiles('#file', { name: 'one.pgm', mimeType: 'image/x-portable-graymap', buffer: pgm(1, 1, [254]) });
+    await expectAlert(page, /1x1 cells, smaller than the smallest unit/);
+    await page.setInputFiles('#file', { name: 'huge.pgm', mimeType: 'image/x-portable-graymap', buffer: Buffer.from('P5\n100000 100000\n255\n') });
+    await expectAlert(page, /over the limit/);
+    await page.setInputFiles('#file', { name: 'notes.png', mimeType: 'image/png', buffer: Buffer.from('hello') });
+    await expectAlert(page, /not an occupancy map/);
+    let now = await snap(page);
+    assert.deepEqual([now.name, now.width, now.height], [before.name, before.width, before.height], 'still the first map');
+    assert.deepEqual(await pixels(page, '#map'), shown, 'still showing it');
+
+    // NaN and negative settings.
+    for (const [field, value, pattern] of [
+      ['#seed', '-3', /Seed: "-3" is not a whole number/],
+      ['#seed', 'NaN', /Seed: "NaN" is not a whole number/],
+    ]) {
+      await page.fill(field, value);
+      await page.click('#reset');
+      await expectAlert(page, pattern);
+      await dismiss(page);
+    }
+    await page.fill('#seed', '1');
+    for (const value of ['-5', 'NaN', '2.5', '0']) {
+      await page.fill('#ipf', value);
+      await page.click('#step');
+      await expectAlert(page, /Iterations per frame: .* is not allowed/);
+      await dismiss(page);
+    }
+    await page.fill('#ipf', 'auto');
+    await page.click('summary');
+    for (const [config, pattern] of [
+      ['{"posterior": {"temperature": NaN}}', /NaN and Infinity are not numbers in JSON/],
+      ['{"posterior": {"temperature": -1}}', /temperature -1 must be a positive number/],
+      ['{"output": {"samples": -10}}', /invalid value: integer `-10`/],
+      ['{"posterior": {"temprature": 2}}', /unknown field `posterior.temprature`/],
+      ['{"posterior": ', /chain config/],
+    ]) {
+      await page.fill('#config', config);
+      await page.click('#reset');
+      await expectAlert(page, pattern);
+    }
+    await page.fill('#config', '');
+
+    // World files that do not parse, or name units outside the map.
+    const world = (w) => ({ name: 'world.json', mimeType: 'application/json', buffer: Buffer.from(w) });
+    await page.setInputFiles('#world-file', world('{"format": "ksmcmc-world/1", "units": ['));
+    await expectAlert(page, /world\.json: /);
+    const truth = JSON.parse(readFileSync(join(SAMPLE, 'truth.json'), 'utf8'));
+    const x = truth.units[0].x;
+    truth.units[0].x = 395;
+    await page.setInputFiles('#world-file', world(JSON.stringify(truth)));
+    await expectAlert(page, /lies outside the 400x300 world/);
+    const rotated = readFileSync(join(REPO, 'samples/office-rotated/truth.json'), 'utf8');
+    await page.setInputFiles('#world-file', world(rotated));
+    await expectAlert(page, /explains a 479x419 map, but the map is 400x300/);
+    truth.doors[0].units = [1, 99];
+    truth.units[0].x = x;
+    await page.setInputFiles('#world-file', world(JSON.stringify(truth)));
+    await expectAlert(page, /names unit 99, which does not exist/);
+    assert.equal((await snap(page)).hasReference, false);
+    assert.equal(await page.isDisabled('#show-reference'), true);
+
+    // Still working: the chain steps, a good world shows, a good map clears the message.
+    await page.fill('#ipf', '300');
+    await page.click('#step');
+    await until(page, (s, v) => s.iteration === v, 300);
+    await page.setInputFiles('#world-file', { name: 'truth.json', mimeType: 'application/json', buffer: readFileSync(join(SAMPLE, 'truth.json')) });
+    await page.waitForSelector('#message', { state: 'hidden' });
+    now = await snap(page);
+    assert.equal(now.hasReference, true);
+    assert.equal(now.show, 'reference');
+    await settled(page);
+    assert.ok((await pixels(page, '#map')).blue > 1000, 'the reference world is drawn');
+    await page.setInputFiles('#file', [join(REPO, 'samples/two-corridors/map.yaml'), join(REPO, 'samples/two-corridors/map.pgm')]);
+    await until(page, (s, v) => s.width === v, 520);
+    assert.equal(await page.isVisible('#message'), false);
+    assert.match(await page.textContent('#map-name'), /map\.yaml \+ map\.pgm/);
+    assert.equal((await snap(page)).hasReference, false, 'a 400x300 reference does not fit the new map');
+    await done(page);
+  });
+
+  test('exports parse: world.json validates natively, labels.pgm has the map size', async () => {
+    const page = await openMapper('?sample=furnished&seed=5&ipf=1000');
+    await until(page, (s, v) => s.sample === v, 'furnished');
+    for (let i = 0; i < 3; i++) await key(page, 's');
+    await until(page, (s, v) => s.iteration === v, 3000);
+    const s = await snap(page);
+    assert.equal(s.seed, '5');
+
+    const world = await download(page, '#export-world');
+    const worldPath = join(tmp, 'furnished-world.json');
+    writeFileSync(worldPath, world.bytes);
+    const parsed = JSON.parse(world.bytes.toString('utf8'));
+    assert.equal(parsed.format, 'ksmcmc-world/1');
+    assert.deepEqual(parsed.frame.map_size, [s.width, s.height]);
+    assert.equal(parsed.units.length, s.bestUnits);
+    // The native renderer loads and validates it against the map.
+    cli('render', join(REPO, 'samples/furnished/map.yaml'), '--world', worldPath, '--out', join(tmp, 'furnished.png'));
+
+    const labels = (await download(page, '#export-labels')).bytes;
+    const header = `P5\n${s.width} ${s.height}\n65535\n`;
+    assert.equal(labels.subarray(0, header.length).toString('latin1'), header);
+    assert.equal(labels.length, header.length + 2 * s.width * s.height);
+    let max = 0;
+    for (let i = header.length; i < labels.length; i += 2) max = Math.max(max, labels.readUInt16BE(i));
+    assert.ok(max >= 2, `rooms are labelled: ${max}`);
+
+    const png = (await download(page, '#export-png')).bytes;
+    assert.equal(png.subarray(1, 4).toString('latin1'), 'PNG');
+    assert.equal(png.readUInt32BE(16), s.width);
+    assert.equal(png.readUInt32BE(20), s.height);
+    const graph = JSON.parse((await download(page, '#export-graph')).bytes.toString('utf8'));
+    assert.equal(graph.nodes.length, s.bestUnits);
+    const report = JSON.parse((await download(page, '#export-report')).bytes.toString('utf8'));
+    assert.equal(report.iterations, 3000);
+    assert.equal(report.seed, 5);
+
+    // The sample's truth as the reference.
+    await page.click('#truth');
+    await page.waitForFunction(() => window.__ksmcmc.snapshot().hasReference);
+    await key(page, 'c');
+    await key(page, 't');
+    assert.equal((await snap(page)).show, 'reference');
+    await done(page);
+  });
+
+  test('paint a blank map, and the chain explains it', async () => {
+    const page = await openMapper();
+    await page.fill('#blank-width', '80');
+    await page.fill('#blank-height', '50');
+    await page.click('#blank-create');
+    await until(page, (s, v) => s.width === v, 80);
+    assert.equal((await snap(page)).painting, true, 'a blank map starts in paint mode');
+    // A wall down the middle, leaving a gap at the bottom.
+    await page.locator('#map').scrollIntoViewIfNeeded();
+    const box = await page.locator('#map').boundingBox();
+    const x = box.x + box.width / 2;
+    await page.mouse.move(x, box.y + 2);
+    await page.mouse.down();
+    await page.mouse.move(x, box.y + box.height * 0.7, { steps: 6 });
+    await page.mouse.up();
+    await page.waitForFunction(() => window.__ksmcmc.snapshot().iteration === 0 && window.__ksmcmc.mapper.map.counts().occupied > 540);
+    const painted = await page.evaluate(() => window.__ksmcmc.mapper.map.counts());
+    assert.ok(painted.occupied > 2 * (80 + 50) * 2, `the wall was painted: ${painted.occupied} occupied cells`);
+    await page.click('#run');
+    await page.waitForFunction(() => window.__ksmcmc.snapshot().iteration > 3000, null, { timeout: 20_000 });
+    await page.click('#run');
+    const s = await snap(page);
+    assert.equal(s.painting, false, 'starting the chain leaves paint mode');
+    assert.ok(s.bestUnits >= 1, `the painted map is explained: ${s.bestUnits} units`);
+    assert.ok(s.bestLogPosterior > s.initialLogPosterior);
+    await done(page);
+  });
+});
+
+describe('mount() embed', () => {
+  test('builds a running widget from a sample, and its controls work', async () => {
+    const page = await openPage(env, 'embed.html');
+    await page.waitForFunction(() => window.__widget?.stats().iteration > 2000, null, { timeout: 20_000 });
+    const s = await page.evaluate(() => window.__widget.stats());
+    assert.equal(s.running, true, 'autoplay');
+    assert.ok(s.bestUnits >= 1, `units appeared: ${s.bestUnits}`);
+    assert.ok(s.bestLogPosterior > -242000, `the log posterior rose: ${s.bestLogPosterior}`);
+    const map = await pixels(page, '#demo canvas.ksmcmc-map');
+    assert.ok(map.blue > 500, `the world is drawn: ${map.blue} blue pixels`);
+    const graph = await pixels(page, '#demo canvas.ksmcmc-graph');
+    assert.ok(graph.node > 20, 'the scene graph is drawn');
+    assert.match(await page.textContent('#demo .ksmcmc-stats'), /iteration [\d,]+ · log p -?\d+ · \d+ units/);
+
+    await page.click('#demo button:has-text("Pause")');
+    const paused = await page.evaluate(() => window.__widget.stats().iteration);
+    await page.waitForTimeout(300);
+    assert.equal(await page.evaluate(() => window.__widget.stats().iteration), paused, 'paused');
+    await page.click('#demo button:has-text("Step")');
+    assert.equal(await page.evaluate(() => window.__widget.stats().iteration), paused + 500);
+    await page.focus('#demo canvas.ksmcmc-map');
+    await page.keyboard.press('r');
+    assert.equal(await page.evaluate(() => window.__widget.stats().iteration), 0, 'R resets');
+
+    // The sample recipes remake the repository's sample files byte for byte.
+    for (const name of ['office-small', 'office-rotated', 'furnished', 'partial', 'two-corridors', 'building-large']) {
+      const b64 = await page.evaluate(async (n) => {
+        const { loadSample } = await import('./pkg/mount.js');
+        const map = loadSample(n);
+        const bytes = map.toPgm();
+        map.free();
+        let s = '';
+        for (let i = 0; i < bytes.length; i += 0x8000) s += String.fromCharCode(...bytes.subarray(i, i + 0x8000));
+        return btoa(s);
+      }, name);
+      const want = readFileSync(join(REPO, 'samples', name, 'map.pgm'));
+      assert.ok(Buffer.from(b64, 'base64').equals(want), `${name}: the recipe does not remake samples/${name}/map.pgm`);
+    }
+
+    // Bad options are errors; the page keeps its widget.
+    const errors = await page.evaluate(async () => {
+      const div = document.createElement('div');
+      document.body.append(div);
+      const out = [];
+      for (const options of [{ sample: 'nope' }, { bogus: 1 }, { seed: -1 }, { map: new Uint8Array([1, 2, 3]) }, { budgetMs: NaN }, { config: '{"posterior": {"temperature": 0}}' }, { sample: 'partial', url: 'x.pgm' }]) {
+        try {
+          await window.__mount(div, options);
+          out.push('no error');
+        } catch (e) {
+          out.push(e.message);
+        }
+      }
+      try {
+        await window.__mount(null);
+      } catch (e) {
+        out.push(e.message);
+      }
+      div.remove();
+      return out;
+    });
+    const patterns = [/unknown sample "nope"/, /unknown option "bogus"/, /negative/, /not an occupancy map|PGM|PNG/, /budgetMs NaN/, /temperature 0/, /one of sample, map and url/, /DOM element/];
+    errors.forEach((m, i) => assert.match(m, patterns[i]));
+
+    // destroy() removes the widget.
+    await page.evaluate(() => window.__widget.destroy());
+    assert.equal(await page.locator('#demo .ksmcmc-mapper').count(), 0);
+    await done(page);
+  });
+});

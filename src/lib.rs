@@ -37,6 +37,7 @@ pub mod grid;
 pub mod mcmc;
 pub mod mln;
 pub mod render;
+pub mod tabletop;
 pub mod vision;
 
 #[cfg(target_arch = "wasm32")]

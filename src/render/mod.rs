@@ -54,6 +54,7 @@
 mod cloud;
 pub mod font;
 mod graph;
+pub mod tabletop;
 mod world;
 
 pub use cloud::{cloud_alpha, draw_cloud, CLOUD_RGB};

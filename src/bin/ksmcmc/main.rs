@@ -12,6 +12,8 @@ mod mln;
 mod render;
 mod score;
 mod synth;
+mod tabletop;
+mod tabletop_synth;
 
 use std::process::ExitCode;
 
@@ -31,6 +33,11 @@ Usage:
                                            generate a synthetic floor plan with ground truth
   ksmcmc mln query|map|info --mln KB.mln [--db EVIDENCE.db] [--query P,Q]
                                            Markov logic marginals, most probable world, network size
+  ksmcmc tabletop SCENE.json --out DIR [--iterations N] [--seed S]
+                                           scene graph of a table-top scene from 6D poses
+  ksmcmc tabletop-synth --seed N --out scene.json
+                                           generate a table-top scene with ground truth
+  ksmcmc tabletop-eval [--scenes N]        table-top accuracy and speed (BENCHMARKS.md)
   ksmcmc help                              this text
 
 MAP is a PGM (P2/P5, 8 or 16 bits), a PNG of any colour type, or a ROS map.yaml.
@@ -56,6 +63,9 @@ fn main() -> ExitCode {
         Some("bench") => bench::run(rest),
         Some("evaluate") => evaluate::run(rest),
         Some("synth") => synth::run(rest),
+        Some("tabletop") => tabletop::run(rest),
+        Some("tabletop-synth") => tabletop_synth::run(rest),
+        Some("tabletop-eval") => tabletop::eval(rest),
         Some("mln") => mln::run(rest),
         Some("help" | "--help" | "-h") => {
             print!("{USAGE}");

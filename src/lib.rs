@@ -17,7 +17,13 @@
 //! ```
 //!
 //! * [`grid`] loads occupancy maps (PGM, PNG, ROS `map.yaml`) and classifies cells (eq. 3.7).
-//! * [`floorplan`] holds the semantic world (units, doors, types) and the synthetic generator.
+//! * [`vision`] holds the bottom-up detectors: Hough orientation, wall lines and wall-based unit
+//!   candidates, free-space candidates, doors.
+//! * [`mcmc`] is the generic Metropolis-Hastings machinery both use cases share.
+//! * [`floorplan`] holds the semantic world (units, doors, types), the chain and its kernels,
+//!   rooms, scene graph, metrics, knowledge supervision and the synthetic generator.
+//! * [`mln`] is the Markov logic engine, usable on its own.
+//! * [`tabletop`] turns noisy 6D box poses into a support/contact scene graph (chapter 4).
 //! * [`render`] draws maps, worlds and scene graphs with tiny-skia, natively and in the browser.
 //! * `wasm` (only on `wasm32`) is a thin wasm-bindgen layer with no logic of its own.
 //!

@@ -19,6 +19,7 @@
 //! Objects returned as classes (`Map`, `Rendered`, `Synthetic`) live in wasm memory; call
 //! `.free()` on them when done, or let the garbage collector's finaliser do it.
 
+mod knowledge;
 mod mapper;
 
 pub use mapper::{

@@ -1,0 +1,133 @@
+//! Knowledge-base bindings for the rules editor and the prior-shaping page: thin wrappers over
+//! [`crate::mln`] and [`crate::floorplan::knowledge`].
+//!
+//! ```js
+//! import init, { checkRules, inferWorld, mlnLogWeight, builtinIndoorRules } from "./pkg/ksmcmc.js";
+//! await init();
+//! checkRules("Room(unit)\n1 Room(x) =>");   // { line: 2, column: 13, message: "..." }
+//! const out = JSON.parse(inferWorld(builtinIndoorRules(), mapper.bestWorldJson(), 0.05));
+//! mlnLogWeight("Left(pt)\n2 Left(x)", "Left(X)"); // 2
+//! ```
+
+use crate::floorplan::knowledge::{self, Knowledge, KnowledgeConfig};
+use crate::floorplan::World;
+use crate::mln::{Database, GroundConfig, Mln, MlnError};
+use serde::Serialize;
+use wasm_bindgen::prelude::*;
+
+/// A knowledge-base error as the editor shows it: 1-based line and column (0 when the error
+/// has no position) and the message without the position.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RuleError {
+    /// Line, from 1 (0: no position).
+    pub line: u32,
+    /// Column, from 1, in characters (0: no position).
+    pub column: u32,
+    /// What went wrong.
+    pub message: String,
+}
+
+impl From<&MlnError> for RuleError {
+    fn from(e: &MlnError) -> Self {
+        let (line, column) = e.position.map_or((0, 0), |p| (p.line, p.column));
+        RuleError { line, column, message: e.kind.to_string() }
+    }
+}
+
+/// The built-in indoor knowledge base (Tab. 3.3 - 3.5) as text.
+#[wasm_bindgen(js_name = builtinIndoorRules)]
+pub fn builtin_indoor_rules() -> String {
+    knowledge::BUILTIN_INDOOR.to_string()
+}
+
+/// Parses a knowledge base: `null` when it is fine, else `{line, column, message}`.
+#[wasm_bindgen(js_name = checkRules, unchecked_return_type = "{ line: number; column: number; message: string } | null")]
+pub fn check_rules(text: &str) -> Result<JsValue, JsError> {
+    match Mln::parse(text) {
+        Ok(_) => Ok(JsValue::NULL),
+        Err(e) => Ok(serde_wasm_bindgen::to_value(&RuleError::from(&e))?),
+    }
+}
+
+#[derive(Serialize)]
+struct Fact {
+    predicate: &'static str,
+    args: Vec<String>,
+    value: bool,
+}
+
+#[derive(Serialize)]
+struct TypeRow {
+    kind: String,
+    room: f64,
+    corr: f64,
+    hall: f64,
+    other: f64,
+}
+
+#[derive(Serialize)]
+struct SameLength {
+    p: String,
+    q: String,
+    probability: f64,
+}
+
+#[derive(Serialize)]
+struct Inference {
+    evidence: Vec<Fact>,
+    types: std::collections::BTreeMap<String, TypeRow>,
+    #[serde(rename = "sameLength")]
+    same_length: Vec<SameLength>,
+}
+
+/// The evidence `worldJson` (a `world.json` text) gives at `resolution` metres per cell, and
+/// what the knowledge base `rulesText` infers from it, as JSON text
+/// `{evidence: [{predicate, args, value}], types: {U1: {kind, room, corr, hall, other}},
+/// sameLength: [{p, q, probability}]}` (pairs above the default threshold). Throws on a bad
+/// knowledge base (message with line and column) or world.
+#[wasm_bindgen(js_name = inferWorld)]
+pub fn infer_world(
+    #[wasm_bindgen(js_name = rulesText)] rules_text: &str,
+    #[wasm_bindgen(js_name = worldJson)] world_json: &str,
+    resolution: f64,
+) -> Result<String, JsError> {
+    if !(resolution.is_finite() && resolution > 0.0) {
+        return Err(JsError::new(&format!("inferWorld: resolution {resolution} must be a positive number")));
+    }
+    let world = World::from_json(world_json).map_err(|e| JsError::new(&e.to_string()))?;
+    let config = KnowledgeConfig { kb: Some(rules_text.to_string()), ..Default::default() };
+    let mut k = Knowledge::new(&config).map_err(|e| JsError::new(&e.to_string()))?;
+    let inferred = k.infer(&world, resolution).map_err(|e| JsError::new(&e.to_string()))?;
+    let evidence = knowledge::evidence(&world, resolution, &config.geometry)
+        .into_iter()
+        .map(|(predicate, args, value)| Fact { predicate, args, value })
+        .collect();
+    let types = inferred
+        .types
+        .iter()
+        .map(|(id, (kind, p))| {
+            let row = TypeRow { kind: format!("{kind:?}"), room: p[0], corr: p[1], hall: p[2], other: p[3] };
+            (knowledge::constant(*id), row)
+        })
+        .collect();
+    let same_length = inferred
+        .same_length
+        .iter()
+        .map(|&(p, q, probability)| SameLength { p: knowledge::constant(p), q: knowledge::constant(q), probability })
+        .collect();
+    Ok(serde_json::to_string(&Inference { evidence, types, same_length })?)
+}
+
+/// The unnormalised log probability `sum_i w_i n_i(x)` of the complete world `evidenceText`
+/// (one ground atom per line; unlisted atoms are false) under the knowledge base `rulesText`.
+/// `-Infinity` when a hard formula is violated. Throws on bad text (message with line and
+/// column).
+#[wasm_bindgen(js_name = mlnLogWeight)]
+pub fn mln_log_weight(
+    #[wasm_bindgen(js_name = rulesText)] rules_text: &str,
+    #[wasm_bindgen(js_name = evidenceText)] evidence_text: &str,
+) -> Result<f64, JsError> {
+    let mln = Mln::parse(rules_text).map_err(|e| JsError::new(&e.to_string()))?;
+    let world = Database::parse(evidence_text, &mln).map_err(|e| JsError::new(&e.to_string()))?;
+    mln.log_weight(&world, &GroundConfig::default()).map_err(|e| JsError::new(&e.to_string()))
+}

@@ -20,6 +20,7 @@
 //! `.free()` on them when done, or let the garbage collector's finaliser do it.
 
 mod mapper;
+pub mod tabletop;
 
 pub use mapper::{
     chain_config, chain_config_defaults, draw_mapper, draw_scene_graph, now_ms, render_mapper_rgba,

@@ -231,6 +231,7 @@ function expose() {
       rulesError: ui.rulesError.textContent,
       rulesInUse: state.rules,
     }),
+    synthText: () => tabletopSynth(9),
     /** Milliseconds of a whole analysis: synth, construct, `iterations` steps, analysis JSON. */
     bench(objects = 8, iterations = 100, seed = 3) {
       const t0 = performance.now();

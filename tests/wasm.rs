@@ -560,3 +560,35 @@ fn chain_config_defaults_parse_back() {
     let config = wasm::chain_config(Some(&text)).unwrap();
     assert_eq!(config, ChainConfig::default());
 }
+
+#[wasm_bindgen_test]
+fn tabletop_bad_scene_is_an_error() {
+    use ksmcmc::wasm::tabletop::Tabletop;
+    err_contains(Tabletop::new("{", None, None, None).map(|_| ()), "");
+    let good = ksmcmc::wasm::tabletop::tabletop_synth(Some(JsValue::from(2)), None).unwrap();
+    let bad = good.replacen("\"objects\"", "\"objekts\"", 1);
+    err_contains(Tabletop::new(&bad, None, None, None).map(|_| ()), "objekts");
+    err_contains(Tabletop::new(&good, None, None, Some("stable(obj)\n".into())).map(|_| ()), "rules");
+}
+
+#[wasm_bindgen_test]
+fn tabletop_constructs_steps_and_analyses() {
+    use ksmcmc::wasm::tabletop::{check_rules, tabletop_rules_default, tabletop_synth, Tabletop};
+    let scene = tabletop_synth(Some(JsValue::from(5)), Some(r#"{"min_objects": 8, "max_objects": 8}"#.into())).unwrap();
+    let mut tt = Tabletop::new(&scene, None, Some(JsValue::from(1)), None).unwrap();
+    tt.step(50.0).unwrap();
+    assert_eq!(tt.iteration(), 50.0);
+    assert!(tt.step(0.5).is_err());
+    let a: serde_json::Value = serde_json::from_str(&tt.analysis_json().unwrap()).unwrap();
+    let objects = a["objects"].as_array().unwrap();
+    assert_eq!(objects.len(), tt.objects() as usize);
+    for o in objects {
+        let p = o["p_hidden"].as_f64().unwrap();
+        assert!((0.0..=1.0).contains(&p));
+    }
+    assert!(check_rules(&tabletop_rules_default()).unwrap().is_null());
+    let e = check_rules("stable(obj)\n\n  hidden(x) =>\n").unwrap();
+    assert!(!e.is_null());
+    assert!(tt.set_rules("not ( rules").is_err());
+    assert_eq!(tt.rules(), tabletop_rules_default(), "the last good rules stay");
+}

@@ -21,6 +21,7 @@
 
 mod knowledge;
 mod mapper;
+pub mod tabletop;
 
 pub use mapper::{
     chain_config, chain_config_defaults, draw_mapper, draw_scene_graph, now_ms, render_mapper_rgba,

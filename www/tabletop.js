@@ -1,0 +1,271 @@
+// The table-top page: a knowledge-supervised MCMC chain over noisy 6D box poses builds a
+// scene graph while you watch. The chain, the analysis and the pictures are the library's
+// (pkg/ksmcmc.js); this file is wiring: a requestAnimationFrame loop that gives the chain a
+// time budget per frame and redraws the view, the graph and the probability table.
+
+import init, { Tabletop, tabletopSynth, tabletopRulesDefault, checkRules, version } from './pkg/ksmcmc.js';
+
+/** Milliseconds of iterations per animation frame. */
+const BUDGET_MS = 10;
+
+const $ = (id) => document.getElementById(id);
+const ui = {
+  message: $('message'), messageText: $('message-text'), messageClose: $('message-close'),
+  run: $('run'), step: $('step'), reset: $('reset'), seed: $('seed'),
+  synthForm: $('synth-form'), synthSeed: $('synth-seed'), synthObjects: $('synth-objects'), generate: $('generate'),
+  file: $('file'), download: $('download'),
+  rules: $('rules'), rulesError: $('rules-error'), rulesApply: $('rules-apply'), rulesDefault: $('rules-default'),
+  view: $('view'), graph: $('graph'), tbody: document.querySelector('#probs tbody'), sceneName: $('scene-name'),
+  status: $('status'), version: $('version'),
+  stat: { iteration: $('stat-iteration'), lp: $('stat-lp'), best: $('stat-best'), rate: $('stat-rate') },
+};
+
+const state = {
+  tt: null,
+  sceneJson: '',
+  sceneName: '',
+  /** The rules in use: the last text that applied without error. */
+  rules: '',
+  running: false,
+  raf: 0,
+  dirty: true,
+  lastAnalysis: null,
+  rate: { t: 0, it: 0 },
+};
+
+function showError(err) {
+  ui.message.hidden = false;
+  ui.messageText.textContent = err instanceof Error ? err.message : String(err);
+}
+function clearError() {
+  ui.message.hidden = true;
+  ui.messageText.textContent = '';
+}
+
+function parseSeed(text) {
+  const t = String(text).trim();
+  if (!/^\d+$/.test(t)) throw new Error(`seed: "${text}" is not a whole number ≥ 0`);
+  return BigInt(t);
+}
+
+/** Starts a chain on scene text; on error the old chain stays and the error is thrown. */
+function load(sceneJson, name) {
+  const tt = new Tabletop(sceneJson, undefined, parseSeed(ui.seed.value), state.rules);
+  state.tt?.free();
+  state.tt = tt;
+  state.sceneJson = sceneJson;
+  state.sceneName = name;
+  ui.sceneName.textContent = `${name} (${tt.objects} objects)`;
+  state.rate = { t: performance.now(), it: 0 };
+  state.dirty = true;
+  redraw();
+}
+
+function generate() {
+  const seed = parseSeed(ui.synthSeed.value);
+  const n = Number(ui.synthObjects.value);
+  if (!Number.isInteger(n) || n < 1 || n > 20) throw new Error(`objects: give a whole number from 1 to 20, not ${ui.synthObjects.value}`);
+  const text = tabletopSynth(seed, JSON.stringify({ min_objects: n, max_objects: n }));
+  load(text, `synthetic, seed ${seed}`);
+}
+
+const fmt = (p) => p.toFixed(3);
+
+function renderTable(a) {
+  const rows = a.objects.map((o) => {
+    const tr = document.createElement('tr');
+    const truth = o.truth ? `${o.truth.hidden ? 'hidden' : ''}${o.truth.hidden && o.truth.false ? ', ' : ''}${o.truth.false ? 'false' : ''}` || '–' : '';
+    const cells = [o.id, fmt(o.p_hidden), fmt(o.p_false), fmt(o.supported), fmt(o.supportive), o.hidden, o['false'], truth];
+    cells.forEach((c, i) => {
+      const td = document.createElement(i === 0 ? 'th' : 'td');
+      if (i === 0) td.scope = 'row';
+      td.textContent = c;
+      if (i === 5 || i === 6) {
+        td.className = c;
+        const t = o.truth && (i === 5 ? o.truth.hidden : o.truth['false']);
+        if (o.truth && c !== 'undecided' && (c === 'true') !== t) td.classList.add('wrong');
+      }
+      tr.append(td);
+    });
+    return tr;
+  });
+  ui.tbody.replaceChildren(...rows);
+}
+
+function redraw() {
+  const tt = state.tt;
+  if (!tt) return;
+  const a = JSON.parse(tt.analysisJson());
+  state.lastAnalysis = a;
+  tt.drawView(ui.view, 800);
+  tt.drawGraph(ui.graph);
+  renderTable(a);
+  ui.stat.iteration.textContent = String(tt.iteration);
+  ui.stat.lp.textContent = tt.logPosterior.toFixed(2);
+  ui.stat.best.textContent = tt.bestLogPosterior.toFixed(2);
+  state.dirty = false;
+}
+
+function frame() {
+  state.raf = 0;
+  try {
+    if (state.running && state.tt) {
+      state.tt.runFor(BUDGET_MS);
+      const now = performance.now();
+      const dt = now - state.rate.t;
+      if (dt > 500) {
+        ui.stat.rate.textContent = String(Math.round(((state.tt.iteration - state.rate.it) * 1000) / dt));
+        state.rate = { t: now, it: state.tt.iteration };
+      }
+      state.dirty = true;
+    }
+    if (state.dirty) redraw();
+  } catch (err) {
+    pause();
+    showError(err);
+  }
+  if (state.running) state.raf = requestAnimationFrame(frame);
+}
+
+function play() {
+  if (!state.tt || state.running) return;
+  state.running = true;
+  document.documentElement.dataset.running = 'true';
+  ui.run.textContent = 'Pause';
+  state.rate = { t: performance.now(), it: state.tt.iteration };
+  if (!state.raf) state.raf = requestAnimationFrame(frame);
+}
+function pause() {
+  state.running = false;
+  document.documentElement.dataset.running = 'false';
+  ui.run.textContent = 'Start';
+}
+
+function attempt(fn) {
+  try {
+    fn();
+    return true;
+  } catch (err) {
+    showError(err);
+    return false;
+  }
+}
+
+/** Shows the syntax check of the editor's text; returns whether it is usable. */
+function checkEditor() {
+  const e = checkRules(ui.rules.value);
+  ui.rulesError.textContent = e
+    ? e.line > 0
+      ? `line ${e.line}, column ${e.column}: ${e.message}`
+      : e.message
+    : 'The rules parse.';
+  ui.rulesError.dataset.ok = e ? 'false' : 'true';
+  return !e;
+}
+
+function applyRules() {
+  const text = ui.rules.value;
+  if (!checkEditor()) {
+    showError(`The rules have an error (${ui.rulesError.textContent}); the last good rules stay in use.`);
+    return;
+  }
+  if (state.tt) state.tt.setRules(text);
+  state.rules = text;
+  clearError();
+  state.dirty = true;
+  redraw();
+  ui.status.textContent = 'Rules applied: the chain starts over with them.';
+}
+
+function wire() {
+  ui.messageClose.addEventListener('click', clearError);
+  ui.run.addEventListener('click', () => (state.running ? pause() : play()));
+  ui.step.addEventListener('click', () => attempt(() => {
+    state.tt?.step(100);
+    redraw();
+  }));
+  ui.reset.addEventListener('click', () => attempt(() => {
+    if (state.sceneJson) load(state.sceneJson, state.sceneName);
+    clearError();
+  }));
+  ui.synthForm.addEventListener('submit', (ev) => {
+    ev.preventDefault();
+    if (attempt(generate)) clearError();
+  });
+  ui.file.addEventListener('change', async () => {
+    const f = ui.file.files?.[0];
+    if (!f) return;
+    const text = await f.text();
+    if (attempt(() => load(text, f.name))) clearError();
+    ui.file.value = '';
+  });
+  ui.download.addEventListener('click', () => {
+    const a = document.createElement('a');
+    a.href = URL.createObjectURL(new Blob([state.sceneJson], { type: 'application/json' }));
+    a.download = 'scene.json';
+    a.click();
+    setTimeout(() => URL.revokeObjectURL(a.href), 1000);
+  });
+  let timer = 0;
+  ui.rules.addEventListener('input', () => {
+    clearTimeout(timer);
+    timer = setTimeout(checkEditor, 150);
+  });
+  ui.rulesApply.addEventListener('click', () => attempt(applyRules));
+  ui.rulesDefault.addEventListener('click', () => {
+    ui.rules.value = tabletopRulesDefault();
+    attempt(applyRules);
+  });
+}
+
+/** Hooks for the browser tests. */
+function expose() {
+  window.__ksmcmc = {
+    snapshot: () => ({
+      iteration: state.tt ? state.tt.iteration : 0,
+      running: state.running,
+      objects: state.tt ? state.tt.objects : 0,
+      rows: ui.tbody.rows.length,
+      analysis: state.lastAnalysis,
+      error: ui.message.hidden ? null : ui.messageText.textContent,
+      rulesError: ui.rulesError.textContent,
+      rulesInUse: state.rules,
+    }),
+    synthText: () => tabletopSynth(9),
+    /** Milliseconds of a whole analysis: synth, construct, `iterations` steps, analysis JSON. */
+    bench(objects = 8, iterations = 100, seed = 3) {
+      const t0 = performance.now();
+      const text = tabletopSynth(seed, JSON.stringify({ min_objects: objects, max_objects: objects }));
+      const tt = new Tabletop(text, undefined, 1);
+      tt.step(iterations);
+      const a = JSON.parse(tt.analysisJson());
+      const ms = performance.now() - t0;
+      tt.free();
+      return { ms, objects: a.objects.length };
+    },
+  };
+}
+
+async function main() {
+  wire();
+  expose();
+  try {
+    await init();
+  } catch (err) {
+    document.documentElement.dataset.state = 'error';
+    showError(`The WebAssembly module did not load (${err.message}). Build it with \`make demo\`.`);
+    return;
+  }
+  ui.version.textContent = version();
+  state.rules = tabletopRulesDefault();
+  ui.rules.value = state.rules;
+  checkEditor();
+  for (const el of [ui.run, ui.step, ui.reset, ui.generate, ui.file, ui.download, ui.rulesApply, ui.rulesDefault]) el.disabled = false;
+  const params = new URLSearchParams(location.search);
+  if (params.has('scene')) ui.synthSeed.value = params.get('scene');
+  attempt(generate);
+  document.documentElement.dataset.state = 'ready';
+  if (params.get('autoplay') === '1') play();
+}
+
+main();

@@ -3,7 +3,7 @@
 // (pkg/ksmcmc.js); this file is wiring: a requestAnimationFrame loop that gives the chain a
 // time budget per frame and redraws the view, the graph and the probability table.
 
-import init, { Tabletop, tabletopSynth, tabletopRulesDefault, checkRules, version } from './pkg/ksmcmc.js';
+import init, { Tabletop, tabletopSynth, tabletopRulesDefault, tabletopCheckRules, version } from './pkg/ksmcmc.js';
 
 /** Milliseconds of iterations per animation frame. */
 const BUDGET_MS = 10;
@@ -153,7 +153,7 @@ function attempt(fn) {
 
 /** Shows the syntax check of the editor's text; returns whether it is usable. */
 function checkEditor() {
-  const e = checkRules(ui.rules.value);
+  const e = tabletopCheckRules(ui.rules.value);
   ui.rulesError.textContent = e
     ? e.line > 0
       ? `line ${e.line}, column ${e.column}: ${e.message}`

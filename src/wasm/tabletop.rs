@@ -266,7 +266,8 @@ pub fn tabletop_rules_default() -> String {
 
 /// Checks a knowledge base: `null` if it is usable for the table-top analysis, otherwise
 /// `{ line, column, message }` (line and column 0 when the error has no place in the text).
-#[wasm_bindgen(js_name = checkRules)]
+/// Unlike `checkRules`, which only parses, this also checks the table-top predicates.
+#[wasm_bindgen(js_name = tabletopCheckRules)]
 pub fn check_rules(text: &str) -> Result<JsValue, JsError> {
     let e = match Knowledge::with_text(text, 1) {
         Ok(_) => return Ok(JsValue::NULL),

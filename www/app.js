@@ -4,6 +4,7 @@
 import init, { Map as OccMap, drawToCanvas, synth, version } from './pkg/ksmcmc.js';
 import { TOOLS, MAX_BRUSH, brushOffsets, stamp, strokeTo, cellAt } from './lib/paint.js';
 import { planOpen, pickYamlImage, stem, parseSeed } from './lib/files.js';
+import { messages } from './lib/messages.js';
 
 const $ = (id) => document.getElementById(id);
 const ui = {
@@ -41,6 +42,8 @@ const ui = {
   downloadLabels: $('download-labels'),
 };
 
+const { showError, clearError, say, attempt } = messages(ui);
+
 /** Undo keeps at most this many strokes and this many bytes of snapshots. */
 const UNDO_STEPS = 30;
 const UNDO_BYTES = 64 << 20;
@@ -72,37 +75,6 @@ const state = {
   undo: [],
   renderPending: false,
 };
-
-// ---------------------------------------------------------------- messages
-
-function showError(err) {
-  const text = err instanceof Error ? err.message : String(err);
-  // Shown first, then filled, so that screen readers announce the alert's new text.
-  ui.message.hidden = false;
-  ui.messageText.textContent = text;
-  ui.status.textContent = '';
-}
-
-function clearError() {
-  ui.message.hidden = true;
-  ui.messageText.textContent = '';
-}
-
-function say(text) {
-  ui.status.textContent = text;
-}
-
-/** Runs `fn`; a thrown error goes to the alert, and the page carries on with the old map. */
-async function attempt(fn) {
-  try {
-    await fn();
-    return true;
-  } catch (err) {
-    console.warn(err);
-    showError(err);
-    return false;
-  }
-}
 
 // ---------------------------------------------------------------- the map
 

@@ -9,6 +9,7 @@ import init, {
 import { TOOLS, MAX_BRUSH, brushOffsets, stamp, strokeTo, cellAt } from './lib/paint.js';
 import { planOpen, pickYamlImage, stem, parseSeed } from './lib/files.js';
 import { drawPlot, formatNumber, parseIterationsPerFrame } from './lib/plot.js';
+import { messages } from './lib/messages.js';
 
 /**
  * Milliseconds per animation frame for iterating and drawing together in `auto` mode: the
@@ -45,6 +46,8 @@ const ui = {
     report: $('export-report'),
   },
 };
+
+const { showError, clearError, say, attempt } = messages(ui);
 
 const state = {
   ready: false,
@@ -85,36 +88,6 @@ const state = {
   strokeAt: null,
   strokeUndo: null,
 };
-
-// ---------------------------------------------------------------- messages
-
-function showError(err) {
-  const text = err instanceof Error ? err.message : String(err);
-  ui.message.hidden = false;
-  ui.messageText.textContent = text;
-  ui.status.textContent = '';
-}
-
-function clearError() {
-  ui.message.hidden = true;
-  ui.messageText.textContent = '';
-}
-
-function say(text) {
-  ui.status.textContent = text;
-}
-
-/** Runs `fn`; a thrown error goes to the alert and the page carries on as it was. */
-async function attempt(fn) {
-  try {
-    await fn();
-    return true;
-  } catch (err) {
-    console.warn(err);
-    showError(err);
-    return false;
-  }
-}
 
 // ---------------------------------------------------------------- the chain
 

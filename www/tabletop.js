@@ -4,6 +4,7 @@
 // time budget per frame and redraws the view, the graph and the probability table.
 
 import init, { Tabletop, tabletopSynth, tabletopRulesDefault, tabletopCheckRules, version } from './pkg/ksmcmc.js';
+import { messages } from './lib/messages.js';
 
 /** Milliseconds of iterations per animation frame. */
 const BUDGET_MS = 10;
@@ -20,6 +21,8 @@ const ui = {
   stat: { iteration: $('stat-iteration'), lp: $('stat-lp'), best: $('stat-best'), rate: $('stat-rate') },
 };
 
+const { showError, clearError } = messages(ui);
+
 const state = {
   tt: null,
   sceneJson: '',
@@ -32,15 +35,6 @@ const state = {
   lastAnalysis: null,
   rate: { t: 0, it: 0 },
 };
-
-function showError(err) {
-  ui.message.hidden = false;
-  ui.messageText.textContent = err instanceof Error ? err.message : String(err);
-}
-function clearError() {
-  ui.message.hidden = true;
-  ui.messageText.textContent = '';
-}
 
 function parseSeed(text) {
   const t = String(text).trim();

@@ -1,0 +1,37 @@
+// The page's alert and status line, the same on every page.
+//
+// `ui.message` is the role="alert" box, `ui.messageText` its text, `ui.status` the status line.
+
+/** Error and status helpers bound to a page's `ui` elements. */
+export function messages(ui) {
+  /** Shows an error in the alert (first unhidden, then filled, so screen readers announce it). */
+  function showError(err) {
+    const text = err instanceof Error ? err.message : String(err);
+    ui.message.hidden = false;
+    ui.messageText.textContent = text;
+    if (ui.status) ui.status.textContent = '';
+  }
+
+  function clearError() {
+    ui.message.hidden = true;
+    ui.messageText.textContent = '';
+  }
+
+  function say(text) {
+    ui.status.textContent = text;
+  }
+
+  /** Runs `fn`; a thrown error goes to the alert and the page carries on as it was. */
+  async function attempt(fn) {
+    try {
+      await fn();
+      return true;
+    } catch (err) {
+      console.warn(err);
+      showError(err);
+      return false;
+    }
+  }
+
+  return { showError, clearError, say, attempt };
+}

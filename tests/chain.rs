@@ -204,3 +204,13 @@ fn a_broken_knowledge_base_is_a_clear_error() {
     c.knowledge.object_share = f64::NAN;
     assert!(matches!(Chain::new(&map, c, 1).unwrap_err(), ChainError::Config(_)));
 }
+
+#[test]
+fn config_json_refuses_misspelt_fields() {
+    for text in
+        [r#"{"posterior": {"temprature": 2.0}}"#, r#"{"kernel": {}}"#, r#"{"detectors": {"walls": {"min_segmnt": 3}}}"#]
+    {
+        let e = serde_json::from_str::<ChainConfig>(text).unwrap_err().to_string();
+        assert!(e.contains("unknown field"), "{text}: {e}");
+    }
+}

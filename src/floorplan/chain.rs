@@ -34,7 +34,7 @@ use serde::{Deserialize, Serialize};
 
 /// Bottom-up detectors feeding the chain.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(default)]
+#[serde(default, deny_unknown_fields)]
 pub struct DetectorConfig {
     /// The wall-based unit detector.
     pub walls: vision::walls::WallConfig,
@@ -63,7 +63,7 @@ impl Default for DetectorConfig {
 /// Everything that configures a chain. Every field has a documented default; JSON with any
 /// subset of fields deserialises onto the defaults.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
-#[serde(default)]
+#[serde(default, deny_unknown_fields)]
 pub struct ChainConfig {
     /// The posterior (sensor table, overlap penalty, temperature).
     pub posterior: PosteriorConfig,
@@ -87,7 +87,7 @@ pub struct ChainConfig {
 
 /// What the chain records for display.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(default)]
+#[serde(default, deny_unknown_fields)]
 pub struct OutputConfig {
     /// How many recent accepted worlds to keep (the posterior cloud).
     pub samples: usize,

@@ -28,7 +28,7 @@ use std::collections::HashMap;
 
 /// Parameters of the kernels' proposal distributions.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(default)]
+#[serde(default, deny_unknown_fields)]
 pub struct KernelConfig {
     /// Smallest unit side in cells (two walls and at least one free cell: 3 or more).
     pub min_side: i32,

@@ -18,7 +18,7 @@ use serde::{Deserialize, Serialize};
 
 /// The geometry classifier of Tab. 3.6.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(default)]
+#[serde(default, deny_unknown_fields)]
 pub struct GeometryClassifier {
     /// Free area (m², inside the walls) above which a unit is big: hall-like.
     pub hall_area_m2: f64,
@@ -176,7 +176,7 @@ pub const BUILTIN_INDOOR: &str = include_str!("../../samples/knowledge/indoor.ml
 
 /// How knowledge supervises the chain.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(default)]
+#[serde(default, deny_unknown_fields)]
 pub struct KnowledgeConfig {
     /// Use knowledge in the chain (false: the weak-prior mode of the first paper; types are
     /// then inferred on the final world only). Off by default for now: on our maps it does not

@@ -58,7 +58,7 @@ impl SensorModel {
 
 /// The numbers that define the posterior.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(default)]
+#[serde(default, deny_unknown_fields)]
 pub struct PosteriorConfig {
     /// Sensor table (Tab. 3.1).
     pub sensor: SensorModel,

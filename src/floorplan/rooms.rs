@@ -13,7 +13,7 @@ use std::collections::VecDeque;
 
 /// Parameters of the room grouping.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
-#[serde(default)]
+#[serde(default, deny_unknown_fields)]
 pub struct RoomConfig {
     /// Largest share of occupied cells in the band between two units for their boundary to
     /// count as open.

@@ -35,7 +35,7 @@ pub struct DoorSpec {
 
 /// Geometry limits for doors, in cells.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
-#[serde(default)]
+#[serde(default, deny_unknown_fields)]
 pub struct DoorLimits {
     /// Shortest door.
     pub min_len: i32,

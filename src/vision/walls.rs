@@ -15,7 +15,7 @@ use serde::{Deserialize, Serialize};
 
 /// Parameters of the WBU detector.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(default)]
+#[serde(default, deny_unknown_fields)]
 pub struct WallConfig {
     /// Shortest run of occupied cells that counts as a wall segment.
     pub min_segment: i32,

@@ -3,7 +3,7 @@
 
 import init, { Map as OccMap, drawToCanvas, synth, version } from './pkg/ksmcmc.js';
 import { TOOLS, MAX_BRUSH, brushOffsets, stamp, strokeTo, cellAt } from './lib/paint.js';
-import { planOpen, pickYamlImage, stem, parseSeed } from './lib/files.js';
+import { planOpen, pickYamlImage, stem, parseSeed, onDroppedFiles } from './lib/files.js';
 import { messages } from './lib/messages.js';
 
 const $ = (id) => document.getElementById(id);
@@ -451,20 +451,7 @@ function wire() {
     }
   });
 
-  for (const type of ['dragenter', 'dragover']) {
-    ui.stage.addEventListener(type, (e) => {
-      e.preventDefault();
-      ui.stage.classList.add('dragging');
-    });
-  }
-  ui.stage.addEventListener('dragleave', (e) => {
-    if (!ui.stage.contains(e.relatedTarget)) ui.stage.classList.remove('dragging');
-  });
-  ui.stage.addEventListener('drop', (e) => {
-    e.preventDefault();
-    ui.stage.classList.remove('dragging');
-    openFiles(e.dataTransfer.files);
-  });
+  onDroppedFiles(ui.stage, openFiles);
 
   ui.downloadPgm.addEventListener('click', () =>
     attempt(() => save(`${state.name}.pgm`, state.map.toPgm(), 'image/x-portable-graymap')),

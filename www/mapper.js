@@ -7,7 +7,7 @@ import init, {
   Map as OccMap, Mapper, chainConfigDefaults, drawMapper, drawSceneGraph, drawToCanvas, version,
 } from './pkg/ksmcmc.js';
 import { TOOLS, MAX_BRUSH, brushOffsets, stamp, strokeTo, cellAt } from './lib/paint.js';
-import { planOpen, pickYamlImage, stem, parseSeed } from './lib/files.js';
+import { planOpen, pickYamlImage, stem, parseSeed, onDroppedFiles } from './lib/files.js';
 import { drawPlot, formatNumber, parseIterationsPerFrame } from './lib/plot.js';
 import { messages } from './lib/messages.js';
 
@@ -640,20 +640,7 @@ function wire() {
   ui.canvas.addEventListener('pointercancel', onPointerUp);
   document.addEventListener('keydown', onKey);
 
-  for (const type of ['dragenter', 'dragover']) {
-    ui.stage.addEventListener(type, (e) => {
-      e.preventDefault();
-      ui.stage.classList.add('dragging');
-    });
-  }
-  ui.stage.addEventListener('dragleave', (e) => {
-    if (!ui.stage.contains(e.relatedTarget)) ui.stage.classList.remove('dragging');
-  });
-  ui.stage.addEventListener('drop', (e) => {
-    e.preventDefault();
-    ui.stage.classList.remove('dragging');
-    attempt(() => openFiles(e.dataTransfer.files));
-  });
+  onDroppedFiles(ui.stage, (files) => attempt(() => openFiles(files)));
   new ResizeObserver(() => fit()).observe(ui.stage);
   window.addEventListener('resize', fit);
 }

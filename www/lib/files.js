@@ -123,3 +123,24 @@ export function parseSeed(text) {
   const big = BigInt(t);
   return big <= BigInt(Number.MAX_SAFE_INTEGER) ? Number(big) : big;
 }
+
+/**
+ * Makes `stage` a drop target for files: it shows the `dragging` class while files hover
+ * over it and calls `open(files)` with the dropped `FileList`.
+ */
+export function onDroppedFiles(stage, open) {
+  for (const type of ['dragenter', 'dragover']) {
+    stage.addEventListener(type, (e) => {
+      e.preventDefault();
+      stage.classList.add('dragging');
+    });
+  }
+  stage.addEventListener('dragleave', (e) => {
+    if (!stage.contains(e.relatedTarget)) stage.classList.remove('dragging');
+  });
+  stage.addEventListener('drop', (e) => {
+    e.preventDefault();
+    stage.classList.remove('dragging');
+    open(e.dataTransfer.files);
+  });
+}

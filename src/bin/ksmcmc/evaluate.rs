@@ -119,22 +119,11 @@ fn synthetic(o: &Opts) -> Result<(), CliError> {
 
 /// Weak prior versus knowledge supervision (the comparison of Fig. 3.34).
 fn knowledge(dir: &Path, o: &Opts) -> Result<(), CliError> {
-    use ksmcmc::floorplan::knowledge::{defects, Knowledge};
+    use ksmcmc::floorplan::knowledge::defects;
     println!("\n### Weak prior versus knowledge supervision ({} iterations)\n", o.iterations);
     println!("| maps | mode | K(W,M) | unit count error | defects | type accuracy |");
     println!("|---|---|---|---|---|---|");
-    // Type the final world (weak mode) or keep the chain's types (knowledge mode).
-    let finish = |chain: &Chain, resolution: f64| -> Result<ksmcmc::floorplan::World, CliError> {
-        let mut w = chain.best_world();
-        if !chain.config().knowledge.enabled {
-            let mut k = Knowledge::new(&Default::default()).map_err(|e| args::failed("knowledge", e))?;
-            let inferred = k.infer(&w, resolution).map_err(|e| args::failed("knowledge", e))?;
-            for u in &mut w.units {
-                u.kind = inferred.types.get(&u.id).map_or(u.kind, |t| t.0);
-            }
-        }
-        Ok(w)
-    };
+
     for enabled in [false, true] {
         let mode = if enabled { "knowledge" } else { "weak prior" };
         let mut config = o.config.clone();
@@ -143,8 +132,7 @@ fn knowledge(dir: &Path, o: &Opts) -> Result<(), CliError> {
         let (mut ks, mut errs, mut defs, mut typed, mut right) = (vec![], vec![], vec![], 0u32, 0u32);
         for seed in 0..o.seeds {
             let s = generate(&SynthConfig::default(), 200 + seed).map_err(|e| args::failed("synth", e))?;
-            let chain = explain(&s.map, &o2, seed + 1)?;
-            let w = finish(&chain, s.map.yaml().resolution)?;
+            let w = explain(&s.map, &o2, seed + 1)?.best_world_typed();
             ks.push(prediction_rate(s.map.classified(), &w));
             errs.push((w.units.len() as f64 - s.truth.units.len() as f64).abs());
             if let Some(d) = defects(&w) {
@@ -181,8 +169,7 @@ fn knowledge(dir: &Path, o: &Opts) -> Result<(), CliError> {
             map.set_classifier(Classifier::default()).map_err(|e| args::failed("classifier", e))?;
             let (mut ks, mut defs, mut units) = (vec![], vec![], vec![]);
             for seed in 1..=o.seeds.min(3) {
-                let chain = explain(&map, &o2, seed)?;
-                let w = finish(&chain, map.yaml().resolution)?;
+                let w = explain(&map, &o2, seed)?.best_world_typed();
                 ks.push(prediction_rate(map.classified(), &w));
                 units.push(w.units.len() as f64);
                 if let Some(d) = defects(&w) {

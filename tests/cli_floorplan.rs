@@ -52,6 +52,9 @@ fn floorplan_writes_every_output_and_scores_its_labels() {
         assert!(report.get(key).is_some(), "report.json lacks {key}");
     }
     assert_eq!(report["iterations"], 6000);
+    assert_eq!(report["unexplained_areas"].as_u64(), Some(world.unexplained.len() as u64));
+    let n_cells: u64 = world.unexplained.iter().map(|a| a.cells as u64).sum();
+    assert_eq!(report["unexplained_cells"].as_u64(), Some(n_cells));
     assert!(report["cell_prediction_rate"].as_f64().unwrap() > 0.9);
     // labels.pgm: 16-bit, map-sized, rooms numbered 1..=n on free cells only.
     let labels = std::fs::read(d.join("labels.pgm")).unwrap();

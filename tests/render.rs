@@ -1,11 +1,11 @@
 //! Pixel tests for `ksmcmc::render`: map colours, world overlays, frames, labels, PNG output,
 //! and every real map in `shared/datasets`.
 
-use ksmcmc::floorplan::{Door, Frame, Unit, UnitType, World};
+use ksmcmc::floorplan::{Door, Frame, UnexplainedArea, Unit, UnitType, World};
 use ksmcmc::grid::{Cell, Grid, OccupancyMap};
 use ksmcmc::render::{
     self, cell_rgb, draw_labels, draw_map, encode_png, font, label_rgb, label_text_scale, render, to_rgba, try_render,
-    RenderError, RenderOptions, DOOR_RGBA, LABEL_TEXT_RGBA, MAX_PIXELS, WALL_RGBA,
+    RenderError, RenderOptions, DOOR_RGBA, LABEL_TEXT_RGBA, MAX_PIXELS, UNEXPLAINED_RGBA, WALL_RGBA,
 };
 use tiny_skia::Pixmap;
 
@@ -85,6 +85,36 @@ fn map_and_world_have_the_papers_colours() {
     assert_eq!(rgb(&pixmap, 13, 2), cell_rgb(Cell::Unknown), "unknown");
     assert_eq!(rgb(&pixmap, 15, 11), WHITE, "far corner");
     assert!(pixmap.pixels().iter().all(|p| p.alpha() == 255), "the picture is opaque");
+}
+
+#[test]
+fn unexplained_areas_are_tinted_orange_exactly_on_their_runs() {
+    let map = small_map();
+    let mut world = small_world();
+    // Free cells below both units: rows 9 and 10, an L of 3 + 1 cells.
+    world.unexplained.push(UnexplainedArea {
+        id: 1,
+        cells: 4,
+        x0: 2,
+        y0: 9,
+        x1: 4,
+        y1: 10,
+        runs: vec![[9, 2, 4], [10, 4, 4]],
+    });
+    world.validate().unwrap();
+    let pixmap = render(&map, Some(&world), &no_labels(1));
+    let [r, g, b, a] = UNEXPLAINED_RGBA;
+    let blend = |bg: u8, fg: u8| ((fg as u32 * a as u32 + bg as u32 * (255 - a as u32)) as f64 / 255.0) as i32;
+    let expected = [blend(255, r), blend(255, g), blend(255, b)];
+    for (x, y) in [(2, 9), (3, 9), (4, 9), (4, 10)] {
+        let c = rgb(&pixmap, x, y);
+        for k in 0..3 {
+            assert!((c[k] as i32 - expected[k]).abs() <= 1, "({x}, {y}) is {c:?}, expected about {expected:?}");
+        }
+    }
+    for (x, y) in [(1, 9), (5, 9), (2, 10), (3, 10), (4, 11), (4, 8)] {
+        assert_eq!(rgb(&pixmap, x, y), WHITE, "({x}, {y}) is not in the area");
+    }
 }
 
 #[test]

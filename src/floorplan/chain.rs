@@ -591,6 +591,14 @@ impl Chain {
         }
         w.object_cells.sort_unstable();
         w.object_cells.dedup();
+        let unit_rects: Vec<Rect> = units.iter().map(|u| u.rect()).collect();
+        let door_rects: Vec<Rect> = w.doors.iter().map(|d| d.rect()).collect();
+        w.unexplained = super::unexplained::unexplained_areas(
+            &self.world_map,
+            &unit_rects,
+            &door_rects,
+            super::unexplained::MIN_UNEXPLAINED_CELLS,
+        );
         w
     }
 

@@ -14,7 +14,8 @@ pub mod report;
 pub mod rooms;
 pub mod state;
 pub mod synth;
+pub mod unexplained;
 pub mod world;
 
 pub use chain::{Chain, ChainConfig, ChainError, DetectorConfig, OutputConfig};
-pub use world::{Door, Frame, Rect, Unit, UnitType, World, WorldError, WORLD_FORMAT};
+pub use world::{Door, Frame, Rect, UnexplainedArea, Unit, UnitType, World, WorldError, WORLD_FORMAT};

@@ -10,7 +10,7 @@ use crate::mcmc::Kernel;
 
 /// `report.json` for a chain's typed best `world` on `map`, with its room `labels` and the
 /// `seconds` spent iterating: iterations and speed, K(W,M) and the confusion counts, units,
-/// doors, rooms, types, defects, log posterior, seed, rotation, wall thickness, knowledge
+/// doors, unexplained areas ("N") and their cells, rooms, types, defects, log posterior, seed, rotation, wall thickness, knowledge
 /// status and per-kernel counts.
 pub fn report(chain: &Chain, map: &OccupancyMap, world: &World, labels: &Grid<u16>, seconds: f64) -> serde_json::Value {
     let t = chain.trace();
@@ -35,6 +35,8 @@ pub fn report(chain: &Chain, map: &OccupancyMap, world: &World, labels: &Grid<u1
         "confusion": metrics::confusion(map.classified(), world),
         "units": world.units.len(),
         "doors": world.doors.len(),
+        "unexplained_areas": world.unexplained.len(),
+        "unexplained_cells": world.unexplained.iter().map(|a| a.cells as u64).sum::<u64>(),
         "rooms": labels.cells().iter().copied().max().unwrap_or(0),
         "types": types,
         "defects": defects(world),

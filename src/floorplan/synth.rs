@@ -166,6 +166,9 @@ pub fn generate(config: &SynthConfig, seed: u64) -> Result<Synthetic, SynthError
         units,
         doors,
         object_cells: observed.objects,
+        // The truth explains the building by construction; what a scan leaves outside it is
+        // not part of the plan.
+        unexplained: Vec::new(),
     };
     Ok(Synthetic { map: occupancy_map(map_cells, config.resolution), truth, labels, explored })
 }

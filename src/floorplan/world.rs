@@ -17,7 +17,9 @@
 //!   "wall_thickness": 2,
 //!   "units": [ { "id": 1, "x": 10, "y": 10, "w": 30, "h": 20, "type": "room" } ],
 //!   "doors": [ { "id": 1, "units": [1, 2], "x0": 39, "y0": 14, "x1": 39, "y1": 18 } ],
-//!   "object_cells": [[12, 14], [12, 15]]
+//!   "object_cells": [[12, 14], [12, 15]],
+//!   "unexplained": [ { "id": 1, "cells": 14, "x0": 50, "y0": 3, "x1": 55, "y1": 5,
+//!                      "runs": [[3, 50, 55], [4, 50, 55], [5, 54, 55]] } ]
 //! }
 //! ```
 //!
@@ -29,6 +31,11 @@
 //! * `doors[]`: the rectangle of cells from `(x0, y0)` to `(x1, y1)` inclusive, through the wall
 //!   between the two units named by id (a straight run of cells where they share a thin wall).
 //! * `object_cells`: unknown map cells inside units (furniture), optional.
+//! * `unexplained`: areas of free map cells that no unit or door covers (the papers' "N"),
+//!   optional: each a 4-connected component with its cell count, bounding box `(x0, y0)` to
+//!   `(x1, y1)` inclusive, and its cells as row runs `[y, x_first, x_last]`, top to bottom.
+//!   The chain lists components of at least
+//!   [`MIN_UNEXPLAINED_CELLS`](super::unexplained::MIN_UNEXPLAINED_CELLS) cells.
 
 use serde::{Deserialize, Serialize};
 
@@ -262,6 +269,30 @@ pub struct World {
     /// Unknown map cells inside units (furniture and clutter), world frame.
     #[serde(default)]
     pub object_cells: Vec<[i32; 2]>,
+    /// Free areas no unit explains (the papers' "N"), world frame.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub unexplained: Vec<UnexplainedArea>,
+}
+
+/// A connected area of free cells that no unit or door covers (the papers' "N"): free space
+/// too small or too irregular to be a unit, or a room the chain has not found.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct UnexplainedArea {
+    /// Identifier, unique within the world's unexplained areas.
+    pub id: u32,
+    /// Number of cells.
+    pub cells: u32,
+    /// Bounding box: first column.
+    pub x0: i32,
+    /// Bounding box: first row.
+    pub y0: i32,
+    /// Bounding box: last column (inclusive).
+    pub x1: i32,
+    /// Bounding box: last row (inclusive).
+    pub y1: i32,
+    /// The cells as row runs `[y, x_first, x_last]` (inclusive), top to bottom, left to right.
+    pub runs: Vec<[i32; 3]>,
 }
 
 fn one() -> i32 {
@@ -294,6 +325,7 @@ impl World {
             units: Vec::new(),
             doors: Vec::new(),
             object_cells: Vec::new(),
+            unexplained: Vec::new(),
         }
     }
 
@@ -368,6 +400,28 @@ impl World {
         for c in &self.object_cells {
             if c[0] < 0 || c[1] < 0 || c[0] as i64 >= ww || c[1] as i64 >= wh {
                 return bad(format!("world.json: object cell ({},{}) lies outside the world", c[0], c[1]));
+            }
+        }
+        for a in &self.unexplained {
+            let mut sum = 0u64;
+            for r in &a.runs {
+                let [y, x0, x1] = *r;
+                if y < a.y0 || y > a.y1 || x0 > x1 || x0 < a.x0 || x1 > a.x1 {
+                    return bad(format!(
+                        "world.json: unexplained area {} has a run [{y}, {x0}, {x1}] outside its box or reversed",
+                        a.id
+                    ));
+                }
+                sum += (x1 - x0 + 1) as u64;
+            }
+            if a.x0 < 0 || a.y0 < 0 || a.x1 as i64 >= ww || a.y1 as i64 >= wh {
+                return bad(format!("world.json: unexplained area {} lies outside the world", a.id));
+            }
+            if sum != a.cells as u64 {
+                return bad(format!(
+                    "world.json: unexplained area {} says {} cells but its runs hold {sum}",
+                    a.id, a.cells
+                ));
             }
         }
         Ok(())

@@ -13,7 +13,8 @@
 //!   ([`cell_rgb`]), each cell a `scale` x `scale` block of pixels;
 //! * each unit's walls, the outer ring of its rectangle, in blue ([`WALL_RGBA`]);
 //! * doors in cyan ([`DOOR_RGBA`]) and object cells (unknown cells inside units, furniture) in
-//!   semi-transparent green ([`OBJECT_RGBA`]);
+//!   semi-transparent green ([`OBJECT_RGBA`]); unexplained free areas, the papers' "N", in
+//!   semi-transparent orange ([`UNEXPLAINED_RGBA`]);
 //! * optionally each unit's type and id at its centre ("room 3"), in a small built-in bitmap
 //!   font ([`font`]) on a light box, because tiny-skia draws no text;
 //! * for a running chain, the posterior cloud: the last accepted worlds as thin
@@ -64,7 +65,7 @@ pub use graph::{
 };
 pub use world::{
     draw_tag, draw_world, label_text_scale, unit_label, DOOR_RGBA, LABEL_BACKGROUND_RGBA, LABEL_OUTLINE_RGBA,
-    LABEL_TEXT_RGBA, OBJECT_RGBA, WALL_RGBA,
+    LABEL_TEXT_RGBA, OBJECT_RGBA, UNEXPLAINED_RGBA, WALL_RGBA,
 };
 
 use crate::floorplan::World;

@@ -1,4 +1,5 @@
-//! Drawing a semantic [`World`] over a rendered map: walls, doors, object cells, labels.
+//! Drawing a semantic [`World`] over a rendered map: walls, doors, object cells, unexplained
+//! areas, labels.
 //!
 //! Everything in a world is a rectangle of cells in the *world frame*. Drawing works the same
 //! way for every kind of thing: list the world-frame cell rectangles, clip them to the part of
@@ -22,6 +23,8 @@ pub const WALL_RGBA: [u8; 4] = [0, 0, 255, 255];
 pub const DOOR_RGBA: [u8; 4] = [0, 255, 255, 255];
 /// Object cells (unknown cells inside units), semi-transparent green so the map shows through.
 pub const OBJECT_RGBA: [u8; 4] = [0, 255, 0, 150];
+/// Unexplained free areas (the papers' "N"), semi-transparent orange: where the model gave up.
+pub const UNEXPLAINED_RGBA: [u8; 4] = [255, 140, 0, 120];
 /// Label text: dark red, as the papers print unit types and ids in red.
 pub const LABEL_TEXT_RGBA: [u8; 4] = [150, 0, 0, 255];
 /// Label background box: light and mostly opaque, so a label reads over black and white alike.
@@ -57,6 +60,13 @@ pub fn draw_world(pixmap: &mut Pixmap, map_width: usize, map_height: usize, worl
     // Merged into rectangles: a furnished building has thousands, and one quad per cell made
     // them the slowest part of a frame.
     place.fill(pixmap, object_rects(&world.object_cells).into_iter(), OBJECT_RGBA);
+    let unexplained = world
+        .unexplained
+        .iter()
+        .flat_map(|a| a.runs.iter())
+        .filter(|r| r[1] <= r[2])
+        .map(|&[y, x0, x1]| CellRect { x0: x0 as i64, y0: y as i64, x1: x1 as i64 + 1, y1: y as i64 + 1 });
+    place.fill(pixmap, unexplained, UNEXPLAINED_RGBA);
 
     let walls = world.units.iter().filter(|u| u.w >= 1 && u.h >= 1).flat_map(|u| {
         CellRect::new(u.x as i64, u.y as i64, u.w as i64, u.h as i64).ring(world.wall_thickness.max(1) as i64)

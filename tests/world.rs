@@ -1,0 +1,79 @@
+//! `world.json`: round trips and every way a file can be refused.
+
+use ksmcmc::floorplan::{Door, UnexplainedArea, Unit, World};
+
+fn world() -> World {
+    let mut w = World::empty(40, 30);
+    w.units.push(Unit { id: 1, x: 0, y: 0, w: 20, h: 30, kind: Default::default() });
+    w.units.push(Unit { id: 2, x: 19, y: 0, w: 21, h: 12, kind: Default::default() });
+    w.doors.push(Door { id: 1, units: [1, 2], x0: 19, y0: 4, x1: 19, y1: 8 });
+    w.object_cells = vec![[3, 4], [3, 5]];
+    w.unexplained.push(UnexplainedArea {
+        id: 1,
+        cells: 5,
+        x0: 25,
+        y0: 20,
+        x1: 27,
+        y1: 21,
+        runs: vec![[20, 25, 27], [21, 26, 27]],
+    });
+    w
+}
+
+#[test]
+fn a_world_round_trips_and_empty_lists_are_optional() {
+    let w = world();
+    w.validate().unwrap();
+    assert_eq!(World::from_json(&w.to_json()).unwrap(), w);
+    let bare = r#"{"format": "ksmcmc-world/1", "frame": {"angle": 0.0, "world_size": [4, 4], "map_size": [4, 4]}, "units": []}"#;
+    let b = World::from_json(bare).unwrap();
+    assert!(b.doors.is_empty() && b.object_cells.is_empty() && b.unexplained.is_empty());
+    assert_eq!(b.wall_thickness, 1);
+    // No unexplained areas: the field is left out rather than written empty.
+    assert!(!World::empty(4, 4).to_json().contains("unexplained"));
+}
+
+#[test]
+fn every_bad_world_is_refused_with_a_message_naming_the_problem() {
+    let edit = |f: &dyn Fn(&mut World)| {
+        let mut w = world();
+        f(&mut w);
+        w.validate().unwrap_err().to_string()
+    };
+    let cases: Vec<(String, &str)> = vec![
+        (edit(&|w| w.format = "other/1".into()), "format"),
+        (edit(&|w| w.frame.angle = f64::NAN), "angle"),
+        (edit(&|w| w.frame.world_size = [0, 3]), "non-zero"),
+        (edit(&|w| w.wall_thickness = 0), "wall_thickness"),
+        (edit(&|w| w.units[1].id = 1), "appears twice"),
+        (edit(&|w| w.units[0].w = 0), "size"),
+        (edit(&|w| w.units[1].x = 30), "outside the 40x30 world"),
+        (edit(&|w| w.units[0].y = -1), "outside"),
+        (edit(&|w| w.doors[0].units = [1, 7]), "unit 7, which does not exist"),
+        (edit(&|w| w.doors[0].x1 = 40), "outside the world"),
+        (edit(&|w| w.object_cells.push([-1, 0])), "object cell"),
+        (edit(&|w| w.unexplained[0].cells = 6), "says 6 cells but its runs hold 5"),
+        (edit(&|w| w.unexplained[0].runs[0] = [20, 27, 25]), "reversed"),
+        (edit(&|w| w.unexplained[0].runs[1] = [22, 26, 27]), "outside its box"),
+        (edit(&|w| (w.unexplained[0].x1, w.unexplained[0].runs[0][2]) = (45, 45)), "outside the world"),
+    ];
+    for (err, needle) in cases {
+        assert!(err.starts_with("world.json: "), "{err}");
+        assert!(err.contains(needle), "expected {needle:?} in {err:?}");
+    }
+    for (text, needle) in [
+        ("{", "world.json"),
+        ("[]", "world.json"),
+        (
+            r#"{"format": "ksmcmc-world/1", "frame": {"angle": 0, "world_size": [4, 4], "map_size": [4, 4]}, "units": [], "colour": 1}"#,
+            "colour",
+        ),
+        (
+            r#"{"format": "ksmcmc-world/1", "frame": {"angle": 0, "world_size": [4, 4], "map_size": [4, 4]}, "units": [{"id": 1, "x": 0, "y": 0, "w": 2, "h": 2, "type": "kitchen"}]}"#,
+            "kitchen",
+        ),
+    ] {
+        let err = World::from_json(text).unwrap_err().to_string();
+        assert!(err.contains(needle), "expected {needle:?} in {err:?}");
+    }
+}

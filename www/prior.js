@@ -4,6 +4,7 @@
 // from the library's MLN engine (mlnLogWeight); this file is wiring and drawing.
 
 import init, { checkRules, mlnLogWeight } from './pkg/ksmcmc.js';
+import { rulesEditor } from './lib/rules-editor.js';
 
 const N = 400; // grid points over [0, 10]
 const XMAX = 10;
@@ -31,9 +32,10 @@ Middle(x) => !Right(x).
 `;
 
 const $ = (id) => document.getElementById(id);
-const ui = { kb: $('kb'), gutter: $('gutter'), error: $('kb-error'), plot: $('plot'), mass: $('mass'), samples: $('samples'), acceptance: $('acceptance') };
+const ui = { kb: $('kb'), error: $('kb-error'), plot: $('plot'), mass: $('mass'), samples: $('samples'), acceptance: $('acceptance') };
 
 const state = {
+  editor: null,
   goodKb: DEFAULT_KB,
   error: null,
   logWeights: [0, 0, 0],
@@ -73,41 +75,27 @@ function normal() {
 /** Line of a region's weight in the knowledge base: `<number> Region(x)`. */
 const weightLine = (r) => new RegExp(`^(\\s*)(-?[0-9.eE+-]+)(\\s+${r}\\(x\\)\\s*(//.*)?)$`, 'm');
 
-function setGutter(text, badLine) {
-  const lines = text.split('\n').length;
-  ui.gutter.replaceChildren(
-    ...Array.from({ length: lines }, (_, i) => {
-      const s = document.createElement('span');
-      s.textContent = `${i + 1}\n`;
-      if (i + 1 === badLine) s.className = 'bad';
-      return s;
-    }),
-  );
-  ui.gutter.scrollTop = ui.kb.scrollTop;
+/**
+ * The editor's check: the text must parse and give every region a log weight. On success it
+ * becomes the knowledge base; on error the last good one stays.
+ */
+function checkKb(text) {
+  const err = checkRules(text);
+  if (err) return err;
+  let lw;
+  try {
+    lw = REGIONS.map((r) => mlnLogWeight(text, `${r}(X)`));
+  } catch (e) {
+    return { line: 0, column: 0, message: String(e.message ?? e) };
+  }
+  state.goodKb = text;
+  state.logWeights = lw;
+  recompute();
+  return null;
 }
 
-/** Parses the text; on success it becomes the knowledge base, on error the last good one stays. */
-function applyKb(text) {
-  const err = checkRules(text);
-  let lw = null;
-  if (!err) {
-    try {
-      lw = REGIONS.map((r) => mlnLogWeight(text, `${r}(X)`));
-    } catch (e) {
-      state.error = { line: 0, column: 0, message: String(e.message ?? e) };
-    }
-  }
-  if (err) state.error = err;
-  if (lw) {
-    state.error = null;
-    state.goodKb = text;
-    state.logWeights = lw;
-    recompute();
-  }
-  ui.error.textContent = state.error
-    ? state.error.line ? `line ${state.error.line}, column ${state.error.column}: ${state.error.message}` : state.error.message
-    : '';
-  setGutter(text, state.error?.line);
+function applyKb(text, err) {
+  state.error = err;
   syncSliders(text);
 }
 
@@ -227,18 +215,16 @@ function onSlider(r) {
   const re = weightLine(r);
   if (!re.test(text)) return;
   ui.kb.value = text.replace(re, (_, a, _w, rest) => `${a}${Number(input.value)}${rest}`);
-  applyKb(ui.kb.value);
+  state.editor.check();
 }
 
 async function main() {
   try {
     await init();
     ui.kb.value = DEFAULT_KB;
-    ui.kb.addEventListener('input', () => applyKb(ui.kb.value));
-    ui.kb.addEventListener('scroll', () => (ui.gutter.scrollTop = ui.kb.scrollTop));
+    state.editor = rulesEditor(ui.kb, { check: checkKb, status: ui.error, okText: 'Knowledge base OK', gutterId: 'gutter', onCheck: applyKb });
     for (const r of REGIONS) $(`w-${r}`).addEventListener('input', () => onSlider(r));
     $('restart').addEventListener('click', restartSampler);
-    applyKb(DEFAULT_KB);
     window.__prior = {
       snapshot: () => ({
         error: state.error,

@@ -4,37 +4,21 @@
 // file is wiring.
 
 import init, { Map as OccMap, Mapper, builtinIndoorRules, checkRules, drawMapper, inferWorld } from './pkg/ksmcmc.js';
+import { rulesEditor } from './lib/rules-editor.js';
 
 const SAMPLE = 'office-small';
 const BUDGET_MS = 12;
 const INFER_EVERY_MS = 400;
 
 const $ = (id) => document.getElementById(id);
-const ui = { kb: $('kb'), gutter: $('gutter'), error: $('kb-error'), map: $('map'), evidence: $('evidence'), marginals: $('marginals').tBodies[0], sale: $('salele').tBodies[0] };
+const ui = { kb: $('kb'), error: $('kb-error'), map: $('map'), evidence: $('evidence'), marginals: $('marginals').tBodies[0], sale: $('salele').tBodies[0] };
 
-const state = { map: null, resolution: 0.05, mapper: null, goodKb: '', kbUsed: '', error: null, runs: 0, lastInfer: 0, inferred: null, worldUnits: 0, inferError: null };
+const state = { editor: null, map: null, resolution: 0.05, mapper: null, goodKb: '', kbUsed: '', error: null, runs: 0, lastInfer: 0, inferred: null, worldUnits: 0, inferError: null };
 
-function setGutter(text, badLine) {
-  const lines = text.split('\n').length;
-  ui.gutter.replaceChildren(
-    ...Array.from({ length: lines }, (_, i) => {
-      const s = document.createElement('span');
-      s.textContent = `${i + 1}\n`;
-      if (i + 1 === badLine) s.className = 'bad';
-      return s;
-    }),
-  );
-  ui.gutter.scrollTop = ui.kb.scrollTop;
-}
-
-/** Checks the text: a good one becomes the knowledge base, a bad one is reported and the last good stays. */
-function check() {
-  const text = ui.kb.value;
-  const err = checkRules(text);
+/** A good text becomes the knowledge base; a bad one is reported and the last good one stays. */
+function checked(text, err) {
   state.error = err;
   if (!err) state.goodKb = text;
-  ui.error.textContent = err ? (err.line ? `line ${err.line}, column ${err.column}: ${err.message}` : err.message) : '';
-  setGutter(text, err?.line);
 }
 
 function run() {
@@ -116,13 +100,11 @@ async function main() {
     state.map = OccMap.fromYaml(yaml, pgm);
     state.resolution = Number(yaml.match(/resolution:\s*([0-9.eE+-]+)/)?.[1] ?? 0.05);
     ui.kb.value = builtinIndoorRules();
-    check();
-    ui.kb.addEventListener('input', check);
-    ui.kb.addEventListener('scroll', () => (ui.gutter.scrollTop = ui.kb.scrollTop));
+    state.editor = rulesEditor(ui.kb, { check: checkRules, status: ui.error, okText: 'Knowledge base OK', gutterId: 'gutter', onCheck: checked });
     $('rerun').addEventListener('click', run);
     $('builtin').addEventListener('click', () => {
       ui.kb.value = builtinIndoorRules();
-      check();
+      state.editor.check();
     });
     run();
     window.__rules = {
@@ -136,7 +118,8 @@ async function main() {
         inferred: state.inferred,
         inferError: state.inferError,
         rows: ui.marginals.rows.length,
-        badGutterLine: Number(ui.gutter.querySelector('.bad')?.textContent ?? 0),
+        badGutterLine: Number(document.querySelector('#gutter .bad')?.textContent ?? 0),
+        underlined: document.querySelector('.rules-marks .err')?.textContent ?? null,
         errorText: ui.error.textContent,
       }),
     };

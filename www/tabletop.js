@@ -5,6 +5,7 @@
 
 import init, { Tabletop, tabletopSynth, tabletopRulesDefault, tabletopCheckRules, version } from './pkg/ksmcmc.js';
 import { messages } from './lib/messages.js';
+import { rulesEditor } from './lib/rules-editor.js';
 
 /** Milliseconds of iterations per animation frame. */
 const BUDGET_MS = 10;
@@ -25,6 +26,8 @@ const { showError, clearError } = messages(ui);
 
 const state = {
   tt: null,
+  /** The knowledge-base editor (lib/rules-editor.js), once the module has loaded. */
+  editor: null,
   sceneJson: '',
   sceneName: '',
   /** The rules in use: the last text that applied without error. */
@@ -145,16 +148,9 @@ function attempt(fn) {
   }
 }
 
-/** Shows the syntax check of the editor's text; returns whether it is usable. */
+/** Checks the editor's text now; returns whether it is usable. */
 function checkEditor() {
-  const e = tabletopCheckRules(ui.rules.value);
-  ui.rulesError.textContent = e
-    ? e.line > 0
-      ? `line ${e.line}, column ${e.column}: ${e.message}`
-      : e.message
-    : 'The rules parse.';
-  ui.rulesError.dataset.ok = e ? 'false' : 'true';
-  return !e;
+  return !state.editor.check();
 }
 
 function applyRules() {
@@ -200,11 +196,6 @@ function wire() {
     a.click();
     setTimeout(() => URL.revokeObjectURL(a.href), 1000);
   });
-  let timer = 0;
-  ui.rules.addEventListener('input', () => {
-    clearTimeout(timer);
-    timer = setTimeout(checkEditor, 150);
-  });
   ui.rulesApply.addEventListener('click', () => attempt(applyRules));
   ui.rulesDefault.addEventListener('click', () => {
     ui.rules.value = tabletopRulesDefault();
@@ -223,6 +214,8 @@ function expose() {
       analysis: state.lastAnalysis,
       error: ui.message.hidden ? null : ui.messageText.textContent,
       rulesError: ui.rulesError.textContent,
+      rulesUnderlined: document.querySelector('.rules-marks .err')?.textContent ?? null,
+      rulesBadLine: state.editor?.badLine ?? 0,
       rulesInUse: state.rules,
     }),
     synthText: () => tabletopSynth(9),
@@ -253,7 +246,13 @@ async function main() {
   ui.version.textContent = version();
   state.rules = tabletopRulesDefault();
   ui.rules.value = state.rules;
-  checkEditor();
+  state.editor = rulesEditor(ui.rules, {
+    check: tabletopCheckRules,
+    status: ui.rulesError,
+    okText: 'The rules parse.',
+    gutterId: 'rules-gutter',
+    delayMs: 150,
+  });
   for (const el of [ui.run, ui.step, ui.reset, ui.generate, ui.file, ui.download, ui.rulesApply, ui.rulesDefault]) el.disabled = false;
   const params = new URLSearchParams(location.search);
   if (params.has('scene')) ui.synthSeed.value = params.get('scene');

@@ -54,6 +54,25 @@ test('marginals table, syntax errors at line and column, re-run with edited rule
   assert.equal(s.error.column, 27);
   assert.equal(s.badGutterLine, i + 1, 'the gutter marks the line');
   assert.match(s.errorText, new RegExp(`^line ${i + 1}, column 27: `));
+  assert.equal(s.underlined, '=>', 'the offending connective is underlined');
+  // The underline sits on the text it names: on line i + 1, 26 characters in.
+  const geo = await page.evaluate(() => {
+    const ta = document.getElementById('kb');
+    const mark = document.querySelector('.rules-marks .err');
+    const cs = getComputedStyle(ta);
+    const t = ta.getBoundingClientRect();
+    const m = mark.getBoundingClientRect();
+    return {
+      top: m.top - (t.top + parseFloat(cs.paddingTop) - ta.scrollTop),
+      left: m.left - (t.left + parseFloat(cs.paddingLeft) - ta.scrollLeft),
+      line: parseFloat(cs.lineHeight),
+      char: m.width / mark.textContent.length,
+      decoration: getComputedStyle(mark).textDecorationStyle,
+    };
+  });
+  assert.ok(Math.abs(geo.top / geo.line - i) < 0.3, `underline at line ${geo.top / geo.line + 1}, expected ${i + 1}`);
+  assert.ok(Math.abs(geo.left / geo.char - 26) < 0.3, `underline at column ${geo.left / geo.char + 1}, expected 27`);
+  assert.equal(geo.decoration, 'wavy');
   assert.equal(s.goodKb, builtin, 'the last good rules stay');
   // Re-running with an error uses the last good rules.
   await page.click('#rerun');

@@ -103,8 +103,15 @@ describe('table-top page', () => {
     const msg = await page.textContent('#rules-error');
     const line = Number(/line (\d+)/.exec(msg)[1]);
     assert.equal(line, good.endsWith('\n') ? at - 1 : at, `the error is on the appended line: ${msg}`);
-    await page.click('#rules-apply');
     let s = await snap(page);
+    // The same editor as the floor-plan rules page: the line marked, the token underlined.
+    assert.equal(s.rulesBadLine, line);
+    assert.equal(await page.textContent('#rules-gutter .bad'), `${line}\n`);
+    const column = Number(/column (\d+)/.exec(msg)[1]);
+    const expected = '0.5 stable(x) ^ ^ hidden(x)'.slice(column - 1).match(/^([A-Za-z0-9_.]+|[=<>]+|.)/)?.[0] ?? '\u00a0';
+    assert.equal(s.rulesUnderlined, expected, `underline at column ${column}`);
+    await page.click('#rules-apply');
+    s = await snap(page);
     assert.ok(s.error, 'applying broken rules shows a message');
     assert.equal(s.rulesInUse, good, 'the last good rules stay in use');
     // The page still works with the good rules, and an edit that parses applies.

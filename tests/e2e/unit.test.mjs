@@ -4,6 +4,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { brushOffsets, cellAt, line, stamp, strokeTo, TOOLS } from '../../www/lib/paint.js';
 import { matchImage, parseSeed, pickYamlImage, planOpen, stem, yamlImageName } from '../../www/lib/files.js';
+import { errorSpan, errorText } from '../../www/lib/rules-editor.js';
 
 test('brushes are round and centred', () => {
   assert.deepEqual(brushOffsets(1), [[0, 0]]);
@@ -161,4 +162,26 @@ test('the page\'s sample index reads sizes and descriptions', () => {
   assert.throws(() => pgmSize(Buffer.from('P6 1 1 255\n')), /not a PGM/);
   const d = descriptions('| `map.pgm` | the map |\n| `office-small` | 400 x 300 | the defaults: `one` corridor |\n');
   assert.deepEqual(d, { 'office-small': 'the defaults: one corridor' });
+});
+
+test('the rules editor underlines the token at the parser\'s line and column', () => {
+  const text = 'Room(u)\nlog(0.9/0.1) HaLi(p) => => Hall(p)\n0.5 Hall(x) ^';
+  const at = (line, column) => {
+    const s = errorSpan(text, line, column);
+    return s && text.slice(s.start, s.end);
+  };
+  assert.equal(at(1, 1), 'Room', 'a word');
+  assert.equal(at(1, 5), '(', 'one punctuation character');
+  assert.equal(at(2, 25), '=>', 'a connective');
+  assert.equal(at(2, 14), 'HaLi');
+  assert.equal(at(2, 5), '0.9', 'a number');
+  assert.equal(at(2, 3), 'g', 'from the column to the end of the word');
+  const end = errorSpan(text, 3, 99);
+  assert.deepEqual(end, { start: text.length, end: text.length }, 'past the end of the last line: an empty span at its end');
+  const eol = errorSpan(text, 1, 8);
+  assert.deepEqual(eol, { start: 7, end: 7 }, 'past the end of a line: its end, not the next line');
+  for (const [l, c] of [[0, 1], [1, 0], [4, 1], [NaN, 1], [1.5, 2]]) assert.equal(errorSpan(text, l, c), null, `${l}:${c}`);
+  assert.equal(errorText({ line: 2, column: 25, message: 'expected a formula' }), 'line 2, column 25: expected a formula');
+  assert.equal(errorText({ line: 0, column: 0, message: 'too big' }), 'too big');
+  assert.equal(errorText(null), '');
 });

@@ -202,13 +202,9 @@ impl Mapper {
 
     /// Runs `n` iterations (a whole number, 0 to 10^7). Returns `n`.
     pub fn step(&mut self, n: f64) -> Result<f64, JsError> {
-        if !(n.is_finite() && n >= 0.0 && n.fract() == 0.0 && n <= MAX_STEP) {
-            return Err(JsError::new(&format!(
-                "step: {n} is not a number of iterations; give a whole number from 0 to {MAX_STEP}"
-            )));
-        }
+        let steps = super::iterations_from_js("step", n, MAX_STEP)?;
         let t0 = now_ms();
-        self.chain.step(n as u64);
+        self.chain.step(steps);
         self.busy_ms += now_ms() - t0;
         Ok(n)
     }
@@ -218,11 +214,7 @@ impl Mapper {
     /// `budgetMs` is a number from 0 to 60000.
     #[wasm_bindgen(js_name = runFor)]
     pub fn run_for(&mut self, #[wasm_bindgen(js_name = budgetMs)] budget_ms: f64) -> Result<f64, JsError> {
-        if !(budget_ms.is_finite() && (0.0..=MAX_BUDGET_MS).contains(&budget_ms)) {
-            return Err(JsError::new(&format!(
-                "runFor: {budget_ms} is not a time budget; give milliseconds from 0 to {MAX_BUDGET_MS}"
-            )));
-        }
+        let budget_ms = super::budget_from_js("runFor", budget_ms, MAX_BUDGET_MS)?;
         let t0 = now_ms();
         let done = self.chain.run_for(budget_ms, &mut now_ms);
         self.busy_ms += now_ms() - t0;

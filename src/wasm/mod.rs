@@ -328,6 +328,25 @@ fn options(map: &Map, scale: Option<u32>, labels: Option<bool>) -> Result<Render
 }
 
 /// The message of a thrown JavaScript value.
+/// A number of iterations from JavaScript, for `method` (`"step"`): a whole number from 0 to
+/// `max`, or an error that says so.
+pub(crate) fn iterations_from_js(method: &str, n: f64, max: f64) -> Result<u64, JsError> {
+    if n.is_finite() && n >= 0.0 && n.fract() == 0.0 && n <= max {
+        Ok(n as u64)
+    } else {
+        Err(JsError::new(&format!("{method}: {n} is not a number of iterations; give a whole number from 0 to {max}")))
+    }
+}
+
+/// A time budget from JavaScript, for `method` (`"runFor"`): milliseconds from 0 to `max`.
+pub(crate) fn budget_from_js(method: &str, ms: f64, max: f64) -> Result<f64, JsError> {
+    if ms.is_finite() && (0.0..=max).contains(&ms) {
+        Ok(ms)
+    } else {
+        Err(JsError::new(&format!("{method}: {ms} is not a time budget; give milliseconds from 0 to {max}")))
+    }
+}
+
 fn js_message(e: &JsValue) -> String {
     e.dyn_ref::<js_sys::Error>()
         .map(|e| String::from(e.message()))

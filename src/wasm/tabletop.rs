@@ -104,12 +104,8 @@ impl Tabletop {
 
     /// Runs `n` iterations (a whole number, 0 to 10^6). Returns `n`.
     pub fn step(&mut self, n: f64) -> Result<f64, JsError> {
-        if !(n.is_finite() && n >= 0.0 && n.fract() == 0.0 && n <= MAX_TT_STEP) {
-            return Err(JsError::new(&format!(
-                "step: {n} is not a number of iterations; give a whole number from 0 to {MAX_TT_STEP}"
-            )));
-        }
-        self.chain.step(n as u32);
+        let steps = super::iterations_from_js("step", n, MAX_TT_STEP)?;
+        self.chain.step(steps as u32);
         Ok(n)
     }
 
@@ -117,11 +113,7 @@ impl Tabletop {
     /// Returns how many ran.
     #[wasm_bindgen(js_name = runFor)]
     pub fn run_for(&mut self, #[wasm_bindgen(js_name = budgetMs)] budget_ms: f64) -> Result<f64, JsError> {
-        if !(budget_ms.is_finite() && (0.0..=MAX_TT_BUDGET_MS).contains(&budget_ms)) {
-            return Err(JsError::new(&format!(
-                "runFor: {budget_ms} is not a time budget; give milliseconds from 0 to {MAX_TT_BUDGET_MS}"
-            )));
-        }
+        let budget_ms = super::budget_from_js("runFor", budget_ms, MAX_TT_BUDGET_MS)?;
         let t0 = now_ms();
         let mut done = 0u32;
         loop {

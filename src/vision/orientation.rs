@@ -39,8 +39,9 @@ pub fn dominant_angle(grid: &Grid<Cell>) -> f64 {
     phi
 }
 
-/// The occupied cells with a free 4-neighbour (the faces of walls a range sensor sees); all
-/// other cells unknown.
+/// The occupied cells with a free 8-neighbour (the faces of walls a range sensor sees, with
+/// their corners: without them the short walls of a small room leave the angle a few degrees
+/// loose); all other cells unknown.
 pub fn wall_surface(grid: &Grid<Cell>) -> Grid<Cell> {
     let (w, h) = (grid.width(), grid.height());
     let mut out = Grid::new(w, h, Cell::Unknown);
@@ -49,8 +50,11 @@ pub fn wall_surface(grid: &Grid<Cell>) -> Grid<Cell> {
             if *grid.at(x, y) != Cell::Occupied {
                 continue;
             }
-            let free = |nx: usize, ny: usize| nx < w && ny < h && *grid.at(nx, ny) == Cell::Free;
-            if free(x.wrapping_sub(1), y) || free(x + 1, y) || free(x, y.wrapping_sub(1)) || free(x, y + 1) {
+            let free = |dx: usize, dy: usize| {
+                let (nx, ny) = ((x + dx).wrapping_sub(1), (y + dy).wrapping_sub(1));
+                nx < w && ny < h && *grid.at(nx, ny) == Cell::Free
+            };
+            if (0..3).any(|dy| (0..3).any(|dx| free(dx, dy))) {
                 *out.at_mut(x, y) = Cell::Occupied;
             }
         }

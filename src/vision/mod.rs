@@ -3,6 +3,7 @@
 
 pub mod doors;
 pub mod freespace;
+pub mod hidden;
 pub mod hough;
 pub mod orientation;
 pub mod walls;

@@ -10,10 +10,15 @@ use crate::grid::{Cell, Grid};
 
 /// The dominant wall direction in radians, in `(-π/4, π/4]`, measured from the image x axis
 /// towards y (down). 0 for a map without occupied cells.
+///
+/// Only the wall surfaces seen from free space vote ([`wall_surface`]): maps drawn with the
+/// outside filled in as occupied (the Bormann et al. floor plans) would otherwise let the
+/// outline of that solid mass, not the walls, choose the angle.
 pub fn dominant_angle(grid: &Grid<Cell>) -> f64 {
     // 0.25 degree bins.
     let n = 720;
-    let h = Hough::occupied(grid, n, 60_000);
+    let surface = wall_surface(grid);
+    let h = Hough::occupied(if surface.cells().contains(&Cell::Occupied) { &surface } else { grid }, n, 60_000);
     let half = n / 2;
     let mut best = (0usize, -1.0f64);
     for t in 0..half {
@@ -32,6 +37,29 @@ pub fn dominant_angle(grid: &Grid<Cell>) -> f64 {
         phi -= quarter;
     }
     phi
+}
+
+/// The occupied cells with a free 8-neighbour (the faces of walls a range sensor sees, with
+/// their corners: without them the short walls of a small room leave the angle a few degrees
+/// loose); all other cells unknown.
+pub fn wall_surface(grid: &Grid<Cell>) -> Grid<Cell> {
+    let (w, h) = (grid.width(), grid.height());
+    let mut out = Grid::new(w, h, Cell::Unknown);
+    for y in 0..h {
+        for x in 0..w {
+            if *grid.at(x, y) != Cell::Occupied {
+                continue;
+            }
+            let free = |dx: usize, dy: usize| {
+                let (nx, ny) = ((x + dx).wrapping_sub(1), (y + dy).wrapping_sub(1));
+                nx < w && ny < h && *grid.at(nx, ny) == Cell::Free
+            };
+            if (0..3).any(|dy| (0..3).any(|dx| free(dx, dy))) {
+                *out.at_mut(x, y) = Cell::Occupied;
+            }
+        }
+    }
+    out
 }
 
 /// Resamples `grid` into a world frame rotated by `angle` (nearest cell), returning the

@@ -406,6 +406,29 @@ impl Chain {
         w
     }
 
+    /// The best world with the chain's own unit ids, for inference on it.
+    fn internal_best_world(&self) -> World {
+        let mut w = World::empty(self.frame.map_size[0], self.frame.map_size[1]);
+        w.frame = self.frame;
+        w.wall_thickness = self.state.wall;
+        w.units = self.best.units.clone();
+        let rect_of = |id: u32| self.best.units.iter().find(|u| u.id == id).map(|u| u.rect());
+        for (k, d) in self.best.doors.iter().enumerate() {
+            let (Some(lo), Some(hi)) = (rect_of(d.lo), rect_of(d.hi)) else { continue };
+            if let Some(r) = super::state::door_rect(lo, hi, d, &self.config.doors, self.state.wall) {
+                w.doors.push(Door {
+                    id: k as u32 + 1,
+                    units: [d.lo, d.hi],
+                    x0: r.x,
+                    y0: r.y,
+                    x1: r.right() - 1,
+                    y1: r.bottom() - 1,
+                });
+            }
+        }
+        w
+    }
+
     /// Runs knowledge inference on the current world now, if knowledge is enabled; the types
     /// and same-length pairs then shape the posterior until the next inference.
     pub fn infer_knowledge(&mut self) -> Result<(), ChainError> {
@@ -428,6 +451,17 @@ impl Chain {
                 self.best_iteration = self.iteration;
                 self.best.units.clone_from(&self.state.units);
                 self.best.doors.clone_from(&self.state.doors);
+            }
+        }
+        // The best world may be an older one the current inference did not see: type it by
+        // inference on itself (cached by evidence, so free while it stays the best).
+        if !self.best.units.is_empty() {
+            let best = self.internal_best_world();
+            if let Some(k) = self.knowledge.as_mut() {
+                let typed = k.infer(&best, resolution).map_err(|e| ChainError::Knowledge(e.to_string()))?;
+                for u in &mut self.best.units {
+                    u.kind = typed.types.get(&u.id).map_or(UnitType::Unknown, |t| t.0);
+                }
             }
         }
         Ok(())

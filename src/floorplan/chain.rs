@@ -202,6 +202,8 @@ pub struct Chain {
     /// `log p(C_M | object) - log p(C_M | free)` for unknown and occupied map cells, floored at
     /// zero: a cell is an object only where that explains it better.
     object_gain: [f64; 2],
+    /// The map cells that may be objects (knowledge mode only).
+    objects: Option<super::knowledge::ObjectCells>,
     knowledge_error: Option<String>,
     /// Types final worlds in the weak-prior mode (built-in rules), created on first use.
     typer: Option<super::knowledge::Knowledge>,
@@ -249,9 +251,8 @@ impl Chain {
         let wall = config.wall_thickness.unwrap_or_else(|| vision::walls::ring_depth(classified, angle));
         let min_side = config.kernels.min_side.max(2 * wall + 1);
         let candidates = Candidates::new(found.into_iter().filter(|(r, _)| r.w >= min_side && r.h >= min_side));
-        let mut chain = Self::with_parts(config, frame, world_map, classified.clone(), candidates, wall, seed)?;
-        chain.resolution = map.yaml().resolution;
-        Ok(chain)
+        let resolution = map.yaml().resolution;
+        Self::with_parts(config, frame, world_map, classified.clone(), candidates, wall, resolution, seed)
     }
 
     /// A chain on an upright world-frame map with an explicit ADD candidate pool (no detectors,
@@ -265,9 +266,10 @@ impl Chain {
         config.validate()?;
         let frame = Frame::identity(map.width() as u32, map.height() as u32);
         let wall = config.wall_thickness.unwrap_or(1);
-        Self::with_parts(config, frame, map.clone(), map.clone(), Candidates::new(candidates), wall, seed)
+        Self::with_parts(config, frame, map.clone(), map.clone(), Candidates::new(candidates), wall, 0.05, seed)
     }
 
+    #[allow(clippy::too_many_arguments)]
     fn with_parts(
         config: ChainConfig,
         frame: Frame,
@@ -275,6 +277,7 @@ impl Chain {
         map: Grid<Cell>,
         candidates: Candidates,
         wall: i32,
+        resolution: f64,
         seed: u64,
     ) -> Result<Chain, ChainError> {
         let knowledge = if config.knowledge.enabled {
@@ -291,6 +294,9 @@ impl Chain {
             (libm::log(k.object[1]) - libm::log(sensor[0][1])).max(0.0),
             (libm::log(k.object[2]) - libm::log(sensor[0][2])).max(0.0),
         ];
+        let objects = knowledge
+            .is_some()
+            .then(|| super::knowledge::ObjectCells::new(&world_map, resolution, config.knowledge.max_object_m));
         let state = State::new(&world_map, config.doors, wall);
         let proposer = Proposer::new(config.kernels, candidates, state.width(), state.height(), wall);
         let posterior = Posterior::new(&config.posterior);
@@ -318,8 +324,9 @@ impl Chain {
             phase_index: 0,
             knowledge,
             inferred: Default::default(),
-            resolution: 0.05,
+            resolution,
             object_gain,
+            objects,
             knowledge_error: None,
             typer: None,
         })
@@ -338,25 +345,28 @@ impl Chain {
         let t = self.state.wall;
         let mut s = 0.0;
         for u in units {
-            let tolerant =
-                matches!(self.inferred.types.get(&u.id), Some((UnitType::Room | UnitType::Hall | UnitType::Other, _)));
-            if tolerant && u.w > 2 * t && u.h > 2 * t {
+            // Only corridors hold no objects. A unit born since the last inference has no type
+            // yet and is scored as the non-corridor most units are: scoring it as a corridor
+            // would make every SPLIT or MERGE forfeit the objects of the units it replaces, and
+            // freeze whatever world the first inference saw.
+            let tolerant = !matches!(self.inferred.types.get(&u.id), Some((UnitType::Corridor, _)));
+            if let (true, Some(objects)) = (tolerant && u.w > 2 * t && u.h > 2 * t, &self.objects) {
                 let inside = Rect::new(u.x + t, u.y + t, u.w - 2 * t, u.h - 2 * t);
                 // Object cells, up to the allowed share of the interior, unknown ones first.
                 let cap = (self.config.knowledge.object_share * inside.area() as f64) as u32;
-                let unknown = self.state.unknown_in(inside).min(cap);
-                let occupied = self.state.occupied_in(inside).min(cap - unknown);
+                let unknown = objects.unknown_in(inside).min(cap);
+                let occupied = objects.occupied_in(inside).min(cap - unknown);
                 s += unknown as f64 * self.object_gain[0] + occupied as f64 * self.object_gain[1];
             }
         }
         let sigma = self.config.knowledge.same_length_sigma;
-        for &(p, q, _) in &self.inferred.same_length {
+        for &(p, q, prob) in &self.inferred.same_length {
             let (Some(a), Some(b)) = (units.iter().find(|u| u.id == p), units.iter().find(|u| u.id == q)) else {
                 continue;
             };
             if let Some((la, lb)) = super::knowledge::connecting_walls(a, b, t) {
                 let d = (la - lb) as f64;
-                s -= d * d / (2.0 * sigma * sigma);
+                s += super::knowledge::same_length_log_factor(d, sigma, prob);
             }
         }
         s
@@ -399,6 +409,29 @@ impl Chain {
         w
     }
 
+    /// The best world with the chain's own unit ids, for inference on it.
+    fn internal_best_world(&self) -> World {
+        let mut w = World::empty(self.frame.map_size[0], self.frame.map_size[1]);
+        w.frame = self.frame;
+        w.wall_thickness = self.state.wall;
+        w.units = self.best.units.clone();
+        let rect_of = |id: u32| self.best.units.iter().find(|u| u.id == id).map(|u| u.rect());
+        for (k, d) in self.best.doors.iter().enumerate() {
+            let (Some(lo), Some(hi)) = (rect_of(d.lo), rect_of(d.hi)) else { continue };
+            if let Some(r) = super::state::door_rect(lo, hi, d, &self.config.doors, self.state.wall) {
+                w.doors.push(Door {
+                    id: k as u32 + 1,
+                    units: [d.lo, d.hi],
+                    x0: r.x,
+                    y0: r.y,
+                    x1: r.right() - 1,
+                    y1: r.bottom() - 1,
+                });
+            }
+        }
+        w
+    }
+
     /// Runs knowledge inference on the current world now, if knowledge is enabled; the types
     /// and same-length pairs then shape the posterior until the next inference.
     pub fn infer_knowledge(&mut self) -> Result<(), ChainError> {
@@ -423,22 +456,32 @@ impl Chain {
                 self.best.doors.clone_from(&self.state.doors);
             }
         }
+        // The best world may be an older one the current inference did not see: type it by
+        // inference on itself (cached by evidence, so free while it stays the best).
+        if !self.best.units.is_empty() {
+            let best = self.internal_best_world();
+            if let Some(k) = self.knowledge.as_mut() {
+                let typed = k.infer(&best, resolution).map_err(|e| ChainError::Knowledge(e.to_string()))?;
+                for u in &mut self.best.units {
+                    u.kind = typed.types.get(&u.id).map_or(UnitType::Unknown, |t| t.0);
+                }
+            }
+        }
         Ok(())
     }
 
-    /// The best world with unit types: the chain's own when knowledge supervised it, otherwise
-    /// inferred now on this final world with the built-in indoor rules (the weak-prior mode
+    /// The best world with unit types inferred now on this final world: with the chain's own
+    /// knowledge base when knowledge supervised it (units added since its last inference would
+    /// otherwise stay untyped), otherwise with the built-in indoor rules (the weak-prior mode
     /// types its result only at the end). What `ksmcmc floorplan` writes as `world.json`.
     pub fn best_world_typed(&mut self) -> World {
         let mut world = self.best_world();
-        if self.config.knowledge.enabled {
-            return world;
-        }
-        if self.typer.is_none() {
+        let resolution = self.resolution;
+        if self.knowledge.is_none() && self.typer.is_none() {
             self.typer = super::knowledge::Knowledge::new(&Default::default()).ok();
         }
-        let resolution = self.resolution;
-        if let Some(Ok(inferred)) = self.typer.as_mut().map(|k| k.infer(&world, resolution)) {
+        let typer = if self.knowledge.is_some() { self.knowledge.as_mut() } else { self.typer.as_mut() };
+        if let Some(Ok(inferred)) = typer.map(|k| k.infer(&world, resolution)) {
             for u in &mut world.units {
                 u.kind = inferred.types.get(&u.id).map_or(u.kind, |t| t.0);
             }

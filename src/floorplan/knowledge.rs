@@ -12,8 +12,10 @@
 //!   units a cell the map does not see as free may be an *object* (furniture) and is scored
 //!   by `p(C_M | object)`; inside corridors it is a mismatch as before.
 
+use super::explain::AreaCounts;
 use super::state::{facing, Axis};
-use super::world::{Unit, UnitType, World};
+use super::world::{Rect, Unit, UnitType, World};
+use crate::grid::{Cell, Grid};
 use serde::{Deserialize, Serialize};
 
 /// The geometry classifier of Tab. 3.6.
@@ -89,6 +91,157 @@ pub fn connecting_walls(a: &Unit, b: &Unit, t: i32) -> Option<(i32, i32)> {
     }
 }
 
+/// The map cells the semantic sensor model may read as objects (furniture), counted by
+/// rectangle in O(1).
+///
+/// The dissertation's semantic sensor model (eq. 3.37, Fig. 3.31) forgives non-free cells
+/// inside rooms, halls and other units because they may be objects. Forgiving *every* such
+/// cell also forgives the building itself: a unit then grows across a wall it should stop at,
+/// or out into the unexplored space around the building, and buys the swallowed cells at the
+/// object rate. So only cells that can be objects are forgiven (a departure from the letter of
+/// eq. 3.37, which leaves "object" undefined):
+///
+/// * an occupied cell is part of an object unless it lies on a straight run of occupied cells
+///   (along its row or its column) at least `max_object_m` long, or belongs to a connected
+///   group of occupied cells that spans that much: walls are long lines joined into one
+///   network, furniture outlines are small and stand apart (furniture pushed against a wall
+///   joins the wall and is not forgiven, the price of never forgiving a wall);
+/// * an unknown cell is part of an object unless it is connected through unknown cells to the
+///   edge of the map: furniture shadows are enclosed by what the robot saw, the space outside
+///   the building is not.
+#[derive(Debug, Clone)]
+pub struct ObjectCells {
+    occupied: AreaCounts,
+    unknown: AreaCounts,
+}
+
+impl ObjectCells {
+    /// Finds the possible object cells of `map` (`resolution` metres per cell).
+    pub fn new(map: &Grid<Cell>, resolution: f64, max_object_m: f64) -> ObjectCells {
+        let (w, h) = (map.width(), map.height());
+        let run = ((max_object_m / resolution).ceil() as usize).max(2);
+        let mut object = map.clone();
+        // Occupied cells on long row or column runs are structure, not objects.
+        let mut structure = vec![false; w * h];
+        let mark_runs = |len: usize, at: &dyn Fn(usize) -> usize, structure: &mut Vec<bool>| {
+            let mut start = 0;
+            for i in 0..=len {
+                let occupied = i < len && map.cells()[at(i)] == Cell::Occupied;
+                if !occupied {
+                    if i - start >= run {
+                        for j in start..i {
+                            structure[at(j)] = true;
+                        }
+                    }
+                    start = i + 1;
+                }
+            }
+        };
+        for y in 0..h {
+            mark_runs(w, &|x| y * w + x, &mut structure);
+        }
+        for x in 0..w {
+            mark_runs(h, &|y| y * w + x, &mut structure);
+        }
+        // Occupied components (8-connected) spanning `run` cells or more are structure too: a
+        // wall stretch between two doors is short, but it hangs on the building's wall network.
+        let mut seen = vec![false; w * h];
+        let mut stack: Vec<usize> = Vec::new();
+        let mut component: Vec<usize> = Vec::new();
+        for start in 0..w * h {
+            if seen[start] || map.cells()[start] != Cell::Occupied {
+                continue;
+            }
+            component.clear();
+            stack.push(start);
+            seen[start] = true;
+            let (mut x0, mut y0, mut x1, mut y1) = (w, h, 0, 0);
+            while let Some(i) = stack.pop() {
+                component.push(i);
+                let (x, y) = (i % w, i / w);
+                (x0, y0, x1, y1) = (x0.min(x), y0.min(y), x1.max(x), y1.max(y));
+                for ny in y.saturating_sub(1)..(y + 2).min(h) {
+                    for nx in x.saturating_sub(1)..(x + 2).min(w) {
+                        let j = ny * w + nx;
+                        if !seen[j] && map.cells()[j] == Cell::Occupied {
+                            seen[j] = true;
+                            stack.push(j);
+                        }
+                    }
+                }
+            }
+            if x1 - x0 + 1 >= run || y1 - y0 + 1 >= run {
+                for &i in &component {
+                    structure[i] = true;
+                }
+            }
+        }
+        // Unknown cells reachable from the map's edge through unknown cells are outside.
+        let mut outside = vec![false; w * h];
+        let unknown = |i: usize| map.cells()[i] == Cell::Unknown;
+        for x in 0..w {
+            stack.extend([x, (h - 1) * w + x]);
+        }
+        for y in 0..h {
+            stack.extend([y * w, y * w + w - 1]);
+        }
+        while let Some(i) = stack.pop() {
+            if outside[i] || !unknown(i) {
+                continue;
+            }
+            outside[i] = true;
+            let (x, y) = (i % w, i / w);
+            if x > 0 {
+                stack.push(i - 1);
+            }
+            if x + 1 < w {
+                stack.push(i + 1);
+            }
+            if y > 0 {
+                stack.push(i - w);
+            }
+            if y + 1 < h {
+                stack.push(i + w);
+            }
+        }
+        for (i, c) in object.cells_mut().iter_mut().enumerate() {
+            if (*c == Cell::Occupied && structure[i]) || (*c == Cell::Unknown && outside[i]) {
+                *c = Cell::Free;
+            }
+        }
+        ObjectCells {
+            occupied: AreaCounts::new(&object, Cell::Occupied),
+            unknown: AreaCounts::new(&object, Cell::Unknown),
+        }
+    }
+
+    /// Occupied cells in `r` that may be objects.
+    pub fn occupied_in(&self, r: Rect) -> u32 {
+        self.occupied.count(r)
+    }
+
+    /// Unknown cells in `r` that may be objects.
+    pub fn unknown_in(&self, r: Rect) -> u32 {
+        self.unknown.count(r)
+    }
+}
+
+/// `log b(u_p, u_q)`, the same-length factor of eq. 3.34 for connecting walls differing by
+/// `d` cells, with the SaLe atom marginalised rather than thresholded:
+/// `b = P(SaLe) · exp(-d² / 2σ²) + (1 - P(SaLe))`.
+///
+/// Eq. 3.34 applies the full Gaussian whenever `P(SaLe)` passes a threshold, so a pair the
+/// network thinks is only 70 % likely to share a wall length is pulled together as if it
+/// certainly did, and the pull grows without bound with `d`: early, fragmented worlds then
+/// freeze, because merging or resizing a unit breaks the lengths of all its pairs at once.
+/// Summing over the atom's two values, `p(U | T, R) = Σ_SaLe p(U | SaLe) P(SaLe)` with a flat
+/// `p(U | ¬SaLe)`, keeps eq. 3.34's Gaussian where SaLe holds and bounds the penalty of a
+/// pair at `-log(1 - P(SaLe))`, what the knowledge base's own doubt allows.
+pub fn same_length_log_factor(d: f64, sigma: f64, p_same: f64) -> f64 {
+    let gauss = libm::exp(-d * d / (2.0 * sigma * sigma));
+    libm::log(p_same * gauss + (1.0 - p_same)).max(-1e6)
+}
+
 /// One ground evidence atom: predicate, arguments, truth value.
 pub type Fact = (&'static str, Vec<String>, bool);
 
@@ -153,6 +306,43 @@ mod tests {
     }
 
     #[test]
+    fn object_cells_are_small_enclosed_things_not_walls_or_the_outside() {
+        // 100 x 60 at 5 cm: a closed room (walls 2 cells), a 10 x 6 cell desk outline inside
+        // with an unknown inside, a broken 30-cell wall stub hanging on the outer wall.
+        let mut g = Grid::new(100, 60, Cell::Unknown);
+        for y in 10..50 {
+            for x in 10..90 {
+                let wall = !(12..88).contains(&x) || !(12..48).contains(&y);
+                *g.at_mut(x, y) = if wall { Cell::Occupied } else { Cell::Free };
+            }
+        }
+        for y in 20..26 {
+            for x in 40..50 {
+                let edge = x == 40 || x == 49 || y == 20 || y == 25;
+                *g.at_mut(x, y) = if edge { Cell::Occupied } else { Cell::Unknown };
+            }
+        }
+        for x in 12..42 {
+            *g.at_mut(x, 35) = Cell::Occupied;
+        }
+        let o = ObjectCells::new(&g, 0.05, 2.0);
+        assert_eq!(o.occupied_in(Rect::new(0, 0, 100, 60)), 28, "only the desk outline");
+        assert_eq!(o.unknown_in(Rect::new(0, 0, 100, 60)), 32, "only the desk's inside");
+        assert_eq!(o.unknown_in(Rect::new(0, 0, 100, 10)), 0);
+    }
+
+    #[test]
+    fn same_length_factor_marginalises_the_atom() {
+        assert_eq!(same_length_log_factor(0.0, 10.0, 0.7), 0.0);
+        let d = 10.0;
+        let expected = libm::log(0.7 * libm::exp(-0.5) + 0.3);
+        assert!((same_length_log_factor(d, 10.0, 0.7) - expected).abs() < 1e-12);
+        // Far apart, the penalty is the doubt of the knowledge base, not unbounded.
+        assert!((same_length_log_factor(1e4, 10.0, 0.7) - libm::log(0.3)).abs() < 1e-12);
+        assert!(same_length_log_factor(1e4, 10.0, 1.0) >= -1e6);
+    }
+
+    #[test]
     fn evidence_and_defects() {
         let mut w = World::empty(200, 100);
         w.units = vec![
@@ -179,8 +369,9 @@ pub const BUILTIN_INDOOR: &str = include_str!("../../samples/knowledge/indoor.ml
 #[serde(default, deny_unknown_fields)]
 pub struct KnowledgeConfig {
     /// Use knowledge in the chain (false: the weak-prior mode of the first paper; types are
-    /// then inferred on the final world only). Off by default for now: on our maps it does not
-    /// yet improve K(W, M) or the defects over the weak prior (BENCHMARKS.md).
+    /// then inferred on the final world only). Off by default for now: it ties the weak prior
+    /// on K(W, M) and cuts the defects on synthetic maps, but not yet the defects on
+    /// ubremen-cartesium (BENCHMARKS.md).
     pub enabled: bool,
     /// Knowledge base text in the Alchemy format; `None` is [`BUILTIN_INDOOR`]. Any knowledge
     /// base works whose evidence predicates are among `RoLi`, `CoLi`, `HaLi`, `MulDoor`, `Adj`
@@ -196,11 +387,19 @@ pub struct KnowledgeConfig {
     /// `σ` of the same-length factor (eq. 3.34), cells.
     pub same_length_sigma: f64,
     /// `p(C_M | object)` for map classes free, unknown, occupied: how the semantic sensor
-    /// model scores a non-free cell inside a room, hall or other unit.
+    /// model (eq. 3.37) scores a non-free cell inside a room, hall or other unit that may be an
+    /// object ([`ObjectCells`]). Default `[0.1, 0.1, 0.45]`: an occupied outline is evidence of
+    /// furniture, but an unknown cell is as likely unexplored space as an object's shadow, so
+    /// it gets no more than the free-world reading `p(unknown | free) = 0.1` of Tab. 3.1.
+    /// Forgiving unknown cells too (`0.45`) let units spread over unexplored pockets and cost
+    /// K(W, M) on every map we measured (BENCHMARKS.md).
     pub object: [f64; 3],
     /// Largest share of a unit's interior that may be object cells: furniture fills part of
     /// a room; a "room" whose interior is mostly unseen is not furnished, it is too big.
     pub object_share: f64,
+    /// Longest object (furniture) the semantic sensor model forgives, metres: occupied cells on
+    /// straight runs at least this long are walls (see [`ObjectCells`]).
+    pub max_object_m: f64,
     /// The geometry classifier (Tab. 3.6).
     pub geometry: GeometryClassifier,
     /// MC-SAT samples when the network is too large for exact inference.
@@ -216,8 +415,9 @@ impl Default for KnowledgeConfig {
             every: 500,
             same_length_threshold: 0.4,
             same_length_sigma: 10.0,
-            object: [0.1, 0.45, 0.45],
+            object: [0.1, 0.1, 0.45],
             object_share: 0.15,
+            max_object_m: 2.0,
             geometry: GeometryClassifier::default(),
             samples: 2000,
         }
@@ -230,6 +430,9 @@ impl KnowledgeConfig {
         let unit = |v: f64| v.is_finite() && (0.0..=1.0).contains(&v);
         if !unit(self.coverage) || !unit(self.same_length_threshold) || !unit(self.object_share) {
             return Err("knowledge: coverage, same_length_threshold and object_share must be in [0, 1]".into());
+        }
+        if !(self.max_object_m.is_finite() && self.max_object_m > 0.0) {
+            return Err(format!("knowledge: max_object_m {} must be positive", self.max_object_m));
         }
         if self.every == 0 || self.samples == 0 {
             return Err("knowledge: every and samples must be at least 1".into());

@@ -36,3 +36,31 @@ fn knowledge_cuts_the_defects_of_the_weak_prior_and_types_the_corridor() {
     let k = |w: &World| ksmcmc::floorplan::metrics::prediction_rate(s.map.classified(), w);
     assert!(k(&known) >= k(&weak), "K(W,M): knowledge {} weak {}", k(&known), k(&weak));
 }
+
+/// Knowledge supervision is the default, and inferences are spaced out by their work: with a
+/// smaller share of the time for inference, fewer run, and the same settings give the same chain.
+#[test]
+fn knowledge_is_on_by_default_and_inference_keeps_to_its_time_share() {
+    assert!(ChainConfig::default().knowledge.enabled);
+    let s = generate(&SynthConfig { width: 700, height: 400, ..SynthConfig::default() }, 5).unwrap();
+    let run = |share: f64| {
+        let mut c = ChainConfig::default();
+        c.knowledge.time_share = share;
+        let mut chain = Chain::new(&s.map, c, 1).unwrap();
+        chain.step(12_000);
+        (chain.inferences(), chain.best_log_posterior(), chain.best_world_typed())
+    };
+    let (all, _, _) = run(1.0);
+    let (few, lp, world) = run(0.001);
+    assert!(all > few && few >= 1, "inferences: share 1 -> {all}, share 0.001 -> {few}");
+    let (again, lp2, world2) = run(0.001);
+    assert_eq!((few, lp.to_bits()), (again, lp2.to_bits()));
+    assert_eq!(world, world2);
+    let mut bad = ChainConfig::default();
+    for share in [0.0, -1.0, 1.5, f64::NAN] {
+        bad.knowledge.time_share = share;
+        let Err(err) = Chain::new(&s.map, bad.clone(), 1) else { panic!("time_share {share} was accepted") };
+        let err = err.to_string();
+        assert!(err.contains("time_share"), "{err}");
+    }
+}

@@ -205,6 +205,9 @@ pub struct Chain {
     /// The map cells that may be objects (knowledge mode only).
     objects: Option<super::knowledge::ObjectCells>,
     knowledge_error: Option<String>,
+    /// The first iteration at which knowledge may be inferred again (see
+    /// [`KnowledgeConfig::time_share`](super::knowledge::KnowledgeConfig::time_share)).
+    next_inference: u64,
     /// Types final worlds in the weak-prior mode (built-in rules), created on first use.
     typer: Option<super::knowledge::Knowledge>,
 }
@@ -328,6 +331,7 @@ impl Chain {
             object_gain,
             objects,
             knowledge_error: None,
+            next_inference: 0,
             typer: None,
         })
     }
@@ -433,12 +437,14 @@ impl Chain {
     }
 
     /// Runs knowledge inference on the current world now, if knowledge is enabled; the types
-    /// and same-length pairs then shape the posterior until the next inference.
-    pub fn infer_knowledge(&mut self) -> Result<(), ChainError> {
+    /// and same-length pairs then shape the posterior until the next inference. Returns the
+    /// inference work done ([`crate::mln::Marginals::work`], 0 for cached results).
+    pub fn infer_knowledge(&mut self) -> Result<u64, ChainError> {
         let world = self.internal_world();
         let resolution = self.resolution;
-        let Some(k) = self.knowledge.as_mut() else { return Ok(()) };
+        let Some(k) = self.knowledge.as_mut() else { return Ok(0) };
         let inferred = k.infer(&world, resolution).map_err(|e| ChainError::Knowledge(e.to_string()))?;
+        let mut work = k.last_work;
         for u in &mut self.state.units {
             u.kind = inferred.types.get(&u.id).map_or(UnitType::Unknown, |t| t.0);
         }
@@ -462,12 +468,13 @@ impl Chain {
             let best = self.internal_best_world();
             if let Some(k) = self.knowledge.as_mut() {
                 let typed = k.infer(&best, resolution).map_err(|e| ChainError::Knowledge(e.to_string()))?;
+                work += k.last_work;
                 for u in &mut self.best.units {
                     u.kind = typed.types.get(&u.id).map_or(UnitType::Unknown, |t| t.0);
                 }
             }
         }
-        Ok(())
+        Ok(work)
     }
 
     /// The best world with unit types inferred now on this final world: with the chain's own
@@ -707,12 +714,21 @@ impl Chain {
             self.refresh_free_space();
         }
         if self.knowledge.is_some()
+            && self.iteration >= self.next_inference
             && self.iteration % self.config.knowledge.every == 0
             && self.coverage() >= self.config.knowledge.coverage
         {
-            if let Err(e) = self.infer_knowledge() {
-                self.knowledge_error = Some(e.to_string());
-                self.knowledge = None;
+            match self.infer_knowledge() {
+                Ok(work) => {
+                    // Space inferences out by their cost, deterministically (work, not time).
+                    let k = &self.config.knowledge;
+                    let gap = work as f64 / (super::knowledge::WORK_PER_ITERATION * k.time_share);
+                    self.next_inference = self.iteration + (gap.min(1e12) as u64).max(k.every);
+                }
+                Err(e) => {
+                    self.knowledge_error = Some(e.to_string());
+                    self.knowledge = None;
+                }
             }
         }
         let phase = self.current_weights();

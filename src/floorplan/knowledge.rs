@@ -101,9 +101,11 @@ pub fn connecting_walls(a: &Unit, b: &Unit, t: i32) -> Option<(i32, i32)> {
 /// object rate. So only cells that can be objects are forgiven (a departure from the letter of
 /// eq. 3.37, which leaves "object" undefined):
 ///
-/// * an occupied cell is part of an object unless it lies on a straight run of occupied cells
-///   (along its row or its column) at least `max_object_m` long, or belongs to a connected
-///   group of occupied cells that spans that much: walls are long lines joined into one
+/// * an occupied cell is part of an object unless it lies on a straight line of occupied cells
+///   (along its row or its column, across doorways of up to half `max_object_m` between
+///   stretches of at least 0.15 of it) at least
+///   `max_object_m` long, or belongs to a connected group of occupied cells that spans that
+///   much or touches such a line: walls are long lines broken by doors and joined into one
 ///   network, furniture outlines are small and stand apart (furniture pushed against a wall
 ///   joins the wall and is not forgiven, the price of never forgiving a wall);
 /// * an unknown cell is part of an object unless it is connected through unknown cells to the
@@ -120,21 +122,56 @@ impl ObjectCells {
     pub fn new(map: &Grid<Cell>, resolution: f64, max_object_m: f64) -> ObjectCells {
         let (w, h) = (map.width(), map.height());
         let run = ((max_object_m / resolution).ceil() as usize).max(2);
+        // A doorway: free cells between two stretches of the same wall line.
+        let doorway = ((0.5 * max_object_m / resolution).ceil() as usize).max(1);
         let mut object = map.clone();
-        // Occupied cells on long row or column runs are structure, not objects.
+        // Occupied cells on long row or column runs are structure, not objects. A run may pass
+        // doorways (up to `doorway` free cells with occupied cells on both sides): a corridor
+        // wall is one line broken by doors, and its stretches between doors may each be short.
         let mut structure = vec![false; w * h];
+        // Wall stretches between doors are at least 0.15 `max_object_m` long (0.3 m); shorter
+        // pieces (a wall crossed edgeways, a chair) never join a line.
+        let stretch = ((0.15 * max_object_m / resolution).ceil() as usize).max(2);
         let mark_runs = |len: usize, at: &dyn Fn(usize) -> usize, structure: &mut Vec<bool>| {
-            let mut start = 0;
-            for i in 0..=len {
-                let occupied = i < len && map.cells()[at(i)] == Cell::Occupied;
-                if !occupied {
-                    if i - start >= run {
-                        for j in start..i {
+            let class = |i: usize| map.cells()[at(i)];
+            // Occupied stretches along the line, as [start, end).
+            let mut stretches: Vec<(usize, usize)> = Vec::new();
+            let mut i = 0;
+            while i < len {
+                if class(i) == Cell::Occupied {
+                    let s0 = i;
+                    while i < len && class(i) == Cell::Occupied {
+                        i += 1;
+                    }
+                    stretches.push((s0, i));
+                } else {
+                    i += 1;
+                }
+            }
+            let mut k = 0;
+            while k < stretches.len() {
+                // Chain long stretches across doorways: short gaps of free cells only.
+                let mut last = k;
+                while last + 1 < stretches.len() {
+                    let (a, b) = (stretches[last], stretches[last + 1]);
+                    let gap = b.0 - a.1;
+                    let joinable = a.1 - a.0 >= stretch
+                        && b.1 - b.0 >= stretch
+                        && gap <= doorway
+                        && (a.1..b.0).all(|j| class(j) == Cell::Free);
+                    if !joinable {
+                        break;
+                    }
+                    last += 1;
+                }
+                if stretches[last].1 - stretches[k].0 >= run {
+                    for &(s0, s1) in &stretches[k..=last] {
+                        for j in s0..s1 {
                             structure[at(j)] = true;
                         }
                     }
-                    start = i + 1;
                 }
+                k = last + 1;
             }
         };
         for y in 0..h {
@@ -170,7 +207,8 @@ impl ObjectCells {
                     }
                 }
             }
-            if x1 - x0 + 1 >= run || y1 - y0 + 1 >= run {
+            // A piece hanging on a wall line is part of the building too.
+            if x1 - x0 + 1 >= run || y1 - y0 + 1 >= run || component.iter().any(|&i| structure[i]) {
                 for &i in &component {
                     structure[i] = true;
                 }
@@ -332,6 +370,38 @@ mod tests {
     }
 
     #[test]
+    fn a_wall_broken_by_doorways_is_structure_short_pieces_are_objects() {
+        // 120 x 40 at 5 cm, all free: a wall line (2 cells thick) at rows 20-21 whose pieces
+        // between 16-cell (0.8 m) doorways are 14 cells (0.7 m), each far below 2 m.
+        let mut g = Grid::new(120, 40, Cell::Free);
+        for x in 0..120 {
+            if x % 30 < 14 {
+                for y in 20..22 {
+                    *g.at_mut(x, y) = Cell::Occupied;
+                }
+            }
+        }
+        // Chairs along row 5: 5-cell pieces 3 cells apart (below the 0.3 m a wall piece has).
+        for x in [10, 18, 26, 34, 42, 50] {
+            for dx in 0..5 {
+                *g.at_mut(x + dx, 5) = Cell::Occupied;
+            }
+        }
+        let o = ObjectCells::new(&g, 0.05, 2.0);
+        assert_eq!(o.occupied_in(Rect::new(0, 18, 120, 6)), 0, "the broken wall is one line");
+        assert_eq!(o.occupied_in(Rect::new(0, 0, 120, 10)), 30, "the chairs stay objects");
+        // The same wall with doorways wider than 1 m (half of 2 m) falls apart into objects.
+        let mut wide = Grid::new(120, 40, Cell::Free);
+        for x in (0..120).filter(|x| x % 40 < 14) {
+            for y in 20..22 {
+                *wide.at_mut(x, y) = Cell::Occupied;
+            }
+        }
+        let o = ObjectCells::new(&wide, 0.05, 2.0);
+        assert_eq!(o.occupied_in(Rect::new(0, 18, 120, 6)), 3 * 14 * 2);
+    }
+
+    #[test]
     fn same_length_factor_marginalises_the_atom() {
         assert_eq!(same_length_log_factor(0.0, 10.0, 0.7), 0.0);
         let d = 10.0;
@@ -361,6 +431,12 @@ mod tests {
     }
 }
 
+/// Inference work ([`crate::mln::Marginals::work`]) that takes about as long as one chain
+/// iteration: measured on this project's bench machine, MC-SAT visits about 20 million clauses
+/// a second and the junction tree fills about 30 million table entries, while the chain runs
+/// 20 000 - 28 000 iterations a second on Radish maps (BENCHMARKS.md).
+pub const WORK_PER_ITERATION: f64 = 1000.0;
+
 /// The built-in knowledge base: the indoor rules of Tab. 3.3 - 3.5.
 pub const BUILTIN_INDOOR: &str = include_str!("../../samples/knowledge/indoor.mln");
 
@@ -368,10 +444,10 @@ pub const BUILTIN_INDOOR: &str = include_str!("../../samples/knowledge/indoor.ml
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct KnowledgeConfig {
-    /// Use knowledge in the chain (false: the weak-prior mode of the first paper; types are
-    /// then inferred on the final world only). Off by default for now: it ties the weak prior
-    /// on K(W, M) and cuts the defects on synthetic maps, but not yet the defects on
-    /// ubremen-cartesium (BENCHMARKS.md).
+    /// Use knowledge in the chain (the default; false: the weak-prior mode of the first
+    /// paper, whose types are inferred on the final world only). On our maps it ties the weak
+    /// prior on K(W, M) and cuts the defects and the unit-count error on synthetic maps, but
+    /// not the defects on ubremen-cartesium (BENCHMARKS.md).
     pub enabled: bool,
     /// Knowledge base text in the Alchemy format; `None` is [`BUILTIN_INDOOR`]. Any knowledge
     /// base works whose evidence predicates are among `RoLi`, `CoLi`, `HaLi`, `MulDoor`, `Adj`
@@ -380,8 +456,14 @@ pub struct KnowledgeConfig {
     pub kb: Option<String>,
     /// Share of the map's free cells the world must cover before knowledge switches on.
     pub coverage: f64,
-    /// Iterations between inferences (results are cached by their evidence).
+    /// Iterations between inferences (results are cached by their evidence), at least.
     pub every: u64,
+    /// Largest share of the chain's time that inference may take: after an inference of work
+    /// `w` ([`crate::mln::Marginals::work`]) the next waits at least
+    /// `w / (WORK_PER_ITERATION * time_share)` iterations. Large worlds, whose networks are
+    /// too wide for exact inference, are then inferred less often instead of slowing every
+    /// iteration tenfold; 1 infers every `every` iterations whatever the cost.
+    pub time_share: f64,
     /// `P(SaLe)` above which a pair's connecting walls are pulled to the same length.
     pub same_length_threshold: f64,
     /// `σ` of the same-length factor (eq. 3.34), cells.
@@ -409,10 +491,11 @@ pub struct KnowledgeConfig {
 impl Default for KnowledgeConfig {
     fn default() -> Self {
         KnowledgeConfig {
-            enabled: false,
+            enabled: true,
             kb: None,
             coverage: 0.8,
             every: 500,
+            time_share: 0.2,
             same_length_threshold: 0.4,
             same_length_sigma: 10.0,
             object: [0.1, 0.1, 0.45],
@@ -433,6 +516,9 @@ impl KnowledgeConfig {
         }
         if !(self.max_object_m.is_finite() && self.max_object_m > 0.0) {
             return Err(format!("knowledge: max_object_m {} must be positive", self.max_object_m));
+        }
+        if !(self.time_share.is_finite() && self.time_share > 0.0 && self.time_share <= 1.0) {
+            return Err(format!("knowledge: time_share {} must be in (0, 1]", self.time_share));
         }
         if self.every == 0 || self.samples == 0 {
             return Err("knowledge: every and samples must be at least 1".into());
@@ -473,6 +559,11 @@ pub struct Knowledge {
     cache: std::collections::HashMap<String, Inferred>,
     /// How many inferences ran (cache misses).
     pub inferences: u64,
+    /// The work of the last [`Knowledge::infer`] call ([`crate::mln::Marginals::work`]; 0 for
+    /// a cache hit). A deterministic
+    /// stand-in for its time, so that the chain can space inferences out by their cost and
+    /// still run the same natively and in wasm.
+    pub last_work: u64,
 }
 
 const TYPE_PREDICATES: [(&str, UnitType); 4] =
@@ -484,7 +575,7 @@ impl Knowledge {
         let mln = crate::mln::Mln::parse(config.kb.as_deref().unwrap_or(BUILTIN_INDOOR))?;
         let queries =
             ["Room", "Corr", "Hall", "Other", "SaLe"].into_iter().filter(|q| mln.predicate(q).is_some()).collect();
-        Ok(Knowledge { mln, config: config.clone(), queries, cache: Default::default(), inferences: 0 })
+        Ok(Knowledge { mln, config: config.clone(), queries, cache: Default::default(), inferences: 0, last_work: 0 })
     }
 
     /// The configuration.
@@ -504,6 +595,7 @@ impl Knowledge {
             key.push_str(&format!("{}({}){};", f.0, f.1.join(","), f.2 as u8));
         }
         if let Some(hit) = self.cache.get(&key) {
+            self.last_work = 0;
             return Ok(hit.clone());
         }
         let mut db = Database::new();
@@ -526,6 +618,7 @@ impl Knowledge {
         }
         let net = Network::ground(&self.mln, &db, &ground)?;
         let marginals = net.infer_marginals(&InferenceConfig { samples: self.config.samples, ..Default::default() })?;
+        self.last_work = marginals.work();
         let mut out = Inferred::default();
         for u in &world.units {
             let c = constant(u.id);

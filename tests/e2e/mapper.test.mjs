@@ -55,7 +55,8 @@ function pixels(page, selector) {
       const [r, g, b, a] = [d[i], d[i + 1], d[i + 2], d[i + 3]];
       if (r === 0 && g === 0 && b === 255) n.blue++;
       if (r > g + 60 && b > g + 30) n.magenta++;
-      if (r === 175 && g === 175 && b === 175) n.node++;
+      // Node fills: the unit-type colours of render::graph (room, corridor, hall, other, untyped).
+      if (['230,159,0', '86,180,233', '0,158,115', '204,121,167', '175,175,175'].includes(`${r},${g},${b}`)) n.node++;
       if (a > 0 && (r < 235 || g < 235 || b < 235)) n.inked++;
       if (a > 0) n.opaque++;
     }

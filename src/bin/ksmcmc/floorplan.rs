@@ -26,9 +26,9 @@ Options:
   --seed S           random seed (default 1); same seed, same result
   --config FILE      chain configuration JSON (any subset of fields; see the docs)
       --rotation DEG     map rotation in degrees instead of estimating it
-      --knowledge KB     knowledge supervision during the chain: `builtin` (the indoor rules of
-                     Tab. 3.5), a knowledge base file (Alchemy format), or `none` (default:
-                     the weak prior of the first paper; types are then inferred on the final
+      --knowledge KB     knowledge supervision during the chain: `builtin` (default: the indoor
+                     rules of Tab. 3.5), a knowledge base file (Alchemy format), or `none`
+                     (the weak prior of the first paper; types are then inferred on the final
                      world with the built-in rules)
   --region FILE      an image the size of the map whose non-black cells are a region of
                      interest: report.json then also gives K(W,M) inside it

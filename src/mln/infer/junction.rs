@@ -227,10 +227,12 @@ fn normalise(t: &mut [f64]) -> f64 {
     s
 }
 
-/// Marginal probability of every unknown atom, or the clique size that made the tree too wide.
-/// `None` inside `Ok` means the hard features cannot all be satisfied.
-pub(crate) fn marginals(net: &Network, max_clique: usize) -> Result<Option<Vec<f64>>, TooWide> {
+/// Marginal probability of every unknown atom with the number of clique-table entries the tree
+/// needed (its work), or the clique size that made the tree too wide. `None` inside `Ok` means
+/// the hard features cannot all be satisfied.
+pub(crate) fn marginals(net: &Network, max_clique: usize) -> Result<Option<(Vec<f64>, u64)>, TooWide> {
     let mut cliques = eliminate(net, max_clique)?;
+    let entries: u64 = cliques.iter().map(|c| 1u64 << c.vars.len()).sum();
     let n = cliques.len();
     // Clique i's entries onto its separator, within its parent's table.
     let to_parent: Vec<Option<Projection>> =
@@ -287,5 +289,5 @@ pub(crate) fn marginals(net: &Network, max_clique: usize) -> Result<Option<Vec<f
         }
         down[i] = Vec::new();
     }
-    Ok(Some(out))
+    Ok(Some((out, entries)))
 }

@@ -164,9 +164,23 @@ impl Default for MapConfig {
 pub struct Marginals {
     atoms: Vec<(GroundAtom, f64)>,
     unknown: Vec<f64>,
+    exact: bool,
+    work: u64,
 }
 
 impl Marginals {
+    /// Whether the marginals are exact (junction tree or enumeration) rather than sampled.
+    pub fn is_exact(&self) -> bool {
+        self.exact
+    }
+
+    /// How much work the inference did, in table entries or clause visits: the junction tree's
+    /// clique-table entries, enumeration's worlds times clauses, or the samplers' samples times
+    /// ground clauses. Deterministic, unlike its time, so callers can budget by it.
+    pub fn work(&self) -> u64 {
+        self.work
+    }
+
     /// Query atoms and their probability of being true, sorted by predicate, then constants.
     pub fn iter(&self) -> impl Iterator<Item = (&GroundAtom, f64)> {
         self.atoms.iter().map(|(a, p)| (a, *p))
@@ -233,20 +247,23 @@ impl Network {
     pub fn infer_marginals(&self, config: &InferenceConfig) -> Result<Marginals, MlnError> {
         check_inference(config)?;
         let mut rng = Rng::seed(config.seed);
-        let unknown = match config.method {
+        let clauses = self.clause_count() as u64;
+        let sampled = clauses.saturating_mul(config.samples as u64);
+        let enumerated = clauses.saturating_mul(1u64.checked_shl(self.atom_count() as u32).unwrap_or(u64::MAX));
+        let (unknown, exact, work) = match config.method {
             Method::Exact => match junction::marginals(self, config.max_exact_atoms) {
-                Ok(Some(m)) => m,
+                Ok(Some((m, entries))) => (m, true, entries),
                 Ok(None) => return Err(unsatisfiable(NO_WORLD)),
-                Err(_) => exact::marginals(self, config.max_exact_atoms)?,
+                Err(_) => (exact::marginals(self, config.max_exact_atoms)?, true, enumerated),
             },
             Method::Auto => match junction::marginals(self, AUTO_EXACT_ATOMS) {
-                Ok(Some(m)) => m,
+                Ok(Some((m, entries))) => (m, true, entries),
                 Ok(None) => return Err(unsatisfiable(NO_WORLD)),
-                Err(_) => mcsat::marginals(self, config, &mut rng)?,
+                Err(_) => (mcsat::marginals(self, config, &mut rng)?, false, sampled),
             },
-            Method::Enumerate => exact::marginals(self, config.max_exact_atoms)?,
-            Method::McSat => mcsat::marginals(self, config, &mut rng)?,
-            Method::Gibbs => gibbs::marginals(self, config, &mut rng)?,
+            Method::Enumerate => (exact::marginals(self, config.max_exact_atoms)?, true, enumerated),
+            Method::McSat => (mcsat::marginals(self, config, &mut rng)?, false, sampled),
+            Method::Gibbs => (gibbs::marginals(self, config, &mut rng)?, false, sampled),
         };
         let atoms = self
             .query
@@ -259,7 +276,7 @@ impl Network {
                 (q.atom.clone(), p)
             })
             .collect();
-        Ok(Marginals { atoms, unknown })
+        Ok(Marginals { atoms, unknown, exact, work })
     }
 
     /// The most probable world (MAP / MPE) over all unknown atoms, reported for the query atoms.

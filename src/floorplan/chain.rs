@@ -297,9 +297,13 @@ impl Chain {
             (libm::log(k.object[1]) - libm::log(sensor[0][1])).max(0.0),
             (libm::log(k.object[2]) - libm::log(sensor[0][2])).max(0.0),
         ];
-        let objects = knowledge
-            .is_some()
-            .then(|| super::knowledge::ObjectCells::new(&world_map, resolution, config.knowledge.max_object_m));
+        let objects = knowledge.is_some().then(|| {
+            // Unknown object cells use up the share of a unit's interior that may be objects
+            // even when they earn nothing, so both are counted if either is forgiven.
+            let any = object_gain.iter().any(|&g| g > 0.0);
+            let forgiven = [any, any];
+            super::knowledge::ObjectCells::counting(&world_map, resolution, config.knowledge.max_object_m, forgiven)
+        });
         let state = State::new(&world_map, config.doors, wall);
         let proposer = Proposer::new(config.kernels, candidates, state.width(), state.height(), wall);
         let posterior = Posterior::new(&config.posterior);

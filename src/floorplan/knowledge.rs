@@ -113,13 +113,20 @@ pub fn connecting_walls(a: &Unit, b: &Unit, t: i32) -> Option<(i32, i32)> {
 ///   the building is not.
 #[derive(Debug, Clone)]
 pub struct ObjectCells {
-    occupied: AreaCounts,
-    unknown: AreaCounts,
+    occupied: Option<AreaCounts>,
+    unknown: Option<AreaCounts>,
 }
 
 impl ObjectCells {
     /// Finds the possible object cells of `map` (`resolution` metres per cell).
     pub fn new(map: &Grid<Cell>, resolution: f64, max_object_m: f64) -> ObjectCells {
+        Self::counting(map, resolution, max_object_m, [true, true])
+    }
+
+    /// As [`ObjectCells::new`], counting only the classes asked for (`[occupied, unknown]`):
+    /// the other counts are 0. A count table takes 4 bytes a cell, and the chain needs none
+    /// for a class its sensor model does not forgive.
+    pub fn counting(map: &Grid<Cell>, resolution: f64, max_object_m: f64, classes: [bool; 2]) -> ObjectCells {
         let (w, h) = (map.width(), map.height());
         let run = ((max_object_m / resolution).ceil() as usize).max(2);
         // A doorway: free cells between two stretches of the same wall line.
@@ -248,19 +255,19 @@ impl ObjectCells {
             }
         }
         ObjectCells {
-            occupied: AreaCounts::new(&object, Cell::Occupied),
-            unknown: AreaCounts::new(&object, Cell::Unknown),
+            occupied: classes[0].then(|| AreaCounts::new(&object, Cell::Occupied)),
+            unknown: classes[1].then(|| AreaCounts::new(&object, Cell::Unknown)),
         }
     }
 
     /// Occupied cells in `r` that may be objects.
     pub fn occupied_in(&self, r: Rect) -> u32 {
-        self.occupied.count(r)
+        self.occupied.as_ref().map_or(0, |c| c.count(r))
     }
 
     /// Unknown cells in `r` that may be objects.
     pub fn unknown_in(&self, r: Rect) -> u32 {
-        self.unknown.count(r)
+        self.unknown.as_ref().map_or(0, |c| c.count(r))
     }
 }
 
@@ -550,6 +557,10 @@ pub struct Inferred {
     pub same_length: Vec<(u32, u32, f64)>,
 }
 
+/// How many inference results a [`Knowledge`] keeps, keyed by their evidence. The chain asks
+/// about its current world and its best one; a few dozen cover the worlds it returns to.
+pub const CACHE_ENTRIES: usize = 64;
+
 /// A knowledge base ready to answer for worlds, with a cache keyed by evidence.
 #[derive(Debug, Clone)]
 pub struct Knowledge {
@@ -557,6 +568,9 @@ pub struct Knowledge {
     config: KnowledgeConfig,
     queries: Vec<&'static str>,
     cache: std::collections::HashMap<String, Inferred>,
+    /// Cache keys, oldest first: the cache keeps the last [`CACHE_ENTRIES`], so that a chain
+    /// left running in a browser tab does not grow without bound.
+    cache_order: std::collections::VecDeque<String>,
     /// How many inferences ran (cache misses).
     pub inferences: u64,
     /// The work of the last [`Knowledge::infer`] call ([`crate::mln::Marginals::work`]; 0 for
@@ -575,7 +589,15 @@ impl Knowledge {
         let mln = crate::mln::Mln::parse(config.kb.as_deref().unwrap_or(BUILTIN_INDOOR))?;
         let queries =
             ["Room", "Corr", "Hall", "Other", "SaLe"].into_iter().filter(|q| mln.predicate(q).is_some()).collect();
-        Ok(Knowledge { mln, config: config.clone(), queries, cache: Default::default(), inferences: 0, last_work: 0 })
+        Ok(Knowledge {
+            mln,
+            config: config.clone(),
+            queries,
+            cache: Default::default(),
+            cache_order: Default::default(),
+            inferences: 0,
+            last_work: 0,
+        })
     }
 
     /// The configuration.
@@ -636,6 +658,12 @@ impl Knowledge {
             }
         }
         self.inferences += 1;
+        if self.cache_order.len() >= CACHE_ENTRIES {
+            if let Some(old) = self.cache_order.pop_front() {
+                self.cache.remove(&old);
+            }
+        }
+        self.cache_order.push_back(key.clone());
         self.cache.insert(key, out.clone());
         Ok(out)
     }

@@ -409,6 +409,27 @@ mod tests {
     }
 
     #[test]
+    fn the_inference_cache_keeps_the_latest_results_only() {
+        let mut k = Knowledge::new(&KnowledgeConfig::default()).unwrap();
+        let world = |id: u32| {
+            let mut w = World::empty(200, 100);
+            w.units = vec![unit(id, 0, 0, 60, 80, UnitType::Unknown)];
+            w
+        };
+        for id in 1..=100 {
+            k.infer(&world(id), 0.05).unwrap();
+            assert!(k.cached() <= CACHE_ENTRIES);
+        }
+        assert_eq!((k.inferences, k.cached()), (100, CACHE_ENTRIES));
+        // The latest are hits (no work), the oldest were evicted and run again.
+        k.infer(&world(100), 0.05).unwrap();
+        assert_eq!((k.inferences, k.last_work), (100, 0));
+        k.infer(&world(1), 0.05).unwrap();
+        assert_eq!(k.inferences, 101);
+        assert!(k.last_work > 0);
+    }
+
+    #[test]
     fn same_length_factor_marginalises_the_atom() {
         assert_eq!(same_length_log_factor(0.0, 10.0, 0.7), 0.0);
         let d = 10.0;
@@ -598,6 +619,11 @@ impl Knowledge {
             inferences: 0,
             last_work: 0,
         })
+    }
+
+    /// How many inference results are cached (at most [`CACHE_ENTRIES`]).
+    pub fn cached(&self) -> usize {
+        self.cache.len()
     }
 
     /// The configuration.

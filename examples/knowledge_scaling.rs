@@ -1,3 +1,9 @@
+//! How the time of one knowledge inference grows with the world: the chain explains the large
+//! synthetic map (seed 7) in the weak-prior mode, then the built-in indoor rules are inferred
+//! on its first 10 to 47 units. BENCHMARKS.md ("Markov logic") quotes the output.
+//!
+//! `cargo run --release --example knowledge_scaling`
+
 use ksmcmc::floorplan::knowledge::{Knowledge, KnowledgeConfig};
 use ksmcmc::floorplan::synth::{generate, SynthConfig};
 use ksmcmc::floorplan::{Chain, ChainConfig};

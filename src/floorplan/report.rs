@@ -13,6 +13,14 @@ use crate::mcmc::Kernel;
 /// doors, unexplained areas ("N") and their cells, rooms, types, defects, log posterior, seed, rotation, wall thickness, knowledge
 /// status and per-kernel counts.
 pub fn report(chain: &Chain, map: &OccupancyMap, world: &World, labels: &Grid<u16>, seconds: f64) -> serde_json::Value {
+    let mut r = summary(chain, map, world, seconds);
+    r["rooms"] = labels.cells().iter().copied().max().unwrap_or(0).into();
+    r
+}
+
+/// [`report`] without `rooms`, which needs the room labels: a caller short of memory can
+/// drop the chain before computing them and add `rooms` itself.
+pub fn summary(chain: &Chain, map: &OccupancyMap, world: &World, seconds: f64) -> serde_json::Value {
     let t = chain.trace();
     let kernels: serde_json::Map<String, serde_json::Value> = Kernel::ALL
         .iter()
@@ -37,7 +45,6 @@ pub fn report(chain: &Chain, map: &OccupancyMap, world: &World, labels: &Grid<u1
         "doors": world.doors.len(),
         "unexplained_areas": world.unexplained.len(),
         "unexplained_cells": world.unexplained.iter().map(|a| a.cells as u64).sum::<u64>(),
-        "rooms": labels.cells().iter().copied().max().unwrap_or(0),
         "types": types,
         "defects": defects(world),
         "log_posterior": chain.best_log_posterior(),

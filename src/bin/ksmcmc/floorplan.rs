@@ -137,16 +137,23 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     }
     let seconds = t0.elapsed().as_secs_f64();
     let world = chain.best_world_typed();
-    let labels = chain.best_labels(&RoomConfig::default());
-    let rooms = labels.cells().iter().copied().max().unwrap_or(0);
-    let k = metrics::prediction_rate(map.classified(), &world);
-    let overlay = ksmcmc::render::try_render(map.classified(), Some(&world), &Default::default())
-        .map_err(|e| args::failed("overlay.png", e))?;
     let mut trace = String::from("iteration,log_posterior,acceptance,units\n");
     for p in &chain.trace().points {
         let _ = writeln!(trace, "{},{:.3},{:.4},{}", p.iteration, p.log_posterior, p.acceptance, p.size);
     }
-    let mut report = ksmcmc::floorplan::report::report(&chain, &map, &world, &labels, seconds);
+    let mut report = ksmcmc::floorplan::report::summary(&chain, &map, &world, seconds);
+    let iterations_done = chain.iteration();
+    // The room labels need the best world and the world-frame map, not the chain's tables:
+    // free those first (tens of MB on a large map) to keep the run's peak memory down.
+    let (best, cells, world_map) = (chain.best_world(), chain.map().clone(), chain.world_map().clone());
+    drop(chain);
+    let labels = ksmcmc::floorplan::rooms::room_labels(&best, &cells, &world_map, &RoomConfig::default());
+    drop((cells, world_map));
+    let rooms = labels.cells().iter().copied().max().unwrap_or(0);
+    report["rooms"] = rooms.into();
+    let k = metrics::prediction_rate(map.classified(), &world);
+    let overlay = ksmcmc::render::try_render(map.classified(), Some(&world), &Default::default())
+        .map_err(|e| args::failed("overlay.png", e))?;
     report["map"] = map_path.display().to_string().into();
     report["cell_prediction_rate_region"] =
         serde_json::json!(region.as_ref().map(|r| metrics::prediction_rate_in(map.classified(), &world, Some(r))));
@@ -163,9 +170,9 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     println!(
         "{}: {} iterations in {:.2} s ({:.0}/s), K(W,M) = {:.4}, {} units, {} doors, {} rooms -> {}",
         map_path.display(),
-        chain.iteration(),
+        iterations_done,
         seconds,
-        chain.iteration() as f64 / seconds.max(1e-9),
+        iterations_done as f64 / seconds.max(1e-9),
         k,
         world.units.len(),
         world.doors.len(),

@@ -16,21 +16,27 @@ pub fn unexplained(e: &Explanation, min_cells: usize) -> Vec<Rect> {
     if boxes.is_empty() {
         return boxes;
     }
-    let (w, h) = (e.width(), e.height());
-    let mut mask = crate::grid::Grid::new(w, h, Cell::Unknown);
-    for y in 0..h {
-        for x in 0..w {
-            if e.map_class(x, y) == Cell::Free && e.cover(x, y) == 0 {
-                *mask.at_mut(x, y) = Cell::Free;
-            }
-        }
-    }
-    let sat = crate::floorplan::explain::AreaCounts::new(&mask, Cell::Free);
-    boxes.into_iter().filter_map(|b| dense_core(&sat, b)).collect()
+    boxes.into_iter().filter_map(|b| dense_core(e, b)).collect()
 }
 
-fn dense_core(sat: &crate::floorplan::explain::AreaCounts, mut r: Rect) -> Option<Rect> {
-    let dense = |line: Rect| sat.count(line) as f64 >= 0.4 * line.area() as f64;
+/// Unexplained free cells in `r` (clipped to the map), counted cell by cell: `dense_core`
+/// only asks about one-cell lines, and a summed-area table of the whole map, rebuilt at every
+/// refresh, cost more than all its questions (and 4 bytes a cell).
+fn unexplained_in(e: &Explanation, r: Rect) -> u32 {
+    let (w, h) = (e.width() as i32, e.height() as i32);
+    let mut n = 0;
+    for y in r.y.max(0)..r.bottom().min(h) {
+        for x in r.x.max(0)..r.right().min(w) {
+            let (x, y) = (x as usize, y as usize);
+            n += (e.map_class(x, y) == Cell::Free && e.cover(x, y) == 0) as u32;
+        }
+    }
+    n
+}
+
+fn dense_core(e: &Explanation, mut r: Rect) -> Option<Rect> {
+    let count = |line: Rect| unexplained_in(e, line);
+    let dense = |line: Rect| count(line) as f64 >= 0.4 * line.area() as f64;
     loop {
         if r.w < 3 || r.h < 3 {
             return None;
@@ -43,8 +49,8 @@ fn dense_core(sat: &crate::floorplan::explain::AreaCounts, mut r: Rect) -> Optio
         ];
         // Trim the sparsest side first, one cell at a time.
         let worst = (0..4).filter(|&i| !dense(sides[i])).min_by(|&a, &b| {
-            let fa = sat.count(sides[a]) as f64 / sides[a].area() as f64;
-            let fb = sat.count(sides[b]) as f64 / sides[b].area() as f64;
+            let fa = count(sides[a]) as f64 / sides[a].area() as f64;
+            let fb = count(sides[b]) as f64 / sides[b].area() as f64;
             fa.total_cmp(&fb)
         });
         match worst {

@@ -27,7 +27,7 @@ const ui = {
   message: $('message'), messageText: $('message-text'), messageClose: $('message-close'),
   status: $('status'), version: $('version'),
   run: $('run'), step: $('step'), reset: $('reset'), seed: $('seed'), ipf: $('ipf'),
-  config: $('config'), configDefaults: $('config-defaults'),
+  config: $('config'), configDefaults: $('config-defaults'), knowledge: $('knowledge'),
   sampleForm: $('sample-form'), sample: $('sample'), sampleLoad: $('sample-load'), sampleHint: $('sample-hint'),
   file: $('file'), classify: $('classify'),
   paint: $('paint'), brush: $('brush'), brushValue: $('brush-value'),
@@ -91,11 +91,32 @@ const state = {
 
 // ---------------------------------------------------------------- the chain
 
+/**
+ * The settings text for a new chain: the JSON in the form, with knowledge supervision turned
+ * off when its box is unticked. Text that is not a JSON object goes to the chain as it is, so
+ * that its own error message names the problem.
+ */
+function chainSettings() {
+  const text = ui.config.value.trim();
+  if (ui.knowledge.checked) return text;
+  let settings = {};
+  if (text) {
+    try {
+      settings = JSON.parse(text);
+    } catch {
+      return text;
+    }
+  }
+  if (settings === null || typeof settings !== 'object' || Array.isArray(settings)) return text;
+  const knowledge = typeof settings.knowledge === 'object' && settings.knowledge !== null ? settings.knowledge : {};
+  return JSON.stringify({ ...settings, knowledge: { ...knowledge, enabled: false } });
+}
+
 /** A new chain on `map` with the seed and settings in the form; throws with the reason. */
 function newMapper(map) {
   const seed = parseSeed(ui.seed.value);
   state.ipf = parseIterationsPerFrame(ui.ipf.value);
-  const mapper = new Mapper(map, ui.config.value, seed);
+  const mapper = new Mapper(map, chainSettings(), seed);
   if (state.referenceJson !== null) {
     try {
       mapper.setReference(state.referenceJson);

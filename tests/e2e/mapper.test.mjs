@@ -237,6 +237,33 @@ describe('Live mapper', () => {
     await done(page);
   });
 
+  test('knowledge supervision is on by default and its box turns it off on Reset', async () => {
+    const page = await openMapper();
+    const report = () => page.evaluate(() => JSON.parse(window.__ksmcmc.mapper.reportJson()));
+    assert.equal(await page.isChecked('#knowledge'), true);
+    assert.equal((await report()).knowledge, true, 'the default chain is knowledge-supervised');
+    await page.uncheck('#knowledge');
+    assert.equal((await report()).knowledge, true, 'the box applies on Reset, not before');
+    await page.click('#reset');
+    assert.equal((await report()).knowledge, false);
+    // With other settings in the JSON the box still turns knowledge off; a bad JSON text still
+    // reports its own error.
+    await page.click('summary:has-text("Chain settings")');
+    await page.fill('#config', '{"posterior": {"temperature": 2}}');
+    await page.click('#reset');
+    const r = await report();
+    assert.equal(r.knowledge, false);
+    await page.fill('#config', '{"posterior": ');
+    await page.click('#reset');
+    await expectAlert(page, /JSON|EOF|settings/i);
+    await dismiss(page);
+    await page.fill('#config', '');
+    await page.check('#knowledge');
+    await page.click('#reset');
+    assert.equal((await report()).knowledge, true);
+    await done(page);
+  });
+
   test('bad maps, settings and worlds show a message, and the page keeps working', async () => {
     const page = await openMapper();
     const before = await snap(page);

@@ -208,6 +208,8 @@ pub struct Chain {
     /// The first iteration at which knowledge may be inferred again (see
     /// [`KnowledgeConfig::time_share`](super::knowledge::KnowledgeConfig::time_share)).
     next_inference: u64,
+    /// The free-space detector's working memory, kept between refreshes.
+    free_space_scratch: vision::freespace::Scratch,
     /// Types final worlds in the weak-prior mode (built-in rules), created on first use.
     typer: Option<super::knowledge::Knowledge>,
 }
@@ -336,6 +338,7 @@ impl Chain {
             objects,
             knowledge_error: None,
             next_inference: 0,
+            free_space_scratch: Default::default(),
             typer: None,
         })
     }
@@ -660,7 +663,11 @@ impl Chain {
     }
 
     fn refresh_free_space(&mut self) {
-        let rects = vision::freespace::unexplained(&self.state.explanation, self.config.detectors.free_space_min_cells);
+        let rects = vision::freespace::unexplained_with(
+            &self.state.explanation,
+            self.config.detectors.free_space_min_cells,
+            &mut self.free_space_scratch,
+        );
         let min = self.config.kernels.min_side;
         let items: Vec<(Rect, f64)> = rects
             .into_iter()

@@ -12,7 +12,23 @@ use crate::grid::Cell;
 /// that a fan of scan rays yields the dense part near its source rather than a box that is
 /// mostly unknown.
 pub fn unexplained(e: &Explanation, min_cells: usize) -> Vec<Rect> {
-    let boxes = components(e, min_cells);
+    unexplained_with(e, min_cells, &mut Scratch::default())
+}
+
+/// Working memory of the detector, kept by a caller that runs it again and again (the chain
+/// refreshes it every few hundred iterations): a map-sized visited mask and a stack, which
+/// would otherwise be allocated and zeroed, page by page, at every refresh.
+#[derive(Debug, Clone, Default)]
+pub struct Scratch {
+    /// One bit a cell (a byte a cell would be 1.5 MB on a rotated 1237x672 map).
+    seen: Vec<u64>,
+    /// Cell indices (maps have at most 2^25 cells, see `grid::Limits`).
+    stack: Vec<u32>,
+}
+
+/// [`unexplained`] with working memory the caller keeps between calls.
+pub fn unexplained_with(e: &Explanation, min_cells: usize, scratch: &mut Scratch) -> Vec<Rect> {
+    let boxes = components(e, min_cells, scratch);
     if boxes.is_empty() {
         return boxes;
     }
@@ -63,20 +79,29 @@ fn dense_core(e: &Explanation, mut r: Rect) -> Option<Rect> {
     }
 }
 
-fn components(e: &Explanation, min_cells: usize) -> Vec<Rect> {
+fn components(e: &Explanation, min_cells: usize, scratch: &mut Scratch) -> Vec<Rect> {
     let (w, h) = (e.width(), e.height());
-    let mut seen = vec![false; w * h];
-    let mut stack = Vec::new();
+    let Scratch { seen, stack } = scratch;
+    seen.clear();
+    seen.resize((w * h).div_ceil(64), 0);
+    stack.clear();
     let mut out = Vec::new();
+    // Marks cell `i` seen; false if it already was.
+    let mark = |seen: &mut Vec<u64>, i: usize| {
+        let (word, bit) = (i / 64, 1u64 << (i % 64));
+        let fresh = seen[word] & bit == 0;
+        seen[word] |= bit;
+        fresh
+    };
     for start in 0..w * h {
         let (sx, sy) = (start % w, start / w);
-        if seen[start] || e.map_class(sx, sy) != Cell::Free || e.cover(sx, sy) > 0 {
+        if e.map_class(sx, sy) != Cell::Free || e.cover(sx, sy) > 0 || !mark(seen, start) {
             continue;
         }
-        seen[start] = true;
-        stack.push(start);
+        stack.push(start as u32);
         let (mut x0, mut y0, mut x1, mut y1, mut n) = (sx, sy, sx, sy, 0usize);
         while let Some(i) = stack.pop() {
+            let i = i as usize;
             let (x, y) = (i % w, i / w);
             n += 1;
             (x0, y0, x1, y1) = (x0.min(x), y0.min(y), x1.max(x), y1.max(y));
@@ -84,9 +109,8 @@ fn components(e: &Explanation, min_cells: usize) -> Vec<Rect> {
             for (nx, ny) in neighbours {
                 if nx < w && ny < h {
                     let j = ny * w + nx;
-                    if !seen[j] && e.map_class(nx, ny) == Cell::Free && e.cover(nx, ny) == 0 {
-                        seen[j] = true;
-                        stack.push(j);
+                    if e.map_class(nx, ny) == Cell::Free && e.cover(nx, ny) == 0 && mark(seen, j) {
+                        stack.push(j as u32);
                     }
                 }
             }
@@ -100,4 +124,41 @@ fn components(e: &Explanation, min_cells: usize) -> Vec<Rect> {
         }
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::grid::Grid;
+
+    /// Free rectangles on an unknown background.
+    fn map(w: usize, h: usize, rooms: &[(usize, usize, usize, usize)]) -> Grid<Cell> {
+        let mut g = Grid::new(w, h, Cell::Unknown);
+        for &(x0, y0, rw, rh) in rooms {
+            for y in y0..y0 + rh {
+                for x in x0..x0 + rw {
+                    *g.at_mut(x, y) = Cell::Free;
+                }
+            }
+        }
+        g
+    }
+
+    #[test]
+    fn kept_scratch_gives_the_same_candidates_as_fresh_memory() {
+        let big = Explanation::new(&map(90, 70, &[(5, 5, 30, 20), (50, 10, 25, 40), (10, 40, 8, 8)]));
+        let small = Explanation::new(&map(40, 30, &[(2, 2, 20, 12), (25, 15, 10, 10)]));
+        let mut scratch = Scratch::default();
+        // Big map, then a smaller one (stale bits past its end), then the big one again.
+        for e in [&big, &small, &big, &small] {
+            assert_eq!(unexplained_with(e, 60, &mut scratch), unexplained(e, 60));
+        }
+        // The rooms' boxes, grown by one cell for the walls; the 8x8 room (64 cells) is above
+        // the 60-cell floor, and the largest room (1000 cells) is the only one at 1000.
+        let found = unexplained(&big, 60);
+        assert_eq!(found.len(), 3, "{found:?}");
+        assert!(found.contains(&Rect::new(4, 4, 32, 22)), "{found:?}");
+        assert_eq!(unexplained(&big, 1000), vec![Rect::new(49, 9, 27, 42)]);
+        assert!(unexplained(&big, 1001).is_empty());
+    }
 }

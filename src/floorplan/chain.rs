@@ -26,7 +26,7 @@ use super::explain::Explanation;
 use super::kernels::{Candidates, KernelConfig, Proposer};
 use super::posterior::{Posterior, PosteriorConfig};
 use super::state::{DoorLimits, DoorSpec, State};
-use super::world::{Door, Frame, Rect, Unit, UnitType, World, WORLD_FORMAT};
+use super::world::{Door, Frame, Rect, Unit, UnitType, World};
 use crate::grid::{Cell, Grid, OccupancyMap};
 use crate::mcmc::{accept, Cumulative, Kernel, Ring, Rng, Schedule, Trace, TracePoint};
 use crate::vision;
@@ -401,33 +401,23 @@ impl Chain {
 
     /// The current world with the chain's own unit ids (exports renumber them).
     fn internal_world(&self) -> World {
-        let mut w = World::empty(self.frame.map_size[0], self.frame.map_size[1]);
-        w.frame = self.frame;
-        w.wall_thickness = self.state.wall;
-        w.units = self.state.units.clone();
-        for (k, d) in self.state.doors.iter().enumerate() {
-            if let Some(r) = self.state.door_rect_of(d) {
-                w.doors.push(Door {
-                    id: k as u32 + 1,
-                    units: [d.lo, d.hi],
-                    x0: r.x,
-                    y0: r.y,
-                    x1: r.right() - 1,
-                    y1: r.bottom() - 1,
-                });
-            }
-        }
-        w
+        self.outline(&self.state.units, &self.state.doors)
     }
 
     /// The best world with the chain's own unit ids, for inference on it.
     fn internal_best_world(&self) -> World {
+        self.outline(&self.best.units, &self.best.doors)
+    }
+
+    /// The units and doors of a world of this chain as a [`World`], with the chain's own ids;
+    /// a door whose units are missing or no longer face each other is left out.
+    fn outline(&self, units: &[Unit], doors: &[DoorSpec]) -> World {
         let mut w = World::empty(self.frame.map_size[0], self.frame.map_size[1]);
         w.frame = self.frame;
         w.wall_thickness = self.state.wall;
-        w.units = self.best.units.clone();
-        let rect_of = |id: u32| self.best.units.iter().find(|u| u.id == id).map(|u| u.rect());
-        for (k, d) in self.best.doors.iter().enumerate() {
+        w.units = units.to_vec();
+        let rect_of = |id: u32| units.iter().find(|u| u.id == id).map(|u| u.rect());
+        for (k, d) in doors.iter().enumerate() {
             let (Some(lo), Some(hi)) = (rect_of(d.lo), rect_of(d.hi)) else { continue };
             if let Some(r) = super::state::door_rect(lo, hi, d, &self.config.doors, self.state.wall) {
                 w.doors.push(Door {
@@ -615,28 +605,14 @@ impl Chain {
     }
 
     fn export(&self, units: &[Unit], doors: &[DoorSpec]) -> World {
-        let mut w = World::empty(self.frame.map_size[0], self.frame.map_size[1]);
-        w.format = WORLD_FORMAT.to_string();
-        w.frame = self.frame;
-        w.wall_thickness = self.state.wall;
-        w.units = units.iter().enumerate().map(|(k, u)| Unit { id: k as u32 + 1, ..*u }).collect();
-        let new_id = |id: u32| units.iter().position(|u| u.id == id).map(|k| k as u32 + 1);
-        let rect_of = |id: u32| units.iter().find(|u| u.id == id).map(|u| u.rect());
-        for (k, d) in doors.iter().enumerate() {
-            let (Some(lo), Some(hi), Some(a), Some(b)) = (rect_of(d.lo), rect_of(d.hi), new_id(d.lo), new_id(d.hi))
-            else {
-                continue;
-            };
-            if let Some(r) = super::state::door_rect(lo, hi, d, &self.config.doors, self.state.wall) {
-                w.doors.push(Door {
-                    id: k as u32 + 1,
-                    units: [a, b],
-                    x0: r.x,
-                    y0: r.y,
-                    x1: r.right() - 1,
-                    y1: r.bottom() - 1,
-                });
-            }
+        // Exports number units 1..=n in slot order, and doors name them by those numbers.
+        let mut w = self.outline(units, doors);
+        let new_id = |id: u32| units.iter().position(|u| u.id == id).map_or(0, |k| k as u32 + 1);
+        for u in &mut w.units {
+            u.id = new_id(u.id);
+        }
+        for d in &mut w.doors {
+            d.units = d.units.map(new_id);
         }
         // Object cells: unknown map cells inside a unit's free space (furniture, clutter).
         let t = self.state.wall;

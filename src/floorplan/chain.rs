@@ -770,7 +770,13 @@ impl Chain {
 
     /// The room segmentation of the best world on the original map (see [`super::rooms`]).
     pub fn best_labels(&self, rooms: &super::rooms::RoomConfig) -> Grid<u16> {
-        super::rooms::room_labels(&self.best_world(), &self.map, &self.world_map, rooms)
+        self.labels(&self.best_world(), rooms)
+    }
+
+    /// The room segmentation of `world`, a world of this chain such as [`Chain::best_world`]
+    /// or [`Chain::best_world_typed`] (unit types do not change it), on the original map.
+    pub fn labels(&self, world: &World, rooms: &super::rooms::RoomConfig) -> Grid<u16> {
+        super::rooms::room_labels(world, &self.map, &self.world_map, rooms)
     }
 
     /// The classified map the chain explains, in the map's own frame.

@@ -460,9 +460,9 @@ impl Mapper {
     /// wall thickness and per-kernel proposal counts.
     #[wasm_bindgen(js_name = reportJson)]
     pub fn report_json(&mut self) -> Result<String, JsError> {
-        let labels = self.chain.best_labels(&RoomConfig::default());
         let seconds = self.busy_ms / 1000.0;
         let world = self.best().0.clone();
+        let labels = self.chain.labels(&world, &RoomConfig::default());
         let mut report = ksmcmc_report(&self.chain, &self.map, &world, &labels, seconds);
         report["setup_seconds"] = (self.setup_ms / 1000.0).into();
         Ok(serde_json::to_string_pretty(&report)?)

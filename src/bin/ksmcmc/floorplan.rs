@@ -145,9 +145,10 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     let iterations_done = chain.iteration();
     // The room labels need the best world and the world-frame map, not the chain's tables:
     // free those first (tens of MB on a large map) to keep the run's peak memory down.
-    let (best, cells, world_map) = (chain.best_world(), chain.map().clone(), chain.world_map().clone());
+    // `world` is the best world (typed, which the segmentation ignores): no second export.
+    let (cells, world_map) = (chain.map().clone(), chain.world_map().clone());
     drop(chain);
-    let labels = ksmcmc::floorplan::rooms::room_labels(&best, &cells, &world_map, &RoomConfig::default());
+    let labels = ksmcmc::floorplan::rooms::room_labels(&world, &cells, &world_map, &RoomConfig::default());
     drop((cells, world_map));
     let rooms = labels.cells().iter().copied().max().unwrap_or(0);
     report["rooms"] = rooms.into();

@@ -41,23 +41,33 @@ pub fn hide_interior(grid: &Grid<Cell>, depth: u32) -> Grid<Cell> {
 /// cells no source cell reaches).
 fn occupied_distance(grid: &Grid<Cell>, source: Cell, depth: u32) -> Vec<u32> {
     let (w, h) = (grid.width(), grid.height());
+    let cells = grid.cells();
+    let neighbours = |i: usize| {
+        let (x, y) = (i % w, i / w);
+        [(x.wrapping_sub(1), y), (x + 1, y), (x, y.wrapping_sub(1)), (x, y + 1)]
+            .into_iter()
+            .filter(move |&(nx, ny)| nx < w && ny < h)
+            .map(move |(nx, ny)| ny * w + nx)
+    };
     let mut dist = vec![u32::MAX; w * h];
+    // Cell indices, and only the source cells that touch an occupied cell: the others reach
+    // nothing, and queueing every free cell of a large map as a coordinate pair took 13 MB.
     let mut queue = VecDeque::new();
-    for y in 0..h {
-        for x in 0..w {
-            if *grid.at(x, y) == source {
-                dist[y * w + x] = 0;
-                queue.push_back((x, y));
+    for (i, &c) in cells.iter().enumerate() {
+        if c == source {
+            dist[i] = 0;
+            if neighbours(i).any(|j| cells[j] == Cell::Occupied) {
+                queue.push_back(i as u32);
             }
         }
     }
-    while let Some((x, y)) = queue.pop_front() {
-        let d = dist[y * w + x];
-        for (nx, ny) in [(x.wrapping_sub(1), y), (x + 1, y), (x, y.wrapping_sub(1)), (x, y + 1)] {
-            if nx < w && ny < h && *grid.at(nx, ny) == Cell::Occupied && dist[ny * w + nx] == u32::MAX {
-                dist[ny * w + nx] = d + 1;
+    while let Some(i) = queue.pop_front() {
+        let d = dist[i as usize];
+        for j in neighbours(i as usize) {
+            if cells[j] == Cell::Occupied && dist[j] == u32::MAX {
+                dist[j] = d + 1;
                 if d < depth {
-                    queue.push_back((nx, ny));
+                    queue.push_back(j as u32);
                 }
             }
         }

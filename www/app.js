@@ -42,7 +42,7 @@ const ui = {
   downloadLabels: $('download-labels'),
 };
 
-const { showError, clearError, say, attempt } = messages(ui);
+const { clearError, say, attempt, loadWasm } = messages(ui);
 
 /** Undo keeps at most this many strokes and this many bytes of snapshots. */
 const UNDO_STEPS = 30;
@@ -472,16 +472,7 @@ function wire() {
 
 async function main() {
   wire();
-  try {
-    await init();
-  } catch (err) {
-    document.documentElement.dataset.state = 'error';
-    showError(
-      `The WebAssembly module did not load (${err.message}). Build it with \`make demo\`, ` +
-        'and open the page through a web server rather than from the file system.',
-    );
-    return;
-  }
+  if (!(await loadWasm(init))) return;
   ui.version.textContent = version();
   for (const el of [ui.seed, ui.seedRandom, ui.synthConfig, ui.generate, ui.file, ui.blankCreate]) {
     el.disabled = false;

@@ -47,7 +47,7 @@ const ui = {
   },
 };
 
-const { showError, clearError, say, attempt } = messages(ui);
+const { showError, clearError, say, attempt, loadWasm } = messages(ui);
 
 const state = {
   ready: false,
@@ -707,16 +707,7 @@ function expose() {
 async function main() {
   wire();
   expose();
-  try {
-    await init();
-  } catch (err) {
-    document.documentElement.dataset.state = 'error';
-    showError(
-      `The WebAssembly module did not load (${err.message}). Build it with \`make demo\`, ` +
-        'and open the page through a web server rather than from the file system.',
-    );
-    return;
-  }
+  if (!(await loadWasm(init))) return;
   ui.version.textContent = version();
   setBrush(ui.brush.value);
   for (const el of [ui.file, ui.blankCreate, ui.worldFile]) el.disabled = false;

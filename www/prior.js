@@ -4,6 +4,7 @@
 // from the library's MLN engine (mlnLogWeight); this file is wiring and drawing.
 
 import init, { checkRules, mlnLogWeight } from './pkg/ksmcmc.js';
+import { messages } from './lib/messages.js';
 import { rulesEditor } from './lib/rules-editor.js';
 
 const N = 400; // grid points over [0, 10]
@@ -32,6 +33,7 @@ Middle(x) => !Right(x).
 `;
 
 const $ = (id) => document.getElementById(id);
+const { showError } = messages({ message: $('message'), messageText: $('message-text') });
 const ui = { kb: $('kb'), error: $('kb-error'), plot: $('plot'), mass: $('mass'), samples: $('samples'), acceptance: $('acceptance') };
 
 const state = {
@@ -241,8 +243,7 @@ async function main() {
     requestAnimationFrame(frame);
   } catch (e) {
     document.documentElement.dataset.state = 'error';
-    $('message').hidden = false;
-    $('message-text').textContent = String(e.message ?? e);
+    showError(e);
   }
 }
 main();

@@ -4,6 +4,7 @@
 // file is wiring.
 
 import init, { Map as OccMap, Mapper, builtinIndoorRules, checkRules, drawMapper, inferWorld } from './pkg/ksmcmc.js';
+import { messages } from './lib/messages.js';
 import { rulesEditor } from './lib/rules-editor.js';
 
 const SAMPLE = 'office-small';
@@ -11,6 +12,7 @@ const BUDGET_MS = 12;
 const INFER_EVERY_MS = 400;
 
 const $ = (id) => document.getElementById(id);
+const { showError } = messages({ message: $('message'), messageText: $('message-text') });
 const ui = { kb: $('kb'), error: $('kb-error'), map: $('map'), evidence: $('evidence'), marginals: $('marginals').tBodies[0], sale: $('salele').tBodies[0] };
 
 const state = { editor: null, map: null, resolution: 0.05, mapper: null, goodKb: '', kbUsed: '', error: null, runs: 0, lastInfer: 0, inferred: null, worldUnits: 0, inferError: null };
@@ -81,8 +83,7 @@ function frame(now) {
       drawMapper(ui.map, state.mapper, { show: 'best', scale: 2 });
     }
   } catch (e) {
-    $('message').hidden = false;
-    $('message-text').textContent = String(e.message ?? e);
+    showError(e);
   }
   requestAnimationFrame(frame);
 }
@@ -127,8 +128,7 @@ async function main() {
     requestAnimationFrame(frame);
   } catch (e) {
     document.documentElement.dataset.state = 'error';
-    $('message').hidden = false;
-    $('message-text').textContent = String(e.message ?? e);
+    showError(e);
   }
 }
 main();

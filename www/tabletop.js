@@ -22,7 +22,7 @@ const ui = {
   stat: { iteration: $('stat-iteration'), lp: $('stat-lp'), best: $('stat-best'), rate: $('stat-rate') },
 };
 
-const { showError, clearError } = messages(ui);
+const { showError, clearError, loadWasm } = messages(ui);
 
 const state = {
   tt: null,
@@ -236,13 +236,7 @@ function expose() {
 async function main() {
   wire();
   expose();
-  try {
-    await init();
-  } catch (err) {
-    document.documentElement.dataset.state = 'error';
-    showError(`The WebAssembly module did not load (${err.message}). Build it with \`make demo\`.`);
-    return;
-  }
+  if (!(await loadWasm(init))) return;
   ui.version.textContent = version();
   state.rules = tabletopRulesDefault();
   ui.rules.value = state.rules;

@@ -33,5 +33,23 @@ export function messages(ui) {
     }
   }
 
-  return { showError, clearError, say, attempt };
+  /**
+   * Loads the WebAssembly module with `init` (the package's default export); if it fails,
+   * marks the page as broken and says how to get the module. Returns whether it loaded.
+   */
+  async function loadWasm(init) {
+    try {
+      await init();
+      return true;
+    } catch (err) {
+      document.documentElement.dataset.state = 'error';
+      showError(
+        `The WebAssembly module did not load (${err.message}). Build it with \`make demo\`, ` +
+          'and open the page through a web server rather than from the file system.',
+      );
+      return false;
+    }
+  }
+
+  return { showError, clearError, say, attempt, loadWasm };
 }

@@ -31,6 +31,11 @@ pub fn summary(chain: &Chain, map: &OccupancyMap, world: &World, seconds: f64) -
             )
         })
         .collect();
+    // K(W, M) is the confusion matrix's diagonal over its total: one prediction of the map.
+    let confusion = metrics::confusion(map.classified(), world);
+    let total: u64 = confusion.iter().flatten().sum();
+    let hits: u64 = (0..3).map(|c| confusion[c][c]).sum();
+    let cell_prediction_rate = if total == 0 { 0.0 } else { hits as f64 / total as f64 };
     let mut types = std::collections::BTreeMap::new();
     for u in &world.units {
         *types.entry(u.kind.name()).or_insert(0u32) += 1;
@@ -39,8 +44,8 @@ pub fn summary(chain: &Chain, map: &OccupancyMap, world: &World, seconds: f64) -
         "iterations": chain.iteration(),
         "seconds": seconds,
         "iterations_per_second": chain.iteration() as f64 / seconds.max(1e-9),
-        "cell_prediction_rate": metrics::prediction_rate(map.classified(), world),
-        "confusion": metrics::confusion(map.classified(), world),
+        "cell_prediction_rate": cell_prediction_rate,
+        "confusion": confusion,
         "units": world.units.len(),
         "doors": world.doors.len(),
         "unexplained_areas": world.unexplained.len(),

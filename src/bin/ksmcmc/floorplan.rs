@@ -152,7 +152,7 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     drop((cells, world_map));
     let rooms = labels.cells().iter().copied().max().unwrap_or(0);
     report["rooms"] = rooms.into();
-    let k = metrics::prediction_rate(map.classified(), &world);
+    let k = report["cell_prediction_rate"].as_f64().unwrap_or(0.0);
     let overlay = ksmcmc::render::try_render(map.classified(), Some(&world), &Default::default())
         .map_err(|e| args::failed("overlay.png", e))?;
     report["map"] = map_path.display().to_string().into();

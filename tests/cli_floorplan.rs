@@ -257,3 +257,31 @@ fn knowledge_modes() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("bad.mln") && err.contains("line 2"), "{err}");
 }
+
+#[test]
+fn evaluate_pairs_knowledge_with_the_weak_prior_and_refuses_unknown_sets() {
+    let out = run(&["evaluate", "--only", "nonsense"]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("--only nonsense") && err.contains("paired"), "{err}");
+
+    let out = run(&["evaluate", "--only", "paired", "--seeds", "2", "--iterations", "1500"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = String::from_utf8_lossy(&out.stdout);
+    let rows: Vec<Vec<&str>> = text
+        .lines()
+        .filter(|l| l.starts_with("| ") && !l.starts_with("| kind"))
+        .map(|l| l.split('|').map(str::trim).filter(|c| !c.is_empty()).collect())
+        .collect();
+    assert_eq!(rows.len(), 5, "one row per synthetic kind:\n{text}");
+    for r in &rows {
+        let k: f64 = r[1].parse().unwrap();
+        let weak: f64 = r[2].parse().unwrap();
+        let diff: f64 = r[3].split_whitespace().next().unwrap().parse().unwrap();
+        assert!((0.5..=1.0).contains(&k) && (0.5..=1.0).contains(&weak), "{r:?}");
+        // The difference is of the unrounded means: within the columns' rounding.
+        assert!((diff - (k - weak)).abs() <= 1e-4 + 1e-9, "{r:?}");
+        let (better, worse) = r[4].split_once(" / ").unwrap();
+        assert!(better.parse::<u32>().unwrap() + worse.parse::<u32>().unwrap() <= 2, "{r:?}");
+    }
+}

@@ -324,9 +324,17 @@ pub fn evidence(world: &World, resolution: f64, classifier: &GeometryClassifier)
 /// 10 % of the longer one: the topological defects of section 3.7 (Fig. 3.27). `None` when the
 /// world has no adjacent room pairs.
 pub fn defects(world: &World) -> Option<f64> {
+    let (bad, pairs) = defect_pairs(world);
+    (pairs > 0).then(|| bad as f64 / pairs as f64)
+}
+
+/// The counts behind [`defects`]: adjacent room-room pairs whose connecting walls differ by
+/// more than 10 % of the longer one, and all adjacent room-room pairs. Pooled over several
+/// worlds they weigh each pair alike, where averaging [`defects`] weighs each world alike.
+pub fn defect_pairs(world: &World) -> (u32, u32) {
     let t = world.wall_thickness;
     let rooms: Vec<&Unit> = world.units.iter().filter(|u| u.kind == UnitType::Room).collect();
-    let (mut pairs, mut bad) = (0u32, 0u32);
+    let (mut bad, mut pairs) = (0u32, 0u32);
     for (i, a) in rooms.iter().enumerate() {
         for b in &rooms[i + 1..] {
             if let Some((la, lb)) = connecting_walls(a, b, t) {
@@ -337,7 +345,7 @@ pub fn defects(world: &World) -> Option<f64> {
             }
         }
     }
-    (pairs > 0).then(|| bad as f64 / pairs as f64)
+    (bad, pairs)
 }
 
 #[cfg(test)]
@@ -461,6 +469,7 @@ mod tests {
         assert!(has("Adj", &["U1", "U3"], false));
         assert!(has("RoLi", &["U1"], true) && has("MulDoor", &["U1"], false));
         assert_eq!(defects(&w), Some(0.5));
+        assert_eq!(defect_pairs(&w), (1, 2));
         w.units[2].kind = UnitType::Corridor;
         assert_eq!(defects(&w), Some(0.0));
     }

@@ -17,7 +17,7 @@ Prints the quality tables of BENCHMARKS.md:
   bormann    room-segmentation precision and recall on the Bormann et al. maps in DIR/bormann2016
              (plain and furnished), scored as the benchmark does (see `ksmcmc score`)
   synthetic  K(W,M), precision and recall against the truth of K generated maps per kind
-    cartesium  K(W,M) on DIR/radish/ubremen-cartesium.png over K seeds
+  cartesium  K(W,M) on DIR/radish/ubremen-cartesium.png over K seeds
   knowledge  weak prior versus knowledge supervision (Fig. 3.34): K(W,M), unit-count error,
              defects (adjacent room pairs whose connecting walls differ by over 10 %) and
              type accuracy against the synthetic truth
@@ -33,6 +33,15 @@ struct Opts {
     iterations: u64,
     seeds: u64,
     config: ChainConfig,
+}
+
+impl Opts {
+    /// The same options with knowledge supervision switched on or off.
+    fn with_knowledge(&self, enabled: bool) -> Opts {
+        let mut config = self.config.clone();
+        config.knowledge.enabled = enabled;
+        Opts { iterations: self.iterations, seeds: self.seeds, config }
+    }
 }
 
 fn explain(map: &OccupancyMap, o: &Opts, seed: u64) -> Result<Chain, CliError> {
@@ -133,16 +142,14 @@ fn synthetic(o: &Opts) -> Result<(), CliError> {
 
 /// Weak prior versus knowledge supervision (the comparison of Fig. 3.34).
 fn knowledge(dir: &Path, o: &Opts) -> Result<(), CliError> {
-    use ksmcmc::floorplan::knowledge::defects;
+    use ksmcmc::floorplan::knowledge::{defect_pairs, defects};
     println!("\n### Weak prior versus knowledge supervision ({} iterations)\n", o.iterations);
     println!("| maps | mode | K(W,M) | unit count error | defects | type accuracy |");
     println!("|---|---|---|---|---|---|");
 
     for enabled in [false, true] {
         let mode = if enabled { "knowledge" } else { "weak prior" };
-        let mut config = o.config.clone();
-        config.knowledge.enabled = enabled;
-        let o2 = Opts { iterations: o.iterations, seeds: o.seeds, config };
+        let o2 = o.with_knowledge(enabled);
         let (mut ks, mut errs, mut defs, mut typed, mut right) = (vec![], vec![], vec![], 0u32, 0u32);
         for seed in 0..o.seeds {
             let s = generate(&SynthConfig::default(), 200 + seed).map_err(|e| args::failed("synth", e))?;
@@ -181,15 +188,16 @@ fn knowledge(dir: &Path, o: &Opts) -> Result<(), CliError> {
         if path.exists() {
             let mut map = args::load_map(&path)?;
             map.set_classifier(Classifier::default()).map_err(|e| args::failed("classifier", e))?;
-            let (mut ks, mut defs, mut units, mut pairs) = (vec![], vec![], vec![], [0usize; 2]);
+            let (mut ks, mut defs, mut units, mut pairs) = (vec![], vec![], vec![], [0u32; 2]);
             for seed in 1..=o.seeds.min(3) {
                 let w = explain(&map, &o2, seed)?.best_world_typed();
                 ks.push(prediction_rate(map.classified(), &w));
                 units.push(w.units.len() as f64);
-                if let Some(d) = defects(&w) {
-                    defs.push(d);
-                }
+                // The share of this world (`defects`) and the counts pooled over the seeds.
                 let (bad, all) = defect_pairs(&w);
+                if all > 0 {
+                    defs.push(bad as f64 / all as f64);
+                }
                 pairs[0] += bad;
                 pairs[1] += all;
             }
@@ -208,24 +216,6 @@ fn knowledge(dir: &Path, o: &Opts) -> Result<(), CliError> {
     Ok(())
 }
 
-/// Adjacent room pairs of `w` whose connecting walls differ by over 10 %, and all adjacent
-/// room pairs (the counts behind [`defects`](ksmcmc::floorplan::knowledge::defects)).
-fn defect_pairs(w: &ksmcmc::floorplan::World) -> (usize, usize) {
-    use ksmcmc::floorplan::knowledge::connecting_walls;
-    use ksmcmc::floorplan::UnitType;
-    let rooms: Vec<_> = w.units.iter().filter(|u| u.kind == UnitType::Room).collect();
-    let (mut bad, mut all) = (0, 0);
-    for (i, a) in rooms.iter().enumerate() {
-        for b in &rooms[i + 1..] {
-            if let Some((la, lb)) = connecting_walls(a, b, w.wall_thickness) {
-                all += 1;
-                bad += ((la - lb).abs() as f64 > 0.1 * la.max(lb) as f64) as usize;
-            }
-        }
-    }
-    (bad, all)
-}
-
 /// Knowledge supervision against the weak prior on the same maps with the same chain seeds:
 /// the paired difference of K(W,M) per kind, so that "knowledge must not lose K(W,M)" can be
 /// told from seed-to-seed noise.
@@ -239,10 +229,7 @@ fn paired(o: &Opts) -> Result<(), CliError> {
             let s = generate(&synth, 100 + seed).map_err(|e| args::failed(name, e))?;
             truth += s.truth.units.len();
             for (m, enabled) in [true, false].into_iter().enumerate() {
-                let mut config = o.config.clone();
-                config.knowledge.enabled = enabled;
-                let o2 = Opts { iterations: o.iterations, seeds: o.seeds, config };
-                let w = explain(&s.map, &o2, seed + 1)?.best_world();
+                let w = explain(&s.map, &o.with_knowledge(enabled), seed + 1)?.best_world();
                 k[m].push(prediction_rate(s.map.classified(), &w));
                 units[m] += w.units.len();
             }

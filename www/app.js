@@ -5,6 +5,7 @@ import init, { Map as OccMap, drawToCanvas, synth, version } from './pkg/ksmcmc.
 import { TOOLS, MAX_BRUSH, brushOffsets, stamp, strokeTo, cellAt } from './lib/paint.js';
 import { planOpen, pickYamlImage, stem, parseSeed, onDroppedFiles } from './lib/files.js';
 import { messages } from './lib/messages.js';
+import { download } from './lib/download.js';
 
 const $ = (id) => document.getElementById(id);
 const ui = {
@@ -383,15 +384,7 @@ function createBlank() {
 // ---------------------------------------------------------------- downloads
 
 function save(name, data, type) {
-  const url = URL.createObjectURL(new Blob([data], { type }));
-  const a = document.createElement('a');
-  a.href = url;
-  a.download = name;
-  a.hidden = true;
-  document.body.append(a);
-  a.click();
-  a.remove();
-  setTimeout(() => URL.revokeObjectURL(url), 10_000);
+  download(name, data, type);
   say(`Saved ${name}.`);
 }
 

@@ -10,6 +10,7 @@ import { TOOLS, MAX_BRUSH, brushOffsets, stamp, strokeTo, cellAt } from './lib/p
 import { planOpen, pickYamlImage, stem, parseSeed, onDroppedFiles } from './lib/files.js';
 import { drawPlot, formatNumber, parseIterationsPerFrame } from './lib/plot.js';
 import { messages } from './lib/messages.js';
+import { download } from './lib/download.js';
 
 /**
  * Milliseconds per animation frame for iterating and drawing together in `auto` mode: the
@@ -547,15 +548,7 @@ function setReference(text, name) {
 // ---------------------------------------------------------------- exports
 
 function save(name, data, type) {
-  const url = URL.createObjectURL(new Blob([data], { type }));
-  const a = document.createElement('a');
-  a.href = url;
-  a.download = name;
-  a.hidden = true;
-  document.body.append(a);
-  a.click();
-  a.remove();
-  setTimeout(() => URL.revokeObjectURL(url), 10_000);
+  download(name, data, type);
   say(`Saved ${name}.`);
 }
 

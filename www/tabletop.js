@@ -5,6 +5,7 @@
 
 import init, { Tabletop, tabletopSynth, tabletopRulesDefault, tabletopCheckRules, version } from './pkg/ksmcmc.js';
 import { messages } from './lib/messages.js';
+import { download } from './lib/download.js';
 import { rulesEditor } from './lib/rules-editor.js';
 
 /** Milliseconds of iterations per animation frame. */
@@ -189,13 +190,7 @@ function wire() {
     if (attempt(() => load(text, f.name))) clearError();
     ui.file.value = '';
   });
-  ui.download.addEventListener('click', () => {
-    const a = document.createElement('a');
-    a.href = URL.createObjectURL(new Blob([state.sceneJson], { type: 'application/json' }));
-    a.download = 'scene.json';
-    a.click();
-    setTimeout(() => URL.revokeObjectURL(a.href), 1000);
-  });
+  ui.download.addEventListener('click', () => download('scene.json', state.sceneJson, 'application/json'));
   ui.rulesApply.addEventListener('click', () => attempt(applyRules));
   ui.rulesDefault.addEventListener('click', () => {
     ui.rules.value = tabletopRulesDefault();

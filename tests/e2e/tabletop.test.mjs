@@ -8,7 +8,7 @@ import assert from 'node:assert/strict';
 import { mkdtempSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { openPage, startBrowser } from './harness.mjs';
+import { download, openPage, startBrowser } from './harness.mjs';
 
 let env;
 let tmp;
@@ -77,6 +77,10 @@ describe('table-top page', () => {
       (o) => (o.hidden === 'true') === o.truth.hidden && (o['false'] === 'true') === o.truth['false'],
     ).length;
     assert.ok(agree >= Math.ceil(objs.length * 0.6), `${agree} of ${objs.length} objects agree with the truth`);
+    // The scene downloads as the JSON the page analyses.
+    const saved = await download(page, '#download');
+    assert.equal(saved.name, 'scene.json');
+    assert.equal(JSON.parse(saved.bytes.toString('utf8')).objects.length, s.objects);
     // The time of a whole analysis of an 8-object scene, 100 iterations.
     const times = [];
     let benchObjects = 0;

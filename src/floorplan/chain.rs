@@ -779,6 +779,24 @@ impl Chain {
         super::rooms::room_labels(world, &self.map, &self.world_map, rooms)
     }
 
+    /// The typed best world ([`Chain::best_world_typed`]) with its room layer filled in, and
+    /// the room labels (one id per room, `labels.pgm`). With knowledge supervision the built-in
+    /// room rules decide which units are one room ([`super::room_layer`]); without it every
+    /// open boundary joins.
+    pub fn best_world_with_rooms(&mut self, rooms: &super::rooms::RoomConfig) -> (World, Grid<u16>) {
+        let mut world = self.best_world_typed();
+        let knowledge = self.config.knowledge.enabled;
+        let labels = super::room_layer::explain_world_rooms(
+            &mut world,
+            &self.map,
+            &self.world_map,
+            rooms,
+            self.resolution,
+            knowledge,
+        );
+        (world, labels)
+    }
+
     /// The classified map the chain explains, in the map's own frame.
     pub fn map(&self) -> &Grid<Cell> {
         &self.map

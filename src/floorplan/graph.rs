@@ -89,3 +89,12 @@ pub fn to_json(g: &SceneGraph) -> serde_json::Value {
         .collect();
     serde_json::json!({"nodes": nodes, "edges": edges})
 }
+
+/// The scene graph of `world` ([`scene_graph`], [`to_json`]) with its room layer:
+/// `{"nodes", "edges", "rooms": [{"id", "type", "units", "area_m2", "doors", "opens_to"}]}`.
+/// `graph.json` holds this.
+pub fn world_json(world: &World) -> serde_json::Value {
+    let mut v = to_json(&scene_graph(world));
+    v["rooms"] = serde_json::to_value(&world.rooms).expect("rooms serialise");
+    v
+}

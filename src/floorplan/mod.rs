@@ -11,11 +11,13 @@ pub mod knowledge;
 pub mod metrics;
 pub mod posterior;
 pub mod report;
+pub mod room_layer;
 pub mod rooms;
 pub mod state;
 pub mod synth;
+pub mod topology;
 pub mod unexplained;
 pub mod world;
 
 pub use chain::{Chain, ChainConfig, ChainError, DetectorConfig, OutputConfig};
-pub use world::{Door, Frame, Rect, UnexplainedArea, Unit, UnitType, World, WorldError, WORLD_FORMAT};
+pub use world::{Door, Frame, Rect, Room, UnexplainedArea, Unit, UnitType, World, WorldError, WORLD_FORMAT};

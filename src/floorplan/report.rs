@@ -14,7 +14,13 @@ use crate::mcmc::Kernel;
 /// status and per-kernel counts.
 pub fn report(chain: &Chain, map: &OccupancyMap, world: &World, labels: &Grid<u16>, seconds: f64) -> serde_json::Value {
     let mut r = summary(chain, map, world, seconds);
-    r["rooms"] = labels.cells().iter().copied().max().unwrap_or(0).into();
+    // The room layer when the world has one (one room per label), else the labels' count.
+    r["rooms"] = if world.rooms.is_empty() {
+        labels.cells().iter().copied().max().unwrap_or(0) as usize
+    } else {
+        world.rooms.len()
+    }
+    .into();
     r
 }
 

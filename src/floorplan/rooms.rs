@@ -66,9 +66,99 @@ pub fn encloses_space(u: &super::world::Unit, t: i32, world_map: &Grid<Cell>) ->
     total > 0 && 2 * free >= total
 }
 
+/// Two units with an open boundary between them (no wall in the band between their facing
+/// walls, or overlapping interiors): candidates for one room.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct OpenPair {
+    /// Index of the first unit in `world.units`.
+    pub a: usize,
+    /// Index of the second unit (`a < b`).
+    pub b: usize,
+    /// Whether the open boundary spans most ([`FLUSH_SHARE`]) of both units' facing sides: one
+    /// space cut in two by a unit seam, rather than a room opening off the side of a longer
+    /// corridor or hall.
+    pub flush: bool,
+}
+
+/// The share of both facing sides an open boundary must span to be [`OpenPair::flush`].
+pub const FLUSH_SHARE: f64 = 0.5;
+
+/// Occupied and total cells of `r` in `map` (clipped to the map).
+fn occupied(map: &Grid<Cell>, r: Rect) -> (i64, i64) {
+    let (mut occ, mut total) = (0, 0);
+    for y in r.y.max(0)..r.bottom().min(map.height() as i32) {
+        for x in r.x.max(0)..r.right().min(map.width() as i32) {
+            total += 1;
+            occ += (*map.at(x as usize, y as usize) == Cell::Occupied) as i64;
+        }
+    }
+    (occ, total)
+}
+
+/// Whether units `a` and `b` (rectangles, walls `t` deep) have an open boundary, and whether
+/// it is flush: `None` if there is none.
+fn open_boundary(a: Rect, b: Rect, t: i32, world_map: &Grid<Cell>, c: &RoomConfig) -> Option<bool> {
+    let mut found: Option<bool> = None;
+    for (lo, hi) in [(a, b), (b, a)] {
+        for axis in [Axis::Horizontal, Axis::Vertical] {
+            let Some((s, e)) = facing(lo, hi, axis, t, t) else { continue };
+            if e - s + 1 < c.min_open_len {
+                continue;
+            }
+            let (band, side): (Rect, fn(Rect) -> i32) = match axis {
+                Axis::Horizontal => (Rect::new(lo.right() - t, s, hi.x - lo.right() + 2 * t, e - s + 1), |r| r.h),
+                Axis::Vertical => (Rect::new(s, lo.bottom() - t, e - s + 1, hi.y - lo.bottom() + 2 * t), |r| r.w),
+            };
+            let (occ, total) = occupied(world_map, band);
+            if total > 0 && (occ as f64) <= c.max_wall_share * total as f64 {
+                let span = (e - s + 1) as f64;
+                let share = |r: Rect| span / (side(r) - 2 * t).max(1) as f64;
+                let flush = share(lo).min(share(hi)) >= FLUSH_SHARE;
+                found = Some(found.unwrap_or(false) || flush);
+            }
+        }
+    }
+    // Units overlapping by more than their walls are parts of one space.
+    if let Some(inter) = a.intersection(&b) {
+        if inter.w > 2 * t && inter.h > 2 * t {
+            let (occ, total) = occupied(world_map, inter);
+            if (occ as f64) <= c.max_wall_share * total as f64 {
+                found = Some(true);
+            }
+        }
+    }
+    found
+}
+
+/// Every pair of space-enclosing units ([`encloses_space`]) with an open boundary.
+pub fn open_pairs(world: &World, world_map: &Grid<Cell>, c: &RoomConfig) -> Vec<OpenPair> {
+    let t = world.wall_thickness;
+    let space: Vec<bool> = world.units.iter().map(|u| encloses_space(u, t, world_map)).collect();
+    let mut pairs = Vec::new();
+    for a in 0..world.units.len() {
+        for b in a + 1..world.units.len() {
+            if !space[a] || !space[b] {
+                continue;
+            }
+            if let Some(flush) = open_boundary(world.units[a].rect(), world.units[b].rect(), t, world_map, c) {
+                pairs.push(OpenPair { a, b, flush });
+            }
+        }
+    }
+    pairs
+}
+
 /// Room id (1-based) of every unit, by unit index; 0 for units that enclose no space
-/// ([`encloses_space`]).
+/// ([`encloses_space`]). Units with an open boundary ([`open_pairs`]) are one room: the rule
+/// without knowledge supervision ([`super::room_layer`] lets the knowledge base decide).
 pub fn group_units(world: &World, world_map: &Grid<Cell>, c: &RoomConfig) -> Vec<u16> {
+    let pairs = open_pairs(world, world_map, c);
+    join(world, world_map, pairs.iter().map(|p| (p.a, p.b)))
+}
+
+/// Room ids (1-based, numbered by first unit) when the given pairs of unit indices are joined;
+/// units that enclose no space get 0.
+pub fn join(world: &World, world_map: &Grid<Cell>, pairs: impl IntoIterator<Item = (usize, usize)>) -> Vec<u16> {
     let n = world.units.len();
     let space: Vec<bool> = world.units.iter().map(|u| encloses_space(u, world.wall_thickness, world_map)).collect();
     let mut parent: Vec<usize> = (0..n).collect();
@@ -79,53 +169,14 @@ pub fn group_units(world: &World, world_map: &Grid<Cell>, c: &RoomConfig) -> Vec
         }
         i
     }
-    let t = world.wall_thickness;
-    let occupied = |r: Rect| -> (i64, i64) {
-        let mut occ = 0;
-        let mut total = 0;
-        for y in r.y.max(0)..r.bottom().min(world_map.height() as i32) {
-            for x in r.x.max(0)..r.right().min(world_map.width() as i32) {
-                total += 1;
-                occ += (*world_map.at(x as usize, y as usize) == Cell::Occupied) as i64;
-            }
-        }
-        (occ, total)
-    };
-    for i in 0..n {
-        for j in 0..n {
-            if i == j || !space[i] || !space[j] {
-                continue;
-            }
-            let (a, b) = (world.units[i].rect(), world.units[j].rect());
-            let mut open = false;
-            for axis in [Axis::Horizontal, Axis::Vertical] {
-                let Some((s, e)) = facing(a, b, axis, t, t) else { continue };
-                if e - s + 1 < c.min_open_len {
-                    continue;
-                }
-                let band = match axis {
-                    Axis::Horizontal => Rect::new(a.right() - t, s, b.x - a.right() + 2 * t, e - s + 1),
-                    Axis::Vertical => Rect::new(s, a.bottom() - t, e - s + 1, b.y - a.bottom() + 2 * t),
-                };
-                let (occ, total) = occupied(band);
-                open |= total > 0 && (occ as f64) <= c.max_wall_share * total as f64;
-            }
-            // Units overlapping by more than their walls are parts of one space.
-            if let Some(inter) = a.intersection(&b) {
-                if inter.w > 2 * t && inter.h > 2 * t {
-                    let (occ, total) = occupied(inter);
-                    open |= (occ as f64) <= c.max_wall_share * total as f64;
-                }
-            }
-            if open {
-                let (ri, rj) = (find(&mut parent, i), find(&mut parent, j));
-                if ri != rj {
-                    parent[ri.max(rj)] = ri.min(rj);
-                }
+    for (i, j) in pairs {
+        if i < n && j < n && space[i] && space[j] {
+            let (ri, rj) = (find(&mut parent, i), find(&mut parent, j));
+            if ri != rj {
+                parent[ri.max(rj)] = ri.min(rj);
             }
         }
     }
-    // Number rooms by their first unit.
     let mut id_of_root = vec![0u16; n];
     let mut next = 0u16;
     (0..n)
@@ -135,7 +186,7 @@ pub fn group_units(world: &World, world_map: &Grid<Cell>, c: &RoomConfig) -> Vec
             }
             let r = find(&mut parent, i);
             if id_of_root[r] == 0 {
-                next += 1;
+                next = next.saturating_add(1);
                 id_of_root[r] = next;
             }
             id_of_root[r]
@@ -147,11 +198,22 @@ pub fn group_units(world: &World, world_map: &Grid<Cell>, c: &RoomConfig) -> Vec
 /// (1..=n), other cells 0. `world_map` is the classified map in the world frame, `map` in the
 /// map frame.
 pub fn room_labels(world: &World, map: &Grid<Cell>, world_map: &Grid<Cell>, c: &RoomConfig) -> Grid<u16> {
-    let rooms = group_units(world, world_map, c);
+    labels_of_groups(world, &group_units(world, world_map, c), map, world_map, c)
+}
+
+/// [`room_labels`] for a given grouping of units into rooms (`rooms[i]` is unit `i`'s room,
+/// 1-based, 0 for none), as [`join`] makes it.
+pub fn labels_of_groups(
+    world: &World,
+    rooms: &[u16],
+    map: &Grid<Cell>,
+    world_map: &Grid<Cell>,
+    c: &RoomConfig,
+) -> Grid<u16> {
     let (ww, wh) = (world_map.width(), world_map.height());
     // Owner room of every world cell: the first unit covering it.
     let mut owner = vec![0u16; ww * wh];
-    for (u, &room) in world.units.iter().zip(&rooms) {
+    for (u, &room) in world.units.iter().zip(rooms) {
         if room == 0 {
             continue;
         }

@@ -166,6 +166,8 @@ pub fn generate(config: &SynthConfig, seed: u64) -> Result<Synthetic, SynthError
         units,
         doors,
         object_cells: observed.objects,
+        // Each truth unit is a room of its own (its id in `labels`): no room layer needed.
+        rooms: Vec::new(),
         // The truth explains the building by construction; what a scan leaves outside it is
         // not part of the plan.
         unexplained: Vec::new(),

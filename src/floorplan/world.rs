@@ -18,6 +18,8 @@
 //!   "units": [ { "id": 1, "x": 10, "y": 10, "w": 30, "h": 20, "type": "room" } ],
 //!   "doors": [ { "id": 1, "units": [1, 2], "x0": 39, "y0": 14, "x1": 39, "y1": 18 } ],
 //!   "object_cells": [[12, 14], [12, 15]],
+//!   "rooms": [ { "id": 1, "type": "room", "units": [1], "area_m2": 12.5, "doors": [1],
+//!                "opens_to": [2] } ],
 //!   "unexplained": [ { "id": 1, "cells": 14, "x0": 50, "y0": 3, "x1": 55, "y1": 5,
 //!                      "runs": [[3, 50, 55], [4, 50, 55], [5, 54, 55]] } ]
 //! }
@@ -31,6 +33,11 @@
 //! * `doors[]`: the rectangle of cells from `(x0, y0)` to `(x1, y1)` inclusive, through the wall
 //!   between the two units named by id (a straight run of cells where they share a thin wall).
 //! * `object_cells`: unknown map cells inside units (furniture), optional.
+//! * `rooms`: the room layer, optional (written by `ksmcmc floorplan`): what a person would
+//!   call one space, one or more units each. `id` is the room's value in `labels.pgm`; `type`
+//!   is `room`, `corridor`, `hall` or `other`; `units` and `doors` name units and doors by id;
+//!   `area_m2` is the room's free floor area; `opens_to` names the rooms it connects to
+//!   (through a door or an open boundary). See [`rooms`](super::rooms).
 //! * `unexplained`: areas of free map cells that no unit or door covers (the papers' "N"),
 //!   optional: each a 4-connected component with its cell count, bounding box `(x0, y0)` to
 //!   `(x1, y1)` inclusive, and its cells as row runs `[y, x_first, x_last]`, top to bottom.
@@ -269,9 +276,33 @@ pub struct World {
     /// Unknown map cells inside units (furniture and clutter), world frame.
     #[serde(default)]
     pub object_cells: Vec<[i32; 2]>,
+    /// The room layer: units grouped into the spaces a person would draw (optional).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub rooms: Vec<Room>,
     /// Free areas no unit explains (the papers' "N"), world frame.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub unexplained: Vec<UnexplainedArea>,
+}
+
+/// A room: what a person would call one space (an office, an L-shaped corridor, a hall cut by
+/// desks), made of one or more units. Rooms are what `labels.pgm` numbers and what a robot
+/// plans with: [`Room::opens_to`] is the room graph.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Room {
+    /// Identifier, the room's value in the label image (1-based).
+    pub id: u32,
+    /// The room's type.
+    #[serde(rename = "type", default)]
+    pub kind: UnitType,
+    /// Ids of its units (may be empty: free space the chain left unexplained can be a room).
+    pub units: Vec<u32>,
+    /// Free floor area, square metres.
+    pub area_m2: f64,
+    /// Ids of the doors on its boundary or inside it.
+    pub doors: Vec<u32>,
+    /// Ids of the rooms it connects to, through a door or an open boundary.
+    pub opens_to: Vec<u32>,
 }
 
 /// A connected area of free cells that no unit or door covers (the papers' "N"): free space
@@ -325,6 +356,7 @@ impl World {
             units: Vec::new(),
             doors: Vec::new(),
             object_cells: Vec::new(),
+            rooms: Vec::new(),
             unexplained: Vec::new(),
         }
     }
@@ -402,6 +434,7 @@ impl World {
                 return bad(format!("world.json: object cell ({},{}) lies outside the world", c[0], c[1]));
             }
         }
+        self.validate_rooms(&ids)?;
         for a in &self.unexplained {
             let mut sum = 0u64;
             for r in &a.runs {
@@ -422,6 +455,31 @@ impl World {
                     "world.json: unexplained area {} says {} cells but its runs hold {sum}",
                     a.id, a.cells
                 ));
+            }
+        }
+        Ok(())
+    }
+
+    /// Room ids unique and non-zero; the units, doors and rooms each room names exist.
+    fn validate_rooms(&self, unit_ids: &std::collections::HashSet<u32>) -> Result<(), WorldError> {
+        let bad = |m: String| Err(WorldError(format!("world.json: {m}")));
+        let room_ids: std::collections::HashSet<u32> = self.rooms.iter().map(|r| r.id).collect();
+        let door_ids: std::collections::HashSet<u32> = self.doors.iter().map(|d| d.id).collect();
+        if room_ids.len() != self.rooms.len() || room_ids.contains(&0) {
+            return bad("room ids must be distinct and non-zero".into());
+        }
+        for r in &self.rooms {
+            if !(r.area_m2.is_finite() && r.area_m2 >= 0.0) {
+                return bad(format!("room {} has area {}", r.id, r.area_m2));
+            }
+            if let Some(u) = r.units.iter().find(|u| !unit_ids.contains(u)) {
+                return bad(format!("room {} names unit {u}, which does not exist", r.id));
+            }
+            if let Some(d) = r.doors.iter().find(|d| !door_ids.contains(d)) {
+                return bad(format!("room {} names door {d}, which does not exist", r.id));
+            }
+            if let Some(o) = r.opens_to.iter().find(|o| !room_ids.contains(o)) {
+                return bad(format!("room {} opens to room {o}, which does not exist", r.id));
             }
         }
         Ok(())

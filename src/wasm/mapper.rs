@@ -20,7 +20,7 @@ use super::{js_message, put_rgba, seed_from_js, Map, Rendered, MAX_RENDER_PIXELS
 use crate::floorplan::report::report as ksmcmc_report;
 use crate::floorplan::rooms::RoomConfig;
 use crate::floorplan::{graph, metrics, Chain, ChainConfig, Rect, World};
-use crate::grid::OccupancyMap;
+use crate::grid::{Grid, OccupancyMap};
 use crate::render::{self, RenderOptions};
 use serde::Deserialize;
 use tiny_skia::Pixmap;
@@ -65,6 +65,9 @@ pub struct Mapper {
     /// The current world, exported once per iteration count: a frame draws it twice (map and
     /// scene graph), and exporting a large world costs milliseconds.
     current: Option<(u64, World)>,
+    /// The best world with its room layer and room labels, keyed as `best`: computed only
+    /// when an export or the room list asks (a pass over the map and a small inference).
+    rooms: Option<((u64, u64), World, Grid<u16>)>,
     reference: Option<World>,
     setup_ms: f64,
     busy_ms: f64,
@@ -88,6 +91,17 @@ impl Mapper {
         (world, *k)
     }
 
+    /// The best world with its rooms, and the room labels (cached between improvements).
+    fn best_rooms(&mut self) -> (&World, &Grid<u16>) {
+        let key = (self.chain.best_iteration(), self.chain.best_log_posterior().to_bits());
+        if self.rooms.as_ref().is_none_or(|(k, _, _)| *k != key) {
+            let (world, labels) = self.chain.best_world_with_rooms(&RoomConfig::default());
+            self.rooms = Some((key, world, labels));
+        }
+        let (_, world, labels) = self.rooms.as_ref().expect("just filled");
+        (world, labels)
+    }
+
     /// The current world (cached until the chain moves).
     fn current(&mut self) -> &World {
         let it = self.chain.iteration();
@@ -109,6 +123,7 @@ impl Mapper {
     fn restart(&mut self, chain: Chain) {
         self.chain = chain;
         self.best = None;
+        self.rooms = None;
         self.current = None;
         self.busy_ms = 0.0;
     }
@@ -194,6 +209,7 @@ impl Mapper {
             base: None,
             best: None,
             current: None,
+            rooms: None,
             reference: None,
             setup_ms,
             busy_ms: 0.0,
@@ -372,7 +388,14 @@ impl Mapper {
     /// after as many iterations with the same seed.
     #[wasm_bindgen(js_name = bestWorldJson)]
     pub fn best_world_json(&mut self) -> String {
-        self.best().0.to_json()
+        self.best_rooms().0.to_json()
+    }
+
+    /// The rooms of the best world as JSON text: the `rooms` of `world.json`, each with its
+    /// `id` (its value in `labelsPgm`), `type`, `units`, `area_m2`, `doors` and `opens_to`.
+    #[wasm_bindgen(js_name = roomsJson)]
+    pub fn rooms_json(&mut self) -> Result<String, JsError> {
+        Ok(serde_json::to_string(&self.best_rooms().0.rooms)?)
     }
 
     /// The recorded trace from point `from` on (default 0): one point every
@@ -434,24 +457,25 @@ impl Mapper {
     /// The room segmentation of the best world as a 16-bit binary PGM of the map's size (room
     /// id per free cell, 0 elsewhere): `labels.pgm` of `ksmcmc floorplan`.
     #[wasm_bindgen(js_name = labelsPgm)]
-    pub fn labels_pgm(&self) -> Vec<u8> {
-        let labels = self.chain.best_labels(&RoomConfig::default());
+    pub fn labels_pgm(&mut self) -> Vec<u8> {
+        let labels = self.best_rooms().1;
         crate::grid::pgm::encode_u16(labels.width(), labels.height(), labels.cells())
     }
 
     /// The scene graph of the best world (or the current one, `which = 'current'`) as
-    /// `graph.json` text: `{"nodes": [{"id", "type"}], "edges": [{"from", "to", "kind", "door"?}]}`.
+    /// `graph.json` text: `{"nodes": [{"id", "type"}], "edges": [{"from", "to", "kind", "door"?}],
+    /// "rooms": [...]}` (the rooms of `world.json`; the current world has none).
     #[wasm_bindgen(js_name = graphJson)]
     pub fn graph_json(
         &mut self,
         #[wasm_bindgen(unchecked_optional_param_type = "'best' | 'current'")] which: Option<String>,
     ) -> Result<String, JsError> {
         let world = match which.as_deref() {
-            None | Some("best") => self.best().0.clone(),
+            None | Some("best") => self.best_rooms().0.clone(),
             Some("current") => self.current().clone(),
             Some(other) => return Err(JsError::new(&format!("graphJson: {other:?} is neither 'best' nor 'current'"))),
         };
-        Ok(serde_json::to_string_pretty(&graph::to_json(&graph::scene_graph(&world)))?)
+        Ok(serde_json::to_string_pretty(&graph::world_json(&world))?)
     }
 
     /// A summary of the run as JSON text, with the fields of `ksmcmc floorplan`'s
@@ -461,8 +485,8 @@ impl Mapper {
     #[wasm_bindgen(js_name = reportJson)]
     pub fn report_json(&mut self) -> Result<String, JsError> {
         let seconds = self.busy_ms / 1000.0;
-        let world = self.best().0.clone();
-        let labels = self.chain.labels(&world, &RoomConfig::default());
+        let (world, labels) = self.best_rooms();
+        let (world, labels) = (world.clone(), labels.clone());
         let mut report = ksmcmc_report(&self.chain, &self.map, &world, &labels, seconds);
         report["setup_seconds"] = (self.setup_ms / 1000.0).into();
         Ok(serde_json::to_string_pretty(&report)?)

@@ -2,11 +2,12 @@
 
 use crate::args::{self, CliError};
 use crate::score::truth_regions;
-use ksmcmc::floorplan::metrics::{prediction_rate, score_segmentation};
+use ksmcmc::floorplan::metrics::{prediction_rate, score_segmentation, SegmentationScore};
 use ksmcmc::floorplan::rooms::RoomConfig;
 use ksmcmc::floorplan::synth::{generate, SynthConfig};
+use ksmcmc::floorplan::topology::{score_links, LinkScore};
 use ksmcmc::floorplan::{Chain, ChainConfig};
-use ksmcmc::grid::{Classifier, Grid, OccupancyMap};
+use ksmcmc::grid::{Cell, Classifier, Grid, OccupancyMap};
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};
 
@@ -23,11 +24,18 @@ Prints the quality tables of BENCHMARKS.md:
              type accuracy against the synthetic truth
   paired     knowledge supervision minus the weak prior on the same maps and chain seeds,
              per synthetic kind: the mean difference of K(W,M) with its standard error
+  paired-bormann  the bormann table in both modes, map by map, with the sums compared
+  rooms      the room layer against synthetic truth, both modes: rooms per truth unit and
+             type accuracy (the room covering most of each truth unit has the unit's type),
+             on hall, two-corridor, cluttered, rotated and many-storage floors
+bormann also scores door topology: a truth link is a drawn doorway line on free map cells
+between two truth rooms; a predicted link is two segments, standing for the truth rooms they
+overlap most, touching along at least 10 free cells (see floorplan::topology).
 DIR defaults to ../shared/datasets, N to 20000 iterations, K to 6. --only runs one set.
 ";
 
 /// The sets `--only` can name.
-const SETS: [&str; 5] = ["cartesium", "synthetic", "bormann", "knowledge", "paired"];
+const SETS: [&str; 7] = ["cartesium", "synthetic", "bormann", "knowledge", "paired", "paired-bormann", "rooms"];
 
 struct Opts {
     iterations: u64,
@@ -54,40 +62,109 @@ fn mean(v: &[f64]) -> f64 {
     v.iter().sum::<f64>() / v.len().max(1) as f64
 }
 
-fn bormann(dir: &Path, o: &Opts) -> Result<(), CliError> {
-    let dir = dir.join("bormann2016");
-    let mut names: Vec<String> = std::fs::read_dir(&dir)
+/// Segmentation and door-topology scores of one map.
+#[derive(Clone, Copy)]
+struct MapScore {
+    seg: SegmentationScore,
+    links: LinkScore,
+}
+
+impl MapScore {
+    fn figures(&self) -> [f64; 4] {
+        [self.seg.precision, self.seg.recall, self.links.precision, self.links.recall]
+    }
+}
+
+/// The Bormann maps in `dir`: names that have a `_gt_segmentation.png`.
+fn bormann_names(dir: &Path) -> Result<Vec<String>, CliError> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
         .map_err(|e| args::failed(dir.display(), e))?
         .filter_map(|e| e.ok()?.file_name().into_string().ok())
         .filter_map(|n| n.strip_suffix("_gt_segmentation.png").map(str::to_string))
         .collect();
     names.sort();
-    println!("\n### Room segmentation, Bormann et al. maps ({} iterations, seed 1)\n", o.iterations);
-    println!("| map | precision | recall | precision (furnished) | recall (furnished) |");
-    println!("|---|---|---|---|---|");
-    let (mut p, mut r, mut pf, mut rf) = (vec![], vec![], vec![], vec![]);
-    for name in &names {
-        let truth = truth_regions(&dir.join(format!("{name}_gt_segmentation.png")))?;
-        let mut cells = Vec::new();
-        for suffix in ["", "_furnitures"] {
-            let path = dir.join(format!("{name}{suffix}.png"));
-            let mut map = args::load_map(&path)?;
-            map.set_classifier(Classifier::auto()).map_err(|e| args::failed("classifier", e))?;
-            let chain = explain(&map, o, 1)?;
-            let labels = chain.best_labels(&RoomConfig::default()).map(|&l| l as u32);
-            let s = score_segmentation(&labels, &truth);
-            cells.push(s);
-        }
-        println!(
-            "| {name} | {:.3} | {:.3} | {:.3} | {:.3} |",
-            cells[0].precision, cells[0].recall, cells[1].precision, cells[1].recall
-        );
-        p.push(cells[0].precision);
-        r.push(cells[0].recall);
-        pf.push(cells[1].precision);
-        rf.push(cells[1].recall);
+    Ok(names)
+}
+
+/// Scores of map `name` (plain, then furnished) with the room layer of the options' mode.
+fn bormann_map(dir: &Path, name: &str, o: &Opts) -> Result<[MapScore; 2], CliError> {
+    let truth = truth_regions(&dir.join(format!("{name}_gt_segmentation.png")))?;
+    let mut out = Vec::new();
+    for suffix in ["", "_furnitures"] {
+        let path = dir.join(format!("{name}{suffix}.png"));
+        let mut map = args::load_map(&path)?;
+        map.set_classifier(Classifier::auto()).map_err(|e| args::failed("classifier", e))?;
+        let mut chain = explain(&map, o, 1)?;
+        let (_, labels) = chain.best_world_with_rooms(&RoomConfig::default());
+        let labels = labels.map(|&l| l as u32);
+        let free = map.classified().map(|&c| c == Cell::Free);
+        out.push(MapScore { seg: score_segmentation(&labels, &truth), links: score_links(&labels, &truth, &free) });
     }
-    println!("| **mean** | **{:.3}** | **{:.3}** | **{:.3}** | **{:.3}** |", mean(&p), mean(&r), mean(&pf), mean(&rf));
+    Ok([out[0], out[1]])
+}
+
+fn fmt4(f: [f64; 4]) -> String {
+    f.iter().map(|v| format!("{v:.3}")).collect::<Vec<_>>().join(" | ")
+}
+
+fn bormann(dir: &Path, o: &Opts) -> Result<(), CliError> {
+    let dir = dir.join("bormann2016");
+    let names = bormann_names(&dir)?;
+    let mode = if o.config.knowledge.enabled { "knowledge" } else { "weak prior" };
+    println!(
+        "\n### Room segmentation and door topology, Bormann et al. maps ({} iterations, seed 1, {mode})\n",
+        o.iterations
+    );
+    println!("| map | precision | recall | link precision | link recall | precision (furnished) | recall (furnished) | link precision (furnished) | link recall (furnished) |");
+    println!("|---|---|---|---|---|---|---|---|---|");
+    let mut sums = [[0.0; 4]; 2];
+    for name in &names {
+        let scores = bormann_map(&dir, name, o)?;
+        for (sum, s) in sums.iter_mut().zip(&scores) {
+            for (a, b) in sum.iter_mut().zip(s.figures()) {
+                *a += b;
+            }
+        }
+        println!("| {name} | {} | {} |", fmt4(scores[0].figures()), fmt4(scores[1].figures()));
+    }
+    let n = names.len().max(1) as f64;
+    let means = sums.map(|s| s.map(|v| v / n));
+    println!("| **mean** | {} | {} |", fmt4(means[0]), fmt4(means[1]));
+    Ok(())
+}
+
+/// Knowledge supervision against the weak prior on the Bormann maps, same chain seed: the
+/// per-map difference of the eight figures and the sums the issue compares.
+fn paired_bormann(dir: &Path, o: &Opts) -> Result<(), CliError> {
+    let dir = dir.join("bormann2016");
+    let names = bormann_names(&dir)?;
+    println!("\n### Knowledge minus weak prior, Bormann et al. maps ({} iterations, seed 1)\n", o.iterations);
+    println!("| map | mode | precision | recall | link precision | link recall | precision (furnished) | recall (furnished) | link precision (furnished) | link recall (furnished) |");
+    println!("|---|---|---|---|---|---|---|---|---|---|");
+    let mut sums = [[[0.0; 4]; 2]; 2];
+    for name in &names {
+        for (m, enabled) in [true, false].into_iter().enumerate() {
+            let scores = bormann_map(&dir, name, &o.with_knowledge(enabled))?;
+            for (k, s) in scores.iter().enumerate() {
+                for (a, b) in sums[m][k].iter_mut().zip(s.figures()) {
+                    *a += b;
+                }
+            }
+            let mode = if enabled { "knowledge" } else { "weak prior" };
+            println!("| {name} | {mode} | {} | {} |", fmt4(scores[0].figures()), fmt4(scores[1].figures()));
+        }
+    }
+    let n = names.len().max(1) as f64;
+    let means = sums.map(|m| m.map(|s| s.map(|v| v / n)));
+    for (mean, mode) in means.iter().zip(["knowledge", "weak prior"]) {
+        println!("| **mean** | {mode} | {} | {} |", fmt4(mean[0]), fmt4(mean[1]));
+    }
+    println!();
+    for (mean, mode) in means.iter().zip(["knowledge", "weak prior"]) {
+        let seg: f64 = mean.iter().map(|f| f[0] + f[1]).sum();
+        let links: f64 = mean.iter().map(|f| f[2] + f[3]).sum();
+        println!("{mode}: sum of the four segmentation means {seg:.3}, of the four link means {links:.3}  ");
+    }
     Ok(())
 }
 
@@ -113,11 +190,12 @@ fn synthetic(o: &Opts) -> Result<(), CliError> {
         let mut furniture = vec![];
         for seed in 0..o.seeds {
             let s = generate(&config, 100 + seed).map_err(|e| args::failed(name, e))?;
-            let chain = explain(&s.map, o, seed + 1)?;
+            let mut chain = explain(&s.map, o, seed + 1)?;
             let world = chain.best_world();
             ks.push(prediction_rate(s.map.classified(), &world));
             furniture.push(s.truth.object_cells.len() as f64 / s.map.classified().cells().len() as f64);
-            let labels = chain.best_labels(&RoomConfig::default()).map(|&l| l as u32);
+            let (_, labels) = chain.best_world_with_rooms(&RoomConfig::default());
+            let labels = labels.map(|&l| l as u32);
             let truth: Grid<u32> = s.labels.map(|&l| l as u32);
             let score = score_segmentation(&labels, &truth);
             ps.push(score.precision);
@@ -259,6 +337,80 @@ fn paired(o: &Opts) -> Result<(), CliError> {
     Ok(())
 }
 
+/// The synthetic kinds of the room-layer table (seeds 300 onwards, not used elsewhere).
+fn room_kinds() -> Vec<(&'static str, SynthConfig)> {
+    let d = SynthConfig::default();
+    vec![
+        ("hall", SynthConfig { width: 600, halls: 1, ..d.clone() }),
+        ("two corridors", SynthConfig { width: 500, height: 400, corridors: Some(2), ..d.clone() }),
+        ("cluttered", SynthConfig { clutter: 0.1, ..d.clone() }),
+        ("rotated 20 deg", SynthConfig { rotation_deg: 20.0, ..d.clone() }),
+        ("many storage", SynthConfig { width: 500, others: 6, ..d }),
+    ]
+}
+
+/// Room count and types of one explained synthetic floor against its truth: (rooms, truth
+/// units, truth units matched, matched units whose room has their type).
+fn room_truth(s: &ksmcmc::floorplan::synth::Synthetic, o: &Opts, seed: u64) -> Result<[usize; 4], CliError> {
+    use std::collections::BTreeMap;
+    let mut chain = explain(&s.map, o, seed)?;
+    let (world, labels) = chain.best_world_with_rooms(&RoomConfig::default());
+    // Cells of each (truth unit index + 1, predicted room) pair.
+    let mut overlap: BTreeMap<(u16, u16), u64> = BTreeMap::new();
+    for (&t, &p) in s.labels.cells().iter().zip(labels.cells()) {
+        if t != 0 && p != 0 {
+            *overlap.entry((t, p)).or_default() += 1;
+        }
+    }
+    let mut best: BTreeMap<u16, (u64, u16)> = BTreeMap::new();
+    for (&(t, p), &n) in &overlap {
+        let b = best.entry(t).or_insert((0, p));
+        if n > b.0 {
+            *b = (n, p);
+        }
+    }
+    let mut right = 0;
+    for (&t, &(_, p)) in &best {
+        let truth_kind = s.truth.units.get(t as usize - 1).map(|u| u.kind);
+        let room_kind = world.rooms.iter().find(|r| r.id == p as u32).map(|r| r.kind);
+        right += (truth_kind.is_some() && truth_kind == room_kind) as usize;
+    }
+    Ok([world.rooms.len(), s.truth.units.len(), best.len(), right])
+}
+
+/// The room layer against synthetic truth, knowledge against weak prior on the same floors
+/// and chain seeds.
+fn rooms(o: &Opts) -> Result<(), CliError> {
+    println!(
+        "\n### Rooms against synthetic truth ({} iterations, {} seeds per kind from 300)\n",
+        o.iterations, o.seeds
+    );
+    println!("| kind | mode | rooms (truth units) | type accuracy (matched units) |");
+    println!("|---|---|---|---|");
+    for (name, synth) in room_kinds() {
+        for enabled in [true, false] {
+            let mut sum = [0usize; 4];
+            for seed in 0..o.seeds {
+                let s = generate(&synth, 300 + seed).map_err(|e| args::failed(name, e))?;
+                let r = room_truth(&s, &o.with_knowledge(enabled), seed + 1)?;
+                for (a, b) in sum.iter_mut().zip(r) {
+                    *a += b;
+                }
+            }
+            let n = o.seeds as f64;
+            let mode = if enabled { "knowledge" } else { "weak prior" };
+            println!(
+                "| {name} | {mode} | {:.1} ({:.1}) | {:.3} ({}) |",
+                sum[0] as f64 / n,
+                sum[1] as f64 / n,
+                sum[3] as f64 / sum[2].max(1) as f64,
+                sum[2]
+            );
+        }
+    }
+    Ok(())
+}
+
 fn cartesium(dir: &Path, o: &Opts) -> Result<(), CliError> {
     let path = dir.join("radish/ubremen-cartesium.png");
     let mut map = args::load_map(&path)?;
@@ -321,6 +473,12 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     }
     if want("paired") {
         paired(&o)?;
+    }
+    if want("paired-bormann") {
+        paired_bormann(&dir, &o)?;
+    }
+    if want("rooms") {
+        rooms(&o)?;
     }
 
     Ok(())

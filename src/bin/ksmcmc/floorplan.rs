@@ -13,9 +13,9 @@ Usage: ksmcmc floorplan MAP --out DIR [options]
 
 Explains an occupancy map (PGM, PNG or map.yaml) with a semantic floor plan found by
 data-driven MCMC, and writes:
-  DIR/world.json    the best world found (units, doors, object cells)
+  DIR/world.json    the best world found (units, doors, object cells, rooms)
   DIR/overlay.png   the world drawn over the classified map
-  DIR/graph.json    the scene graph (units joined by doors and walls)
+  DIR/graph.json    the scene graph (units joined by doors and walls) and the rooms
   DIR/trace.csv     log posterior, acceptance rate and unit count over the run
   DIR/labels.pgm    16-bit room segmentation (room id per free cell, 0 elsewhere)
   DIR/report.json   iterations, time, K(W,M), counts, log posterior, seed
@@ -136,7 +136,7 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
         chain.step((iterations - chain.iteration()).min(500));
     }
     let seconds = t0.elapsed().as_secs_f64();
-    let world = chain.best_world_typed();
+    let mut world = chain.best_world_typed();
     let mut trace = String::from("iteration,log_posterior,acceptance,units\n");
     for p in &chain.trace().points {
         let _ = writeln!(trace, "{},{:.3},{:.4},{}", p.iteration, p.log_posterior, p.acceptance, p.size);
@@ -147,10 +147,18 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     // free those first (tens of MB on a large map) to keep the run's peak memory down.
     // `world` is the best world (typed, which the segmentation ignores): no second export.
     let (cells, world_map) = (chain.map().clone(), chain.world_map().clone());
+    let (resolution, knowledge_on) = (chain.resolution(), chain.config().knowledge.enabled);
     drop(chain);
-    let labels = ksmcmc::floorplan::rooms::room_labels(&world, &cells, &world_map, &RoomConfig::default());
+    let labels = ksmcmc::floorplan::room_layer::explain_world_rooms(
+        &mut world,
+        &cells,
+        &world_map,
+        &RoomConfig::default(),
+        resolution,
+        knowledge_on,
+    );
     drop((cells, world_map));
-    let rooms = labels.cells().iter().copied().max().unwrap_or(0);
+    let rooms = world.rooms.len();
     report["rooms"] = rooms.into();
     let k = report["cell_prediction_rate"].as_f64().unwrap_or(0.0);
     let overlay = ksmcmc::render::try_render(map.classified(), Some(&world), &Default::default())
@@ -160,7 +168,7 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
         serde_json::json!(region.as_ref().map(|r| metrics::prediction_rate_in(map.classified(), &world, Some(r))));
     args::write(&out.join("world.json"), world.to_json().as_bytes())?;
     args::write(&out.join("overlay.png"), &ksmcmc::render::encode_png(&overlay))?;
-    let graph = serde_json::to_string_pretty(&graph::to_json(&graph::scene_graph(&world))).expect("json");
+    let graph = serde_json::to_string_pretty(&graph::world_json(&world)).expect("json");
     args::write(&out.join("graph.json"), graph.as_bytes())?;
     args::write(&out.join("trace.csv"), trace.as_bytes())?;
     args::write(

@@ -1,0 +1,417 @@
+//! The room layer: units grouped into the rooms a person would draw, typed, with their doors
+//! and the room graph a robot plans with.
+//!
+//! The dissertation's world is a set of rectangles, and each rectangle is a room. A person
+//! draws otherwise: an L-shaped corridor is one corridor, an office cut by desks is one office,
+//! and a room that opens onto a corridor over its whole width is still a room of its own.
+//! Which units with no wall between them ([`open_pairs`]) are one room is decided here:
+//!
+//! * with knowledge supervision, by the Markov logic network of
+//!   `samples/knowledge/rooms.mln` ([`RoomKnowledge`]): evidence `Open`, `Flush` and the unit
+//!   types, query `SameRoom`, pairs joined where `P(SameRoom) > 0.5`;
+//! * without it, every open pair is joined (the rule of [`super::rooms::group_units`]).
+//!
+//! The grouping then becomes the label image ([`labels_of_groups`], one id per room, split at
+//! doorways), and [`rooms_of_labels`] reads the rooms off it: each unit belongs to the room
+//! that holds most of its free cells, a room's type is the type covering most of its cells,
+//! its doors are those whose cells it touches, and it opens to every room it touches along a
+//! passable stretch ([`MIN_CONTACT_CELLS`]) or through a door.
+
+use super::knowledge::constant;
+use super::rooms::{join, labels_of_groups, open_pairs, OpenPair, RoomConfig};
+use super::topology::{touching, MIN_CONTACT_CELLS};
+use super::world::{Room, UnitType, World};
+use crate::grid::{Cell, Grid};
+use crate::mln::{Database, Evidence, GroundConfig, InferenceConfig, Mln, MlnError, Network};
+use std::collections::{BTreeMap, BTreeSet};
+
+/// The built-in room rules (`samples/knowledge/rooms.mln`).
+pub const BUILTIN_ROOM_RULES: &str = include_str!("../../samples/knowledge/rooms.mln");
+
+/// The unit-type evidence predicates of the room rules, with the type each stands for.
+const TYPES: [(&str, UnitType); 4] =
+    [("Room", UnitType::Room), ("Corr", UnitType::Corridor), ("Hall", UnitType::Hall), ("Other", UnitType::Other)];
+
+/// A knowledge base that decides which open-adjacent units are one room (query `SameRoom`).
+#[derive(Debug, Clone)]
+pub struct RoomKnowledge {
+    mln: Mln,
+}
+
+impl RoomKnowledge {
+    /// The built-in rules.
+    pub fn builtin() -> RoomKnowledge {
+        RoomKnowledge::parse(BUILTIN_ROOM_RULES).expect("the built-in room rules parse")
+    }
+
+    /// Rules from text: they must declare `SameRoom(unit, unit)`; they may use the evidence
+    /// predicates `Open`, `Flush`, `Room`, `Corr`, `Hall` and `Other`.
+    pub fn parse(text: &str) -> Result<RoomKnowledge, MlnError> {
+        let mln = Mln::parse(text)?;
+        if mln.predicate("SameRoom").is_none() {
+            return Err(MlnError::config("the room rules must declare the query SameRoom(unit, unit)"));
+        }
+        Ok(RoomKnowledge { mln })
+    }
+
+    /// `P(SameRoom)` of every pair in `pairs` (unit indices into `world.units`), in order.
+    pub fn same_room(&self, world: &World, pairs: &[OpenPair]) -> Result<Vec<f64>, MlnError> {
+        if pairs.is_empty() {
+            return Ok(Vec::new());
+        }
+        let mut db = Database::new();
+        let mut closed = Vec::new();
+        let fact = |db: &mut Database, pred: &str, args: &[&str]| -> Result<(), MlnError> {
+            if self.mln.predicate(pred).is_some() {
+                db.insert(&self.mln, pred, args, Evidence::True)?;
+            }
+            Ok(())
+        };
+        for (pred, _) in TYPES.iter().chain(&[("Open", UnitType::Unknown), ("Flush", UnitType::Unknown)]) {
+            if self.mln.predicate(pred).is_some() {
+                closed.push(pred.to_string());
+            }
+        }
+        for u in &world.units {
+            let c = constant(u.id);
+            if let Some((pred, _)) = TYPES.iter().find(|t| t.1 == u.kind) {
+                fact(&mut db, pred, &[&c])?;
+            }
+        }
+        // Only the true facts: the evidence is closed world, and never quadratic in units.
+        for p in pairs {
+            let (a, b) = (constant(world.units[p.a].id), constant(world.units[p.b].id));
+            for (x, y) in [(&a, &b), (&b, &a)] {
+                fact(&mut db, "Open", &[x, y])?;
+                if p.flush {
+                    fact(&mut db, "Flush", &[x, y])?;
+                }
+            }
+        }
+        let mut ground = GroundConfig::query(&["SameRoom"]);
+        ground.closed_world = closed;
+        let units: Vec<String> = world.units.iter().map(|u| constant(u.id)).collect();
+        if let Some(ty) = self.mln.predicate("SameRoom").and_then(|p| self.mln.argument_types(p).first().cloned()) {
+            ground.domains.push((ty.to_string(), units));
+        }
+        let net = Network::ground(&self.mln, &db, &ground)?;
+        let marginals = net.infer_marginals(&InferenceConfig::default())?;
+        Ok(pairs
+            .iter()
+            .map(|p| {
+                let (a, b) = (constant(world.units[p.a].id), constant(world.units[p.b].id));
+                marginals.get("SameRoom", &[a.as_str(), b.as_str()]).unwrap_or(0.0)
+            })
+            .collect())
+    }
+}
+
+/// Groups `world`'s units into rooms (by `knowledge` if given, else every open pair), labels
+/// the map with one id per room, and fills `world.rooms`. `map` is the classified map in its
+/// own frame, `world_map` in the world frame; `resolution` is metres per cell. Returns the
+/// label image (`labels.pgm`).
+///
+/// ```
+/// use ksmcmc::floorplan::room_layer::{explain_rooms, RoomKnowledge};
+/// use ksmcmc::floorplan::rooms::RoomConfig;
+/// use ksmcmc::floorplan::{Unit, UnitType, World};
+/// use ksmcmc::grid::{Cell, Grid};
+///
+/// // Two 40x40 units side by side with no wall between them: one room of 2 x 1,600 cells.
+/// let map = Grid::new(80, 40, Cell::Free);
+/// let mut world = World::empty(80, 40);
+/// for (id, x) in [(1, 0), (2, 40)] {
+///     world.units.push(Unit { id, x, y: 0, w: 40, h: 40, kind: UnitType::Room });
+/// }
+/// let labels = explain_rooms(&mut world, &map, &map, &RoomConfig::default(), 0.05, Some(&RoomKnowledge::builtin()))?;
+/// assert_eq!(world.rooms.len(), 1);
+/// assert_eq!(world.rooms[0].units, vec![1, 2]);
+/// assert_eq!(*labels.at(10, 10), *labels.at(70, 10));
+/// # Ok::<(), ksmcmc::mln::MlnError>(())
+/// ```
+pub fn explain_rooms(
+    world: &mut World,
+    map: &Grid<Cell>,
+    world_map: &Grid<Cell>,
+    c: &RoomConfig,
+    resolution: f64,
+    knowledge: Option<&RoomKnowledge>,
+) -> Result<Grid<u16>, MlnError> {
+    let pairs = open_pairs(world, world_map, c);
+    let joined: Vec<(usize, usize)> = match knowledge {
+        Some(k) => {
+            let p = k.same_room(world, &pairs)?;
+            pairs.iter().zip(p).filter(|(_, p)| *p > 0.5).map(|(q, _)| (q.a, q.b)).collect()
+        }
+        None => pairs.iter().map(|p| (p.a, p.b)).collect(),
+    };
+    let groups = join(world, world_map, joined);
+    let labels = labels_of_groups(world, &groups, map, world_map, c);
+    world.rooms = rooms_of_labels(world, &labels, resolution);
+    Ok(labels)
+}
+
+/// [`explain_rooms`] with the built-in room rules when `knowledge` is on, and without them
+/// otherwise or should the rules fail (they cannot on a valid world; the rooms are then still
+/// found, by the rule without knowledge).
+pub fn explain_world_rooms(
+    world: &mut World,
+    map: &Grid<Cell>,
+    world_map: &Grid<Cell>,
+    c: &RoomConfig,
+    resolution: f64,
+    knowledge: bool,
+) -> Grid<u16> {
+    let kb = knowledge.then(RoomKnowledge::builtin);
+    explain_rooms(world, map, world_map, c, resolution, kb.as_ref())
+        .or_else(|_| explain_rooms(world, map, world_map, c, resolution, None))
+        .unwrap_or_else(|_| Grid::new(map.width(), map.height(), 0))
+}
+
+/// Per-room tallies gathered in one pass over the labelled cells.
+#[derive(Default)]
+struct Tally {
+    cells: u64,
+    /// Cells of each unit (by index) in this room.
+    units: BTreeMap<usize, u64>,
+}
+
+/// The world-frame cell under map cell `(mx, my)`, if inside the world.
+fn world_cell(world: &World, mx: usize, my: usize) -> Option<(i32, i32)> {
+    let (wx, wy) = if world.frame.is_identity() {
+        (mx as f64 + 0.5, my as f64 + 0.5)
+    } else {
+        world.frame.to_world(mx as f64 + 0.5, my as f64 + 0.5)
+    };
+    let [ww, wh] = world.frame.world_size;
+    (wx >= 0.0 && wy >= 0.0 && wx < ww as f64 && wy < wh as f64).then_some((wx as i32, wy as i32))
+}
+
+/// The map cell under world cell `(x, y)` (its centre), if inside the map.
+fn map_cell(world: &World, x: i32, y: i32, w: usize, h: usize) -> Option<(usize, usize)> {
+    let (mx, my) = if world.frame.is_identity() {
+        (x as f64 + 0.5, y as f64 + 0.5)
+    } else {
+        world.frame.to_map(x as f64 + 0.5, y as f64 + 0.5)
+    };
+    (mx >= 0.0 && my >= 0.0 && (mx as usize) < w && (my as usize) < h).then_some((mx as usize, my as usize))
+}
+
+/// Index of the first unit whose interior covers each world cell (`usize::MAX` for none).
+fn interior_owner(world: &World) -> (Vec<usize>, usize) {
+    let [ww, wh] = world.frame.world_size.map(|v| v as usize);
+    let mut owner = vec![usize::MAX; ww * wh];
+    let t = world.wall_thickness;
+    for (k, u) in world.units.iter().enumerate() {
+        for y in (u.y + t).max(0)..(u.y + u.h - t).min(wh as i32) {
+            for x in (u.x + t).max(0)..(u.x + u.w - t).min(ww as i32) {
+                let o = &mut owner[y as usize * ww + x as usize];
+                if *o == usize::MAX {
+                    *o = k;
+                }
+            }
+        }
+    }
+    (owner, ww)
+}
+
+/// The rooms of a label image (`labels[cell]` = room id, 0 for none): see the module docs.
+pub fn rooms_of_labels(world: &World, labels: &Grid<u16>, resolution: f64) -> Vec<Room> {
+    let (w, h) = (labels.width(), labels.height());
+    let (owner, ww) = interior_owner(world);
+    let mut tally: BTreeMap<u16, Tally> = BTreeMap::new();
+    for my in 0..h {
+        for mx in 0..w {
+            let l = *labels.at(mx, my);
+            if l == 0 {
+                continue;
+            }
+            let t = tally.entry(l).or_default();
+            t.cells += 1;
+            if let Some((x, y)) = world_cell(world, mx, my) {
+                let k = owner[y as usize * ww + x as usize];
+                if k != usize::MAX {
+                    *t.units.entry(k).or_default() += 1;
+                }
+            }
+        }
+    }
+    // Each unit belongs to the room holding most of its cells.
+    let mut home: BTreeMap<usize, (u64, u16)> = BTreeMap::new();
+    for (&l, t) in &tally {
+        for (&k, &n) in &t.units {
+            let e = home.entry(k).or_insert((0, l));
+            if n > e.0 {
+                *e = (n, l);
+            }
+        }
+    }
+    let door_rooms = door_rooms(world, labels);
+    let mut links: BTreeSet<(u32, u32)> = touching(&labels.map(|&l| l as u32), MIN_CONTACT_CELLS).into_iter().collect();
+    for rooms in door_rooms.values() {
+        for (i, &a) in rooms.iter().enumerate() {
+            for &b in &rooms[i + 1..] {
+                links.insert((a.min(b) as u32, a.max(b) as u32));
+            }
+        }
+    }
+    tally
+        .iter()
+        .map(|(&l, t)| {
+            let units: Vec<usize> = home.iter().filter(|(_, &(_, r))| r == l).map(|(&k, _)| k).collect();
+            Room {
+                id: l as u32,
+                kind: room_type(world, t, &units),
+                units: units.iter().map(|&k| world.units[k].id).collect(),
+                area_m2: t.cells as f64 * resolution * resolution,
+                doors: door_rooms.iter().filter(|(_, r)| r.contains(&l)).map(|(&d, _)| d).collect(),
+                opens_to: links
+                    .iter()
+                    .filter_map(|&(a, b)| {
+                        if a == l as u32 {
+                            Some(b)
+                        } else if b == l as u32 {
+                            Some(a)
+                        } else {
+                            None
+                        }
+                    })
+                    .collect(),
+            }
+        })
+        .collect()
+}
+
+/// A room's type: the type of the units covering most of its cells among its own units, or
+/// `Unknown` when none of its units is typed (or it has none).
+fn room_type(world: &World, t: &Tally, units: &[usize]) -> UnitType {
+    let mut votes: BTreeMap<UnitType, u64> = BTreeMap::new();
+    for &k in units {
+        let kind = world.units[k].kind;
+        if kind != UnitType::Unknown {
+            *votes.entry(kind).or_default() += t.units.get(&k).copied().unwrap_or(0);
+        }
+    }
+    votes.into_iter().max_by_key(|&(kind, n)| (n, std::cmp::Reverse(kind))).map_or(UnitType::Unknown, |(k, _)| k)
+}
+
+/// The rooms each door touches: labels on or next to (8-neighbours) its cells.
+fn door_rooms(world: &World, labels: &Grid<u16>) -> BTreeMap<u32, Vec<u16>> {
+    let (w, h) = (labels.width(), labels.height());
+    let mut out = BTreeMap::new();
+    for d in &world.doors {
+        let mut rooms = BTreeSet::new();
+        for (x, y) in d.cells() {
+            let Some((mx, my)) = map_cell(world, x, y, w, h) else { continue };
+            for ny in my.saturating_sub(1)..(my + 2).min(h) {
+                for nx in mx.saturating_sub(1)..(mx + 2).min(w) {
+                    let l = *labels.at(nx, ny);
+                    if l != 0 {
+                        rooms.insert(l);
+                    }
+                }
+            }
+        }
+        out.insert(d.id, rooms.into_iter().collect());
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::floorplan::{Door, Unit};
+
+    fn unit(id: u32, x: i32, y: i32, w: i32, h: i32, kind: UnitType) -> Unit {
+        Unit { id, x, y, w, h, kind }
+    }
+
+    /// A 300 x 100 floor: a corridor along the top (rows 0..40), and below it three rooms
+    /// (columns 0..100, 100..200, 200..300), each opening onto the corridor over its whole
+    /// width. Walls (columns 100 and 200) part the rooms.
+    fn rooms_off_a_corridor() -> (Grid<Cell>, World) {
+        let mut map = Grid::new(300, 100, Cell::Free);
+        for y in 0..100 {
+            *map.at_mut(0, y) = Cell::Occupied;
+            *map.at_mut(299, y) = Cell::Occupied;
+            if y >= 40 {
+                *map.at_mut(100, y) = Cell::Occupied;
+                *map.at_mut(200, y) = Cell::Occupied;
+            }
+        }
+        for x in 0..300 {
+            *map.at_mut(x, 0) = Cell::Occupied;
+            *map.at_mut(x, 99) = Cell::Occupied;
+        }
+        let mut world = World::empty(300, 100);
+        world.units = vec![
+            unit(1, 0, 0, 300, 41, UnitType::Corridor),
+            unit(2, 0, 40, 101, 60, UnitType::Room),
+            unit(3, 100, 40, 101, 60, UnitType::Room),
+            unit(4, 200, 40, 100, 60, UnitType::Room),
+        ];
+        (map, world)
+    }
+
+    #[test]
+    fn knowledge_keeps_rooms_apart_from_the_corridor_they_open_onto() {
+        let (map, mut world) = rooms_off_a_corridor();
+        let c = RoomConfig { door_half_width: 0, ..RoomConfig::default() };
+        // Without knowledge every open boundary joins: one room.
+        let labels = explain_rooms(&mut world, &map, &map, &c, 0.05, None).unwrap();
+        assert_eq!(world.rooms.len(), 1, "{:?}", world.rooms);
+        assert_eq!(*labels.at(50, 20), *labels.at(50, 70));
+        // With the built-in rules: the corridor and three rooms, linked corridor-room only.
+        let labels = explain_rooms(&mut world, &map, &map, &c, 0.05, Some(&RoomKnowledge::builtin())).unwrap();
+        assert_eq!(world.rooms.len(), 4, "{:?}", world.rooms);
+        let at = |x: usize| *labels.at(x, 70) as u32;
+        let (corr, left, mid, right) = (*labels.at(50, 20) as u32, at(50), at(150), at(250));
+        let room = |id: u32| world.rooms.iter().find(|r| r.id == id).unwrap();
+        assert_eq!(room(corr).kind, UnitType::Corridor);
+        assert_eq!(room(mid).kind, UnitType::Room);
+        assert_eq!(room(corr).units, vec![1]);
+        assert_eq!(room(mid).units, vec![3]);
+        assert_eq!(room(corr).opens_to, vec![left, mid, right]);
+        assert_eq!(room(mid).opens_to, vec![corr], "walls part the rooms");
+        world.validate().unwrap();
+    }
+
+    #[test]
+    fn a_room_cut_by_a_seam_is_one_room_and_doors_belong_to_the_rooms_they_touch() {
+        // Two units flush along their whole side (one room), a third behind a wall with a door.
+        let mut map = Grid::new(150, 40, Cell::Free);
+        for y in 0..40 {
+            if !(15..25).contains(&y) {
+                *map.at_mut(100, y) = Cell::Occupied;
+            }
+        }
+        let mut world = World::empty(150, 40);
+        world.units = vec![
+            unit(1, 0, 0, 51, 40, UnitType::Other),
+            unit(2, 50, 0, 51, 40, UnitType::Room),
+            unit(3, 100, 0, 50, 40, UnitType::Room),
+        ];
+        world.doors = vec![Door { id: 7, units: [2, 3], x0: 100, y0: 15, x1: 100, y1: 24 }];
+        let c = RoomConfig { door_half_width: 0, ..RoomConfig::default() };
+        explain_rooms(&mut world, &map, &map, &c, 0.1, Some(&RoomKnowledge::builtin())).unwrap();
+        assert_eq!(world.rooms.len(), 2, "{:?}", world.rooms);
+        let (a, b) = (&world.rooms[0], &world.rooms[1]);
+        assert_eq!((a.units.clone(), b.units.clone()), (vec![1, 2], vec![3]));
+        assert_eq!((a.doors.clone(), b.doors.clone()), (vec![7], vec![7]));
+        assert_eq!((a.opens_to.clone(), b.opens_to.clone()), (vec![b.id], vec![a.id]));
+        // The room's type is the type covering most of its cells: units 1 and 2 hold 49 and
+        // 49 columns of interior, a tie broken towards the earlier type in UnitType order.
+        assert_eq!(a.kind, UnitType::Room);
+        // Areas: free cells at 0.1 m per cell (the wall column is not free).
+        let free_left = 100 * 40 + 10; // the doorway cells join the nearer room
+        let total: f64 = world.rooms.iter().map(|r| r.area_m2).sum();
+        assert!((total - (150 * 40 - 30) as f64 * 0.01).abs() < 1e-9, "{total}");
+        assert!(a.area_m2 >= (free_left - 10) as f64 * 0.01 - 1e-9);
+    }
+
+    #[test]
+    fn room_rules_must_declare_the_query() {
+        let e = RoomKnowledge::parse("Open(unit, unit)\n").unwrap_err();
+        assert!(e.to_string().contains("SameRoom"), "{e}");
+    }
+}

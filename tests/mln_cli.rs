@@ -213,3 +213,87 @@ fn domains_and_world_assumptions_from_the_command_line() {
     );
     assert!(e.contains("line 1, column 1: constant C is not in the declared domain of type unit"), "{e}");
 }
+
+/// The learned weight of the only soft formula in a `mln learn` output.
+fn learned_weight(text: &str) -> f64 {
+    let line = text.lines().find(|l| l.contains("Smokes(x) => Cancer(x)")).expect("the formula");
+    line.split_whitespace().next().unwrap().parse().unwrap()
+}
+
+#[test]
+fn learn_writes_a_knowledge_base_with_the_optimal_weights() {
+    let kb = scratch("smoking.mln", "Smokes(person)\nCancer(person)\n1.5 Smokes(x) => Cancer(x)\n");
+    // Smokers: A, B, C with cancer, D without (database 1); E with, F without (database 2).
+    let db1 = scratch("smoking1.db", "Smokes(A)\nCancer(A)\nSmokes(B)\nCancer(B)\nSmokes(C)\nCancer(C)\nSmokes(D)\n");
+    let db2 = scratch("smoking2.db", "Smokes(E)\nCancer(E)\nSmokes(F)\n");
+    let out = scratch("smoking-learned.mln", "");
+    let (kb, db1, db2, out) =
+        (kb.to_str().unwrap(), db1.to_str().unwrap(), db2.to_str().unwrap(), out.to_str().unwrap());
+    let common = ["mln", "learn", "--mln", kb, "--db", db1, "--db", db2, "--query", "Cancer", "--prior-sigma", "inf"];
+    // P(Cancer | Smokes) = 4 / 6 in the pooled data: w = log 2, by both methods here (each
+    // smoker's Cancer atom is its own Markov blanket's only unknown).
+    for method in ["discriminative", "pll"] {
+        let mut args = common.to_vec();
+        args.extend(["--method", method, "--out", out]);
+        run_ok(&args);
+        let text = std::fs::read_to_string(out).unwrap();
+        assert!(text.starts_with("// Weights learned by `ksmcmc mln learn`"), "{text}");
+        assert!((learned_weight(&text) - 2f64.ln()).abs() < 1e-6, "{method}: {text}");
+        let info = run_ok(&["mln", "info", "--mln", out]);
+        assert!(info.contains("Smokes(x) => Cancer(x)"), "{info}");
+    }
+    // Standard output without --out; deterministic; a prior pulls the weight toward 0.
+    let a = run_ok(&common);
+    assert_eq!(a, run_ok(&common));
+    let mut tight = common.to_vec();
+    let last = tight.len() - 1;
+    tight[last] = "0.3";
+    let w = learned_weight(&run_ok(&tight));
+    assert!(w > 0.0 && w < 2f64.ln() - 0.1, "{w}");
+}
+
+#[test]
+fn training_worlds_from_synthetic_floor_plans() {
+    let world = "samples/office-small/truth.json";
+    let train = run_ok(&["mln", "evidence", "--world", world, "--map", "samples/office-small/map.yaml", "--truth"]);
+    assert!(train.contains("\nCorr(U1)\n") && train.contains("\nRoom(U2)\n"), "{train}");
+    assert!(train.contains("\nSaLe(U2,U3)\nSaLe(U3,U2)\n"), "{train}");
+    let evidence = run_ok(&["mln", "evidence", "--world", world, "--resolution", "0.05"]);
+    assert!(evidence.contains("CoLi(U1)") && !evidence.contains("Corr(U1)"), "{evidence}");
+    let db = scratch("office-small.db", &train);
+    let learned = run_ok(&["mln", "learn", "--mln", KB, "--db", db.to_str().unwrap(), "--query", QUERY]);
+    let kb = scratch("indoor-learned.mln", &learned);
+    // The learned knowledge base answers queries on the sample evidence.
+    let out = run_ok(&["mln", "query", "--mln", kb.to_str().unwrap(), "--db", DB, "--query", "Room"]);
+    assert_eq!(out.lines().count(), 4, "{out}");
+}
+
+#[test]
+fn learn_and_evidence_usage_and_errors() {
+    for args in [
+        vec!["mln", "learn", "--mln", KB],
+        vec!["mln", "learn", "--mln", KB, "--db", DB, "--method", "magic"],
+        vec!["mln", "learn", "--mln", KB, "--db", DB, "--closed", "Adj"],
+        vec!["mln", "learn", "--mln", KB, "--db", DB, "--prior-sigma", "wide"],
+        vec!["mln", "query", "--mln", KB, "--db", DB, "--db", DB, "--query", "Hall"],
+        vec!["mln", "evidence", "--map", "samples/office-small/map.yaml"],
+        vec!["mln", "evidence", "--world", "samples/office-small/truth.json"],
+        vec!["mln", "evidence", "--world", "samples/office-small/truth.json", "--resolution", "-1"],
+    ] {
+        run_err(&args, 2);
+    }
+    let e = run_err(&["mln", "learn", "--mln", KB, "--db", DB, "--method", "discriminative"], 1);
+    assert_eq!(
+        e,
+        "ksmcmc: learning: discriminative learning needs the query (non-evidence) predicates, e.g. --query Room,Corr\n"
+    );
+    // The sample evidence has no SaLe atoms: as a training world all are false, which the
+    // hard formulas allow; but a one-sided Adj breaks one.
+    let asym = scratch("asym-train.db", "RoLi(U1)\nAdj(U1,U2)\n");
+    let e = run_err(&["mln", "learn", "--mln", KB, "--db", asym.to_str().unwrap()], 1);
+    assert!(e.contains("the training world violates the hard formula `Adj(p, q) => Adj(q, p)`"), "{e}");
+    let e = run_err(&["mln", "evidence", "--world", "no/such.json", "--resolution", "0.05"], 1);
+    assert!(e.contains("no/such.json"), "{e}");
+    let help = run_ok(&["mln", "--help"]);
+    assert!(help.contains("ksmcmc mln learn") && help.contains("ksmcmc mln evidence"));
+}

@@ -55,7 +55,8 @@ fn direction(g: &[f64], memory: &[(Vec<f64>, Vec<f64>, f64)]) -> Vec<f64> {
 }
 
 /// Minimises `f` (value and gradient) from `x`, for at most `iterations` steps or until no
-/// gradient component exceeds `tolerance`.
+/// gradient component exceeds `tolerance * max(1, |f(x)|)`: relative, since the learning
+/// objectives are sums over ground atoms, whose rounding error grows with their number.
 pub(crate) fn minimise(
     mut f: impl FnMut(&[f64]) -> (f64, Vec<f64>),
     mut x: Vec<f64>,
@@ -65,7 +66,7 @@ pub(crate) fn minimise(
     let (mut value, mut g) = f(&x);
     let mut memory: Vec<(Vec<f64>, Vec<f64>, f64)> = Vec::new();
     let mut done = 0;
-    while done < iterations && max_abs(&g) > tolerance && value.is_finite() {
+    while done < iterations && max_abs(&g) > tolerance * value.abs().max(1.0) && value.is_finite() {
         let mut d = direction(&g, &memory);
         let mut slope = dot(&g, &d);
         if slope.is_nan() || slope >= 0.0 {
@@ -101,7 +102,7 @@ pub(crate) fn minimise(
         done += 1;
     }
     let gradient = max_abs(&g);
-    Run { x, value, gradient, iterations: done, converged: gradient <= tolerance }
+    Run { x, value, gradient, iterations: done, converged: gradient <= tolerance * value.abs().max(1.0) }
 }
 
 #[cfg(test)]

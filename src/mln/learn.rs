@@ -15,8 +15,17 @@
 //!   the world with atom `l` flipped: with `Δ_l = n(x[l flipped]) - n(x)`,
 //!   `log P_w(x_l | MB) = -log(1 + exp(w · Δ_l))` and its gradient is `-σ(w · Δ_l) Δ_l`. No
 //!   inference, and atoms with equal `Δ_l` (most of them, in a large domain) are one term.
-//!   It is consistent but favours short-range dependencies, and a flip that violates a hard
-//!   formula has conditional probability zero, so such atoms' terms are exactly zero.
+//!   It is consistent but favours short-range dependencies.
+//!
+//!   Hard formulas need more: a flip that violates one has probability zero, so an atom a
+//!   hard formula ties to another has conditional probability 1 and its term says nothing.
+//!   With the indoor rules' `SaLe(p, q) => SaLe(q, p).` that would be every `SaLe` atom, and
+//!   the rules on `SaLe` would be learned from the type atoms alone. So atoms tied by hard
+//!   formulas are conditioned on jointly, in the blocks the Gibbs sampler moves together (up
+//!   to 10 atoms; larger groups fall back to single atoms): the term of a block `B` is
+//!   `log P_w(x_B | x_rest) = -log(1 + sum_s exp(w · Δ_s))` over its other states `s` that
+//!   keep the hard formulas. This blocked pseudo-likelihood (a composite likelihood, Lindsay
+//!   1988) is plain pseudo-likelihood when no hard formula ties atoms.
 //! * **Discriminative** ([`LearnMethod::Discriminative`], Singla and Domingos 2005): the
 //!   conditional log-likelihood `log P_w(y | x)` of the query atoms `y` given the evidence
 //!   atoms `x`, with gradient `n_i(x, y) - E_w[n_i(x, Y)]`. The expectations are exact: the
@@ -78,7 +87,8 @@ pub struct LearnConfig {
     pub prior_sigma: f64,
     /// Most L-BFGS iterations. Default 200.
     pub iterations: usize,
-    /// Converged when no component of the objective's gradient exceeds this. Default 1e-7.
+    /// Converged when no component of the objective's gradient exceeds this times the
+    /// objective's magnitude (at least 1). Default 1e-7.
     pub tolerance: f64,
     /// Discriminative learning enumerates connected parts of at most this many query atoms.
     /// Default 16.
@@ -183,12 +193,16 @@ pub struct Learner {
     tolerance: f64,
 }
 
+/// A sparse change of the count vector: `(param, n_i(x') - n_i(x))`.
+type Delta = Vec<(u32, f64)>;
+
 /// One database's share of the objective.
 #[derive(Debug, Clone)]
 enum Part {
-    /// Pseudo-likelihood: distinct flip deltas (sparse over params) with their multiplicity,
-    /// and the constant from atoms whose flip changes nothing (`-log 2` each).
-    Pseudo { rows: Vec<(Vec<(u32, f64)>, f64)>, constant: f64 },
+    /// Pseudo-likelihood: per distinct block, the count changes `n(x with the block at s) -
+    /// n(x)` (sparse over params) of its other possible states `s`, and how many blocks
+    /// share them.
+    Pseudo { rows: Vec<(Vec<Delta>, f64)> },
     /// Conditional likelihood of one connected part: the true count vector and the distinct
     /// count vectors of its worlds with their multiplicity.
     Exact { truth: Vec<f64>, worlds: Vec<(Vec<f64>, f64)> },
@@ -298,14 +312,20 @@ impl Part {
     /// Adds this part's gradient to `grad`; returns its objective.
     fn add_gradient(&self, w: &[f64], grad: &mut [f64]) -> f64 {
         match self {
-            Part::Pseudo { rows, constant } => {
-                let mut value = *constant;
-                for (delta, count) in rows {
-                    let z: f64 = delta.iter().map(|&(k, d)| w[k as usize] * d).sum();
-                    value -= count * log1pexp(z);
-                    let s = count * sigmoid(z);
-                    for &(k, d) in delta {
-                        grad[k as usize] -= s * d;
+            Part::Pseudo { rows } => {
+                let mut value = 0.0;
+                for (alternatives, count) in rows {
+                    // log P(x_B | rest) = -log(1 + sum_s exp(w · Δ_s)).
+                    let z: Vec<f64> =
+                        alternatives.iter().map(|d| d.iter().map(|&(k, x)| w[k as usize] * x).sum()).collect();
+                    let max = z.iter().copied().fold(0.0, f64::max);
+                    let total = libm::exp(-max) + z.iter().map(|z| libm::exp(z - max)).sum::<f64>();
+                    value -= count * (max + libm::log(total));
+                    for (d, z) in alternatives.iter().zip(&z) {
+                        let p = count * libm::exp(z - max) / total;
+                        for &(k, x) in d {
+                            grad[k as usize] -= p * x;
+                        }
                     }
                 }
                 value
@@ -328,24 +348,6 @@ impl Part {
                 dot(truth) - log_z
             }
         }
-    }
-}
-
-/// `log(1 + e^z)` without overflow.
-fn log1pexp(z: f64) -> f64 {
-    if z > 0.0 {
-        z + libm::log1p(libm::exp(-z))
-    } else {
-        libm::log1p(libm::exp(z))
-    }
-}
-
-fn sigmoid(z: f64) -> f64 {
-    if z >= 0.0 {
-        1.0 / (1.0 + libm::exp(-z))
-    } else {
-        let e = libm::exp(z);
-        e / (1.0 + e)
     }
 }
 
@@ -462,35 +464,58 @@ fn features_of(net: &Network, a: usize) -> Vec<usize> {
     fs
 }
 
-/// Flip deltas of every atom, grouped.
-fn pseudo_part(net: &Network, truth: &[bool], param_of: &[u32]) -> Part {
-    let mut state = truth.to_vec();
-    let mut rows: BTreeMap<Vec<(u32, i64)>, u64> = BTreeMap::new();
-    let mut unchanged = 0u64;
-    'atoms: for a in 0..net.atom_count() {
-        let mut delta: BTreeMap<u32, i64> = BTreeMap::new();
-        for f in features_of(net, a) {
-            let before = satisfied(net, f, &state);
-            state[a] = !state[a];
-            let after = satisfied(net, f, &state);
-            state[a] = !state[a];
-            if net.feature_weight[f].is_infinite() {
-                if !after {
-                    continue 'atoms; // the flip is impossible: P(x_l | MB) = 1
-                }
-            } else if after != before {
-                *delta.entry(param_of[net.feature_formula[f] as usize]).or_default() += after as i64 - before as i64;
+/// Atoms tied by hard formulas are conditioned on jointly in blocks of at most this many.
+const MAX_BLOCK: usize = 10;
+
+/// Per-formula counts of the satisfied soft features among `features`; `None` if a hard one
+/// is violated.
+fn feature_counts(net: &Network, features: &[usize], state: &[bool], param_of: &[u32]) -> Option<BTreeMap<u32, i64>> {
+    let mut n = BTreeMap::new();
+    for &f in features {
+        let sat = satisfied(net, f, state);
+        if net.feature_weight[f].is_infinite() {
+            if !sat {
+                return None;
             }
-        }
-        delta.retain(|_, d| *d != 0);
-        if delta.is_empty() {
-            unchanged += 1;
-        } else {
-            *rows.entry(delta.into_iter().collect()).or_default() += 1;
+        } else if sat {
+            *n.entry(param_of[net.feature_formula[f] as usize]).or_insert(0) += 1;
         }
     }
-    let rows = rows.into_iter().map(|(d, n)| (d.into_iter().map(|(k, x)| (k, x as f64)).collect(), n as f64)).collect();
-    Part::Pseudo { rows, constant: -(unchanged as f64) * std::f64::consts::LN_2 }
+    Some(n)
+}
+
+/// The count changes of every other state of every block, grouped.
+fn pseudo_part(net: &Network, truth: &[bool], param_of: &[u32]) -> Part {
+    let mut state = truth.to_vec();
+    let mut rows: BTreeMap<Vec<Vec<(u32, i64)>>, u64> = BTreeMap::new();
+    for block in super::infer::hard_blocks(net, MAX_BLOCK) {
+        let mut features: Vec<usize> = block.iter().flat_map(|&a| features_of(net, a as usize)).collect();
+        features.sort_unstable();
+        features.dedup();
+        let base = feature_counts(net, &features, &state, param_of).unwrap_or_default();
+        let mut alternatives = Vec::new();
+        for s in 1u32..1 << block.len() {
+            for (i, &a) in block.iter().enumerate() {
+                state[a as usize] = truth[a as usize] != (s >> i & 1 == 1);
+            }
+            if let Some(mut n) = feature_counts(net, &features, &state, param_of) {
+                for (k, b) in &base {
+                    *n.entry(*k).or_insert(0) -= b;
+                }
+                alternatives.push(n.into_iter().filter(|&(_, d)| d != 0).collect::<Vec<_>>());
+            }
+        }
+        for &a in &block {
+            state[a as usize] = truth[a as usize];
+        }
+        if !alternatives.is_empty() {
+            alternatives.sort();
+            *rows.entry(alternatives).or_default() += 1;
+        }
+    }
+    let to_f64 = |d: Vec<(u32, i64)>| d.into_iter().map(|(k, x)| (k, x as f64)).collect();
+    let rows = rows.into_iter().map(|(alt, n)| (alt.into_iter().map(to_f64).collect(), n as f64)).collect();
+    Part::Pseudo { rows }
 }
 
 /// Enumerates the worlds of one connected part and groups them by count vector.
@@ -498,34 +523,27 @@ fn exact_part(net: &Network, truth: &[bool], atoms: &[u32], param_of: &[u32], pa
     let mut features: Vec<usize> = atoms.iter().flat_map(|&a| features_of(net, a as usize)).collect();
     features.sort_unstable();
     features.dedup();
-    let counts = |state: &[bool]| -> Option<Vec<i64>> {
-        let mut n = vec![0i64; params];
-        for &f in &features {
-            let sat = satisfied(net, f, state);
-            if net.feature_weight[f].is_infinite() {
-                if !sat {
-                    return None;
-                }
-            } else if sat {
-                n[param_of[net.feature_formula[f] as usize] as usize] += 1;
-            }
+    let dense = |n: BTreeMap<u32, i64>| {
+        let mut v = vec![0i64; params];
+        for (k, x) in n {
+            v[k as usize] = x;
         }
-        Some(n)
+        v
     };
-    let to_f64 = |n: Vec<i64>| n.into_iter().map(|x| x as f64).collect::<Vec<f64>>();
     let mut state = truth.to_vec();
-    let truth_counts = counts(&state).unwrap_or_else(|| vec![0; params]);
+    let truth_counts = feature_counts(net, &features, &state, param_of).map(dense).unwrap_or_else(|| vec![0; params]);
     let mut worlds: HashMap<Vec<i64>, u64> = HashMap::new();
     for s in 0u64..1 << atoms.len() {
         for (i, &a) in atoms.iter().enumerate() {
             state[a as usize] = s >> i & 1 == 1;
         }
-        if let Some(n) = counts(&state) {
-            *worlds.entry(n).or_default() += 1;
+        if let Some(n) = feature_counts(net, &features, &state, param_of) {
+            *worlds.entry(dense(n)).or_default() += 1;
         }
     }
     let mut worlds: Vec<(Vec<i64>, u64)> = worlds.into_iter().collect();
     worlds.sort(); // HashMap order is not deterministic; the sums must be.
+    let to_f64 = |n: Vec<i64>| n.into_iter().map(|x| x as f64).collect::<Vec<f64>>();
     Part::Exact {
         truth: to_f64(truth_counts),
         worlds: worlds.into_iter().map(|(n, m)| (to_f64(n), m as f64)).collect(),
@@ -696,15 +714,30 @@ mod tests {
         let truth: Vec<bool> = atoms.iter().map(|a| FRIENDS_WORLD.lines().any(|l| l == a)).collect();
         let world = |v: &[bool]| -> Vec<&String> { atoms.iter().zip(v).filter(|(_, &t)| t).map(|(a, _)| a).collect() };
         let n_true = counts(&world(&truth)).unwrap();
-        // Pseudo-likelihood: one term per atom whose flip keeps the hard formula.
+        // Pseudo-likelihood: one term per block, Friends(x,y) and Friends(y,x) together (the
+        // hard formula ties them), every other atom alone; the block's states that keep the
+        // hard formula are the alternatives.
         let mut pll = Vec::new();
+        let mut done = vec![false; atoms.len()];
         for l in 0..atoms.len() {
-            let mut flipped = truth.clone();
-            flipped[l] = !flipped[l];
-            let alternatives = match counts(&world(&flipped)) {
-                Some(n) => vec![n_true, n],
-                None => vec![n_true],
-            };
+            let mut block = vec![l];
+            if let Some(args) = atoms[l].strip_prefix("Friends(").and_then(|r| r.strip_suffix(')')) {
+                let (x, y) = args.split_once(',').unwrap();
+                block.push(atoms.iter().position(|a| *a == format!("Friends({y},{x})")).unwrap());
+            }
+            block.dedup();
+            if done[l] {
+                continue;
+            }
+            let mut alternatives = Vec::new();
+            for s in 0..1 << block.len() {
+                let mut v = truth.clone();
+                for (i, &a) in block.iter().enumerate() {
+                    v[a] = s >> i & 1 == 1;
+                    done[a] = true;
+                }
+                alternatives.extend(counts(&world(&v)));
+            }
             pll.push((n_true, alternatives));
         }
         // Likelihood: every world satisfying the hard formula.

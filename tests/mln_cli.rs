@@ -250,6 +250,13 @@ fn learn_writes_a_knowledge_base_with_the_optimal_weights() {
     tight[last] = "0.3";
     let w = learned_weight(&run_ok(&tight));
     assert!(w > 0.0 && w < 2f64.ln() - 0.1, "{w}");
+    // Discriminative with MC-SAT estimates (forced by --max-exact 0): near log 2, within 0.1
+    // at this seed and sample size.
+    let mut sampled = common.to_vec();
+    sampled.extend(["--method", "discriminative", "--max-exact", "0", "--samples", "2000", "--seed", "3"]);
+    let text = run_ok(&sampled);
+    assert!(text.contains("Expected counts by MC-SAT (2000 samples, seed 3)"), "{text}");
+    assert!((learned_weight(&text) - 2f64.ln()).abs() < 0.1, "{text}");
 }
 
 #[test]

@@ -56,13 +56,17 @@ Learning (mln learn):
                         log P(atom | its Markov blanket), over the --query predicates' atoms
                         given the others, or over all atoms without --query;
                         discriminative: conditional log-likelihood of the --query predicates
-                        given the others, with exact expectations (needs --query)
+                        given the others (needs --query); expected counts exact, or by
+                        MC-SAT for a database whose query atoms form a connected part of
+                        more than --max-exact atoms
   --prior-sigma S       standard deviation of the Gaussian prior on each weight (default 2,
                         Alchemy's for discriminative learning); `inf` for none
   --iterations N        most L-BFGS iterations (default 200)
   --max-exact N         discriminative: largest connected part of query atoms enumerated
-                        (default 16)
-  Learning is deterministic and draws no random numbers.
+                        (default 16); larger ones are sampled
+  --samples N, --seed S discriminative with MC-SAT: samples per database and iteration
+                        (default 500) and seed (default 1); learning is otherwise
+                        deterministic and draws no random numbers
 ";
 
 struct Options {
@@ -74,6 +78,7 @@ struct Options {
     inference: InferenceConfig,
     map: MapConfig,
     learn: LearnConfig,
+    samples: Option<u32>,
     true_only: bool,
     out: Option<PathBuf>,
     world: Option<PathBuf>,
@@ -112,6 +117,7 @@ fn parse_options(argv: Vec<OsString>) -> Result<Option<Options>, CliError> {
         inference: InferenceConfig::default(),
         map: MapConfig::default(),
         learn: LearnConfig::default(),
+        samples: None,
         true_only: false,
         out: None,
         world: None,
@@ -133,12 +139,17 @@ fn parse_options(argv: Vec<OsString>) -> Result<Option<Options>, CliError> {
             Long("closed") => o.ground.closed_world.extend(list("--closed", parser.value()?)?),
             Long("domain") => o.ground.domains.push(domain(parser.value()?)?),
             Long("method") => o.method = Some(args::value("--method", parser.value()?)?),
-            Long("samples") => o.inference.samples = args::value("--samples", parser.value()?)?,
+            Long("samples") => {
+                let n = args::value("--samples", parser.value()?)?;
+                o.inference.samples = n;
+                o.samples = Some(n);
+            }
             Long("burn-in") => o.inference.burn_in = args::value("--burn-in", parser.value()?)?,
             Long("seed") => {
                 let seed = args::value("--seed", parser.value()?)?;
                 o.inference.seed = seed;
                 o.map.seed = seed;
+                o.learn.seed = seed;
             }
             Long("max-atoms") => o.ground.max_atoms = args::value("--max-atoms", parser.value()?)?,
             Long("max-clauses") => o.ground.max_clauses = args::value("--max-clauses", parser.value()?)?,
@@ -272,6 +283,9 @@ fn learn(mut o: Options, kb_path: &Path) -> Result<(), CliError> {
         o.learn.method = m.parse().map_err(|e| CliError::Usage(format!("--method: {e}")))?;
     }
     o.learn.query = std::mem::take(&mut o.ground.query);
+    if let Some(n) = o.samples {
+        o.learn.samples = n;
+    }
     o.learn.ground = o.ground.clone();
     let mln = Mln::parse(&read(kb_path)?).map_err(|e| locate(kb_path, None, "", e))?;
     let mut dbs = Vec::new();
@@ -287,17 +301,13 @@ fn learn(mut o: Options, kb_path: &Path) -> Result<(), CliError> {
     let files: Vec<String> = o.dbs.iter().map(|p| p.display().to_string()).collect();
     let header = format!(
         "Weights learned by `ksmcmc mln learn` from {kb}.\nMethod: {method}; query predicates: {query}; \
-         Gaussian prior sigma {sigma}.\nTraining worlds ({n}): {files}.\nObjective {obj:.6}, largest gradient \
-         component {grad:.2e} after {it} L-BFGS iterations{conv}.\nFormulas ending in '.' are hard and were not \
-         learned; `// was` gives each soft formula's former weight.",
+         Gaussian prior sigma {sigma}.\nTraining worlds ({n}): {files}.\n{progress}\nFormulas ending in '.' are \
+         hard and were not learned; `// was` gives each soft formula's former weight.",
         kb = kb_path.display(),
         sigma = o.learn.prior_sigma,
         n = files.len(),
         files = files.join(", "),
-        obj = learned.objective,
-        grad = learned.gradient,
-        it = learned.iterations,
-        conv = if learned.converged { "" } else { " (not converged: raise --iterations)" },
+        progress = progress(&learned, &o.learn),
     );
     let text = learned.to_mln(&mln, &header);
     eprintln!("{}", header.replace('\n', " "));
@@ -308,6 +318,23 @@ fn learn(mut o: Options, kb_path: &Path) -> Result<(), CliError> {
             Ok(())
         }
     }
+}
+
+fn progress(learned: &ksmcmc::mln::Learned, config: &LearnConfig) -> String {
+    if learned.sampled {
+        return format!(
+            "Expected counts by MC-SAT ({} samples, seed {}): {} diagonal Newton iterations, weights averaged \
+             over the second half; last largest gradient component {:.2e}.",
+            config.samples, config.seed, learned.iterations, learned.gradient
+        );
+    }
+    format!(
+        "Objective {:.6}, largest gradient component {:.2e} after {} L-BFGS iterations{}.",
+        learned.objective,
+        learned.gradient,
+        learned.iterations,
+        if learned.converged { "" } else { " (not converged: raise --iterations)" }
+    )
 }
 
 /// `mln evidence`: the indoor evidence (and with --truth the query atoms) of a world.

@@ -299,6 +299,20 @@ fn learn_and_evidence_usage_and_errors() {
     let asym = scratch("asym-train.db", "RoLi(U1)\nAdj(U1,U2)\n");
     let e = run_err(&["mln", "learn", "--mln", KB, "--db", asym.to_str().unwrap()], 1);
     assert!(e.contains("the training world violates the hard formula `Adj(p, q) => Adj(q, p)`"), "{e}");
+    // A constant outside a declared domain: the error names the database and the line.
+    let kb = scratch("closed.mln", "person = {A, B}\nSmokes(person)\n1 Smokes(x)\n");
+    let (good, bad) = (scratch("good.db", "Smokes(A)\n"), scratch("bad-const.db", "Smokes(B)\nSmokes(C)\n"));
+    let e = run_err(
+        &["mln", "learn", "--mln", kb.to_str().unwrap(), "--db", good.to_str().unwrap(), "--db", bad.to_str().unwrap()],
+        1,
+    );
+    assert_eq!(
+        e,
+        format!(
+            "ksmcmc: {}: line 2, column 1: constant C is not in the declared domain of type person\n",
+            bad.display()
+        )
+    );
     let e = run_err(&["mln", "evidence", "--world", "no/such.json", "--resolution", "0.05"], 1);
     assert!(e.contains("no/such.json"), "{e}");
     let help = run_ok(&["mln", "--help"]);

@@ -27,7 +27,9 @@ Usage:
   ksmcmc mln evidence --world truth.json (--map map.yaml | --resolution M) [--truth] [--out FILE]
       the indoor evidence (RoLi, CoLi, HaLi, MulDoor, Adj) of a floor-plan world as a
       database; with --truth also its true Room/Corr/Hall/Other types and SaLe pairs
-      (connecting walls within 10 % of each other), a training world for `mln learn`
+      (connecting walls within 10 % of each other), a training world for `mln learn`;
+      geometry classes by the default classifier of Tab. 3.6 (halls from 60 m²,
+      corridors 3.5 times as long as wide)
 
 Knowledge bases use the Alchemy / ProbCog format (see samples/knowledge/*.mln); evidence has
 one ground atom per line: Pred(A,B), !Pred(A,B), or 0.8 Pred(A) for soft evidence.
@@ -292,7 +294,16 @@ fn learn(mut o: Options, kb_path: &Path) -> Result<(), CliError> {
     for p in &o.dbs {
         dbs.push(Database::parse(&read(p)?, &mln).map_err(|e| locate(kb_path, Some(p), "", e))?);
     }
-    let learned = learn_weights(&mln, &dbs, &o.learn).map_err(|e| locate(kb_path, None, "learning", e))?;
+    let learned = learn_weights(&mln, &dbs, &o.learn).map_err(|e| {
+        // An error positioned in evidence names no database: find the first that fails alone.
+        let culprit = match e.source {
+            Some(Source::Evidence) => {
+                (0..dbs.len()).find(|&i| ksmcmc::mln::Learner::new(&mln, &dbs[i..=i], &o.learn).is_err())
+            }
+            _ => None,
+        };
+        locate(kb_path, culprit.map(|i| o.dbs[i].as_path()), "learning", e)
+    })?;
     let method = match o.learn.method {
         ksmcmc::mln::LearnMethod::PseudoLikelihood => "pseudo-log-likelihood",
         ksmcmc::mln::LearnMethod::Discriminative => "discriminative (conditional log-likelihood)",
@@ -353,6 +364,14 @@ fn evidence(o: &Options) -> Result<(), CliError> {
     }
     let world = World::from_json(&read(world_path)?).map_err(|e| args::failed(world_path.display(), e))?;
     let classifier = GeometryClassifier::default();
+    let untyped = world.units.iter().filter(|u| u.kind == ksmcmc::floorplan::UnitType::Unknown).count();
+    if o.truth && untyped > 0 {
+        eprintln!(
+            "warning: {}: {untyped} units have no type; as training data they are neither rooms, corridors, \
+             halls nor others",
+            world_path.display()
+        );
+    }
     let facts = if o.truth {
         knowledge::training_facts(&world, resolution, &classifier)
     } else {

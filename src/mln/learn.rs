@@ -63,7 +63,8 @@ use std::collections::{BTreeMap, HashMap};
 pub enum LearnMethod {
     /// Pseudo-log-likelihood: the sum over ground atoms of `log P(x_l | Markov blanket)`.
     PseudoLikelihood,
-    /// Conditional log-likelihood of the query predicates given the others, computed exactly.
+    /// Conditional log-likelihood of the query predicates given the others: exactly where
+    /// the query atoms form small connected parts, with MC-SAT estimates otherwise.
     Discriminative,
 }
 
@@ -133,9 +134,10 @@ pub struct Learned {
     /// over the databases, plus the log prior (up to its constant); NaN when MC-SAT
     /// estimated the gradient, since the likelihood itself is then unknown.
     pub objective: f64,
-    /// The largest component of the objective's gradient there.
+    /// The largest component of the objective's gradient there (when sampled, of the last
+    /// estimate).
     pub gradient: f64,
-    /// L-BFGS iterations made.
+    /// L-BFGS iterations made (diagonal Newton iterations when sampled).
     pub iterations: usize,
     /// Whether the gradient fell below the tolerance (never when sampled: estimates carry
     /// noise, so sampled learning runs all its iterations).

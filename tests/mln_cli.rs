@@ -213,3 +213,145 @@ fn domains_and_world_assumptions_from_the_command_line() {
     );
     assert!(e.contains("line 1, column 1: constant C is not in the declared domain of type unit"), "{e}");
 }
+
+/// The learned weight of the only soft formula in a `mln learn` output.
+fn learned_weight(text: &str) -> f64 {
+    let line = text.lines().find(|l| l.contains("Smokes(x) => Cancer(x)")).expect("the formula");
+    line.split_whitespace().next().unwrap().parse().unwrap()
+}
+
+#[test]
+fn learn_writes_a_knowledge_base_with_the_optimal_weights() {
+    let kb = scratch("smoking.mln", "Smokes(person)\nCancer(person)\n1.5 Smokes(x) => Cancer(x)\n");
+    // Smokers: A, B, C with cancer, D without (database 1); E with, F without (database 2).
+    let db1 = scratch("smoking1.db", "Smokes(A)\nCancer(A)\nSmokes(B)\nCancer(B)\nSmokes(C)\nCancer(C)\nSmokes(D)\n");
+    let db2 = scratch("smoking2.db", "Smokes(E)\nCancer(E)\nSmokes(F)\n");
+    let out = scratch("smoking-learned.mln", "");
+    let (kb, db1, db2, out) =
+        (kb.to_str().unwrap(), db1.to_str().unwrap(), db2.to_str().unwrap(), out.to_str().unwrap());
+    let common = ["mln", "learn", "--mln", kb, "--db", db1, "--db", db2, "--query", "Cancer", "--prior-sigma", "inf"];
+    // P(Cancer | Smokes) = 4 / 6 in the pooled data: w = log 2, by both methods here (each
+    // smoker's Cancer atom is its own Markov blanket's only unknown).
+    for method in ["discriminative", "pll"] {
+        let mut args = common.to_vec();
+        args.extend(["--method", method, "--out", out]);
+        run_ok(&args);
+        let text = std::fs::read_to_string(out).unwrap();
+        assert!(text.starts_with("// Weights learned by `ksmcmc mln learn`"), "{text}");
+        assert!((learned_weight(&text) - 2f64.ln()).abs() < 1e-6, "{method}: {text}");
+        let info = run_ok(&["mln", "info", "--mln", out]);
+        assert!(info.contains("Smokes(x) => Cancer(x)"), "{info}");
+    }
+    // Standard output without --out; deterministic; a prior pulls the weight toward 0.
+    let a = run_ok(&common);
+    assert_eq!(a, run_ok(&common));
+    let mut tight = common.to_vec();
+    let last = tight.len() - 1;
+    tight[last] = "0.3";
+    let w = learned_weight(&run_ok(&tight));
+    assert!(w > 0.0 && w < 2f64.ln() - 0.1, "{w}");
+    // Discriminative with MC-SAT estimates (forced by --max-exact 0): near log 2, within 0.1
+    // at this seed and sample size.
+    let mut sampled = common.to_vec();
+    sampled.extend(["--method", "discriminative", "--max-exact", "0", "--samples", "2000", "--seed", "3"]);
+    let text = run_ok(&sampled);
+    assert!(text.contains("Expected counts by MC-SAT (2000 samples, seed 3)"), "{text}");
+    assert!((learned_weight(&text) - 2f64.ln()).abs() < 0.1, "{text}");
+}
+
+#[test]
+fn training_worlds_from_synthetic_floor_plans() {
+    let world = "samples/office-small/truth.json";
+    let train = run_ok(&["mln", "evidence", "--world", world, "--map", "samples/office-small/map.yaml", "--truth"]);
+    assert!(train.contains("\nCorr(U1)\n") && train.contains("\nRoom(U2)\n"), "{train}");
+    assert!(train.contains("\nSaLe(U2,U3)\nSaLe(U3,U2)\n"), "{train}");
+    let evidence = run_ok(&["mln", "evidence", "--world", world, "--resolution", "0.05"]);
+    assert!(evidence.contains("CoLi(U1)") && !evidence.contains("Corr(U1)"), "{evidence}");
+    let db = scratch("office-small.db", &train);
+    let learned = run_ok(&["mln", "learn", "--mln", KB, "--db", db.to_str().unwrap(), "--query", QUERY]);
+    let kb = scratch("indoor-learned.mln", &learned);
+    // The learned knowledge base answers queries on the sample evidence.
+    let out = run_ok(&["mln", "query", "--mln", kb.to_str().unwrap(), "--db", DB, "--query", "Room"]);
+    assert_eq!(out.lines().count(), 4, "{out}");
+}
+
+#[test]
+fn learn_and_evidence_usage_and_errors() {
+    for args in [
+        vec!["mln", "learn", "--mln", KB],
+        vec!["mln", "learn", "--mln", KB, "--db", DB, "--method", "magic"],
+        vec!["mln", "learn", "--mln", KB, "--db", DB, "--closed", "Adj"],
+        vec!["mln", "learn", "--mln", KB, "--db", DB, "--prior-sigma", "wide"],
+        vec!["mln", "query", "--mln", KB, "--db", DB, "--db", DB, "--query", "Hall"],
+        vec!["mln", "evidence", "--map", "samples/office-small/map.yaml"],
+        vec!["mln", "evidence", "--world", "samples/office-small/truth.json"],
+        vec!["mln", "evidence", "--world", "samples/office-small/truth.json", "--resolution", "-1"],
+    ] {
+        run_err(&args, 2);
+    }
+    let e = run_err(&["mln", "learn", "--mln", KB, "--db", DB, "--method", "discriminative"], 1);
+    assert_eq!(
+        e,
+        "ksmcmc: learning: discriminative learning needs the query (non-evidence) predicates, e.g. --query Room,Corr\n"
+    );
+    // The sample evidence has no SaLe atoms: as a training world all are false, which the
+    // hard formulas allow; but a one-sided Adj breaks one.
+    let asym = scratch("asym-train.db", "RoLi(U1)\nAdj(U1,U2)\n");
+    let e = run_err(&["mln", "learn", "--mln", KB, "--db", asym.to_str().unwrap()], 1);
+    assert!(e.contains("the training world violates the hard formula `Adj(p, q) => Adj(q, p)`"), "{e}");
+    // A constant outside a declared domain: the error names the database and the line.
+    let kb = scratch("closed.mln", "person = {A, B}\nSmokes(person)\n1 Smokes(x)\n");
+    let (good, bad) = (scratch("good.db", "Smokes(A)\n"), scratch("bad-const.db", "Smokes(B)\nSmokes(C)\n"));
+    let e = run_err(
+        &["mln", "learn", "--mln", kb.to_str().unwrap(), "--db", good.to_str().unwrap(), "--db", bad.to_str().unwrap()],
+        1,
+    );
+    assert_eq!(
+        e,
+        format!(
+            "ksmcmc: {}: line 2, column 1: constant C is not in the declared domain of type person\n",
+            bad.display()
+        )
+    );
+    let e = run_err(&["mln", "evidence", "--world", "no/such.json", "--resolution", "0.05"], 1);
+    assert!(e.contains("no/such.json"), "{e}");
+    let help = run_ok(&["mln", "--help"]);
+    assert!(help.contains("ksmcmc mln learn") && help.contains("ksmcmc mln evidence"));
+}
+
+/// `samples/knowledge/indoor-learned.mln` is what `learn-indoor.sh` makes: the same synthetic
+/// floors (the seed list is read from the script), the same evidence, the same weights.
+#[test]
+fn the_learned_indoor_knowledge_base_is_reproducible() {
+    let script = std::fs::read_to_string("samples/knowledge/learn-indoor.sh").unwrap();
+    let seeds = script.split("<<SEEDS\n").nth(1).unwrap().split("\nSEEDS").next().unwrap();
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("indoor-train");
+    let mut args: Vec<String> =
+        ["mln", "learn", "--mln", KB, "--query", QUERY, "--method", "pll", "--prior-sigma", "2"]
+            .map(String::from)
+            .to_vec();
+    for line in seeds.lines() {
+        let mut words = line.split_whitespace();
+        let seed = words.next().unwrap();
+        let out = dir.join(seed);
+        let mut synth = vec!["synth", "--seed", seed, "--out", out.to_str().unwrap()];
+        synth.extend(words);
+        run_ok(&synth);
+        let db = dir.join(format!("{seed}.db"));
+        let (world, map) = (out.join("truth.json"), out.join("map.yaml"));
+        let (world, map, db_path) = (world.to_str().unwrap(), map.to_str().unwrap(), db.to_str().unwrap());
+        run_ok(&["mln", "evidence", "--world", world, "--map", map, "--truth", "--out", db_path]);
+        args.extend(["--db".to_string(), db_path.to_string()]);
+    }
+    assert_eq!(seeds.lines().count(), 12);
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let learned = run_ok(&args);
+    let committed = std::fs::read_to_string("samples/knowledge/indoor-learned.mln").unwrap();
+    let body = |t: &str| t.lines().filter(|l| !l.starts_with("//")).map(String::from).collect::<Vec<_>>();
+    assert_eq!(body(&learned), body(&committed), "rerun samples/knowledge/learn-indoor.sh");
+    // It keeps the hand-set file's formulas, hard ones hard, and a query runs on it.
+    let info = run_ok(&["mln", "info", "--mln", "samples/knowledge/indoor-learned.mln"]);
+    assert_eq!(info.matches("    hard  ").count(), 3, "{info}");
+    assert_eq!(info.lines().filter(|l| l.starts_with("  ") && l.contains("=>")).count(), 22, "{info}");
+    run_ok(&["mln", "query", "--mln", "samples/knowledge/indoor-learned.mln", "--db", DB, "--query", QUERY]);
+}

@@ -320,6 +320,49 @@ pub fn evidence(world: &World, resolution: f64, classifier: &GeometryClassifier)
     facts
 }
 
+/// Connecting walls differing by at most this share of the longer one have the same length:
+/// the test of [`defect_pairs`] and of the `SaLe` atoms of [`training_facts`].
+pub const SAME_LENGTH_TOLERANCE: f64 = 0.1;
+
+/// Whether two units are adjacent and their connecting walls have the same length within
+/// [`SAME_LENGTH_TOLERANCE`]: the true value of `SaLe(a, b)`.
+pub fn same_length(a: &Unit, b: &Unit, t: i32) -> bool {
+    connecting_walls(a, b, t)
+        .is_some_and(|(la, lb)| (la - lb).abs() as f64 <= SAME_LENGTH_TOLERANCE * la.max(lb) as f64)
+}
+
+/// A training world for weight learning: the [`evidence`] facts of a labelled world plus the
+/// true query atoms, `Room`/`Corr`/`Hall`/`Other` of every unit from its type (all false for
+/// an untyped unit) and `SaLe(p, q)` of every ordered pair from [`same_length`].
+pub fn training_facts(world: &World, resolution: f64, classifier: &GeometryClassifier) -> Vec<Fact> {
+    let t = world.wall_thickness;
+    let mut facts = evidence(world, resolution, classifier);
+    for u in &world.units {
+        for (q, kind) in TYPE_PREDICATES {
+            facts.push((q, vec![constant(u.id)], u.kind == kind));
+        }
+    }
+    for a in &world.units {
+        for b in world.units.iter().filter(|b| b.id != a.id) {
+            facts.push(("SaLe", vec![constant(a.id), constant(b.id)], same_length(a, b, t)));
+        }
+    }
+    facts
+}
+
+/// Facts as an evidence database (`ksmcmc::mln::Database::parse` reads it): one true atom
+/// per line, in the order given. False atoms are left out, since training worlds and the
+/// predicates they mention are closed world.
+pub fn database_text(facts: &[Fact]) -> String {
+    let mut out = String::new();
+    for (pred, args, value) in facts {
+        if *value {
+            out.push_str(&format!("{pred}({})\n", args.join(",")));
+        }
+    }
+    out
+}
+
 /// The share of adjacent room-room pairs whose connecting walls differ in length by more than
 /// 10 % of the longer one: the topological defects of section 3.7 (Fig. 3.27). `None` when the
 /// world has no adjacent room pairs.
@@ -339,7 +382,7 @@ pub fn defect_pairs(world: &World) -> (u32, u32) {
         for b in &rooms[i + 1..] {
             if let Some((la, lb)) = connecting_walls(a, b, t) {
                 pairs += 1;
-                if (la - lb).abs() as f64 > 0.1 * la.max(lb) as f64 {
+                if (la - lb).abs() as f64 > SAME_LENGTH_TOLERANCE * la.max(lb) as f64 {
                     bad += 1;
                 }
             }
@@ -472,6 +515,35 @@ mod tests {
         assert_eq!(defect_pairs(&w), (1, 2));
         w.units[2].kind = UnitType::Corridor;
         assert_eq!(defects(&w), Some(0.0));
+    }
+
+    #[test]
+    fn training_worlds_add_the_true_types_and_same_length_pairs() {
+        use crate::mln::{learn_weights, Database, LearnConfig, Mln};
+        let mut w = World::empty(200, 100);
+        w.units = vec![
+            unit(1, 0, 0, 60, 80, UnitType::Room),
+            unit(2, 59, 0, 60, 80, UnitType::Room),
+            unit(3, 118, 0, 60, 76, UnitType::Hall), // within 10 % of unit 2's height
+            unit(4, 0, 79, 178, 21, UnitType::Unknown),
+        ];
+        let facts = training_facts(&w, 0.05, &GeometryClassifier::default());
+        let value = |p: &str, a: &[&str]| facts.iter().find(|f| f.0 == p && f.1 == a).map(|f| f.2);
+        assert_eq!(value("Room", &["U1"]), Some(true));
+        assert_eq!(value("Hall", &["U1"]), Some(false));
+        assert_eq!(value("Hall", &["U3"]), Some(true));
+        assert_eq!(TYPE_PREDICATES.map(|(q, _)| value(q, &["U4"])), [Some(false); 4], "untyped");
+        assert_eq!(value("SaLe", &["U1", "U2"]), Some(true));
+        assert_eq!(value("SaLe", &["U3", "U2"]), Some(true), "76 vs 80 cells");
+        assert_eq!(value("SaLe", &["U1", "U3"]), Some(false), "not adjacent");
+        assert_eq!(value("SaLe", &["U1", "U4"]), Some(false), "60 vs 178 cells");
+        assert_eq!(value("Adj", &["U1", "U4"]), Some(true));
+        // The database reads back and satisfies the indoor rules' hard formulas.
+        let text = database_text(&facts);
+        assert!(text.contains("SaLe(U1,U2)\nSaLe(U2,U1)\n") && !text.contains("Hall(U1)"), "{text}");
+        let mln = Mln::parse(BUILTIN_INDOOR).unwrap();
+        let db = Database::parse(&text, &mln).unwrap();
+        assert!(learn_weights(&mln, &[db], &LearnConfig::default()).is_ok());
     }
 }
 

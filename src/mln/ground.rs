@@ -178,6 +178,27 @@ impl Space {
         key
     }
 
+    /// The key of a ground atom, if its predicate and constants belong to this space.
+    fn try_key(&self, pred: u32, args: &[String], index: &HashMap<&str, u32>) -> Option<u64> {
+        let p = pred as usize;
+        let types = self.pred_types.get(p).filter(|t| t.len() == args.len())?;
+        let mut key = self.pred_offset[p];
+        for (i, a) in args.iter().enumerate() {
+            let l = *self.local[types[i] as usize].get(index.get(a.as_str())?)?;
+            key += l as u64 * self.pred_strides[p][i];
+        }
+        Some(key)
+    }
+
+    /// Per type name, its constants' names (every type of the knowledge base, in order).
+    pub fn domain_names(&self, mln: &Mln) -> Vec<(String, Vec<String>)> {
+        mln.types
+            .iter()
+            .zip(&self.domains)
+            .map(|(t, d)| (t.name.clone(), d.iter().map(|&c| self.names[c as usize].clone()).collect()))
+            .collect()
+    }
+
     /// The key of an atom under an assignment of local indices to variable slots.
     fn key(&self, pred: u32, args: &[Term], assign: &[u32]) -> u64 {
         let p = pred as usize;
@@ -319,6 +340,9 @@ pub struct Network {
     pub(crate) feature_weight: Vec<f64>,
     /// Feature `f` is clauses `feature_start[f]..feature_start[f + 1]`.
     pub(crate) feature_start: Vec<u32>,
+    /// The formula each feature grounds (its index in [`Mln::formulas`]), or `u32::MAX` for
+    /// soft evidence; weight learning counts true groundings per formula by it.
+    pub(crate) feature_formula: Vec<u32>,
     /// Atom `a` occurs in `occ[occ_start[a]..occ_start[a + 1]]`, each `clause << 1 | negated`.
     pub(crate) occ_start: Vec<u32>,
     pub(crate) occ: Vec<u32>,
@@ -420,6 +444,20 @@ impl Network {
             }
         }
         total
+    }
+
+    /// The value of every unknown atom in the complete world `world`: true if it lists the
+    /// atom as true, false otherwise (closed world). Atoms with constants outside this
+    /// network's domains are ignored, as they cannot be among its atoms.
+    pub(crate) fn values_in(&self, world: &Database) -> Vec<bool> {
+        let index = self.space.name_index();
+        let truth: HashSet<u64> = world
+            .atoms
+            .iter()
+            .filter(|a| a.value == Evidence::True)
+            .filter_map(|a| self.space.try_key(a.pred, &a.args, &index))
+            .collect();
+        self.atom_key.iter().map(|k| truth.contains(k)).collect()
     }
 
     #[inline]
@@ -960,7 +998,9 @@ impl<'a> Builder<'a> {
         let mut clause_feature = Vec::new();
         let mut feature_weight = Vec::new();
         let mut feature_start = vec![0u32];
+        let mut feature_formula = Vec::new();
         for f in (0..nf).filter(|&f| keep_feature[f]) {
+            feature_formula.push(self.feature_formula[f]);
             let nf2 = feature_weight.len() as u32;
             let clauses = self.feature_start[f] as usize..self.feature_start[f + 1] as usize;
             for c in clauses.filter(|&c| !clause_sat[c]) {
@@ -999,6 +1039,7 @@ impl<'a> Builder<'a> {
             clause_feature,
             feature_weight,
             feature_start,
+            feature_formula,
             occ_start,
             occ,
             offset: self.offset,

@@ -24,6 +24,10 @@
 //!    world, [`Network::log_weight`] (or [`Mln::log_weight`] on a complete world) the
 //!    unnormalised log probability `sum_i w_i n_i(x)` of eq. 4.3.
 //!
+//! [`learn_weights`] goes the other way: from complete training worlds to the weights of the
+//! soft formulas, by pseudo-likelihood or discriminatively ([`LearnMethod`]), and
+//! [`Learned::to_mln`] writes the knowledge base back with them.
+//!
 //! ```
 //! use ksmcmc::mln::{Database, GroundConfig, InferenceConfig, Method, Mln, Network};
 //!
@@ -134,6 +138,8 @@ mod error;
 mod ground;
 mod infer;
 mod kb;
+mod lbfgs;
+mod learn;
 mod logic;
 mod syntax;
 
@@ -141,3 +147,4 @@ pub use error::{ErrorKind, MlnError, Position, Source};
 pub use ground::{GroundConfig, Network};
 pub use infer::{InferenceConfig, MapConfig, MapMethod, MapWorld, Marginals, Method, SliceMoves, AUTO_EXACT_ATOMS};
 pub use kb::{Database, Evidence, Formula, GroundAtom, Mln, Predicate, Weight};
+pub use learn::{learn_weights, LearnConfig, LearnMethod, Learned, Learner};

@@ -33,6 +33,10 @@ Usage:
                                            generate a synthetic floor plan with ground truth
   ksmcmc mln query|map|info --mln KB.mln [--db EVIDENCE.db] [--query P,Q]
                                            Markov logic marginals, most probable world, network size
+  ksmcmc mln learn --mln KB.mln --db TRAIN.db [--db ...] [--out LEARNED.mln]
+                                           learn formula weights from complete training worlds
+  ksmcmc mln evidence --world truth.json --map map.yaml [--truth]
+                                           indoor evidence (and training world) of a floor plan
   ksmcmc tabletop SCENE.json --out DIR [--iterations N] [--seed S]
                                            scene graph of a table-top scene from 6D poses
   ksmcmc tabletop-synth --seed N --out scene.json

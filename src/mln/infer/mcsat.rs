@@ -42,7 +42,41 @@ pub(crate) fn marginals(net: &Network, config: &InferenceConfig, rng: &mut Rng) 
     if n == 0 {
         return Ok(Vec::new());
     }
+    let blocks = hard_blocks(net, config.max_block);
+    let widest = blocks.iter().map(Vec::len).max().unwrap_or(1);
+    let mut weights = vec![0.0f64; 1 << widest];
+    let mut sums = vec![0.0f64; n];
+    run(net, config, rng, |counts| {
+        for block in &blocks {
+            if let [a] = block[..] {
+                sums[a as usize] += counts.conditional(a as usize);
+            } else {
+                let (here, z) = enumerate_block(counts, block, &mut weights);
+                add_block_marginals(counts, block, &weights[..1 << block.len()], z, here, &mut sums);
+                move_block(counts, block, here, 0);
+            }
+        }
+    })?;
+    let m = config.samples as f64;
+    Ok(sums.into_iter().map(|c| (c / m).clamp(0.0, 1.0)).collect())
+}
+
+/// Runs the chain: `config.burn_in` steps, then `config.samples` steps after each of which
+/// `visit` sees the world (and must leave it as it found it).
+pub(crate) fn run(
+    net: &Network,
+    config: &InferenceConfig,
+    rng: &mut Rng,
+    mut visit: impl FnMut(&mut Counts),
+) -> Result<(), MlnError> {
+    if net.atom_count() == 0 {
+        for _ in 0..config.samples {
+            visit(&mut Counts::new(net, Vec::new()));
+        }
+        return Ok(());
+    }
     let start = satisfy_hard(net, config.walksat_flips, rng)?;
+    let n = net.atom_count();
     let mut s = Slice::new(net, start, config);
     let keep: Vec<f64> =
         net.feature_weight.iter().map(|&w| if w.is_infinite() { 1.0 } else { -libm::expm1(-w) }).collect();
@@ -50,7 +84,6 @@ pub(crate) fn marginals(net: &Network, config: &InferenceConfig, rng: &mut Rng) 
     let widest = blocks.iter().map(Vec::len).max().unwrap_or(1);
     let mut valid = vec![false; 1 << widest];
     let mut weights = vec![0.0f64; 1 << widest];
-    let mut sums = vec![0.0f64; n];
     for it in 0..config.burn_in as u64 + config.samples as u64 {
         s.select(&keep, rng);
         match config.slice {
@@ -60,22 +93,13 @@ pub(crate) fn marginals(net: &Network, config: &InferenceConfig, rng: &mut Rng) 
             }
         }
         for _ in 0..config.gibbs_sweeps {
-            gibbs::sweep(&mut s.counts, &blocks, &mut weights, &mut sums, false, rng);
+            gibbs::sweep(&mut s.counts, &blocks, &mut weights, &mut [], false, rng);
         }
         if it >= config.burn_in as u64 {
-            for block in &blocks {
-                if let [a] = block[..] {
-                    sums[a as usize] += s.counts.conditional(a as usize);
-                } else {
-                    let (here, z) = enumerate_block(&mut s.counts, block, &mut weights);
-                    add_block_marginals(&s.counts, block, &weights[..1 << block.len()], z, here, &mut sums);
-                    move_block(&mut s.counts, block, here, 0);
-                }
-            }
+            visit(&mut s.counts);
         }
     }
-    let m = config.samples as f64;
-    Ok(sums.into_iter().map(|c| (c / m).clamp(0.0, 1.0)).collect())
+    Ok(())
 }
 
 struct Slice<'a> {

@@ -17,6 +17,9 @@ use super::ground::{Network, QueryValue};
 use super::kb::GroundAtom;
 use crate::mcmc::Rng;
 
+/// MC-SAT's chain, visiting each sampled world (weight learning estimates counts with it).
+pub(crate) use mcsat::run as mcsat_run;
+
 /// How to compute marginals.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Method {

@@ -26,12 +26,16 @@ pub struct GeometryClassifier {
     pub hall_area_m2: f64,
     /// Length / width ratio above which a small unit is corridor-like rather than room-like.
     pub corridor_ratio: f64,
+    /// Free area (m²) below which a unit is `Small`: a store, a stairwell, a shaft. Not in
+    /// Tab. 3.6; knowledge bases that do not declare `Small` never see it.
+    pub small_area_m2: f64,
 }
 
 impl Default for GeometryClassifier {
-    /// Halls from 60 m²; corridors at least 3.5 times as long as they are wide.
+    /// Halls from 60 m²; corridors at least 3.5 times as long as they are wide; small under
+    /// 10 m².
     fn default() -> Self {
-        GeometryClassifier { hall_area_m2: 60.0, corridor_ratio: 3.5 }
+        GeometryClassifier { hall_area_m2: 60.0, corridor_ratio: 3.5, small_area_m2: 10.0 }
     }
 }
 
@@ -47,6 +51,12 @@ pub enum Geometry {
 }
 
 impl GeometryClassifier {
+    /// The free area inside a unit's walls (`t` cells deep), m².
+    pub fn free_area_m2(&self, u: &Unit, t: i32, resolution: f64) -> f64 {
+        let (w, h) = ((u.w - 2 * t).max(1) as f64, (u.h - 2 * t).max(1) as f64);
+        w * h * resolution * resolution
+    }
+
     /// Classifies a unit whose walls are `t` cells deep, at `resolution` metres per cell.
     pub fn classify(&self, u: &Unit, t: i32, resolution: f64) -> Geometry {
         let (w, h) = ((u.w - 2 * t).max(1) as f64, (u.h - 2 * t).max(1) as f64);
@@ -307,6 +317,7 @@ pub fn evidence(world: &World, resolution: f64, classifier: &GeometryClassifier)
         facts.push(("RoLi", vec![c.clone()], g == Geometry::RoomLike));
         facts.push(("CoLi", vec![c.clone()], g == Geometry::CorridorLike));
         facts.push(("HaLi", vec![c.clone()], g == Geometry::HallLike));
+        facts.push(("Small", vec![c.clone()], classifier.free_area_m2(u, t, resolution) < classifier.small_area_m2));
         let doors = world.doors.iter().filter(|d| d.units.contains(&u.id)).count();
         facts.push(("MulDoor", vec![c], doors >= 2));
     }
@@ -553,8 +564,14 @@ mod tests {
 /// 20 000 - 28 000 iterations a second on Radish maps (BENCHMARKS.md).
 pub const WORK_PER_ITERATION: f64 = 1000.0;
 
-/// The built-in knowledge base: the indoor rules of Tab. 3.3 - 3.5.
-pub const BUILTIN_INDOOR: &str = include_str!("../../samples/knowledge/indoor.mln");
+/// The built-in knowledge base: the indoor rules of Tab. 3.3 - 3.5 and a few more
+/// (`indoor-rules.mln`), with weights learned discriminatively from labelled synthetic floors
+/// (`samples/knowledge/learn-indoor.sh`, `ksmcmc mln learn`).
+pub const BUILTIN_INDOOR: &str = include_str!("../../samples/knowledge/indoor-learned.mln");
+
+/// The indoor rules of Tab. 3.3 - 3.5 with hand-set weights ("very sure" 0.9, "relatively
+/// sure" 0.7): the dissertation's knowledge base as transcribed, beside the learned default.
+pub const HAND_SET_INDOOR: &str = include_str!("../../samples/knowledge/indoor.mln");
 
 /// How knowledge supervises the chain.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -743,7 +760,7 @@ impl Knowledge {
         }
         let mut ground = GroundConfig::query(&self.queries);
         // Evidence is complete for the predicates the world supplies: closed world.
-        ground.closed_world = ["RoLi", "CoLi", "HaLi", "MulDoor", "Adj"]
+        ground.closed_world = ["RoLi", "CoLi", "HaLi", "MulDoor", "Adj", "Small"]
             .iter()
             .filter(|p| self.mln.predicate(p).is_some())
             .map(|p| p.to_string())

@@ -38,6 +38,13 @@ pub struct RoomConfig {
     /// room around them. The default, 2.5 m² at 5 cm cells, is a core of a room of about
     /// 2.8 m x 2.8 m and more.
     pub min_core_cells: usize,
+    /// Free regions beyond every unit's reach are rooms only if at least `min_room_cells / 4`
+    /// of their cells lie deeper than this (cells) in free space: the fans of scan rays a
+    /// robot sees through windows and doors are thin, rooms are not. 0 keeps every region.
+    pub min_room_depth: u32,
+    /// Segments smaller than this (cells) join the neighbour they share the longest boundary
+    /// with: a sliver between two units, a nook cut off by a cupboard. 0 keeps them.
+    pub min_segment_cells: usize,
 }
 
 impl Default for RoomConfig {
@@ -49,6 +56,8 @@ impl Default for RoomConfig {
             min_room_cells: 400,
             door_half_width: 12,
             min_core_cells: 1000,
+            min_room_depth: 6,
+            min_segment_cells: 1000,
         }
     }
 }
@@ -268,7 +277,8 @@ pub fn labels_of_groups(
             }
         }
     }
-    // Free regions out of every unit's reach: rooms of their own.
+    // Free regions out of every unit's reach: rooms of their own, if deep enough.
+    let depth = if c.min_room_depth > 0 { free_depth(map) } else { vec![u32::MAX; w * h] };
     let mut next = rooms.iter().copied().max().unwrap_or(0);
     let mut stack = Vec::new();
     for start in 0..w * h {
@@ -290,7 +300,8 @@ pub fn labels_of_groups(
                 }
             }
         }
-        if region.len() >= c.min_room_cells {
+        let deep = region.iter().filter(|&&(x, y)| depth[y * w + x] > 3 * c.min_room_depth).count();
+        if region.len() >= c.min_room_cells && deep >= c.min_room_cells / 4 {
             next = id;
         } else {
             // u16::MAX marks "seen, not a room" until the end.
@@ -305,26 +316,92 @@ pub fn labels_of_groups(
         }
     }
     split_at_doorways(&mut labels, map, c);
+    merge_small_segments(&mut labels, c.min_segment_cells);
     labels
 }
 
-/// Splits rooms at doorways, as morphological and Voronoi room segmentation do (Bormann et
-/// al. 2016): a rectangle explains a room's walls, but where the walls are not rectangular (or
-/// stop short) one unit, or a group of units, can reach through doors into the rooms behind.
-///
-/// A room's *cores* are its free cells farther than `door_half_width` from every non-free cell
-/// (a chamfer distance), split into 4-connected parts; a doorway narrower than twice that
-/// leaves no core cells, so rooms joined by doors have separate cores while a room narrowed
-/// only a little keeps one. A room with two or more cores of `min_core_cells` or more is
-/// divided among them: each of its cells joins the core nearest to it through the room
-/// (wavefront), and cells no core reaches keep the room's label. Rooms are then numbered
-/// 1..=n in scan order. `labels` must be the size of `map` (otherwise nothing is split).
-pub fn split_at_doorways(labels: &mut Grid<u16>, map: &Grid<Cell>, c: &RoomConfig) {
-    let (w, h) = (labels.width(), labels.height());
-    if c.door_half_width == 0 || w == 0 || h == 0 || (map.width(), map.height()) != (w, h) {
+/// Joins every segment smaller than `min_cells` to the neighbouring segment it shares the
+/// longest boundary with (4-neighbours), smallest first, then numbers the segments 1..=n in
+/// scan order. Segments with no labelled neighbour stay.
+pub fn merge_small_segments(labels: &mut Grid<u16>, min_cells: usize) {
+    use std::collections::BTreeMap;
+    if min_cells == 0 {
         return;
     }
-    // Chamfer 3-4 distance to the nearest non-free cell (cells beyond the map are not free).
+    let (w, h) = (labels.width(), labels.height());
+    let n = labels.cells().iter().copied().max().unwrap_or(0) as usize;
+    let mut size = vec![0usize; n + 1];
+    for &l in labels.cells() {
+        size[l as usize] += 1;
+    }
+    let mut contact: BTreeMap<(u16, u16), usize> = BTreeMap::new();
+    for y in 0..h {
+        for x in 0..w {
+            let a = *labels.at(x, y);
+            for (nx, ny) in [(x + 1, y), (x, y + 1)] {
+                if nx < w && ny < h {
+                    let b = *labels.at(nx, ny);
+                    if a != 0 && b != 0 && a != b {
+                        *contact.entry((a, b)).or_default() += 1;
+                        *contact.entry((b, a)).or_default() += 1;
+                    }
+                }
+            }
+        }
+    }
+    // Where each label went (union by redirection), smallest segments first.
+    let mut to: Vec<u16> = (0..=n as u16).collect();
+    let find = |to: &[u16], mut l: u16| {
+        while to[l as usize] != l {
+            l = to[l as usize];
+        }
+        l
+    };
+    let mut order: Vec<u16> = (1..=n as u16).filter(|&l| size[l as usize] > 0).collect();
+    order.sort_by_key(|&l| (size[l as usize], l));
+    for l in order {
+        let root = find(&to, l);
+        if root != l || size[l as usize] >= min_cells {
+            continue;
+        }
+        let mut best: BTreeMap<u16, usize> = BTreeMap::new();
+        for (&(a, b), &k) in contact.range((l, 0)..=(l, u16::MAX)) {
+            debug_assert_eq!(a, l);
+            let r = find(&to, b);
+            if r != l {
+                *best.entry(r).or_default() += k;
+            }
+        }
+        if let Some((&target, _)) = best.iter().max_by_key(|&(&r, &k)| (k, std::cmp::Reverse(r))) {
+            to[l as usize] = target;
+            size[target as usize] += size[l as usize];
+            // The merged segment's contacts are its parts' contacts: look them up by part.
+            let moved: Vec<((u16, u16), usize)> =
+                contact.range((l, 0)..=(l, u16::MAX)).map(|(&k, &v)| (k, v)).collect();
+            for ((_, b), k) in moved {
+                *contact.entry((target, b)).or_default() += k;
+            }
+        }
+    }
+    let mut id = vec![0u16; n + 1];
+    let mut next = 0u16;
+    for l in labels.cells_mut() {
+        if *l == 0 {
+            continue;
+        }
+        let r = find(&to, *l) as usize;
+        if id[r] == 0 {
+            next += 1;
+            id[r] = next;
+        }
+        *l = id[r];
+    }
+}
+
+/// Chamfer 3-4 distance (3 per straight step, 4 per diagonal one) from every cell to the
+/// nearest non-free cell; cells beyond the map are not free. Non-free cells are 0.
+pub fn free_depth(map: &Grid<Cell>) -> Vec<u32> {
+    let (w, h) = (map.width(), map.height());
     let mut dist = vec![0u32; w * h];
     const FAR: u32 = u32::MAX / 2;
     for y in 0..h {
@@ -366,6 +443,26 @@ pub fn split_at_doorways(labels: &mut Grid<u16>, map: &Grid<Cell>, c: &RoomConfi
             dist[i] = dist[i].min(m);
         }
     }
+    dist
+}
+
+/// Splits rooms at doorways, as morphological and Voronoi room segmentation do (Bormann et
+/// al. 2016): a rectangle explains a room's walls, but where the walls are not rectangular (or
+/// stop short) one unit, or a group of units, can reach through doors into the rooms behind.
+///
+/// A room's *cores* are its free cells farther than `door_half_width` from every non-free cell
+/// (a chamfer distance), split into 4-connected parts; a doorway narrower than twice that
+/// leaves no core cells, so rooms joined by doors have separate cores while a room narrowed
+/// only a little keeps one. A room with two or more cores of `min_core_cells` or more is
+/// divided among them: each of its cells joins the core nearest to it through the room
+/// (wavefront), and cells no core reaches keep the room's label. Rooms are then numbered
+/// 1..=n in scan order. `labels` must be the size of `map` (otherwise nothing is split).
+pub fn split_at_doorways(labels: &mut Grid<u16>, map: &Grid<Cell>, c: &RoomConfig) {
+    let (w, h) = (labels.width(), labels.height());
+    if c.door_half_width == 0 || w == 0 || h == 0 || (map.width(), map.height()) != (w, h) {
+        return;
+    }
+    let dist = free_depth(map);
     let core_min = c.door_half_width.saturating_mul(3);
     // Cores: 4-connected parts of core cells with one label; `seed[i]` is the core's number.
     let mut seed = vec![0u32; w * h];
@@ -488,7 +585,9 @@ mod tests {
         }
         let mut world = World::empty(120, 20);
         world.units = vec![unit(1, 0, 0, 20, 20)];
-        let labels = room_labels(&world, &map, &map, &RoomConfig::default());
+        // Rooms here are smaller than the smallest segment kept alone: no merging.
+        let c = RoomConfig { min_segment_cells: 0, ..RoomConfig::default() };
+        let labels = room_labels(&world, &map, &map, &c);
         assert_eq!(*labels.at(5, 5), 1);
         assert_eq!(*labels.at(25, 5), 1, "within reach of the unit");
         assert_eq!(*labels.at(100, 5), 2, "beyond reach: a room of its own");
@@ -505,11 +604,75 @@ mod tests {
         let mut world = World::empty(50, 20);
         world.units = vec![unit(1, 0, 0, 20, 20), unit(2, 30, 0, 20, 20)];
         *map.at_mut(25, 0) = Cell::Free; // isolated: unreachable
-        let labels = room_labels(&world, &map, &map, &RoomConfig::default());
+        let c = RoomConfig { min_segment_cells: 0, ..RoomConfig::default() };
+        let labels = room_labels(&world, &map, &map, &c);
         assert_eq!(*labels.at(22, 10), 1, "nearer to the left unit");
         assert_eq!(*labels.at(27, 10), 2, "nearer to the right unit");
         assert_eq!(*labels.at(25, 0), 0, "an isolated free cell is no room");
         assert_eq!(*labels.at(0, 0), 0, "unknown cells are not labelled");
+    }
+
+    #[test]
+    fn small_segments_join_the_neighbour_they_share_most_boundary_with() {
+        // Segments 1 (40x40), 2 (60x45) and a sliver 3 (40x5) below 1, numbered in scan
+        // order; the sliver touches 1 along 40 cells and 2 along 5.
+        let mut labels = Grid::new(100, 45, 0u16);
+        for y in 0..45 {
+            for x in 0..100 {
+                *labels.at_mut(x, y) = if y >= 40 && x < 40 {
+                    3
+                } else if x < 40 {
+                    1
+                } else {
+                    2
+                };
+            }
+        }
+        let mut merged = labels.clone();
+        merge_small_segments(&mut merged, 1000);
+        assert_eq!(*merged.at(10, 42), *merged.at(10, 10), "the sliver joins segment 1");
+        assert_ne!(*merged.at(10, 10), *merged.at(70, 10));
+        assert_eq!(merged.cells().iter().copied().max(), Some(2), "renumbered 1..=n");
+        // Below the limit nothing moves; a limit of 0 turns merging off.
+        let mut same = labels.clone();
+        merge_small_segments(&mut same, 200);
+        assert!(same == labels, "a 200-cell sliver is not below 200");
+        merge_small_segments(&mut same, 0);
+        assert!(same == labels, "0 turns merging off");
+    }
+
+    #[test]
+    fn scan_ray_fans_beyond_every_unit_are_not_rooms() {
+        // A unit on the left; far to the right, a fan of thin free rays (2 cells wide, 5 apart)
+        // of 1,200 cells, and below it a deep free square of 40x40: only the square is a room.
+        let mut map = Grid::new(200, 100, Cell::Unknown);
+        for y in 0..100 {
+            for x in 0..30 {
+                *map.at_mut(x, y) = Cell::Free;
+            }
+        }
+        for ray in 0..6 {
+            for x in 100..200 {
+                for dy in 0..2 {
+                    *map.at_mut(x, 5 + ray * 5 + dy) = Cell::Free;
+                }
+            }
+            *map.at_mut(100, 5 + ray * 5 + 2) = Cell::Free; // joined at their source
+            *map.at_mut(100, 5 + ray * 5 + 3) = Cell::Free;
+            *map.at_mut(100, 5 + ray * 5 + 4) = Cell::Free;
+        }
+        for y in 55..95 {
+            for x in 120..160 {
+                *map.at_mut(x, y) = Cell::Free;
+            }
+        }
+        let mut world = World::empty(200, 100);
+        world.units = vec![unit(1, 0, 0, 30, 100)];
+        let labels = room_labels(&world, &map, &map, &RoomConfig::default());
+        assert_eq!(*labels.at(150, 5), 0, "a fan is no room");
+        assert!(*labels.at(140, 75) > 0, "a deep region is");
+        let keep = RoomConfig { min_room_depth: 0, ..RoomConfig::default() };
+        assert!(*room_labels(&world, &map, &map, &keep).at(150, 5) > 0, "without the depth test it is");
     }
 
     /// A corridor above two rooms, joined to them by doors narrower than a room core allows.

@@ -27,7 +27,9 @@ Options:
   --config FILE      chain configuration JSON (any subset of fields; see the docs)
       --rotation DEG     map rotation in degrees instead of estimating it
       --knowledge KB     knowledge supervision during the chain: `builtin` (default: the indoor
-                     rules of Tab. 3.5), a knowledge base file (Alchemy format), or `none`
+                     rules of Tab. 3.5 and more, weights learned from labelled floors),
+                     `handset` (Tab. 3.5 with the hand-set weights), a knowledge base file
+                     (Alchemy format), or `none`
                      (the weak prior of the first paper; types are then inferred on the final
                      world with the built-in rules)
   --region FILE      an image the size of the map whose non-black cells are a region of
@@ -89,6 +91,10 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     match knowledge.as_deref() {
         Some("none") => config.knowledge.enabled = false,
         Some("builtin") => config.knowledge.enabled = true,
+        Some("handset") => {
+            config.knowledge.enabled = true;
+            config.knowledge.kb = Some(ksmcmc::floorplan::knowledge::HAND_SET_INDOOR.to_string());
+        }
         Some(path) => {
             let text = std::fs::read_to_string(path).map_err(|e| args::failed(path, e))?;
             // Parse now, so that a broken knowledge base is reported with its file name.

@@ -24,12 +24,14 @@ Usage:
       learn the weights of the soft formulas from complete training worlds (atoms a database
       does not list are false; each database has its own constants) and write the knowledge
       base with them (to standard output without --out); hard formulas stay hard
-  ksmcmc mln evidence --world truth.json (--map map.yaml | --resolution M) [--truth] [--out FILE]
-      the indoor evidence (RoLi, CoLi, HaLi, MulDoor, Adj) of a floor-plan world as a
+  ksmcmc mln evidence --world truth.json (--map map.yaml | --resolution M) [--truth] [--mln KB]
+                      [--out FILE]
+      the indoor evidence (RoLi, CoLi, HaLi, MulDoor, Adj, Small) of a floor-plan world as a
       database; with --truth also its true Room/Corr/Hall/Other types and SaLe pairs
       (connecting walls within 10 % of each other), a training world for `mln learn`;
       geometry classes by the default classifier of Tab. 3.6 (halls from 60 m²,
-      corridors 3.5 times as long as wide)
+      corridors 3.5 times as long as wide, small under 10 m²); with --mln only the
+      predicates that knowledge base declares (Tab. 3.5's indoor.mln has no Small)
 
 Knowledge bases use the Alchemy / ProbCog format (see samples/knowledge/*.mln); evidence has
 one ground atom per line: Pred(A,B), !Pred(A,B), or 0.8 Pred(A) for soft evidence.
@@ -372,11 +374,15 @@ fn evidence(o: &Options) -> Result<(), CliError> {
             world_path.display()
         );
     }
-    let facts = if o.truth {
+    let mut facts = if o.truth {
         knowledge::training_facts(&world, resolution, &classifier)
     } else {
         knowledge::evidence(&world, resolution, &classifier)
     };
+    if let Some(kb) = &o.kb {
+        let mln = Mln::parse(&read(kb)?).map_err(|e| args::failed(kb.display(), e))?;
+        facts.retain(|f| mln.predicate(f.0).is_some());
+    }
     let what = if o.truth { "training world (evidence and true query atoms)" } else { "evidence" };
     let text = format!(
         "// Indoor {what} of {}, {} units, {resolution} m per cell.\n\

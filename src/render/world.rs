@@ -45,8 +45,22 @@ pub fn unit_label(unit: &crate::floorplan::Unit) -> String {
     format!("{} {}", unit.kind.name(), unit.id)
 }
 
+/// The label of a room: its type name and id (its value in `labels.pgm`), e.g. `"corridor 2"`.
+pub fn room_label(room: &crate::floorplan::Room) -> String {
+    format!("{} {}", room.kind.name(), room.id)
+}
+
+/// Where a room's label goes, world frame: the centre of its largest unit (`None` for a room
+/// without units).
+fn room_anchor(world: &World, room: &crate::floorplan::Room) -> Option<(f64, f64)> {
+    let largest = room.units.iter().filter_map(|&id| world.unit(id)).max_by_key(|u| u.rect().area())?;
+    Some(largest.rect().center())
+}
+
 /// Draws `world` over a pixmap that holds a map of `map_width` x `map_height` cells drawn at
-/// `scale` pixels per cell (as [`super::render`] does); `labels` adds each unit's type and id.
+/// `scale` pixels per cell (as [`super::render`] does); `labels` adds a type-and-id tag per
+/// room when the world has a room layer (one tag where a room spans several units), else per
+/// unit.
 ///
 /// The world is drawn as it is, without [`World::validate`]: units and doors are clipped to
 /// the map, units with a size below 1x1 and doors that are neither horizontal nor vertical are
@@ -80,7 +94,15 @@ pub fn draw_world(pixmap: &mut Pixmap, map_width: usize, map_height: usize, worl
     });
     place.fill(pixmap, doors, DOOR_RGBA);
 
-    if labels {
+    if labels && !world.rooms.is_empty() {
+        let factor = label_text_scale(scale);
+        for room in &world.rooms {
+            if let Some((cx, cy)) = room_anchor(world, room) {
+                let (px, py) = place.to_pixel(cx, cy);
+                draw_tag(pixmap, px, py, &room_label(room), factor);
+            }
+        }
+    } else if labels {
         let factor = label_text_scale(scale);
         for unit in world.units.iter().filter(|u| u.w >= 1 && u.h >= 1) {
             let (cx, cy) = unit.rect().center();

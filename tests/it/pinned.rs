@@ -7,7 +7,7 @@
 //! must re-pin: run
 //!
 //! ```text
-//! KSMCMC_BLESS=1 cargo test pinned -- --nocapture
+//! KSMCMC_BLESS=1 cargo test --test it pinned -- --nocapture
 //! ```
 //!
 //! and copy the printed constants here (with `KSMCMC_BLESS` set a mismatch is printed, not a
@@ -17,7 +17,6 @@
 use ksmcmc::floorplan::synth::{generate, SynthConfig};
 use ksmcmc::floorplan::{Chain, ChainConfig};
 use ksmcmc::grid::{Classifier, OccupancyMap};
-use std::path::{Path, PathBuf};
 
 /// Iterations per pinned run: through the three phases of Tab. 3.2 (doors from 4000 on),
 /// and short enough for the debug test profile.
@@ -32,14 +31,6 @@ fn fnv1a(bytes: &[u8]) -> u64 {
         h = h.wrapping_mul(0x0000_0100_0000_01b3);
     }
     h
-}
-
-fn datasets() -> Option<PathBuf> {
-    let dir = match std::env::var_os("KSMCMC_DATASETS") {
-        Some(d) => PathBuf::from(d),
-        None => Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/datasets"),
-    };
-    dir.is_dir().then_some(dir)
 }
 
 /// The `world.json` bytes of `ksmcmc floorplan MAP --iterations ITERATIONS --seed SEED`.
@@ -63,15 +54,12 @@ fn check(name: &str, json: &str, pinned: u64) {
     assert_eq!(
         got, pinned,
         "{name}: world.json changed (hash 0x{got:016x}, pinned 0x{pinned:016x}); if on purpose, re-pin with \
-         KSMCMC_BLESS=1 cargo test pinned -- --nocapture"
+         KSMCMC_BLESS=1 cargo test --test it pinned -- --nocapture"
     );
 }
 
 fn pin_dataset(relative: &str, pinned: u64) {
-    let Some(dir) = datasets() else {
-        println!("skipped: {relative} needs ../shared/datasets (set KSMCMC_DATASETS)");
-        return;
-    };
+    let Some(dir) = crate::common::datasets(relative) else { return };
     let path = dir.join(relative);
     let map = OccupancyMap::load(&path, &Default::default()).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     check(relative, &world_json(map, true), pinned);

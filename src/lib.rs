@@ -39,6 +39,7 @@
 #![warn(missing_docs)]
 
 pub mod floorplan;
+pub mod geometry;
 pub mod grid;
 pub mod mcmc;
 pub mod mln;

@@ -12,7 +12,8 @@
 //! O(changed cells), not O(map). Each cell's counters are interleaved in one 4-byte record so
 //! an update touches one cache line.
 
-use super::world::Rect;
+pub(crate) use crate::geometry::AreaCounts;
+use crate::geometry::Rect;
 use crate::grid::{Cell, Grid};
 
 /// Predicted class of a cell, eq. 3.8: `0` free, `1` unknown, `2` wall; door cells are free.
@@ -51,44 +52,6 @@ struct CellState {
     wall: u8,
     /// Number of doors holding the cell.
     door: u8,
-}
-
-/// Summed-area table of one cell class: the count inside any rectangle in O(1).
-#[derive(Debug, Clone)]
-pub struct AreaCounts {
-    width: usize,
-    sums: Vec<u32>,
-}
-
-impl AreaCounts {
-    /// Counts cells of class `class` in `map`.
-    pub fn new(map: &Grid<Cell>, class: Cell) -> Self {
-        let (w, h) = (map.width(), map.height());
-        let mut sums = vec![0u32; (w + 1) * (h + 1)];
-        for y in 0..h {
-            let mut row = 0u32;
-            for x in 0..w {
-                row += (*map.at(x, y) == class) as u32;
-                sums[(y + 1) * (w + 1) + x + 1] = sums[y * (w + 1) + x + 1] + row;
-            }
-        }
-        AreaCounts { width: w, sums }
-    }
-
-    /// Number of counted cells in `r` (clipped to the map).
-    #[inline]
-    pub fn count(&self, r: Rect) -> u32 {
-        let h = self.sums.len() / (self.width + 1) - 1;
-        let x0 = r.x.clamp(0, self.width as i32) as usize;
-        let x1 = r.right().clamp(0, self.width as i32) as usize;
-        let y0 = r.y.clamp(0, h as i32) as usize;
-        let y1 = r.bottom().clamp(0, h as i32) as usize;
-        if x0 >= x1 || y0 >= y1 {
-            return 0;
-        }
-        let s = |x: usize, y: usize| self.sums[y * (self.width + 1) + x];
-        s(x1, y1) + s(x0, y0) - s(x0, y1) - s(x1, y0)
-    }
 }
 
 /// The per-cell bookkeeping of one world against one (world-frame) classified map.
@@ -250,6 +213,20 @@ impl Explanation {
     /// Whether two explanations agree on every counter.
     pub fn same_as(&self, other: &Explanation) -> bool {
         self.confusion == other.confusion && self.overlap == other.overlap && self.cells == other.cells
+    }
+}
+
+/// The free-space detector asks which free cells no unit covers.
+impl crate::vision::freespace::FreeSpace for Explanation {
+    fn width(&self) -> usize {
+        self.width
+    }
+    fn height(&self) -> usize {
+        self.height
+    }
+    #[inline]
+    fn is_unexplained(&self, x: usize, y: usize) -> bool {
+        self.map_class(x, y) == Cell::Free && self.cover(x, y) == 0
     }
 }
 

@@ -20,9 +20,10 @@
 //! The uniform parts of ADD and ALLOCATE make every world reachable, so the chain is ergodic
 //! even where the detectors miss something.
 
-use super::state::{facing, Axis, DoorLimits, DoorSpec, Move, State, Undo};
+use super::state::{door_rect, facing, Axis, DoorLimits, DoorSpec, Move, State, Undo};
 use super::world::Rect;
 use crate::mcmc::{Cumulative, Kernel, Rng};
+use crate::vision::doors;
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
 
@@ -297,11 +298,6 @@ impl Proposer {
         }
     }
 
-    /// The kernel parameters.
-    pub fn config(&self) -> &KernelConfig {
-        &self.config
-    }
-
     fn b_weights(&mut self, s: &State) {
         self.scratch_weights.clear();
         for u in &s.units {
@@ -434,7 +430,12 @@ impl Proposer {
                     }
                     c.pair_lookup.insert((a.id, b.id, axis), c.pairs.len());
                     c.pairs.push((a.id, b.id, axis, st, en, n));
-                    for (d, w) in crate::vision::doors::detect(s, a.rect(), b.rect(), a.id, b.id, axis, st, en) {
+                    let (lo, hi) = (a.rect(), b.rect());
+                    let spec = |start, end| DoorSpec { lo: a.id, hi: b.id, axis, start, end };
+                    let band = doors::Band { lo, hi, axis, wall: s.wall, start: st, end: en };
+                    let door = |first, last| door_rect(lo, hi, &spec(first, last), &limits, s.wall);
+                    for ((first, last), w) in doors::detect(s.counts(), &band, door) {
+                        let d = spec(first, last);
                         if !c.lookup.contains_key(&d) {
                             c.lookup.insert(d, c.doors.len());
                             c.doors.push(d);

@@ -4,18 +4,21 @@
 //! serialised form (schema in [`world`]).
 
 pub mod chain;
-pub mod explain;
+pub(crate) mod explain;
 pub mod graph;
-pub mod kernels;
+pub(crate) mod kernels;
 pub mod knowledge;
 pub mod metrics;
 pub mod posterior;
 pub mod report;
 pub mod rooms;
-pub mod state;
+pub(crate) mod state;
 pub mod synth;
 pub mod unexplained;
 pub mod world;
 
 pub use chain::{Chain, ChainConfig, ChainError, DetectorConfig, OutputConfig};
+pub use explain::Explanation;
+pub use kernels::KernelConfig;
+pub use state::DoorLimits;
 pub use world::{Door, Frame, Rect, UnexplainedArea, Unit, UnitType, World, WorldError, WORLD_FORMAT};

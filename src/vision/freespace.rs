@@ -2,16 +2,39 @@
 //! current world leaves unexplained become unit candidates, for rooms whose walls the WBU
 //! detector missed (unexplored or hidden behind furniture).
 
-use crate::floorplan::explain::Explanation;
-use crate::floorplan::world::Rect;
-use crate::grid::Cell;
+use crate::geometry::Rect;
+use crate::grid::{Cell, Grid};
+
+/// What the detector sees: a grid of cells, some of them free space the current world leaves
+/// unexplained (the chain's explanation implements it; so does a bare map, as the empty world).
+pub trait FreeSpace {
+    /// Grid width.
+    fn width(&self) -> usize;
+    /// Grid height.
+    fn height(&self) -> usize;
+    /// Whether cell `(x, y)` is free on the map and covered by no unit.
+    fn is_unexplained(&self, x: usize, y: usize) -> bool;
+}
+
+/// A map explained by the empty world: every free cell is unexplained.
+impl FreeSpace for Grid<Cell> {
+    fn width(&self) -> usize {
+        Grid::width(self)
+    }
+    fn height(&self) -> usize {
+        Grid::height(self)
+    }
+    fn is_unexplained(&self, x: usize, y: usize) -> bool {
+        *self.at(x, y) == Cell::Free
+    }
+}
 
 /// Bounding boxes (grown by one cell for the walls) of 4-connected components of free cells
 /// covered by no unit, holding at least `min_cells` cells, each trimmed to its dense core: sides
 /// whose edge row or column is less than 40 % unexplained free space are moved inwards, so
 /// that a fan of scan rays yields the dense part near its source rather than a box that is
 /// mostly unknown.
-pub fn unexplained(e: &Explanation, min_cells: usize) -> Vec<Rect> {
+pub fn unexplained(e: &impl FreeSpace, min_cells: usize) -> Vec<Rect> {
     unexplained_with(e, min_cells, &mut Scratch::default())
 }
 
@@ -27,7 +50,7 @@ pub struct Scratch {
 }
 
 /// [`unexplained`] with working memory the caller keeps between calls.
-pub fn unexplained_with(e: &Explanation, min_cells: usize, scratch: &mut Scratch) -> Vec<Rect> {
+pub fn unexplained_with(e: &impl FreeSpace, min_cells: usize, scratch: &mut Scratch) -> Vec<Rect> {
     let boxes = components(e, min_cells, scratch);
     if boxes.is_empty() {
         return boxes;
@@ -38,19 +61,19 @@ pub fn unexplained_with(e: &Explanation, min_cells: usize, scratch: &mut Scratch
 /// Unexplained free cells in `r` (clipped to the map), counted cell by cell: `dense_core`
 /// only asks about one-cell lines, and a summed-area table of the whole map, rebuilt at every
 /// refresh, cost more than all its questions (and 4 bytes a cell).
-fn unexplained_in(e: &Explanation, r: Rect) -> u32 {
+fn unexplained_in(e: &impl FreeSpace, r: Rect) -> u32 {
     let (w, h) = (e.width() as i32, e.height() as i32);
     let mut n = 0;
     for y in r.y.max(0)..r.bottom().min(h) {
         for x in r.x.max(0)..r.right().min(w) {
             let (x, y) = (x as usize, y as usize);
-            n += (e.map_class(x, y) == Cell::Free && e.cover(x, y) == 0) as u32;
+            n += e.is_unexplained(x, y) as u32;
         }
     }
     n
 }
 
-fn dense_core(e: &Explanation, mut r: Rect) -> Option<Rect> {
+fn dense_core(e: &impl FreeSpace, mut r: Rect) -> Option<Rect> {
     let count = |line: Rect| unexplained_in(e, line);
     let dense = |line: Rect| count(line) as f64 >= 0.4 * line.area() as f64;
     loop {
@@ -79,7 +102,7 @@ fn dense_core(e: &Explanation, mut r: Rect) -> Option<Rect> {
     }
 }
 
-fn components(e: &Explanation, min_cells: usize, scratch: &mut Scratch) -> Vec<Rect> {
+fn components(e: &impl FreeSpace, min_cells: usize, scratch: &mut Scratch) -> Vec<Rect> {
     let (w, h) = (e.width(), e.height());
     let Scratch { seen, stack } = scratch;
     seen.clear();
@@ -95,7 +118,7 @@ fn components(e: &Explanation, min_cells: usize, scratch: &mut Scratch) -> Vec<R
     };
     for start in 0..w * h {
         let (sx, sy) = (start % w, start / w);
-        if e.map_class(sx, sy) != Cell::Free || e.cover(sx, sy) > 0 || !mark(seen, start) {
+        if !e.is_unexplained(sx, sy) || !mark(seen, start) {
             continue;
         }
         stack.push(start as u32);
@@ -109,7 +132,7 @@ fn components(e: &Explanation, min_cells: usize, scratch: &mut Scratch) -> Vec<R
             for (nx, ny) in neighbours {
                 if nx < w && ny < h {
                     let j = ny * w + nx;
-                    if e.map_class(nx, ny) == Cell::Free && e.cover(nx, ny) == 0 && mark(seen, j) {
+                    if e.is_unexplained(nx, ny) && mark(seen, j) {
                         stack.push(j as u32);
                     }
                 }
@@ -129,7 +152,6 @@ fn components(e: &Explanation, min_cells: usize, scratch: &mut Scratch) -> Vec<R
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::grid::Grid;
 
     /// Free rectangles on an unknown background.
     fn map(w: usize, h: usize, rooms: &[(usize, usize, usize, usize)]) -> Grid<Cell> {
@@ -146,8 +168,8 @@ mod tests {
 
     #[test]
     fn kept_scratch_gives_the_same_candidates_as_fresh_memory() {
-        let big = Explanation::new(&map(90, 70, &[(5, 5, 30, 20), (50, 10, 25, 40), (10, 40, 8, 8)]));
-        let small = Explanation::new(&map(40, 30, &[(2, 2, 20, 12), (25, 15, 10, 10)]));
+        let big = map(90, 70, &[(5, 5, 30, 20), (50, 10, 25, 40), (10, 40, 8, 8)]);
+        let small = map(40, 30, &[(2, 2, 20, 12), (25, 15, 10, 10)]);
         let mut scratch = Scratch::default();
         // Big map, then a smaller one (stale bits past its end), then the big one again.
         for e in [&big, &small, &big, &small] {

@@ -25,10 +25,12 @@
 use super::explain::Explanation;
 use super::kernels::{Candidates, KernelConfig, Proposer};
 use super::posterior::{Posterior, PosteriorConfig};
+use super::schedule::{Kernel, Schedule};
 use super::state::{DoorLimits, DoorSpec, State};
+use super::trace::Trace;
 use super::world::{Door, Frame, Rect, Unit, UnitType, World};
 use crate::grid::{Cell, Grid, OccupancyMap};
-use crate::mcmc::{accept, Cumulative, Kernel, Ring, Rng, Schedule, Trace, TracePoint};
+use crate::mcmc::{accept, Cumulative, Ring, Rng, TracePoint};
 use crate::vision;
 use serde::{Deserialize, Serialize};
 

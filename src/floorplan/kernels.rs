@@ -20,9 +20,10 @@
 //! The uniform parts of ADD and ALLOCATE make every world reachable, so the chain is ergodic
 //! even where the detectors miss something.
 
+use super::schedule::Kernel;
 use super::state::{door_rect, facing, Axis, DoorLimits, DoorSpec, Move, State, Undo};
 use super::world::Rect;
-use crate::mcmc::{Cumulative, Kernel, Rng};
+use crate::mcmc::{Cumulative, Rng};
 use crate::vision::doors;
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
@@ -167,6 +168,8 @@ pub struct Proposer {
     doors: DoorCache,
     shift: Cumulative,
     scratch: Cumulative,
+    /// The four walls' `v_w` (eq. 3.22) of the unit being reshaped.
+    sides: Cumulative,
     scratch_weights: Vec<f64>,
     uniform_count: f64,
     min_side: i32,
@@ -291,6 +294,7 @@ impl Proposer {
             doors: DoorCache::default(),
             shift,
             scratch: Cumulative::default(),
+            sides: Cumulative::default(),
             scratch_weights: Vec::new(),
             uniform_count,
             min_side,
@@ -573,14 +577,10 @@ impl Proposer {
                 self.b_weights(s);
                 let i = self.scratch.draw(rng)?;
                 let u = s.units[i].rect();
+                // v_w lies in (0, h_v]: the draw never fails.
                 let v = self.v_weights(s, u);
-                let k = rng.uniform() * v.iter().sum::<f64>();
-                let mut acc = 0.0;
-                let side = (0..4).find(|&j| {
-                    acc += v[j];
-                    k < acc
-                });
-                let side = side.unwrap_or(3);
+                self.sides.rebuild(v);
+                let side = self.sides.draw(rng).unwrap_or(3);
                 let m = self.shift.draw(rng)? as i32 + 1;
                 let d = if kernel == Kernel::Dilate { m } else { -m };
                 let q = self.q_shift(s, i, side, d);

@@ -12,13 +12,17 @@ pub mod metrics;
 pub mod posterior;
 pub mod report;
 pub mod rooms;
+pub mod schedule;
 pub(crate) mod state;
 pub mod synth;
+pub mod trace;
 pub mod unexplained;
 pub mod world;
 
 pub use chain::{Chain, ChainConfig, ChainError, DetectorConfig, OutputConfig};
 pub use explain::Explanation;
 pub use kernels::KernelConfig;
+pub use schedule::{Kernel, KernelWeights, Phase, Schedule};
 pub use state::DoorLimits;
+pub use trace::Trace;
 pub use world::{Door, Frame, Rect, UnexplainedArea, Unit, UnitType, World, WorldError, WORLD_FORMAT};

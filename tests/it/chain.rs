@@ -3,8 +3,8 @@
 #![allow(clippy::field_reassign_with_default)] // configs are built by adjusting defaults, field by field
 
 use ksmcmc::floorplan::{Chain, ChainConfig, ChainError};
+use ksmcmc::floorplan::{KernelWeights, Schedule};
 use ksmcmc::grid::{Cell, Grid, OccupancyMap};
-use ksmcmc::mcmc::{KernelWeights, Schedule};
 
 /// Three rooms in a row with doors between them and a corridor below; walls 2 cells thick.
 fn rooms_map() -> Grid<Cell> {
@@ -70,7 +70,7 @@ fn incremental_posterior_equals_full_recomputation_after_every_step() {
             doors_seen = doors_seen.max(chain.current_rects().1.len());
         }
         let t = chain.trace();
-        for k in ksmcmc::mcmc::Kernel::ALL {
+        for k in ksmcmc::floorplan::Kernel::ALL {
             assert!(t.proposed[k.index()] > 0, "seed {seed}: {} never proposed", k.name());
         }
         assert!(t.total_accepted() > 50, "seed {seed}: the chain barely moved: {:?}", t.accepted);

@@ -17,9 +17,9 @@
 //! until the door graph is connected, and further neighbours get a door by chance.
 
 use super::config::{Cells, Span, DOOR_CLEARANCE};
-use super::rng::{below, between, chance, Stream};
 use super::SynthError;
 use crate::floorplan::{Door, Rect, UnitType};
+use crate::mcmc::Rng;
 
 /// One unit of the layout: its free interior and its type.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -105,7 +105,7 @@ impl Plan {
 const ATTEMPTS: u32 = 16;
 
 /// Draws a layout for the canvas; retries a few times when random sizes made it fail.
-pub(super) fn plan(c: &Cells, extra_doors: f64, rng: &mut Stream) -> Result<Plan, SynthError> {
+pub(super) fn plan(c: &Cells, extra_doors: f64, rng: &mut Rng) -> Result<Plan, SynthError> {
     let mut last = None;
     for _ in 0..ATTEMPTS {
         match attempt(c, extra_doors, rng) {
@@ -164,7 +164,7 @@ impl Segment {
     }
 }
 
-fn attempt(c: &Cells, extra_doors: f64, rng: &mut Stream) -> Result<Plan, Failure> {
+fn attempt(c: &Cells, extra_doors: f64, rng: &mut Rng) -> Result<Plan, Failure> {
     let portrait = c.canvas.1 > c.canvas.0;
     let (cw, ch) = if portrait { (c.canvas.1, c.canvas.0) } else { c.canvas };
     let t = c.wall;
@@ -201,7 +201,7 @@ fn attempt(c: &Cells, extra_doors: f64, rng: &mut Stream) -> Result<Plan, Failur
     } else if need(2, 1) <= inner.h {
         vec![Band::Rooms, Band::Corridor, Band::Rooms]
     } else if need(1, 1) <= inner.h {
-        if chance(rng, 0.5) {
+        if rng.chance(0.5) {
             vec![Band::Rooms, Band::Corridor]
         } else {
             vec![Band::Corridor, Band::Rooms]
@@ -219,7 +219,7 @@ fn attempt(c: &Cells, extra_doors: f64, rng: &mut Stream) -> Result<Plan, Failur
     let mut corridor_widths = Vec::new();
     for k in 0..n_corridors {
         let rest = (n_corridors - k - 1) * c.corridor.lo;
-        let w = between(rng, c.corridor.lo, c.corridor.hi.min(budget - rest));
+        let w = rng.between(c.corridor.lo, c.corridor.hi.min(budget - rest));
         budget -= w;
         corridor_widths.push(w);
     }
@@ -239,7 +239,7 @@ fn attempt(c: &Cells, extra_doors: f64, rng: &mut Stream) -> Result<Plan, Failur
     let (mut xa, mut xb) = (inner.x, inner.right());
     let mut halls = Vec::new();
     for k in 0..c.halls {
-        let w = between(rng, c.hall.lo, c.hall.hi.min(hall_room));
+        let w = rng.between(c.hall.lo, c.hall.hi.min(hall_room));
         if k == 0 {
             halls.push(Rect::new(xa, inner.y, w, inner.h));
             xa += w + t;
@@ -284,10 +284,10 @@ fn attempt(c: &Cells, extra_doors: f64, rng: &mut Stream) -> Result<Plan, Failur
     let whole = |row: Rect| Segment::new(row, row.x, row.right());
     if corridors == 2 && c.halls == 0 {
         let len = xb - xa;
-        let mut w = between(rng, c.corridor.lo, c.corridor.hi);
+        let mut w = rng.between(c.corridor.lo, c.corridor.hi);
         let side = c.room.lo + t;
         let cx = if len >= 2 * side + w {
-            between(rng, xa + side, xb - side - w)
+            rng.between(xa + side, xb - side - w)
         } else if len >= side + w {
             xa
         } else {
@@ -317,7 +317,7 @@ fn attempt(c: &Cells, extra_doors: f64, rng: &mut Stream) -> Result<Plan, Failur
 
     // "Other" units go to segments that keep room for a room beside them.
     for placed in 0..c.others {
-        let w = between(rng, c.other.lo, c.other.hi);
+        let w = rng.between(c.other.lo, c.other.hi);
         let fits: Vec<usize> = (0..segments.len()).filter(|&i| segments[i].rest(t) - (w + t) >= c.room.lo).collect();
         if fits.is_empty() {
             return Err(Failure::Unlucky(SynthError(format!(
@@ -326,7 +326,7 @@ fn attempt(c: &Cells, extra_doors: f64, rng: &mut Stream) -> Result<Plan, Failur
                 c.others
             ))));
         }
-        segments[fits[below(rng, fits.len())]].others.push(w);
+        segments[fits[rng.index(fits.len())]].others.push(w);
     }
 
     // How many rooms each segment gets: drawn per segment, then nudged into the accepted range.
@@ -340,14 +340,14 @@ fn attempt(c: &Cells, extra_doors: f64, rng: &mut Stream) -> Result<Plan, Failur
             c.rooms[0], c.rooms[1]
         ))));
     }
-    let mut counts: Vec<i32> = bounds.iter().map(|&(a, b)| between(rng, a, b)).collect();
+    let mut counts: Vec<i32> = bounds.iter().map(|&(a, b)| rng.between(a, b)).collect();
     let mut total: i64 = counts.iter().map(|&k| k as i64).sum();
     while total < lo || total > hi {
         let grow = total < lo;
         let can: Vec<usize> = (0..counts.len())
             .filter(|&i| if grow { counts[i] < bounds[i].1 } else { counts[i] > bounds[i].0 })
             .collect();
-        let i = can[below(rng, can.len())];
+        let i = can[rng.index(can.len())];
         counts[i] += if grow { 1 } else { -1 };
         total += if grow { 1 } else { -1 };
     }
@@ -358,7 +358,7 @@ fn attempt(c: &Cells, extra_doors: f64, rng: &mut Stream) -> Result<Plan, Failur
         let widths = share(rng, k as usize, extra, c.room.hi - c.room.lo);
         let mut seq: Vec<(UnitType, i32)> = widths.iter().map(|w| (UnitType::Room, c.room.lo + w)).collect();
         for &w in &seg.others {
-            let at = below(rng, seq.len() + 1);
+            let at = rng.index(seq.len() + 1);
             seq.insert(at, (UnitType::Other, w));
         }
         let mut x = seg.x0;
@@ -408,7 +408,7 @@ fn is_hub(kind: UnitType) -> bool {
 
 /// Chooses the doors: each room and "other" unit onto a corridor (else a hall) it touches, hubs
 /// joined until everything is connected, other neighbours by chance.
-fn doors(spaces: &[Space], c: &Cells, extra_doors: f64, rng: &mut Stream) -> Result<Vec<Opening>, Failure> {
+fn doors(spaces: &[Space], c: &Cells, extra_doors: f64, rng: &mut Rng) -> Result<Vec<Opening>, Failure> {
     let n = spaces.len();
     let mut contacts = Vec::new();
     for i in 0..n {
@@ -470,14 +470,14 @@ fn doors(spaces: &[Space], c: &Cells, extra_doors: f64, rng: &mut Stream) -> Res
         )));
     }
     for ch in chosen.iter_mut() {
-        let extra = chance(rng, extra_doors);
+        let extra = rng.chance(extra_doors);
         *ch |= extra;
     }
     let mut openings = Vec::new();
     for (ct, _) in contacts.iter().zip(&chosen).filter(|(_, &ch)| ch) {
         let room = ct.hi - ct.lo - 2 * DOOR_CLEARANCE;
-        let len = between(rng, c.door.lo, c.door.hi).min(room);
-        let along = between(rng, ct.lo + DOOR_CLEARANCE, ct.hi - DOOR_CLEARANCE - len);
+        let len = rng.between(c.door.lo, c.door.hi).min(room);
+        let along = rng.between(ct.lo + DOOR_CLEARANCE, ct.hi - DOOR_CLEARANCE - len);
         openings.push(Opening { a: ct.a, b: ct.b, vertical: ct.vertical, wall: ct.wall, along, len });
     }
     Ok(openings)
@@ -485,7 +485,7 @@ fn doors(spaces: &[Space], c: &Cells, extra_doors: f64, rng: &mut Stream) -> Res
 
 /// Shares `total` extra cells among `n` parts in random chunks, each part taking at most `cap`
 /// until all are full; then the rest is spread evenly.
-fn share(rng: &mut Stream, n: usize, total: i32, cap: i32) -> Vec<i32> {
+fn share(rng: &mut Rng, n: usize, total: i32, cap: i32) -> Vec<i32> {
     let mut add = vec![0; n];
     if n == 0 || total <= 0 {
         return add;
@@ -501,7 +501,7 @@ fn share(rng: &mut Stream, n: usize, total: i32, cap: i32) -> Vec<i32> {
             }
             break;
         }
-        let i = open[below(rng, open.len())];
+        let i = open[rng.index(open.len())];
         let g = chunk.min(left).min(cap - add[i]);
         add[i] += g;
         left -= g;
@@ -512,11 +512,10 @@ fn share(rng: &mut Stream, n: usize, total: i32, cap: i32) -> Vec<i32> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use rand::SeedableRng;
 
     #[test]
     fn share_gives_everything_and_respects_caps() {
-        let mut rng = Stream::seed_from_u64(1);
+        let mut rng = Rng::seed(1);
         for (n, total, cap) in [(1, 10, 100), (5, 37, 10), (4, 100, 10), (3, 0, 5), (7, 1000, i32::MAX)] {
             let add = share(&mut rng, n, total, cap);
             assert_eq!(add.len(), n);

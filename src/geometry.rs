@@ -214,3 +214,38 @@ impl CellCounts {
         (w * h) as u32 - self.occupied.count(r) - self.unknown.count(r)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// 12 x 9, free but for an occupied top row and an unknown bottom row.
+    fn map() -> Grid<Cell> {
+        let mut g = Grid::new(12, 9, Cell::Free);
+        for x in 0..12 {
+            *g.at_mut(x, 0) = Cell::Occupied;
+            *g.at_mut(x, 8) = Cell::Unknown;
+        }
+        g
+    }
+
+    #[test]
+    fn area_counts_clip_to_the_map() {
+        let m = map();
+        let occ = AreaCounts::new(&m, Cell::Occupied);
+        assert_eq!(occ.count(Rect::new(0, 0, 12, 9)), 12);
+        assert_eq!(occ.count(Rect::new(3, 0, 4, 1)), 4);
+        assert_eq!(occ.count(Rect::new(3, 1, 4, 7)), 0);
+        assert_eq!(occ.count(Rect::new(-5, -5, 100, 100)), 12);
+        let free = AreaCounts::new(&m, Cell::Free);
+        assert_eq!(free.count(Rect::new(2, 2, 3, 3)), 9);
+    }
+
+    #[test]
+    fn cell_counts_free_is_the_rest() {
+        let c = CellCounts::new(&map());
+        let all = Rect::new(-3, -3, 30, 30);
+        assert_eq!((c.occupied_in(all), c.unknown_in(all), c.free_in(all)), (12, 12, 12 * 7));
+        assert_eq!(c.free_in(Rect::new(10, 7, 5, 5)), 2);
+    }
+}

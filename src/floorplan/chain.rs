@@ -205,7 +205,7 @@ pub struct Chain {
     /// zero: a cell is an object only where that explains it better.
     object_gain: [f64; 2],
     /// The map cells that may be objects (knowledge mode only).
-    objects: Option<super::knowledge::ObjectCells>,
+    objects: Option<crate::vision::objects::ObjectCells>,
     knowledge_error: Option<String>,
     /// The first iteration at which knowledge may be inferred again (see
     /// [`KnowledgeConfig::time_share`](super::knowledge::KnowledgeConfig::time_share)).
@@ -306,7 +306,12 @@ impl Chain {
             // even when they earn nothing, so both are counted if either is forgiven.
             let any = object_gain.iter().any(|&g| g > 0.0);
             let forgiven = [any, any];
-            super::knowledge::ObjectCells::counting(&world_map, resolution, config.knowledge.max_object_m, forgiven)
+            crate::vision::objects::ObjectCells::counting(
+                &world_map,
+                resolution,
+                config.knowledge.max_object_m,
+                forgiven,
+            )
         });
         let state = State::new(&world_map, config.doors, wall);
         let proposer = Proposer::new(config.kernels, candidates, state.width(), state.height(), wall);

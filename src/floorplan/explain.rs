@@ -12,7 +12,6 @@
 //! O(changed cells), not O(map). Each cell's counters are interleaved in one 4-byte record so
 //! an update touches one cache line.
 
-pub(crate) use crate::geometry::AreaCounts;
 use crate::geometry::Rect;
 use crate::grid::{Cell, Grid};
 
@@ -289,17 +288,5 @@ mod tests {
         assert_eq!(e.predicted(0, 3), Cell::Occupied);
         assert_eq!(e.predicted(3, 3), Cell::Free);
         assert_eq!(e.predicted(3, 8), Cell::Unknown);
-    }
-
-    #[test]
-    fn area_counts() {
-        let m = map();
-        let occ = AreaCounts::new(&m, Cell::Occupied);
-        assert_eq!(occ.count(Rect::new(0, 0, 12, 9)), 12);
-        assert_eq!(occ.count(Rect::new(3, 0, 4, 1)), 4);
-        assert_eq!(occ.count(Rect::new(3, 1, 4, 7)), 0);
-        assert_eq!(occ.count(Rect::new(-5, -5, 100, 100)), 12);
-        let free = AreaCounts::new(&m, Cell::Free);
-        assert_eq!(free.count(Rect::new(2, 2, 3, 3)), 9);
     }
 }

@@ -1,8 +1,8 @@
 //! The summary of a run, `report.json`, shared by the command line and the browser so that
 //! both write the same fields.
 
-use super::knowledge::defects;
 use super::metrics;
+use super::metrics::defects;
 use super::schedule::Kernel;
 use super::world::World;
 use super::Chain;

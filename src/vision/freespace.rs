@@ -3,6 +3,7 @@
 //! detector missed (unexplored or hidden behind furniture).
 
 use crate::geometry::Rect;
+use crate::grid::flood::{Flood, Neighbours};
 use crate::grid::{Cell, Grid};
 
 /// What the detector sees: a grid of cells, some of them free space the current world leaves
@@ -45,8 +46,8 @@ pub fn unexplained(e: &impl FreeSpace, min_cells: usize) -> Vec<Rect> {
 pub struct Scratch {
     /// One bit a cell (a byte a cell would be 1.5 MB on a rotated 1237x672 map).
     seen: Vec<u64>,
-    /// Cell indices (maps have at most 2^25 cells, see `grid::Limits`).
-    stack: Vec<u32>,
+    /// The flood fill's stack.
+    flood: Flood,
 }
 
 /// [`unexplained`] with working memory the caller keeps between calls.
@@ -104,10 +105,9 @@ fn dense_core(e: &impl FreeSpace, mut r: Rect) -> Option<Rect> {
 
 fn components(e: &impl FreeSpace, min_cells: usize, scratch: &mut Scratch) -> Vec<Rect> {
     let (w, h) = (e.width(), e.height());
-    let Scratch { seen, stack } = scratch;
+    let Scratch { seen, flood } = scratch;
     seen.clear();
     seen.resize((w * h).div_ceil(64), 0);
-    stack.clear();
     let mut out = Vec::new();
     // Marks cell `i` seen; false if it already was.
     let mark = |seen: &mut Vec<u64>, i: usize| {
@@ -118,26 +118,16 @@ fn components(e: &impl FreeSpace, min_cells: usize, scratch: &mut Scratch) -> Ve
     };
     for start in 0..w * h {
         let (sx, sy) = (start % w, start / w);
-        if !e.is_unexplained(sx, sy) || !mark(seen, start) {
+        if seen[start / 64] & (1 << (start % 64)) != 0 || !e.is_unexplained(sx, sy) {
             continue;
         }
-        stack.push(start as u32);
         let (mut x0, mut y0, mut x1, mut y1, mut n) = (sx, sy, sx, sy, 0usize);
-        while let Some(i) = stack.pop() {
-            let i = i as usize;
+        let enter = |j: usize| e.is_unexplained(j % w, j / w) && mark(seen, j);
+        flood.fill(w, h, [start], Neighbours::Four, enter, |i| {
             let (x, y) = (i % w, i / w);
             n += 1;
             (x0, y0, x1, y1) = (x0.min(x), y0.min(y), x1.max(x), y1.max(y));
-            let neighbours = [(x.wrapping_sub(1), y), (x + 1, y), (x, y.wrapping_sub(1)), (x, y + 1)];
-            for (nx, ny) in neighbours {
-                if nx < w && ny < h {
-                    let j = ny * w + nx;
-                    if e.is_unexplained(nx, ny) && mark(seen, j) {
-                        stack.push(j as u32);
-                    }
-                }
-            }
-        }
+        });
         if n >= min_cells {
             let gx0 = x0.saturating_sub(1);
             let gy0 = y0.saturating_sub(1);

@@ -37,7 +37,73 @@ Options:
                      thresholds only); a map.yaml always uses its own thresholds
 ";
 
+/// The command line, parsed.
+struct Opts {
+    map: PathBuf,
+    out: PathBuf,
+    config: Option<PathBuf>,
+    iterations: u64,
+    seed: u64,
+    time_limit: Option<f64>,
+    rotation: Option<f64>,
+    classify: String,
+    region: Option<PathBuf>,
+    knowledge: Option<String>,
+}
+
 pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
+    let Some(o) = parse(argv)? else { return Ok(()) };
+    let config = chain_config(&o)?;
+    let map = load_map(&o)?;
+    let region = load_region(&o, &map)?;
+    let t0 = Instant::now();
+    let mut chain = Chain::new(&map, config, o.seed).map_err(|e| args::failed(o.map.display(), e))?;
+    let deadline = o.time_limit.map(|t| t0 + std::time::Duration::from_secs_f64(t));
+    while chain.iteration() < o.iterations {
+        if deadline.is_some_and(|d| Instant::now() >= d) {
+            break;
+        }
+        chain.step((o.iterations - chain.iteration()).min(500));
+    }
+    let seconds = t0.elapsed().as_secs_f64();
+    let world = chain.best_world_typed();
+    let mut trace = String::from("iteration,log_posterior,acceptance,units\n");
+    for p in &chain.trace().points {
+        let _ = writeln!(trace, "{},{:.3},{:.4},{}", p.iteration, p.log_posterior, p.acceptance, p.size);
+    }
+    let mut report = ksmcmc::floorplan::report::summary(&chain, &map, &world, seconds);
+    let iterations_done = chain.iteration();
+    // The room labels need the best world and the world-frame map, not the chain's tables:
+    // free those first (tens of MB on a large map) to keep the run's peak memory down.
+    // `world` is the best world (typed, which the segmentation ignores): no second export.
+    let (cells, world_map) = (chain.map().clone(), chain.world_map().clone());
+    drop(chain);
+    let labels = ksmcmc::floorplan::rooms::room_labels(&world, &cells, &world_map, &RoomConfig::default());
+    drop((cells, world_map));
+    let rooms = labels.cells().iter().copied().max().unwrap_or(0);
+    report["rooms"] = rooms.into();
+    let k = report["cell_prediction_rate"].as_f64().unwrap_or(0.0);
+    report["map"] = o.map.display().to_string().into();
+    report["cell_prediction_rate_region"] =
+        serde_json::json!(region.as_ref().map(|r| metrics::prediction_rate_in(map.classified(), &world, Some(r))));
+    write_outputs(&o.out, &map, &world, &trace, &labels, &report)?;
+    println!(
+        "{}: {} iterations in {:.2} s ({:.0}/s), K(W,M) = {:.4}, {} units, {} doors, {} rooms -> {}",
+        o.map.display(),
+        iterations_done,
+        seconds,
+        iterations_done as f64 / seconds.max(1e-9),
+        k,
+        world.units.len(),
+        world.doors.len(),
+        rooms,
+        o.out.display()
+    );
+    Ok(())
+}
+
+/// Parses and checks the arguments; `None` when `--help` was answered.
+fn parse(argv: Vec<OsString>) -> Result<Option<Opts>, CliError> {
     use lexopt::prelude::*;
     let mut parser = lexopt::Parser::from_args(argv);
     let (mut map, mut out, mut config_path) = (None, None, None::<PathBuf>);
@@ -59,12 +125,12 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
             Long("knowledge") => knowledge = Some(args::value("--knowledge", parser.value()?)?),
             Long("help") | Short('h') => {
                 print!("{HELP}");
-                return Ok(());
+                return Ok(None);
             }
             _ => return Err(arg.unexpected().into()),
         }
     }
-    let map_path = args::required(map, "a MAP", "floorplan")?;
+    let map = args::required(map, "a MAP", "floorplan")?;
     let out = args::required(out, "--out DIR", "floorplan")?;
     if let Some(t) = time_limit {
         if !(t.is_finite() && t > 0.0) {
@@ -76,17 +142,33 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
             return Err(CliError::Usage(format!("--rotation must be a number of degrees, not {r}")));
         }
     }
-    let mut config = match &config_path {
+    Ok(Some(Opts {
+        map,
+        out,
+        config: config_path,
+        iterations,
+        seed,
+        time_limit,
+        rotation,
+        classify,
+        region: region_path,
+        knowledge,
+    }))
+}
+
+/// The chain configuration: `--config`, then `--rotation` and `--knowledge` over it.
+fn chain_config(o: &Opts) -> Result<ChainConfig, CliError> {
+    let mut config = match &o.config {
         Some(p) => {
             let text = std::fs::read_to_string(p).map_err(|e| args::failed(p.display(), e))?;
             serde_json::from_str::<ChainConfig>(&text).map_err(|e| args::failed(p.display(), e))?
         }
         None => ChainConfig::default(),
     };
-    if rotation.is_some() {
-        config.detectors.rotation_deg = rotation;
+    if o.rotation.is_some() {
+        config.detectors.rotation_deg = o.rotation;
     }
-    match knowledge.as_deref() {
+    match o.knowledge.as_deref() {
         Some("none") => config.knowledge.enabled = false,
         Some("builtin") => config.knowledge.enabled = true,
         Some(path) => {
@@ -98,87 +180,61 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
         }
         None => {}
     }
-    let mut map = args::load_map(&map_path)?;
-    let is_yaml = matches!(map_path.extension().and_then(|e| e.to_str()), Some("yaml" | "yml"));
-    match classify.as_str() {
+    Ok(config)
+}
+
+/// The map, classified as `--classify` asks (a map.yaml keeps its own thresholds).
+fn load_map(o: &Opts) -> Result<ksmcmc::grid::OccupancyMap, CliError> {
+    let mut map = args::load_map(&o.map)?;
+    let is_yaml = matches!(o.map.extension().and_then(|e| e.to_str()), Some("yaml" | "yml"));
+    match o.classify.as_str() {
         "auto" if !is_yaml => {
             map.set_classifier(ksmcmc::grid::Classifier::auto()).map_err(|e| args::failed("--classify", e))?
         }
         "auto" | "fixed" => {}
         other => return Err(CliError::Usage(format!("--classify must be auto or fixed, not {other:?}"))),
     }
-    let region = match &region_path {
-        Some(p) => {
-            let bytes = std::fs::read(p).map_err(|e| args::failed(p.display(), e))?;
-            let raster =
-                ksmcmc::grid::decode_image(&bytes, &Default::default()).map_err(|e| args::failed(p.display(), e))?;
-            if (raster.width(), raster.height()) != (map.width(), map.height()) {
-                return Err(CliError::Failed(format!(
-                    "{}: the region is {}x{} but the map is {}x{}",
-                    p.display(),
-                    raster.width(),
-                    raster.height(),
-                    map.width(),
-                    map.height()
-                )));
-            }
-            Some(raster.gray.map(|&g| g > 0))
-        }
-        None => None,
-    };
-    let t0 = Instant::now();
-    let mut chain = Chain::new(&map, config, seed).map_err(|e| args::failed(map_path.display(), e))?;
-    let deadline = time_limit.map(|t| t0 + std::time::Duration::from_secs_f64(t));
-    while chain.iteration() < iterations {
-        if deadline.is_some_and(|d| Instant::now() >= d) {
-            break;
-        }
-        chain.step((iterations - chain.iteration()).min(500));
+    Ok(map)
+}
+
+/// The `--region` mask (non-black cells), which must be the map's size.
+fn load_region(o: &Opts, map: &ksmcmc::grid::OccupancyMap) -> Result<Option<ksmcmc::grid::Grid<bool>>, CliError> {
+    let Some(p) = &o.region else { return Ok(None) };
+    let bytes = std::fs::read(p).map_err(|e| args::failed(p.display(), e))?;
+    let raster = ksmcmc::grid::decode_image(&bytes, &Default::default()).map_err(|e| args::failed(p.display(), e))?;
+    if (raster.width(), raster.height()) != (map.width(), map.height()) {
+        return Err(CliError::Failed(format!(
+            "{}: the region is {}x{} but the map is {}x{}",
+            p.display(),
+            raster.width(),
+            raster.height(),
+            map.width(),
+            map.height()
+        )));
     }
-    let seconds = t0.elapsed().as_secs_f64();
-    let world = chain.best_world_typed();
-    let mut trace = String::from("iteration,log_posterior,acceptance,units\n");
-    for p in &chain.trace().points {
-        let _ = writeln!(trace, "{},{:.3},{:.4},{}", p.iteration, p.log_posterior, p.acceptance, p.size);
-    }
-    let mut report = ksmcmc::floorplan::report::summary(&chain, &map, &world, seconds);
-    let iterations_done = chain.iteration();
-    // The room labels need the best world and the world-frame map, not the chain's tables:
-    // free those first (tens of MB on a large map) to keep the run's peak memory down.
-    // `world` is the best world (typed, which the segmentation ignores): no second export.
-    let (cells, world_map) = (chain.map().clone(), chain.world_map().clone());
-    drop(chain);
-    let labels = ksmcmc::floorplan::rooms::room_labels(&world, &cells, &world_map, &RoomConfig::default());
-    drop((cells, world_map));
-    let rooms = labels.cells().iter().copied().max().unwrap_or(0);
-    report["rooms"] = rooms.into();
-    let k = report["cell_prediction_rate"].as_f64().unwrap_or(0.0);
-    let overlay = ksmcmc::render::try_render(map.classified(), Some(&world), &Default::default())
+    Ok(Some(raster.gray.map(|&g| g > 0)))
+}
+
+/// Writes the six output files.
+fn write_outputs(
+    out: &std::path::Path,
+    map: &ksmcmc::grid::OccupancyMap,
+    world: &ksmcmc::floorplan::World,
+    trace: &str,
+    labels: &ksmcmc::grid::Grid<u16>,
+    report: &serde_json::Value,
+) -> Result<(), CliError> {
+    let overlay = ksmcmc::render::try_render(map.classified(), Some(world), &Default::default())
         .map_err(|e| args::failed("overlay.png", e))?;
-    report["map"] = map_path.display().to_string().into();
-    report["cell_prediction_rate_region"] =
-        serde_json::json!(region.as_ref().map(|r| metrics::prediction_rate_in(map.classified(), &world, Some(r))));
     args::write(&out.join("world.json"), world.to_json().as_bytes())?;
     args::write(&out.join("overlay.png"), &ksmcmc::render::encode_png(&overlay))?;
-    let graph = serde_json::to_string_pretty(&graph::to_json(&graph::scene_graph(&world))).expect("json");
+    let graph = serde_json::to_string_pretty(&graph::to_json(&graph::scene_graph(world))).expect("json");
     args::write(&out.join("graph.json"), graph.as_bytes())?;
     args::write(&out.join("trace.csv"), trace.as_bytes())?;
     args::write(
         &out.join("labels.pgm"),
         &ksmcmc::grid::pgm::encode_u16(labels.width(), labels.height(), labels.cells()),
     )?;
-    args::write(&out.join("report.json"), serde_json::to_string_pretty(&report).expect("json").as_bytes())?;
-    println!(
-        "{}: {} iterations in {:.2} s ({:.0}/s), K(W,M) = {:.4}, {} units, {} doors, {} rooms -> {}",
-        map_path.display(),
-        iterations_done,
-        seconds,
-        iterations_done as f64 / seconds.max(1e-9),
-        k,
-        world.units.len(),
-        world.doors.len(),
-        rooms,
-        out.display()
-    );
+    args::write(&out.join("report.json"), serde_json::to_string_pretty(report).expect("json").as_bytes())?;
     Ok(())
 }

@@ -164,6 +164,8 @@ impl Segment {
     }
 }
 
+/// One try at a layout: bands across the depth (rows of rooms and corridors), halls at the
+/// ends, a connector between two corridors, "other" units, then the rooms, and doors.
 fn attempt(c: &Cells, extra_doors: f64, rng: &mut Rng) -> Result<Plan, Failure> {
     let portrait = c.canvas.1 > c.canvas.0;
     let (cw, ch) = if portrait { (c.canvas.1, c.canvas.0) } else { c.canvas };
@@ -173,7 +175,26 @@ fn attempt(c: &Cells, extra_doors: f64, rng: &mut Rng) -> Result<Plan, Failure> 
     let (long_side, short_side) = if portrait { ("height", "width") } else { ("width", "height") };
     let mut spaces = Vec::new();
 
-    // Bands across the depth.
+    let (pattern, corridors) = band_pattern(c, inner, ch, short_side, rng)?;
+    let (corridor_widths, depths) = band_sizes(c, inner, &pattern, rng);
+    let (halls, xa, xb) = place_halls(c, inner, cw, long_side, rng)?;
+    let room_rows = lay_bands(c, inner, (xa, xb), &pattern, &corridor_widths, &depths, &mut spaces);
+    let mut segments = row_segments(c, &room_rows, corridors, (xa, xb), &mut spaces, rng);
+    for h in halls {
+        spaces.push(Space { inner: h, kind: UnitType::Hall });
+    }
+    place_others(c, &mut segments, rng)?;
+    let counts = room_counts(c, &segments, rng)?;
+    fill_segments(c, &segments, &counts, &mut spaces, rng);
+
+    let openings = doors(&spaces, c, extra_doors, rng)?;
+    let plan = Plan { building, spaces, openings };
+    Ok(if portrait { plan.transposed() } else { plan })
+}
+
+/// The bands across the depth, and the number of corridors.
+fn band_pattern(c: &Cells, inner: Rect, ch: i32, short_side: &str, rng: &mut Rng) -> Result<(Vec<Band>, u32), Failure> {
+    let t = c.wall;
     let need = |rows: i32, corridors: i32| rows * c.depth.lo + corridors * c.corridor.lo + (rows + corridors - 1) * t;
     let depth_needed = |n: i32| n + 2 * t + 2 * c.margin;
     let corridors = match c.corridors {
@@ -213,6 +234,12 @@ fn attempt(c: &Cells, extra_doors: f64, rng: &mut Rng) -> Result<Plan, Failure> 
             depth_needed(need(1, 1))
         )));
     };
+    Ok((pattern, corridors))
+}
+
+/// Corridor widths, and each room row's depth beyond the least.
+fn band_sizes(c: &Cells, inner: Rect, pattern: &[Band], rng: &mut Rng) -> (Vec<i32>, Vec<i32>) {
+    let t = c.wall;
     let rows = pattern.iter().filter(|b| **b == Band::Rooms).count() as i32;
     let n_corridors = pattern.len() as i32 - rows;
     let mut budget = inner.h - (pattern.len() as i32 - 1) * t - rows * c.depth.lo;
@@ -224,8 +251,19 @@ fn attempt(c: &Cells, extra_doors: f64, rng: &mut Rng) -> Result<Plan, Failure> 
         corridor_widths.push(w);
     }
     let depths = share(rng, rows as usize, budget, i32::MAX);
+    (corridor_widths, depths)
+}
 
-    // Halls at the ends, leaving room for at least one room along the corridors.
+/// Halls at the ends, leaving room for at least one room along the corridors; with the columns
+/// `xa..xb` left between them.
+fn place_halls(
+    c: &Cells,
+    inner: Rect,
+    cw: i32,
+    long_side: &str,
+    rng: &mut Rng,
+) -> Result<(Vec<Rect>, i32, i32), Failure> {
+    let t = c.wall;
     let hall_room = (inner.w - c.room.lo - c.halls as i32 * t) / (c.halls.max(1) as i32);
     if c.halls > 0 && hall_room < c.hall.lo {
         return Err(fatal(format!(
@@ -255,11 +293,24 @@ fn attempt(c: &Cells, extra_doors: f64, rng: &mut Rng) -> Result<Plan, Failure> 
             cw + c.room.lo - (xb - xa)
         )));
     }
+    Ok((halls, xa, xb))
+}
 
-    // Lay the bands out top to bottom.
+/// Lays the bands out top to bottom over columns `xa..xb`: corridors become spaces, room rows
+/// are returned.
+fn lay_bands(
+    c: &Cells,
+    inner: Rect,
+    (xa, xb): (i32, i32),
+    pattern: &[Band],
+    corridor_widths: &[i32],
+    depths: &[i32],
+    spaces: &mut Vec<Space>,
+) -> Vec<Rect> {
+    let t = c.wall;
     let (mut y, mut ci, mut ri) = (inner.y, 0, 0);
     let mut room_rows = Vec::new();
-    for band in &pattern {
+    for band in pattern {
         let h = match band {
             Band::Corridor => corridor_widths[ci],
             Band::Rooms => c.depth.lo + depths[ri],
@@ -278,8 +329,20 @@ fn attempt(c: &Cells, extra_doors: f64, rng: &mut Rng) -> Result<Plan, Failure> 
         y += h + t;
     }
     debug_assert_eq!(y - t, inner.bottom());
+    room_rows
+}
 
-    // Row segments; with two corridors and no hall, a connector cuts the middle rows.
+/// Row segments; with two corridors and no hall, a connector (a corridor space) cuts the
+/// middle rows.
+fn row_segments(
+    c: &Cells,
+    room_rows: &[Rect],
+    corridors: u32,
+    (xa, xb): (i32, i32),
+    spaces: &mut Vec<Space>,
+    rng: &mut Rng,
+) -> Vec<Segment> {
+    let t = c.wall;
     let mut segments: Vec<Segment> = Vec::new();
     let whole = |row: Rect| Segment::new(row, row.x, row.right());
     if corridors == 2 && c.halls == 0 {
@@ -311,11 +374,12 @@ fn attempt(c: &Cells, extra_doors: f64, rng: &mut Rng) -> Result<Plan, Failure> 
     } else {
         segments.extend(room_rows.iter().map(|r| whole(*r)));
     }
-    for h in halls {
-        spaces.push(Space { inner: h, kind: UnitType::Hall });
-    }
+    segments
+}
 
-    // "Other" units go to segments that keep room for a room beside them.
+/// "Other" units go to segments that keep room for a room beside them.
+fn place_others(c: &Cells, segments: &mut [Segment], rng: &mut Rng) -> Result<(), Failure> {
+    let t = c.wall;
     for placed in 0..c.others {
         let w = rng.between(c.other.lo, c.other.hi);
         let fits: Vec<usize> = (0..segments.len()).filter(|&i| segments[i].rest(t) - (w + t) >= c.room.lo).collect();
@@ -328,8 +392,12 @@ fn attempt(c: &Cells, extra_doors: f64, rng: &mut Rng) -> Result<Plan, Failure> 
         }
         segments[fits[rng.index(fits.len())]].others.push(w);
     }
+    Ok(())
+}
 
-    // How many rooms each segment gets: drawn per segment, then nudged into the accepted range.
+/// How many rooms each segment gets: drawn per segment, then nudged into the accepted range.
+fn room_counts(c: &Cells, segments: &[Segment], rng: &mut Rng) -> Result<Vec<i32>, Failure> {
+    let t = c.wall;
     let bounds: Vec<(i32, i32)> = segments.iter().map(|s| s.counts(t, c.room)).collect();
     let (fewest, most) = bounds.iter().fold((0i64, 0i64), |(a, b), (lo, hi)| (a + *lo as i64, b + *hi as i64));
     let (lo, hi) = (fewest.max(c.rooms[0] as i64), most.min(c.rooms[1] as i64));
@@ -351,9 +419,13 @@ fn attempt(c: &Cells, extra_doors: f64, rng: &mut Rng) -> Result<Plan, Failure> 
         counts[i] += if grow { 1 } else { -1 };
         total += if grow { 1 } else { -1 };
     }
+    Ok(counts)
+}
 
-    // Split each segment into its rooms and "other" units, left to right.
-    for (seg, &k) in segments.iter().zip(&counts) {
+/// Splits each segment into its rooms and "other" units, left to right.
+fn fill_segments(c: &Cells, segments: &[Segment], counts: &[i32], spaces: &mut Vec<Space>, rng: &mut Rng) {
+    let t = c.wall;
+    for (seg, &k) in segments.iter().zip(counts) {
         let extra = seg.rest(t) - (k - 1) * t - k * c.room.lo;
         let widths = share(rng, k as usize, extra, c.room.hi - c.room.lo);
         let mut seq: Vec<(UnitType, i32)> = widths.iter().map(|w| (UnitType::Room, c.room.lo + w)).collect();
@@ -368,10 +440,6 @@ fn attempt(c: &Cells, extra_doors: f64, rng: &mut Rng) -> Result<Plan, Failure> 
         }
         debug_assert_eq!(x - t, seg.x1);
     }
-
-    let openings = doors(&spaces, c, extra_doors, rng)?;
-    let plan = Plan { building, spaces, openings };
-    Ok(if portrait { plan.transposed() } else { plan })
 }
 
 /// Two spaces that share a wall long enough for a door: `a` left of / above `b`, their

@@ -536,22 +536,7 @@ impl Proposer {
                 let i = self.scratch.draw(rng)?;
                 Some((Move::Remove(i), self.scratch.probability(i)))
             }
-            Kernel::Split => {
-                if n == 0 {
-                    return None;
-                }
-                let i = rng.below(n as u32) as usize;
-                let u = s.units[i].rect();
-                self.cut_weights(s, u);
-                let c = self.scratch.draw(rng)?;
-                let q = self.scratch.probability(c) / n as f64;
-                let (va, vb) = self.cut_range(u, true);
-                let nv = (vb - va + 1).max(0) as usize;
-                let (vertical, k) =
-                    if c < nv { (true, va + c as i32) } else { (false, self.cut_range(u, false).0 + (c - nv) as i32) };
-                let (first, second) = split_at(u, vertical, k, self.wall);
-                Some((Move::Split { index: i, first, second }, q))
-            }
+            Kernel::Split => self.propose_split(s, rng),
             Kernel::Merge | Kernel::Interchange => {
                 if n < 2 {
                     return None;
@@ -586,35 +571,7 @@ impl Proposer {
                 let q = self.q_shift(s, i, side, d);
                 Some((Move::Reshape { index: i, rect: shifted(u, side, d) }, q))
             }
-            Kernel::Allocate => {
-                self.refresh_doors(s);
-                let c = &self.doors;
-                if c.pairs.is_empty() {
-                    return None;
-                }
-                let p_unif = if c.doors.is_empty() { 1.0 } else { self.config.uniform_door };
-                let d = if rng.uniform() < p_unif {
-                    let (lo, hi, axis, st, en, _) = c.pairs[rng.below(c.pairs.len() as u32) as usize];
-                    // Uniform over (start, length) with min_len <= length <= max_len.
-                    let lim = s.door_limits;
-                    let total = spans(st, en, &lim);
-                    let mut k = ((rng.uniform() * total) as i64).min(total as i64 - 1);
-                    let (mut start, mut len) = (st, lim.min_len);
-                    for l in lim.min_len..=lim.max_len {
-                        let count = (en - st + 1 - l + 1).max(0) as i64;
-                        if k < count {
-                            (start, len) = (st + k as i32, l);
-                            break;
-                        }
-                        k -= count;
-                    }
-                    DoorSpec { lo, hi, axis, start, end: start + len - 1 }
-                } else {
-                    c.doors[c.cumulative.draw(rng)?]
-                };
-                let q = self.q_allocate(s, &d);
-                Some((Move::Allocate(d), q))
-            }
+            Kernel::Allocate => self.propose_allocate(s, rng),
             Kernel::Delete => {
                 if s.doors.is_empty() {
                     return None;
@@ -624,6 +581,56 @@ impl Proposer {
                 Some((Move::Delete(k), self.scratch.probability(k)))
             }
         }
+    }
+
+    /// SPLIT: a unit uniformly, then a cut by its wall evidence (eq. 3.18).
+    fn propose_split(&mut self, s: &State, rng: &mut Rng) -> Option<(Move, f64)> {
+        let n = s.units.len();
+        if n == 0 {
+            return None;
+        }
+        let i = rng.below(n as u32) as usize;
+        let u = s.units[i].rect();
+        self.cut_weights(s, u);
+        let c = self.scratch.draw(rng)?;
+        let q = self.scratch.probability(c) / n as f64;
+        let (va, vb) = self.cut_range(u, true);
+        let nv = (vb - va + 1).max(0) as usize;
+        let (vertical, k) =
+            if c < nv { (true, va + c as i32) } else { (false, self.cut_range(u, false).0 + (c - nv) as i32) };
+        let (first, second) = split_at(u, vertical, k, self.wall);
+        Some((Move::Split { index: i, first, second }, q))
+    }
+
+    /// ALLOCATE: a detected door by `ω_g` (eq. 3.23), or a uniform door between a facing pair.
+    fn propose_allocate(&mut self, s: &State, rng: &mut Rng) -> Option<(Move, f64)> {
+        self.refresh_doors(s);
+        let c = &self.doors;
+        if c.pairs.is_empty() {
+            return None;
+        }
+        let p_unif = if c.doors.is_empty() { 1.0 } else { self.config.uniform_door };
+        let d = if rng.uniform() < p_unif {
+            let (lo, hi, axis, st, en, _) = c.pairs[rng.below(c.pairs.len() as u32) as usize];
+            // Uniform over (start, length) with min_len <= length <= max_len.
+            let lim = s.door_limits;
+            let total = spans(st, en, &lim);
+            let mut k = ((rng.uniform() * total) as i64).min(total as i64 - 1);
+            let (mut start, mut len) = (st, lim.min_len);
+            for l in lim.min_len..=lim.max_len {
+                let count = (en - st + 1 - l + 1).max(0) as i64;
+                if k < count {
+                    (start, len) = (st + k as i32, l);
+                    break;
+                }
+                k -= count;
+            }
+            DoorSpec { lo, hi, axis, start, end: start + len - 1 }
+        } else {
+            c.doors[c.cumulative.draw(rng)?]
+        };
+        let q = self.q_allocate(s, &d);
+        Some((Move::Allocate(d), q))
     }
 
     /// `Q(W|W')`: the probability that the reverse kernel proposes the way back, evaluated in

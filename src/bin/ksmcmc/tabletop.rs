@@ -5,9 +5,10 @@ use crate::args::{self, CliError};
 use ksmcmc::render::encode_png;
 use ksmcmc::render::tabletop::{draw_graph, draw_view, marks, ViewOptions};
 use ksmcmc::tabletop::eval::{analyse_scene, dissertation_scenes, graph_signature, score, Score};
+use ksmcmc::tabletop::evidence::Evidence;
 use ksmcmc::tabletop::scene::Scene;
 use ksmcmc::tabletop::synth::{generate, SynthConfig};
-use ksmcmc::tabletop::{ChainConfig, Decision, TabletopChain};
+use ksmcmc::tabletop::{Analysis, ChainConfig, Decision, TabletopChain};
 use std::ffi::OsString;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -71,19 +72,6 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     let graph_json = analysis.graph_json();
     let poses: Vec<_> = analysis.objects.iter().map(|o| o.pose).collect();
     let view = draw_view(chain.scene(), &poses, &marks(&analysis), &ViewOptions::default());
-    let ev = &analysis.evidence;
-    let ids: Vec<&str> = chain.scene().objects.iter().map(|o| o.id.as_str()).chain(["table"]).collect();
-    let pairs = |f: &dyn Fn(usize, usize) -> bool, symmetric: bool| {
-        let mut v = Vec::new();
-        for i in 0..ids.len() {
-            for j in 0..ids.len() {
-                if i != j && (!symmetric || i < j) && f(i, j) {
-                    v.push([ids[i], ids[j]]);
-                }
-            }
-        }
-        v
-    };
     let has_truth = chain.scene().objects.iter().any(|o| o.truth.is_some());
     let stats = chain.stats();
     let (hits, misses) = chain.prior_cache_stats();
@@ -102,11 +90,7 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
         "best_iteration": chain.best_iteration(),
         "proposals": stats,
         "prior_cache": { "hits": hits, "computed": misses },
-        "evidence": {
-            "contact": pairs(&|i, j| ev.contact(i, j), true),
-            "intersect": pairs(&|i, j| ev.intersect(i, j), true),
-            "higher": pairs(&|i, j| ev.higher(i, j), false),
-        },
+        "evidence": evidence_json(chain.scene(), &analysis.evidence),
         "score": has_truth.then(|| score(chain.scene(), &analysis)),
         "config": chain.config(),
     });
@@ -115,6 +99,40 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     args::write(&out.join("graph.png"), &encode_png(&draw_graph(&analysis.graph)))?;
     args::write(&out.join("view.png"), &encode_png(&view))?;
     args::write(&out.join("report.json"), pretty(&report).as_bytes())?;
+    print_objects(&analysis);
+    println!(
+        "{iterations} iterations in {:.1} ms ({:.3} ms per iteration); wrote {}",
+        1000.0 * seconds,
+        if iterations > 0 { 1000.0 * sampling / iterations as f64 } else { 0.0 },
+        out.display()
+    );
+    Ok(())
+}
+
+/// The evidence relations as pairs of object ids ("table" last): contact and intersection
+/// (each pair once), and which object is higher than which.
+fn evidence_json(scene: &Scene, ev: &Evidence) -> serde_json::Value {
+    let ids: Vec<&str> = scene.objects.iter().map(|o| o.id.as_str()).chain(["table"]).collect();
+    let pairs = |f: &dyn Fn(usize, usize) -> bool, symmetric: bool| {
+        let mut v = Vec::new();
+        for i in 0..ids.len() {
+            for j in 0..ids.len() {
+                if i != j && (!symmetric || i < j) && f(i, j) {
+                    v.push([ids[i], ids[j]]);
+                }
+            }
+        }
+        v
+    };
+    serde_json::json!({
+        "contact": pairs(&|i, j| ev.contact(i, j), true),
+        "intersect": pairs(&|i, j| ev.intersect(i, j), true),
+        "higher": pairs(&|i, j| ev.higher(i, j), false),
+    })
+}
+
+/// One line per object: its probabilities and the flags decided true.
+fn print_objects(analysis: &Analysis) {
     for o in &analysis.objects {
         let flag = |d: Decision, name: &str| if d == Decision::True { format!(" {name}") } else { String::new() };
         println!(
@@ -126,13 +144,6 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
             flag(o.hidden, "HIDES-AN-OBJECT"),
         );
     }
-    println!(
-        "{iterations} iterations in {:.1} ms ({:.3} ms per iteration); wrote {}",
-        1000.0 * seconds,
-        if iterations > 0 { 1000.0 * sampling / iterations as f64 } else { 0.0 },
-        out.display()
-    );
-    Ok(())
 }
 
 fn read_config(path: Option<&PathBuf>) -> Result<ChainConfig, CliError> {

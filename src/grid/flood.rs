@@ -1,4 +1,4 @@
-//! Flood fills over a row-major grid of cells, by cell index (`y * width + x`).
+//! Flood fills and wavefronts over a row-major grid of cells, by cell index (`y * width + x`).
 //!
 //! The detectors and metrics find connected regions in several places: free space no unit
 //! explains, walls joined into one network, the unexplored outside of a building. They differ in
@@ -6,7 +6,8 @@
 //! lives here once: [`Flood::fill`] pops cells off a stack, hands each to `visit`, and pushes each
 //! neighbour that `enter` admits. `enter` is asked once per neighbour and must mark what it
 //! admits (so that no cell is pushed twice); the stack is kept between fills, so a caller that
-//! fills again and again allocates it once.
+//! fills again and again allocates it once. [`wavefront`] grows a region breadth first instead,
+//! for the distances of its cells from where it started.
 //!
 //! ```
 //! use ksmcmc::grid::flood::{Flood, Neighbours};
@@ -84,6 +85,49 @@ impl Flood {
                             }
                         }
                     }
+                }
+            }
+        }
+    }
+}
+
+/// A breadth-first wavefront (4-neighbour steps): from the cells in `seeds`, whose `dist` the
+/// caller has set, into every neighbour `enter` admits whose `dist` is still `u32::MAX`, which
+/// gets its neighbour's distance + 1. Cells at distance `limit` + 1 are reached but not grown
+/// from; cells never reached keep `u32::MAX`.
+///
+/// ```
+/// use ksmcmc::grid::flood::wavefront;
+///
+/// // A 5x1 corridor, from its left end, up to 2 steps (the third cell out is reached, at 3).
+/// let mut dist = [0, u32::MAX, u32::MAX, u32::MAX, u32::MAX];
+/// wavefront(5, 1, &mut dist, [0], |_| true, 2);
+/// assert_eq!(dist, [0, 1, 2, 3, u32::MAX]);
+/// ```
+pub fn wavefront(
+    width: usize,
+    height: usize,
+    dist: &mut [u32],
+    seeds: impl IntoIterator<Item = usize>,
+    enter: impl Fn(usize) -> bool,
+    limit: u32,
+) {
+    let mut queue: std::collections::VecDeque<u32> = seeds.into_iter().map(|i| i as u32).collect();
+    while let Some(i) = queue.pop_front() {
+        let i = i as usize;
+        let d = dist[i];
+        let (x, y) = (i % width, i / width);
+        let neighbours = [
+            (x > 0, i.wrapping_sub(1)),
+            (x + 1 < width, i + 1),
+            (y > 0, i.wrapping_sub(width)),
+            (y + 1 < height, i + width),
+        ];
+        for (inside, j) in neighbours {
+            if inside && dist[j] == u32::MAX && enter(j) {
+                dist[j] = d + 1;
+                if d < limit {
+                    queue.push_back(j as u32);
                 }
             }
         }

@@ -242,7 +242,7 @@ pub struct KnowledgeConfig {
     pub same_length_sigma: f64,
     /// `p(C_M | object)` for map classes free, unknown, occupied: how the semantic sensor
     /// model (eq. 3.37) scores a non-free cell inside a room, hall or other unit that may be an
-    /// object ([`ObjectCells`]). Default `[0.1, 0.1, 0.45]`: an occupied outline is evidence of
+    /// object ([`ObjectCells`](crate::vision::objects::ObjectCells)). Default `[0.1, 0.1, 0.45]`: an occupied outline is evidence of
     /// furniture, but an unknown cell is as likely unexplored space as an object's shadow, so
     /// it gets no more than the free-world reading `p(unknown | free) = 0.1` of Tab. 3.1.
     /// Forgiving unknown cells too (`0.45`) let units spread over unexplored pockets and cost
@@ -252,7 +252,7 @@ pub struct KnowledgeConfig {
     /// a room; a "room" whose interior is mostly unseen is not furnished, it is too big.
     pub object_share: f64,
     /// Longest object (furniture) the semantic sensor model forgives, metres: occupied cells on
-    /// straight runs at least this long are walls (see [`ObjectCells`]).
+    /// straight runs at least this long are walls (see [`ObjectCells`](crate::vision::objects::ObjectCells)).
     pub max_object_m: f64,
     /// The geometry classifier (Tab. 3.6).
     pub geometry: GeometryClassifier,

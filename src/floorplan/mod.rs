@@ -1,7 +1,11 @@
-//! Semantic floor plans: the world `W = {U, T, R}` and the synthetic generator.
+//! Semantic floor plans: the world `W = {U, T, R}`, the chain that finds it (its kernels and
+//! their schedule, the posterior, knowledge supervision), what is measured of it, and the
+//! synthetic generator.
 //!
 //! A [`World`] is what the chain samples and what every exporter writes; `world.json` is its
-//! serialised form (schema in [`world`]).
+//! serialised form (schema in [`world`]). The chain's working state (units and doors over an
+//! incremental [`Explanation`], the moves that change it, the proposal distributions) is
+//! internal: callers drive a [`Chain`] and read worlds, traces and reports from it.
 
 pub mod chain;
 pub(crate) mod explain;
@@ -12,10 +16,10 @@ pub mod metrics;
 pub mod posterior;
 pub mod report;
 pub mod rooms;
-pub mod schedule;
+mod schedule;
 pub(crate) mod state;
 pub mod synth;
-pub mod trace;
+mod trace;
 pub mod unexplained;
 pub mod world;
 

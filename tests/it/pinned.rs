@@ -59,7 +59,7 @@ fn check(name: &str, json: &str, pinned: u64) {
 }
 
 fn pin_dataset(relative: &str, pinned: u64) {
-    let Some(dir) = crate::common::datasets(relative) else { return };
+    let Some(dir) = crate::common::datasets(&format!("the world.json pin of {relative}")) else { return };
     let path = dir.join(relative);
     let map = OccupancyMap::load(&path, &Default::default()).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     check(relative, &world_json(map, true), pinned);

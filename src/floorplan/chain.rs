@@ -145,6 +145,64 @@ impl ChainConfig {
         }
         Ok(())
     }
+
+    /// Parses a configuration from JSON text: an object whose fields override the defaults
+    /// (blank text is the defaults). Unknown fields are refused, naming their path and the
+    /// fields known there, for a typo would otherwise be silently ignored; then every value is
+    /// checked ([`ChainConfig::validate`]).
+    ///
+    /// ```
+    /// use ksmcmc::floorplan::ChainConfig;
+    ///
+    /// let c = ChainConfig::from_json(r#"{"posterior": {"temperature": 2}}"#).unwrap();
+    /// assert_eq!(c.posterior.temperature, 2.0);
+    /// let e = ChainConfig::from_json(r#"{"posterior": {"temprature": 2}}"#).unwrap_err();
+    /// assert!(e.to_string().contains("unknown field `posterior.temprature`; the fields here are"));
+    /// ```
+    pub fn from_json(text: &str) -> Result<ChainConfig, ChainError> {
+        if text.trim().is_empty() {
+            return Ok(ChainConfig::default());
+        }
+        let given: serde_json::Value = serde_json::from_str(text).map_err(|e| {
+            let hint = if text.contains("NaN") || text.contains("Infinity") {
+                " (NaN and Infinity are not numbers in JSON, nor allowed values: give finite numbers)"
+            } else {
+                ""
+            };
+            ChainError::Json(format!("{e}{hint}"))
+        })?;
+        if !given.is_object() {
+            return Err(ChainError::Json(
+                "expected a JSON object such as {\"posterior\": {\"temperature\": 2}}".into(),
+            ));
+        }
+        let defaults = serde_json::to_value(ChainConfig::default()).expect("the defaults serialise");
+        unknown_fields(&given, &defaults, "")?;
+        let config: ChainConfig = serde_json::from_value(given).map_err(|e| ChainError::Json(e.to_string()))?;
+        config.validate()?;
+        Ok(config)
+    }
+}
+
+/// Refuses object keys that the defaults do not have, naming the path and the known keys.
+fn unknown_fields(given: &serde_json::Value, known: &serde_json::Value, path: &str) -> Result<(), ChainError> {
+    let (serde_json::Value::Object(g), serde_json::Value::Object(k)) = (given, known) else {
+        return Ok(());
+    };
+    for (key, value) in g {
+        let here = if path.is_empty() { key.clone() } else { format!("{path}.{key}") };
+        match k.get(key) {
+            Some(default) => unknown_fields(value, default, &here)?,
+            None => {
+                let names: Vec<&str> = k.keys().map(String::as_str).collect();
+                return Err(ChainError::Json(format!(
+                    "unknown field `{here}`; the fields here are {}",
+                    names.join(", ")
+                )));
+            }
+        }
+    }
+    Ok(())
 }
 
 /// Why a chain could not start.
@@ -152,6 +210,8 @@ impl ChainConfig {
 pub enum ChainError {
     /// A configuration value is unusable.
     Config(String),
+    /// A configuration's JSON text does not parse, is no object, or has an unknown field.
+    Json(String),
     /// The knowledge base does not parse or ground.
     Knowledge(String),
     /// The map cannot be explained (too small, no free space).
@@ -162,6 +222,7 @@ impl std::fmt::Display for ChainError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             ChainError::Config(m) => write!(f, "invalid chain configuration: {m}"),
+            ChainError::Json(m) => write!(f, "chain config: {m}"),
             ChainError::Knowledge(m) => write!(f, "knowledge base: {m}"),
             ChainError::Map(m) => write!(f, "cannot explain this map: {m}"),
         }

@@ -171,6 +171,29 @@ fn config_json_accepts_partial_objects() {
     assert_eq!(c.posterior.overlap_penalty, ChainConfig::default().posterior.overlap_penalty);
 }
 
+/// `ChainConfig::from_json`, which the CLI's `--config` and the browser's `configJson` share:
+/// blank text is the defaults, and every refusal says what is wrong.
+#[test]
+fn config_json_errors_name_the_problem() {
+    assert_eq!(ChainConfig::from_json(" ").unwrap(), ChainConfig::default());
+    assert_eq!(ChainConfig::from_json("{}").unwrap(), ChainConfig::default());
+    let c = ChainConfig::from_json(r#"{"posterior": {"temperature": 2.0}, "kernels": {"min_side": 4}}"#).unwrap();
+    assert_eq!((c.posterior.temperature, c.kernels.min_side), (2.0, 4));
+    let err = |json: &str| ChainConfig::from_json(json).unwrap_err().to_string();
+    for (json, needle) in [
+        ("{", "chain config"),
+        ("[1, 2]", "JSON object"),
+        (r#"{"posterior": {"temperature": NaN}}"#, "NaN"),
+        (r#"{"posterior": {"temperature": -1}}"#, "temperature -1"),
+        (r#"{"posterior": {"temprature": 2}}"#, "unknown field `posterior.temprature`"),
+        (r#"{"iterations": 5}"#, "unknown field `iterations`"),
+        (r#"{"kernels": {"min_side": "big"}}"#, "chain config"),
+    ] {
+        let e = err(json);
+        assert!(e.contains(needle), "{json}: {e}");
+    }
+}
+
 #[test]
 fn knowledge_types_units_and_stays_deterministic() {
     let map = OccupancyMap::from_classified(rooms_map());

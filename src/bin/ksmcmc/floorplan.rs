@@ -161,7 +161,7 @@ fn chain_config(o: &Opts) -> Result<ChainConfig, CliError> {
     let mut config = match &o.config {
         Some(p) => {
             let text = std::fs::read_to_string(p).map_err(|e| args::failed(p.display(), e))?;
-            serde_json::from_str::<ChainConfig>(&text).map_err(|e| args::failed(p.display(), e))?
+            ChainConfig::from_json(&text).map_err(|e| args::failed(p.display(), e))?
         }
         None => ChainConfig::default(),
     };

@@ -224,8 +224,9 @@ impl crate::vision::freespace::FreeSpace for Explanation {
         self.height
     }
     #[inline]
-    fn is_unexplained(&self, x: usize, y: usize) -> bool {
-        self.map_class(x, y) == Cell::Free && self.cover(x, y) == 0
+    fn is_unexplained(&self, i: usize) -> bool {
+        let c = self.cells[i];
+        c.cm == Cell::Free as u8 && c.cover == 0
     }
 }
 

@@ -13,8 +13,9 @@ pub trait FreeSpace {
     fn width(&self) -> usize;
     /// Grid height.
     fn height(&self) -> usize;
-    /// Whether cell `(x, y)` is free on the map and covered by no unit.
-    fn is_unexplained(&self, x: usize, y: usize) -> bool;
+    /// Whether cell `i` (row-major, `y * width + x`) is free on the map and covered by no
+    /// unit.
+    fn is_unexplained(&self, i: usize) -> bool;
 }
 
 /// A map explained by the empty world: every free cell is unexplained.
@@ -25,8 +26,8 @@ impl FreeSpace for Grid<Cell> {
     fn height(&self) -> usize {
         Grid::height(self)
     }
-    fn is_unexplained(&self, x: usize, y: usize) -> bool {
-        *self.at(x, y) == Cell::Free
+    fn is_unexplained(&self, i: usize) -> bool {
+        self.cells()[i] == Cell::Free
     }
 }
 
@@ -67,8 +68,7 @@ fn unexplained_in(e: &impl FreeSpace, r: Rect) -> u32 {
     let mut n = 0;
     for y in r.y.max(0)..r.bottom().min(h) {
         for x in r.x.max(0)..r.right().min(w) {
-            let (x, y) = (x as usize, y as usize);
-            n += e.is_unexplained(x, y) as u32;
+            n += e.is_unexplained(y as usize * w as usize + x as usize) as u32;
         }
     }
     n
@@ -117,12 +117,12 @@ fn components(e: &impl FreeSpace, min_cells: usize, scratch: &mut Scratch) -> Ve
         fresh
     };
     for start in 0..w * h {
-        let (sx, sy) = (start % w, start / w);
-        if seen[start / 64] & (1 << (start % 64)) != 0 || !e.is_unexplained(sx, sy) {
+        if seen[start / 64] & (1 << (start % 64)) != 0 || !e.is_unexplained(start) {
             continue;
         }
+        let (sx, sy) = (start % w, start / w);
         let (mut x0, mut y0, mut x1, mut y1, mut n) = (sx, sy, sx, sy, 0usize);
-        let enter = |j: usize| e.is_unexplained(j % w, j / w) && mark(seen, j);
+        let enter = |j: usize| e.is_unexplained(j) && mark(seen, j);
         flood.fill(w, h, [start], Neighbours::Four, enter, |i| {
             let (x, y) = (i % w, i / w);
             n += 1;

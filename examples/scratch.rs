@@ -46,7 +46,7 @@ fn main() {
         chain.best_prediction_rate()
     );
     let t = chain.trace();
-    for k in ksmcmc::mcmc::Kernel::ALL {
+    for k in ksmcmc::floorplan::Kernel::ALL {
         println!("{:12} {:>7} {:>6}", k.name(), t.proposed[k.index()], t.accepted[k.index()]);
     }
     dump(&chain, "/tmp/w.ppm");

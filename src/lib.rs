@@ -8,21 +8,38 @@
 //! contact. Both follow Ziyuan Liu's dissertation *Knowledge-Supervised MCMC* (2014); equation
 //! numbers in these docs refer to it.
 //!
-//! Data flows one way, and the modules follow that flow:
+//! Data flows one way, and the modules follow that flow: each imports only modules above it
+//! (what each imports is on the right), so there are no cycles.
 //!
 //! ```text
-//! grid  ->  vision (detectors)  ->  mcmc (chain, kernels, posterior)  ->  floorplan (world)  ->  render / export
-//!                                      ^
-//!                                     mln (Markov logic, queried as a service)
+//!   grid                  -
+//!   geometry              grid
+//!   vision                grid, geometry
+//!   mcmc                  -
+//!   mln                   mcmc
+//!   floorplan             grid, geometry, vision, mcmc, mln
+//!   tabletop              mcmc, mln
+//!   render                grid, floorplan, tabletop
+//!   wasm, CLI (src/bin)   any of the above
 //! ```
 //!
-//! * [`grid`] loads occupancy maps (PGM, PNG, ROS `map.yaml`) and classifies cells (eq. 3.7).
-//! * [`vision`] holds the bottom-up detectors: Hough orientation, wall lines and wall-based unit
-//!   candidates, free-space candidates, doors.
-//! * [`mcmc`] is the generic Metropolis-Hastings machinery both use cases share.
-//! * [`floorplan`] holds the semantic world (units, doors, types), the chain and its kernels,
-//!   rooms, scene graph, metrics, knowledge supervision and the synthetic generator.
-//! * [`mln`] is the Markov logic engine, usable on its own.
+//! A map goes `grid -> vision -> floorplan (chain, world) -> render / world.json`, with `mln`
+//! queried as a service for knowledge supervision; table-top poses go
+//! `tabletop (chain, scene graph) -> render`.
+//!
+//! * [`grid`] loads occupancy maps (PGM, PNG, ROS `map.yaml`), classifies cells (eq. 3.7), and
+//!   grows regions over them ([`grid::flood`]).
+//! * [`geometry`] is plane geometry on the cell grid: rectangles, the world frame, cell counts
+//!   by rectangle. `vision` and `floorplan` both build on it, so neither imports the other
+//!   backwards.
+//! * [`vision`] holds the bottom-up detectors, over grids and counts: Hough orientation, wall
+//!   lines and wall-based unit candidates, free-space candidates, doors, possible furniture.
+//! * [`mcmc`] is the generic Metropolis-Hastings machinery both use cases share: the random
+//!   number generator, weighted draws, the acceptance test, trace points. It knows no kernel.
+//! * [`floorplan`] holds the semantic world (units, doors, types), the chain with its kernels
+//!   and their schedule (Tab. 3.2), rooms, scene graph, metrics, knowledge supervision and the
+//!   synthetic generator.
+//! * [`mln`] is the Markov logic engine, usable on its own; the chains query it as a service.
 //! * [`tabletop`] turns noisy 6D box poses into a support/contact scene graph (chapter 4).
 //! * [`render`] draws maps, worlds and scene graphs with tiny-skia, natively and in the browser.
 //! * `wasm` (only on `wasm32`) is a thin wasm-bindgen layer with no logic of its own.
@@ -39,6 +56,7 @@
 #![warn(missing_docs)]
 
 pub mod floorplan;
+pub mod geometry;
 pub mod grid;
 pub mod mcmc;
 pub mod mln;

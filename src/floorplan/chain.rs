@@ -25,10 +25,12 @@
 use super::explain::Explanation;
 use super::kernels::{Candidates, KernelConfig, Proposer};
 use super::posterior::{Posterior, PosteriorConfig};
+use super::schedule::{Kernel, Schedule};
 use super::state::{DoorLimits, DoorSpec, State};
+use super::trace::Trace;
 use super::world::{Door, Frame, Rect, Unit, UnitType, World};
 use crate::grid::{Cell, Grid, OccupancyMap};
-use crate::mcmc::{accept, Cumulative, Kernel, Ring, Rng, Schedule, Trace, TracePoint};
+use crate::mcmc::{accept, Cumulative, Ring, Rng, TracePoint};
 use crate::vision;
 use serde::{Deserialize, Serialize};
 
@@ -143,6 +145,64 @@ impl ChainConfig {
         }
         Ok(())
     }
+
+    /// Parses a configuration from JSON text: an object whose fields override the defaults
+    /// (blank text is the defaults). Unknown fields are refused, naming their path and the
+    /// fields known there, for a typo would otherwise be silently ignored; then every value is
+    /// checked ([`ChainConfig::validate`]).
+    ///
+    /// ```
+    /// use ksmcmc::floorplan::ChainConfig;
+    ///
+    /// let c = ChainConfig::from_json(r#"{"posterior": {"temperature": 2}}"#).unwrap();
+    /// assert_eq!(c.posterior.temperature, 2.0);
+    /// let e = ChainConfig::from_json(r#"{"posterior": {"temprature": 2}}"#).unwrap_err();
+    /// assert!(e.to_string().contains("unknown field `posterior.temprature`; the fields here are"));
+    /// ```
+    pub fn from_json(text: &str) -> Result<ChainConfig, ChainError> {
+        if text.trim().is_empty() {
+            return Ok(ChainConfig::default());
+        }
+        let given: serde_json::Value = serde_json::from_str(text).map_err(|e| {
+            let hint = if text.contains("NaN") || text.contains("Infinity") {
+                " (NaN and Infinity are not numbers in JSON, nor allowed values: give finite numbers)"
+            } else {
+                ""
+            };
+            ChainError::Json(format!("{e}{hint}"))
+        })?;
+        if !given.is_object() {
+            return Err(ChainError::Json(
+                "expected a JSON object such as {\"posterior\": {\"temperature\": 2}}".into(),
+            ));
+        }
+        let defaults = serde_json::to_value(ChainConfig::default()).expect("the defaults serialise");
+        unknown_fields(&given, &defaults, "")?;
+        let config: ChainConfig = serde_json::from_value(given).map_err(|e| ChainError::Json(e.to_string()))?;
+        config.validate()?;
+        Ok(config)
+    }
+}
+
+/// Refuses object keys that the defaults do not have, naming the path and the known keys.
+fn unknown_fields(given: &serde_json::Value, known: &serde_json::Value, path: &str) -> Result<(), ChainError> {
+    let (serde_json::Value::Object(g), serde_json::Value::Object(k)) = (given, known) else {
+        return Ok(());
+    };
+    for (key, value) in g {
+        let here = if path.is_empty() { key.clone() } else { format!("{path}.{key}") };
+        match k.get(key) {
+            Some(default) => unknown_fields(value, default, &here)?,
+            None => {
+                let names: Vec<&str> = k.keys().map(String::as_str).collect();
+                return Err(ChainError::Json(format!(
+                    "unknown field `{here}`; the fields here are {}",
+                    names.join(", ")
+                )));
+            }
+        }
+    }
+    Ok(())
 }
 
 /// Why a chain could not start.
@@ -150,6 +210,8 @@ impl ChainConfig {
 pub enum ChainError {
     /// A configuration value is unusable.
     Config(String),
+    /// A configuration's JSON text does not parse, is no object, or has an unknown field.
+    Json(String),
     /// The knowledge base does not parse or ground.
     Knowledge(String),
     /// The map cannot be explained (too small, no free space).
@@ -160,6 +222,7 @@ impl std::fmt::Display for ChainError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             ChainError::Config(m) => write!(f, "invalid chain configuration: {m}"),
+            ChainError::Json(m) => write!(f, "chain config: {m}"),
             ChainError::Knowledge(m) => write!(f, "knowledge base: {m}"),
             ChainError::Map(m) => write!(f, "cannot explain this map: {m}"),
         }
@@ -203,7 +266,7 @@ pub struct Chain {
     /// zero: a cell is an object only where that explains it better.
     object_gain: [f64; 2],
     /// The map cells that may be objects (knowledge mode only).
-    objects: Option<super::knowledge::ObjectCells>,
+    objects: Option<crate::vision::objects::ObjectCells>,
     knowledge_error: Option<String>,
     /// The first iteration at which knowledge may be inferred again (see
     /// [`KnowledgeConfig::time_share`](super::knowledge::KnowledgeConfig::time_share)).
@@ -304,7 +367,12 @@ impl Chain {
             // even when they earn nothing, so both are counted if either is forgiven.
             let any = object_gain.iter().any(|&g| g > 0.0);
             let forgiven = [any, any];
-            super::knowledge::ObjectCells::counting(&world_map, resolution, config.knowledge.max_object_m, forgiven)
+            crate::vision::objects::ObjectCells::counting(
+                &world_map,
+                resolution,
+                config.knowledge.max_object_m,
+                forgiven,
+            )
         });
         let state = State::new(&world_map, config.doors, wall);
         let proposer = Proposer::new(config.kernels, candidates, state.width(), state.height(), wall);

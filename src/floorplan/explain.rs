@@ -12,7 +12,7 @@
 //! O(changed cells), not O(map). Each cell's counters are interleaved in one 4-byte record so
 //! an update touches one cache line.
 
-use super::world::Rect;
+use crate::geometry::Rect;
 use crate::grid::{Cell, Grid};
 
 /// Predicted class of a cell, eq. 3.8: `0` free, `1` unknown, `2` wall; door cells are free.
@@ -51,44 +51,6 @@ struct CellState {
     wall: u8,
     /// Number of doors holding the cell.
     door: u8,
-}
-
-/// Summed-area table of one cell class: the count inside any rectangle in O(1).
-#[derive(Debug, Clone)]
-pub struct AreaCounts {
-    width: usize,
-    sums: Vec<u32>,
-}
-
-impl AreaCounts {
-    /// Counts cells of class `class` in `map`.
-    pub fn new(map: &Grid<Cell>, class: Cell) -> Self {
-        let (w, h) = (map.width(), map.height());
-        let mut sums = vec![0u32; (w + 1) * (h + 1)];
-        for y in 0..h {
-            let mut row = 0u32;
-            for x in 0..w {
-                row += (*map.at(x, y) == class) as u32;
-                sums[(y + 1) * (w + 1) + x + 1] = sums[y * (w + 1) + x + 1] + row;
-            }
-        }
-        AreaCounts { width: w, sums }
-    }
-
-    /// Number of counted cells in `r` (clipped to the map).
-    #[inline]
-    pub fn count(&self, r: Rect) -> u32 {
-        let h = self.sums.len() / (self.width + 1) - 1;
-        let x0 = r.x.clamp(0, self.width as i32) as usize;
-        let x1 = r.right().clamp(0, self.width as i32) as usize;
-        let y0 = r.y.clamp(0, h as i32) as usize;
-        let y1 = r.bottom().clamp(0, h as i32) as usize;
-        if x0 >= x1 || y0 >= y1 {
-            return 0;
-        }
-        let s = |x: usize, y: usize| self.sums[y * (self.width + 1) + x];
-        s(x1, y1) + s(x0, y0) - s(x0, y1) - s(x1, y0)
-    }
 }
 
 /// The per-cell bookkeeping of one world against one (world-frame) classified map.
@@ -253,6 +215,21 @@ impl Explanation {
     }
 }
 
+/// The free-space detector asks which free cells no unit covers.
+impl crate::vision::freespace::FreeSpace for Explanation {
+    fn width(&self) -> usize {
+        self.width
+    }
+    fn height(&self) -> usize {
+        self.height
+    }
+    #[inline]
+    fn is_unexplained(&self, i: usize) -> bool {
+        let c = self.cells[i];
+        c.cm == Cell::Free as u8 && c.cover == 0
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -312,17 +289,5 @@ mod tests {
         assert_eq!(e.predicted(0, 3), Cell::Occupied);
         assert_eq!(e.predicted(3, 3), Cell::Free);
         assert_eq!(e.predicted(3, 8), Cell::Unknown);
-    }
-
-    #[test]
-    fn area_counts() {
-        let m = map();
-        let occ = AreaCounts::new(&m, Cell::Occupied);
-        assert_eq!(occ.count(Rect::new(0, 0, 12, 9)), 12);
-        assert_eq!(occ.count(Rect::new(3, 0, 4, 1)), 4);
-        assert_eq!(occ.count(Rect::new(3, 1, 4, 7)), 0);
-        assert_eq!(occ.count(Rect::new(-5, -5, 100, 100)), 12);
-        let free = AreaCounts::new(&m, Cell::Free);
-        assert_eq!(free.count(Rect::new(2, 2, 3, 3)), 9);
     }
 }

@@ -20,9 +20,11 @@
 //! The uniform parts of ADD and ALLOCATE make every world reachable, so the chain is ergodic
 //! even where the detectors miss something.
 
-use super::state::{facing, Axis, DoorLimits, DoorSpec, Move, State, Undo};
+use super::schedule::Kernel;
+use super::state::{door_rect, facing, Axis, DoorLimits, DoorSpec, Move, State, Undo};
 use super::world::Rect;
-use crate::mcmc::{Cumulative, Kernel, Rng};
+use crate::mcmc::{Cumulative, Rng};
+use crate::vision::doors;
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
 
@@ -166,6 +168,8 @@ pub struct Proposer {
     doors: DoorCache,
     shift: Cumulative,
     scratch: Cumulative,
+    /// The four walls' `v_w` (eq. 3.22) of the unit being reshaped.
+    sides: Cumulative,
     scratch_weights: Vec<f64>,
     uniform_count: f64,
     min_side: i32,
@@ -290,16 +294,12 @@ impl Proposer {
             doors: DoorCache::default(),
             shift,
             scratch: Cumulative::default(),
+            sides: Cumulative::default(),
             scratch_weights: Vec::new(),
             uniform_count,
             min_side,
             wall,
         }
-    }
-
-    /// The kernel parameters.
-    pub fn config(&self) -> &KernelConfig {
-        &self.config
     }
 
     fn b_weights(&mut self, s: &State) {
@@ -434,7 +434,12 @@ impl Proposer {
                     }
                     c.pair_lookup.insert((a.id, b.id, axis), c.pairs.len());
                     c.pairs.push((a.id, b.id, axis, st, en, n));
-                    for (d, w) in crate::vision::doors::detect(s, a.rect(), b.rect(), a.id, b.id, axis, st, en) {
+                    let (lo, hi) = (a.rect(), b.rect());
+                    let spec = |start, end| DoorSpec { lo: a.id, hi: b.id, axis, start, end };
+                    let band = doors::Band { lo, hi, axis, wall: s.wall, start: st, end: en };
+                    let door = |first, last| door_rect(lo, hi, &spec(first, last), &limits, s.wall);
+                    for ((first, last), w) in doors::detect(s.counts(), &band, door) {
+                        let d = spec(first, last);
                         if !c.lookup.contains_key(&d) {
                             c.lookup.insert(d, c.doors.len());
                             c.doors.push(d);
@@ -531,22 +536,7 @@ impl Proposer {
                 let i = self.scratch.draw(rng)?;
                 Some((Move::Remove(i), self.scratch.probability(i)))
             }
-            Kernel::Split => {
-                if n == 0 {
-                    return None;
-                }
-                let i = rng.below(n as u32) as usize;
-                let u = s.units[i].rect();
-                self.cut_weights(s, u);
-                let c = self.scratch.draw(rng)?;
-                let q = self.scratch.probability(c) / n as f64;
-                let (va, vb) = self.cut_range(u, true);
-                let nv = (vb - va + 1).max(0) as usize;
-                let (vertical, k) =
-                    if c < nv { (true, va + c as i32) } else { (false, self.cut_range(u, false).0 + (c - nv) as i32) };
-                let (first, second) = split_at(u, vertical, k, self.wall);
-                Some((Move::Split { index: i, first, second }, q))
-            }
+            Kernel::Split => self.propose_split(s, rng),
             Kernel::Merge | Kernel::Interchange => {
                 if n < 2 {
                     return None;
@@ -572,48 +562,16 @@ impl Proposer {
                 self.b_weights(s);
                 let i = self.scratch.draw(rng)?;
                 let u = s.units[i].rect();
+                // v_w lies in (0, h_v]: the draw never fails.
                 let v = self.v_weights(s, u);
-                let k = rng.uniform() * v.iter().sum::<f64>();
-                let mut acc = 0.0;
-                let side = (0..4).find(|&j| {
-                    acc += v[j];
-                    k < acc
-                });
-                let side = side.unwrap_or(3);
+                self.sides.rebuild(v);
+                let side = self.sides.draw(rng).unwrap_or(3);
                 let m = self.shift.draw(rng)? as i32 + 1;
                 let d = if kernel == Kernel::Dilate { m } else { -m };
                 let q = self.q_shift(s, i, side, d);
                 Some((Move::Reshape { index: i, rect: shifted(u, side, d) }, q))
             }
-            Kernel::Allocate => {
-                self.refresh_doors(s);
-                let c = &self.doors;
-                if c.pairs.is_empty() {
-                    return None;
-                }
-                let p_unif = if c.doors.is_empty() { 1.0 } else { self.config.uniform_door };
-                let d = if rng.uniform() < p_unif {
-                    let (lo, hi, axis, st, en, _) = c.pairs[rng.below(c.pairs.len() as u32) as usize];
-                    // Uniform over (start, length) with min_len <= length <= max_len.
-                    let lim = s.door_limits;
-                    let total = spans(st, en, &lim);
-                    let mut k = ((rng.uniform() * total) as i64).min(total as i64 - 1);
-                    let (mut start, mut len) = (st, lim.min_len);
-                    for l in lim.min_len..=lim.max_len {
-                        let count = (en - st + 1 - l + 1).max(0) as i64;
-                        if k < count {
-                            (start, len) = (st + k as i32, l);
-                            break;
-                        }
-                        k -= count;
-                    }
-                    DoorSpec { lo, hi, axis, start, end: start + len - 1 }
-                } else {
-                    c.doors[c.cumulative.draw(rng)?]
-                };
-                let q = self.q_allocate(s, &d);
-                Some((Move::Allocate(d), q))
-            }
+            Kernel::Allocate => self.propose_allocate(s, rng),
             Kernel::Delete => {
                 if s.doors.is_empty() {
                     return None;
@@ -623,6 +581,56 @@ impl Proposer {
                 Some((Move::Delete(k), self.scratch.probability(k)))
             }
         }
+    }
+
+    /// SPLIT: a unit uniformly, then a cut by its wall evidence (eq. 3.18).
+    fn propose_split(&mut self, s: &State, rng: &mut Rng) -> Option<(Move, f64)> {
+        let n = s.units.len();
+        if n == 0 {
+            return None;
+        }
+        let i = rng.below(n as u32) as usize;
+        let u = s.units[i].rect();
+        self.cut_weights(s, u);
+        let c = self.scratch.draw(rng)?;
+        let q = self.scratch.probability(c) / n as f64;
+        let (va, vb) = self.cut_range(u, true);
+        let nv = (vb - va + 1).max(0) as usize;
+        let (vertical, k) =
+            if c < nv { (true, va + c as i32) } else { (false, self.cut_range(u, false).0 + (c - nv) as i32) };
+        let (first, second) = split_at(u, vertical, k, self.wall);
+        Some((Move::Split { index: i, first, second }, q))
+    }
+
+    /// ALLOCATE: a detected door by `ω_g` (eq. 3.23), or a uniform door between a facing pair.
+    fn propose_allocate(&mut self, s: &State, rng: &mut Rng) -> Option<(Move, f64)> {
+        self.refresh_doors(s);
+        let c = &self.doors;
+        if c.pairs.is_empty() {
+            return None;
+        }
+        let p_unif = if c.doors.is_empty() { 1.0 } else { self.config.uniform_door };
+        let d = if rng.uniform() < p_unif {
+            let (lo, hi, axis, st, en, _) = c.pairs[rng.below(c.pairs.len() as u32) as usize];
+            // Uniform over (start, length) with min_len <= length <= max_len.
+            let lim = s.door_limits;
+            let total = spans(st, en, &lim);
+            let mut k = ((rng.uniform() * total) as i64).min(total as i64 - 1);
+            let (mut start, mut len) = (st, lim.min_len);
+            for l in lim.min_len..=lim.max_len {
+                let count = (en - st + 1 - l + 1).max(0) as i64;
+                if k < count {
+                    (start, len) = (st + k as i32, l);
+                    break;
+                }
+                k -= count;
+            }
+            DoorSpec { lo, hi, axis, start, end: start + len - 1 }
+        } else {
+            c.doors[c.cumulative.draw(rng)?]
+        };
+        let q = self.q_allocate(s, &d);
+        Some((Move::Allocate(d), q))
     }
 
     /// `Q(W|W')`: the probability that the reverse kernel proposes the way back, evaluated in

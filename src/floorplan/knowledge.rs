@@ -12,10 +12,8 @@
 //!   units a cell the map does not see as free may be an *object* (furniture) and is scored
 //!   by `p(C_M | object)`; inside corridors it is a mismatch as before.
 
-use super::explain::AreaCounts;
 use super::state::{facing, Axis};
-use super::world::{Rect, Unit, UnitType, World};
-use crate::grid::{Cell, Grid};
+use super::world::{Unit, UnitType, World};
 use serde::{Deserialize, Serialize};
 
 /// The geometry classifier of Tab. 3.6.
@@ -101,193 +99,6 @@ pub fn connecting_walls(a: &Unit, b: &Unit, t: i32) -> Option<(i32, i32)> {
     }
 }
 
-/// The map cells the semantic sensor model may read as objects (furniture), counted by
-/// rectangle in O(1).
-///
-/// The dissertation's semantic sensor model (eq. 3.37, Fig. 3.31) forgives non-free cells
-/// inside rooms, halls and other units because they may be objects. Forgiving *every* such
-/// cell also forgives the building itself: a unit then grows across a wall it should stop at,
-/// or out into the unexplored space around the building, and buys the swallowed cells at the
-/// object rate. So only cells that can be objects are forgiven (a departure from the letter of
-/// eq. 3.37, which leaves "object" undefined):
-///
-/// * an occupied cell is part of an object unless it lies on a straight line of occupied cells
-///   (along its row or its column, across doorways of up to half `max_object_m` between
-///   stretches of at least 0.15 of it) at least
-///   `max_object_m` long, or belongs to a connected group of occupied cells that spans that
-///   much or touches such a line: walls are long lines broken by doors and joined into one
-///   network, furniture outlines are small and stand apart (furniture pushed against a wall
-///   joins the wall and is not forgiven, the price of never forgiving a wall);
-/// * an unknown cell is part of an object unless it is connected through unknown cells to the
-///   edge of the map: furniture shadows are enclosed by what the robot saw, the space outside
-///   the building is not.
-#[derive(Debug, Clone)]
-pub struct ObjectCells {
-    occupied: Option<AreaCounts>,
-    unknown: Option<AreaCounts>,
-}
-
-impl ObjectCells {
-    /// Finds the possible object cells of `map` (`resolution` metres per cell).
-    pub fn new(map: &Grid<Cell>, resolution: f64, max_object_m: f64) -> ObjectCells {
-        Self::counting(map, resolution, max_object_m, [true, true])
-    }
-
-    /// As [`ObjectCells::new`], counting only the classes asked for (`[occupied, unknown]`):
-    /// the other counts are 0. A count table takes 4 bytes a cell, and the chain needs none
-    /// for a class its sensor model does not forgive.
-    pub fn counting(map: &Grid<Cell>, resolution: f64, max_object_m: f64, classes: [bool; 2]) -> ObjectCells {
-        let (w, h) = (map.width(), map.height());
-        let run = ((max_object_m / resolution).ceil() as usize).max(2);
-        // A doorway: free cells between two stretches of the same wall line.
-        let doorway = ((0.5 * max_object_m / resolution).ceil() as usize).max(1);
-        let mut object = map.clone();
-        // Occupied cells on long row or column runs are structure, not objects. A run may pass
-        // doorways (up to `doorway` free cells with occupied cells on both sides): a corridor
-        // wall is one line broken by doors, and its stretches between doors may each be short.
-        let mut structure = vec![false; w * h];
-        // Wall stretches between doors are at least 0.15 `max_object_m` long (0.3 m); shorter
-        // pieces (a wall crossed edgeways, a chair) never join a line.
-        let stretch = ((0.15 * max_object_m / resolution).ceil() as usize).max(2);
-        let mark_runs = |len: usize, at: &dyn Fn(usize) -> usize, structure: &mut Vec<bool>| {
-            let class = |i: usize| map.cells()[at(i)];
-            // Occupied stretches along the line, as [start, end).
-            let mut stretches: Vec<(usize, usize)> = Vec::new();
-            let mut i = 0;
-            while i < len {
-                if class(i) == Cell::Occupied {
-                    let s0 = i;
-                    while i < len && class(i) == Cell::Occupied {
-                        i += 1;
-                    }
-                    stretches.push((s0, i));
-                } else {
-                    i += 1;
-                }
-            }
-            let mut k = 0;
-            while k < stretches.len() {
-                // Chain long stretches across doorways: short gaps of free cells only.
-                let mut last = k;
-                while last + 1 < stretches.len() {
-                    let (a, b) = (stretches[last], stretches[last + 1]);
-                    let gap = b.0 - a.1;
-                    let joinable = a.1 - a.0 >= stretch
-                        && b.1 - b.0 >= stretch
-                        && gap <= doorway
-                        && (a.1..b.0).all(|j| class(j) == Cell::Free);
-                    if !joinable {
-                        break;
-                    }
-                    last += 1;
-                }
-                if stretches[last].1 - stretches[k].0 >= run {
-                    for &(s0, s1) in &stretches[k..=last] {
-                        for j in s0..s1 {
-                            structure[at(j)] = true;
-                        }
-                    }
-                }
-                k = last + 1;
-            }
-        };
-        for y in 0..h {
-            mark_runs(w, &|x| y * w + x, &mut structure);
-        }
-        for x in 0..w {
-            mark_runs(h, &|y| y * w + x, &mut structure);
-        }
-        // Occupied components (8-connected) spanning `run` cells or more are structure too: a
-        // wall stretch between two doors is short, but it hangs on the building's wall network.
-        let mut seen = vec![false; w * h];
-        let mut stack: Vec<usize> = Vec::new();
-        let mut component: Vec<usize> = Vec::new();
-        for start in 0..w * h {
-            if seen[start] || map.cells()[start] != Cell::Occupied {
-                continue;
-            }
-            component.clear();
-            stack.push(start);
-            seen[start] = true;
-            let (mut x0, mut y0, mut x1, mut y1) = (w, h, 0, 0);
-            while let Some(i) = stack.pop() {
-                component.push(i);
-                let (x, y) = (i % w, i / w);
-                (x0, y0, x1, y1) = (x0.min(x), y0.min(y), x1.max(x), y1.max(y));
-                for ny in y.saturating_sub(1)..(y + 2).min(h) {
-                    for nx in x.saturating_sub(1)..(x + 2).min(w) {
-                        let j = ny * w + nx;
-                        if !seen[j] && map.cells()[j] == Cell::Occupied {
-                            seen[j] = true;
-                            stack.push(j);
-                        }
-                    }
-                }
-            }
-            // A piece hanging on a wall line is part of the building too.
-            if x1 - x0 + 1 >= run || y1 - y0 + 1 >= run || component.iter().any(|&i| structure[i]) {
-                for &i in &component {
-                    structure[i] = true;
-                }
-            }
-        }
-        // Unknown cells reachable from the map's edge through unknown cells are outside. Cells
-        // are marked when pushed, so the stack holds each cell once (marking them when popped
-        // let it grow to four entries per unknown cell: 32 MB on Cartesium).
-        let mut outside = vec![false; w * h];
-        let unknown = |i: usize| map.cells()[i] == Cell::Unknown;
-        stack.clear();
-        let visit = |i: usize, outside: &mut Vec<bool>, stack: &mut Vec<usize>| {
-            if !outside[i] && unknown(i) {
-                outside[i] = true;
-                stack.push(i);
-            }
-        };
-        for x in 0..w {
-            visit(x, &mut outside, &mut stack);
-            visit((h - 1) * w + x, &mut outside, &mut stack);
-        }
-        for y in 0..h {
-            visit(y * w, &mut outside, &mut stack);
-            visit(y * w + w - 1, &mut outside, &mut stack);
-        }
-        while let Some(i) = stack.pop() {
-            let (x, y) = (i % w, i / w);
-            if x > 0 {
-                visit(i - 1, &mut outside, &mut stack);
-            }
-            if x + 1 < w {
-                visit(i + 1, &mut outside, &mut stack);
-            }
-            if y > 0 {
-                visit(i - w, &mut outside, &mut stack);
-            }
-            if y + 1 < h {
-                visit(i + w, &mut outside, &mut stack);
-            }
-        }
-        for (i, c) in object.cells_mut().iter_mut().enumerate() {
-            if (*c == Cell::Occupied && structure[i]) || (*c == Cell::Unknown && outside[i]) {
-                *c = Cell::Free;
-            }
-        }
-        ObjectCells {
-            occupied: classes[0].then(|| AreaCounts::new(&object, Cell::Occupied)),
-            unknown: classes[1].then(|| AreaCounts::new(&object, Cell::Unknown)),
-        }
-    }
-
-    /// Occupied cells in `r` that may be objects.
-    pub fn occupied_in(&self, r: Rect) -> u32 {
-        self.occupied.as_ref().map_or(0, |c| c.count(r))
-    }
-
-    /// Unknown cells in `r` that may be objects.
-    pub fn unknown_in(&self, r: Rect) -> u32 {
-        self.unknown.as_ref().map_or(0, |c| c.count(r))
-    }
-}
-
 /// `log b(u_p, u_q)`, the same-length factor of eq. 3.34 for connecting walls differing by
 /// `d` cells, with the SaLe atom marginalised rather than thresholded:
 /// `b = P(SaLe) · exp(-d² / 2σ²) + (1 - P(SaLe))`.
@@ -332,7 +143,7 @@ pub fn evidence(world: &World, resolution: f64, classifier: &GeometryClassifier)
 }
 
 /// Connecting walls differing by at most this share of the longer one have the same length:
-/// the test of [`defect_pairs`] and of the `SaLe` atoms of [`training_facts`].
+/// the test of [`super::metrics::defect_pairs`] and of the `SaLe` atoms of [`training_facts`].
 pub const SAME_LENGTH_TOLERANCE: f64 = 0.1;
 
 /// Whether two units are adjacent and their connecting walls have the same length within
@@ -374,37 +185,10 @@ pub fn database_text(facts: &[Fact]) -> String {
     out
 }
 
-/// The share of adjacent room-room pairs whose connecting walls differ in length by more than
-/// 10 % of the longer one: the topological defects of section 3.7 (Fig. 3.27). `None` when the
-/// world has no adjacent room pairs.
-pub fn defects(world: &World) -> Option<f64> {
-    let (bad, pairs) = defect_pairs(world);
-    (pairs > 0).then(|| bad as f64 / pairs as f64)
-}
-
-/// The counts behind [`defects`]: adjacent room-room pairs whose connecting walls differ by
-/// more than 10 % of the longer one, and all adjacent room-room pairs. Pooled over several
-/// worlds they weigh each pair alike, where averaging [`defects`] weighs each world alike.
-pub fn defect_pairs(world: &World) -> (u32, u32) {
-    let t = world.wall_thickness;
-    let rooms: Vec<&Unit> = world.units.iter().filter(|u| u.kind == UnitType::Room).collect();
-    let (mut bad, mut pairs) = (0u32, 0u32);
-    for (i, a) in rooms.iter().enumerate() {
-        for b in &rooms[i + 1..] {
-            if let Some((la, lb)) = connecting_walls(a, b, t) {
-                pairs += 1;
-                if (la - lb).abs() as f64 > SAME_LENGTH_TOLERANCE * la.max(lb) as f64 {
-                    bad += 1;
-                }
-            }
-        }
-    }
-    (bad, pairs)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::floorplan::metrics::{defect_pairs, defects};
 
     fn unit(id: u32, x: i32, y: i32, w: i32, h: i32, kind: UnitType) -> Unit {
         Unit { id, x, y, w, h, kind }
@@ -417,64 +201,6 @@ mod tests {
         assert_eq!(c.classify(&unit(1, 0, 0, 82, 102, UnitType::Unknown), 1, 0.05), Geometry::RoomLike);
         assert_eq!(c.classify(&unit(1, 0, 0, 42, 402, UnitType::Unknown), 1, 0.05), Geometry::CorridorLike);
         assert_eq!(c.classify(&unit(1, 0, 0, 202, 242, UnitType::Unknown), 1, 0.05), Geometry::HallLike);
-    }
-
-    #[test]
-    fn object_cells_are_small_enclosed_things_not_walls_or_the_outside() {
-        // 100 x 60 at 5 cm: a closed room (walls 2 cells), a 10 x 6 cell desk outline inside
-        // with an unknown inside, a broken 30-cell wall stub hanging on the outer wall.
-        let mut g = Grid::new(100, 60, Cell::Unknown);
-        for y in 10..50 {
-            for x in 10..90 {
-                let wall = !(12..88).contains(&x) || !(12..48).contains(&y);
-                *g.at_mut(x, y) = if wall { Cell::Occupied } else { Cell::Free };
-            }
-        }
-        for y in 20..26 {
-            for x in 40..50 {
-                let edge = x == 40 || x == 49 || y == 20 || y == 25;
-                *g.at_mut(x, y) = if edge { Cell::Occupied } else { Cell::Unknown };
-            }
-        }
-        for x in 12..42 {
-            *g.at_mut(x, 35) = Cell::Occupied;
-        }
-        let o = ObjectCells::new(&g, 0.05, 2.0);
-        assert_eq!(o.occupied_in(Rect::new(0, 0, 100, 60)), 28, "only the desk outline");
-        assert_eq!(o.unknown_in(Rect::new(0, 0, 100, 60)), 32, "only the desk's inside");
-        assert_eq!(o.unknown_in(Rect::new(0, 0, 100, 10)), 0);
-    }
-
-    #[test]
-    fn a_wall_broken_by_doorways_is_structure_short_pieces_are_objects() {
-        // 120 x 40 at 5 cm, all free: a wall line (2 cells thick) at rows 20-21 whose pieces
-        // between 16-cell (0.8 m) doorways are 14 cells (0.7 m), each far below 2 m.
-        let mut g = Grid::new(120, 40, Cell::Free);
-        for x in 0..120 {
-            if x % 30 < 14 {
-                for y in 20..22 {
-                    *g.at_mut(x, y) = Cell::Occupied;
-                }
-            }
-        }
-        // Chairs along row 5: 5-cell pieces 3 cells apart (below the 0.3 m a wall piece has).
-        for x in [10, 18, 26, 34, 42, 50] {
-            for dx in 0..5 {
-                *g.at_mut(x + dx, 5) = Cell::Occupied;
-            }
-        }
-        let o = ObjectCells::new(&g, 0.05, 2.0);
-        assert_eq!(o.occupied_in(Rect::new(0, 18, 120, 6)), 0, "the broken wall is one line");
-        assert_eq!(o.occupied_in(Rect::new(0, 0, 120, 10)), 30, "the chairs stay objects");
-        // The same wall with doorways wider than 1 m (half of 2 m) falls apart into objects.
-        let mut wide = Grid::new(120, 40, Cell::Free);
-        for x in (0..120).filter(|x| x % 40 < 14) {
-            for y in 20..22 {
-                *wide.at_mut(x, y) = Cell::Occupied;
-            }
-        }
-        let o = ObjectCells::new(&wide, 0.05, 2.0);
-        assert_eq!(o.occupied_in(Rect::new(0, 18, 120, 6)), 3 * 14 * 2);
     }
 
     #[test]
@@ -605,7 +331,7 @@ pub struct KnowledgeConfig {
     pub same_length_sigma: f64,
     /// `p(C_M | object)` for map classes free, unknown, occupied: how the semantic sensor
     /// model (eq. 3.37) scores a non-free cell inside a room, hall or other unit that may be an
-    /// object ([`ObjectCells`]). Default `[0.1, 0.1, 0.45]`: an occupied outline is evidence of
+    /// object ([`ObjectCells`](crate::vision::objects::ObjectCells)). Default `[0.1, 0.1, 0.45]`: an occupied outline is evidence of
     /// furniture, but an unknown cell is as likely unexplored space as an object's shadow, so
     /// it gets no more than the free-world reading `p(unknown | free) = 0.1` of Tab. 3.1.
     /// Forgiving unknown cells too (`0.45`) let units spread over unexplored pockets and cost
@@ -615,7 +341,7 @@ pub struct KnowledgeConfig {
     /// a room; a "room" whose interior is mostly unseen is not furnished, it is too big.
     pub object_share: f64,
     /// Longest object (furniture) the semantic sensor model forgives, metres: occupied cells on
-    /// straight runs at least this long are walls (see [`ObjectCells`]).
+    /// straight runs at least this long are walls (see [`ObjectCells`](crate::vision::objects::ObjectCells)).
     pub max_object_m: f64,
     /// The geometry classifier (Tab. 3.6).
     pub geometry: GeometryClassifier,

@@ -182,6 +182,38 @@ pub fn confusion(map: &Grid<Cell>, world: &World) -> [[u64; 3]; 3] {
     n
 }
 
+// ---------------------------------------------------------------------------------------------
+// Topological defects (section 3.7, Fig. 3.27): a quality metric of a world, on its own.
+
+/// The share of adjacent room-room pairs whose connecting walls differ in length by more than
+/// 10 % of the longer one: the topological defects of section 3.7 (Fig. 3.27). `None` when the
+/// world has no adjacent room pairs.
+pub fn defects(world: &World) -> Option<f64> {
+    let (bad, pairs) = defect_pairs(world);
+    (pairs > 0).then(|| bad as f64 / pairs as f64)
+}
+
+/// The counts behind [`defects`]: adjacent room-room pairs whose connecting walls differ by
+/// more than 10 % of the longer one, and all adjacent room-room pairs. Pooled over several
+/// worlds they weigh each pair alike, where averaging [`defects`] weighs each world alike.
+pub fn defect_pairs(world: &World) -> (u32, u32) {
+    let t = world.wall_thickness;
+    let rooms: Vec<&super::world::Unit> =
+        world.units.iter().filter(|u| u.kind == super::world::UnitType::Room).collect();
+    let (mut bad, mut pairs) = (0u32, 0u32);
+    for (i, a) in rooms.iter().enumerate() {
+        for b in &rooms[i + 1..] {
+            if let Some((la, lb)) = super::knowledge::connecting_walls(a, b, t) {
+                pairs += 1;
+                if (la - lb).abs() as f64 > super::knowledge::SAME_LENGTH_TOLERANCE * la.max(lb) as f64 {
+                    bad += 1;
+                }
+            }
+        }
+    }
+    (bad, pairs)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

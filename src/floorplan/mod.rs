@@ -1,23 +1,34 @@
-//! Semantic floor plans: the world `W = {U, T, R}` and the synthetic generator.
+//! Semantic floor plans: the world `W = {U, T, R}`, the chain that finds it (its kernels and
+//! their schedule, the posterior, knowledge supervision), what is measured of it, and the
+//! synthetic generator.
 //!
 //! A [`World`] is what the chain samples and what every exporter writes; `world.json` is its
-//! serialised form (schema in [`world`]).
+//! serialised form (schema in [`world`]). The chain's working state (units and doors over an
+//! incremental [`Explanation`], the moves that change it, the proposal distributions) is
+//! internal: callers drive a [`Chain`] and read worlds, traces and reports from it.
 
 pub mod chain;
-pub mod explain;
+pub(crate) mod explain;
 pub mod graph;
-pub mod kernels;
+pub(crate) mod kernels;
 pub mod knowledge;
 pub mod metrics;
 pub mod posterior;
 pub mod report;
 pub mod room_layer;
 pub mod rooms;
-pub mod state;
+mod schedule;
+pub(crate) mod state;
 pub mod synth;
 pub mod topology;
+mod trace;
 pub mod unexplained;
 pub mod world;
 
 pub use chain::{Chain, ChainConfig, ChainError, DetectorConfig, OutputConfig};
+pub use explain::Explanation;
+pub use kernels::KernelConfig;
+pub use schedule::{Kernel, KernelWeights, Phase, Schedule};
+pub use state::DoorLimits;
+pub use trace::Trace;
 pub use world::{Door, Frame, Rect, Room, UnexplainedArea, Unit, UnitType, World, WorldError, WORLD_FORMAT};

@@ -1,12 +1,12 @@
 //! The summary of a run, `report.json`, shared by the command line and the browser so that
 //! both write the same fields.
 
-use super::knowledge::defects;
 use super::metrics;
+use super::metrics::defects;
+use super::schedule::Kernel;
 use super::world::World;
 use super::Chain;
 use crate::grid::{Grid, OccupancyMap};
-use crate::mcmc::Kernel;
 
 /// `report.json` for a chain's typed best `world` on `map`, with its room `labels` and the
 /// `seconds` spent iterating: iterations and speed, K(W,M) and the confusion counts, units,

@@ -5,18 +5,11 @@
 //! undone. Undo restores the state bit for bit (unit order and ids included), so a rejected
 //! proposal leaves no trace and the chain stays deterministic.
 
-use super::explain::{AreaCounts, Explanation};
+use super::explain::Explanation;
 use super::world::{Rect, Unit, UnitType};
+pub use crate::geometry::Axis;
+use crate::geometry::CellCounts;
 use crate::grid::{Cell, Grid};
-
-/// Which way a door crosses the wall(s) between its two units.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub enum Axis {
-    /// `lo` lies left of `hi`; the door crosses vertical walls and spans rows.
-    Horizontal,
-    /// `lo` lies above `hi`; the door crosses horizontal walls and spans columns.
-    Vertical,
-}
 
 /// A door between two units, by unit id; its rectangle follows the units' walls.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -183,8 +176,7 @@ pub enum Undo {
 pub struct State {
     /// The incremental likelihood bookkeeping.
     pub explanation: Explanation,
-    occupied: AreaCounts,
-    unknown: AreaCounts,
+    counts: CellCounts,
     /// The units, in slot order.
     pub units: Vec<Unit>,
     /// The doors.
@@ -207,8 +199,7 @@ impl State {
     pub fn new(map: &Grid<Cell>, door_limits: DoorLimits, wall: i32) -> Self {
         State {
             explanation: Explanation::new(map),
-            occupied: AreaCounts::new(map, Cell::Occupied),
-            unknown: AreaCounts::new(map, Cell::Unknown),
+            counts: CellCounts::new(map),
             units: Vec::new(),
             doors: Vec::new(),
             next_id: 1,
@@ -231,22 +222,19 @@ impl State {
         self.height
     }
 
+    /// The map's cell counts, for the detectors.
+    pub fn counts(&self) -> &CellCounts {
+        &self.counts
+    }
+
     /// Occupied cells inside a rectangle.
     pub fn occupied_in(&self, r: Rect) -> u32 {
-        self.occupied.count(r)
+        self.counts.occupied_in(r)
     }
 
-    /// Free cells inside a rectangle: its cells on the map that are neither occupied nor
-    /// unknown (a third summed-area table would cost 4 bytes a cell for nothing).
+    /// Free cells inside a rectangle (see [`CellCounts::free_in`]).
     pub fn free_in(&self, r: Rect) -> u32 {
-        let w = (r.right().min(self.width) - r.x.max(0)).max(0);
-        let h = (r.bottom().min(self.height) - r.y.max(0)).max(0);
-        (w * h) as u32 - self.occupied.count(r) - self.unknown.count(r)
-    }
-
-    /// Unknown cells inside a rectangle.
-    pub fn unknown_in(&self, r: Rect) -> u32 {
-        self.unknown.count(r)
+        self.counts.free_in(r)
     }
 
     /// Wall weights `ω_w` of eq. 3.11 for the four walls (left, right, top, bottom): the share
@@ -259,7 +247,7 @@ impl State {
             Rect::new(r.x, r.y, r.w, t),
             Rect::new(r.x, r.bottom() - t, r.w, t),
         ];
-        walls.map(|w| self.occupied.count(w) as f64 / w.area().max(1) as f64)
+        walls.map(|w| self.counts.occupied_in(w) as f64 / w.area().max(1) as f64)
     }
 
     /// The unit weight `ω_r` of eq. 3.10: its weakest wall.

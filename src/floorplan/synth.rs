@@ -6,7 +6,8 @@
 //! units such as storage or stairs, all joined by doors), then maps it the way a robot with a
 //! 2D laser would have: walls as seen from where the robot went, gaps in walls, furniture
 //! blobs, rooms never entered, speckle, and optionally the whole map rotated against the image
-//! axes. Everything is drawn from one seeded ChaCha8 stream with platform-independent draws and
+//! axes. Everything is drawn from one seeded [`Rng`] (ChaCha8, the chains' generator) with
+//! platform-independent draws and
 //! `libm` arithmetic, so a config and a seed give the same bytes natively and in wasm.
 //!
 //! # What the truth means
@@ -50,15 +51,13 @@
 
 mod config;
 mod layout;
-mod rng;
 mod scan;
 
 pub use config::SynthConfig;
 
 use super::{Frame, Unit, UnitType, World, WORLD_FORMAT};
 use crate::grid::{Cell, Classifier, Grid, MapYaml, Mode, OccupancyMap, Raster};
-use rand::SeedableRng;
-use rand_chacha::ChaCha8Rng;
+use crate::mcmc::Rng;
 
 /// Why a configuration was refused: the message names the field and the accepted range.
 #[derive(Debug, Clone, PartialEq)]
@@ -125,7 +124,7 @@ impl Synthetic {
 /// ```
 pub fn generate(config: &SynthConfig, seed: u64) -> Result<Synthetic, SynthError> {
     let cells = config.cells()?;
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let mut rng = Rng::seed(seed);
     let plan = layout::plan(&cells, config.extra_doors, &mut rng)?;
     let explored = choose_explored(&plan.spaces, config.unexplored, &mut rng);
     let noise = scan::Noise {
@@ -177,12 +176,12 @@ pub fn generate(config: &SynthConfig, seed: u64) -> Result<Synthetic, SynthError
 
 /// Picks which units the robot never entered: a fraction of the rooms, halls and "other"
 /// units, never a corridor (the robot drives through those).
-fn choose_explored(spaces: &[layout::Space], unexplored: f64, rng: &mut rng::Stream) -> Vec<bool> {
+fn choose_explored(spaces: &[layout::Space], unexplored: f64, rng: &mut Rng) -> Vec<bool> {
     let mut pool: Vec<usize> = (0..spaces.len()).filter(|&i| spaces[i].kind != UnitType::Corridor).collect();
     let n = (libm::round(unexplored * pool.len() as f64) as usize).min(pool.len());
     let mut explored = vec![true; spaces.len()];
     for k in 0..n {
-        let j = k + rng::below(rng, pool.len() - k);
+        let j = k + rng.index(pool.len() - k);
         pool.swap(k, j);
         explored[pool[k]] = false;
     }

@@ -8,6 +8,7 @@
 //! ring included) and no door, listed as row runs so that a reader can redraw them exactly.
 
 use super::world::{Rect, UnexplainedArea};
+use crate::grid::flood::{Flood, Neighbours};
 use crate::grid::{Cell, Grid};
 
 /// Components smaller than this many cells are not listed: single free cells and specks
@@ -53,37 +54,15 @@ pub fn unexplained_areas(
     }
 
     let mut areas = Vec::new();
-    let mut stack = Vec::new();
+    let mut flood = Flood::default();
     let mut members = Vec::new();
     for start in 0..w * h {
         if !open[start] {
             continue;
         }
-        open[start] = false;
-        stack.push(start);
         members.clear();
-        while let Some(i) = stack.pop() {
-            members.push(i);
-            let (x, y) = (i % w, i / w);
-            let mut visit = |j: usize| {
-                if open[j] {
-                    open[j] = false;
-                    stack.push(j);
-                }
-            };
-            if x > 0 {
-                visit(i - 1);
-            }
-            if x + 1 < w {
-                visit(i + 1);
-            }
-            if y > 0 {
-                visit(i - w);
-            }
-            if y + 1 < h {
-                visit(i + w);
-            }
-        }
+        let enter = |j: usize| std::mem::replace(&mut open[j], false);
+        flood.fill(w, h, [start], Neighbours::Four, enter, |i| members.push(i));
         if members.len() < min_cells {
             continue;
         }

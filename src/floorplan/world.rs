@@ -44,6 +44,7 @@
 //!   The chain lists components of at least
 //!   [`MIN_UNEXPLAINED_CELLS`](super::unexplained::MIN_UNEXPLAINED_CELLS) cells.
 
+pub use crate::geometry::{Frame, Rect};
 use serde::{Deserialize, Serialize};
 
 /// The format tag written into every `world.json`.
@@ -80,71 +81,6 @@ impl UnitType {
             UnitType::Other => "other",
             UnitType::Unknown => "unknown",
         }
-    }
-}
-
-/// An axis-aligned rectangle of cells: columns `x .. x + w`, rows `y .. y + h`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
-pub struct Rect {
-    /// Leftmost column.
-    pub x: i32,
-    /// Top row.
-    pub y: i32,
-    /// Width in cells.
-    pub w: i32,
-    /// Height in cells.
-    pub h: i32,
-}
-
-impl Rect {
-    /// A rectangle from its top-left cell and size.
-    pub fn new(x: i32, y: i32, w: i32, h: i32) -> Self {
-        Rect { x, y, w, h }
-    }
-
-    /// One past the rightmost column.
-    pub fn right(&self) -> i32 {
-        self.x + self.w
-    }
-
-    /// One past the bottom row.
-    pub fn bottom(&self) -> i32 {
-        self.y + self.h
-    }
-
-    /// Number of cells covered.
-    pub fn area(&self) -> i64 {
-        self.w.max(0) as i64 * self.h.max(0) as i64
-    }
-
-    /// Whether cell `(x, y)` is inside.
-    pub fn contains(&self, x: i32, y: i32) -> bool {
-        x >= self.x && x < self.right() && y >= self.y && y < self.bottom()
-    }
-
-    /// Whether cell `(x, y)` is on the outer ring (a wall cell, eq. 3.8's `S_w`).
-    pub fn on_border(&self, x: i32, y: i32) -> bool {
-        self.in_ring(x, y, 1)
-    }
-
-    /// Whether cell `(x, y)` lies within `t` cells of the rectangle's edge: the walls of a unit
-    /// whose walls are `t` cells thick.
-    pub fn in_ring(&self, x: i32, y: i32, t: i32) -> bool {
-        self.contains(x, y) && (x < self.x + t || y < self.y + t || x >= self.right() - t || y >= self.bottom() - t)
-    }
-
-    /// The centre in cell coordinates (cell centres at `+0.5`).
-    pub fn center(&self) -> (f64, f64) {
-        (self.x as f64 + self.w as f64 / 2.0, self.y as f64 + self.h as f64 / 2.0)
-    }
-
-    /// The overlap of two rectangles, if any.
-    pub fn intersection(&self, o: &Rect) -> Option<Rect> {
-        let x0 = self.x.max(o.x);
-        let y0 = self.y.max(o.y);
-        let x1 = self.right().min(o.right());
-        let y1 = self.bottom().min(o.bottom());
-        (x0 < x1 && y0 < y1).then(|| Rect::new(x0, y0, x1 - x0, y1 - y0))
     }
 }
 
@@ -215,45 +151,6 @@ impl Door {
     pub fn cells(&self) -> impl Iterator<Item = (i32, i32)> + '_ {
         let r = self.rect();
         (r.y..r.bottom()).flat_map(move |y| (r.x..r.right()).map(move |x| (x, y)))
-    }
-}
-
-/// How the world frame sits on the map.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Frame {
-    /// Rotation from the world frame to the map, radians, counter-clockwise in image terms
-    /// (x right, y down).
-    pub angle: f64,
-    /// Width and height of the world-frame grid, cells.
-    pub world_size: [u32; 2],
-    /// Width and height of the map, cells.
-    pub map_size: [u32; 2],
-}
-
-impl Frame {
-    /// The identity frame for a map of the given size.
-    pub fn identity(width: u32, height: u32) -> Self {
-        Frame { angle: 0.0, world_size: [width, height], map_size: [width, height] }
-    }
-
-    /// Whether world cells are map cells.
-    pub fn is_identity(&self) -> bool {
-        self.angle == 0.0 && self.world_size == self.map_size
-    }
-
-    /// Maps a world-frame point (cell units, continuous) to map coordinates.
-    pub fn to_map(&self, x: f64, y: f64) -> (f64, f64) {
-        let (s, c) = (libm::sin(self.angle), libm::cos(self.angle));
-        let (wx, wy) = (x - self.world_size[0] as f64 / 2.0, y - self.world_size[1] as f64 / 2.0);
-        (self.map_size[0] as f64 / 2.0 + c * wx - s * wy, self.map_size[1] as f64 / 2.0 + s * wx + c * wy)
-    }
-
-    /// Maps a map point to the world frame (the inverse of [`Frame::to_map`]).
-    pub fn to_world(&self, x: f64, y: f64) -> (f64, f64) {
-        let (s, c) = (libm::sin(self.angle), libm::cos(self.angle));
-        let (mx, my) = (x - self.map_size[0] as f64 / 2.0, y - self.map_size[1] as f64 / 2.0);
-        (self.world_size[0] as f64 / 2.0 + c * mx + s * my, self.world_size[1] as f64 / 2.0 - s * mx + c * my)
     }
 }
 

@@ -24,6 +24,7 @@
 
 mod classify;
 mod error;
+pub mod flood;
 pub mod pgm;
 pub mod png;
 mod raster;

@@ -2,8 +2,10 @@
 //!
 //! Nothing here knows about floor plans or table tops: weighted selection of proposal elements
 //! (eqs. 3.15 - 3.17), the acceptance test of eq. 3.9 in log space, a deterministic random
-//! number generator, and the bookkeeping a browser frame loop wants (trace, acceptance window,
-//! a ring buffer of recent samples). Floor-plan kernels live in [`crate::floorplan`].
+//! number generator, and the bookkeeping a browser frame loop wants (trace points, acceptance
+//! window, a ring buffer of recent samples). The floor-plan kernels, their schedule (Tab. 3.2)
+//! and per-kernel counts live in [`crate::floorplan`]; the table-top moves in
+//! [`crate::tabletop`].
 //!
 //! ```
 //! use ksmcmc::mcmc::{accept, Rng};
@@ -13,13 +15,11 @@
 //! ```
 
 mod ring;
-mod schedule;
 mod trace;
 mod weights;
 
 pub use ring::Ring;
-pub use schedule::{Kernel, KernelWeights, Phase, Schedule};
-pub use trace::{Trace, TracePoint};
+pub use trace::{AcceptanceWindow, TracePoint};
 pub use weights::Cumulative;
 
 use rand::{Rng as _, SeedableRng};
@@ -55,6 +55,31 @@ impl Rng {
     #[inline]
     pub fn range_i32(&mut self, lo: i32, hi: i32) -> i32 {
         self.0.gen_range(lo..=hi)
+    }
+
+    /// An index in `0..n`, drawn through `u32` (as [`Rng::below`]) so that 32-bit wasm and
+    /// 64-bit hosts consume the stream alike; `n` must be in `1..=u32::MAX`.
+    #[inline]
+    pub fn index(&mut self, n: usize) -> usize {
+        debug_assert!(n >= 1 && n <= u32::MAX as usize);
+        self.below(n as u32) as usize
+    }
+
+    /// Uniform integer in `lo..=hi`; `lo`, without drawing, when the range is empty or one
+    /// value.
+    #[inline]
+    pub fn between(&mut self, lo: i32, hi: i32) -> i32 {
+        if hi <= lo {
+            lo
+        } else {
+            self.range_i32(lo, hi)
+        }
+    }
+
+    /// True with probability `p`.
+    #[inline]
+    pub fn chance(&mut self, p: f64) -> bool {
+        self.uniform() < p
     }
 
     /// A standard normal deviate (Box-Muller with libm, identical on every platform).

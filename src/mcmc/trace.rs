@@ -1,7 +1,6 @@
-//! What a chain did: log posterior over time, acceptance over a sliding window, per-kernel
-//! counts. Small and allocation-free per step, so a frame loop can read it every frame.
+//! What a chain did, for a frame loop to read every frame: recorded points of the log posterior,
+//! and the acceptance rate over a sliding window. Small and allocation-free per step.
 
-use super::Kernel;
 use serde::Serialize;
 
 /// One recorded point of the trace.
@@ -17,77 +16,55 @@ pub struct TracePoint {
     pub size: u32,
 }
 
-/// Chain statistics.
-#[derive(Debug, Clone, Serialize)]
-pub struct Trace {
-    /// Proposals per kernel, in [`Kernel::ALL`] order.
-    pub proposed: [u64; 9],
-    /// Accepted proposals per kernel.
-    pub accepted: [u64; 9],
-    /// Recorded points (one every `every` iterations).
-    pub points: Vec<TracePoint>,
-    /// Record a point every this many iterations.
-    pub every: u64,
+/// The acceptance rate over the last `size` proposals.
+///
+/// ```
+/// use ksmcmc::mcmc::AcceptanceWindow;
+/// let mut w = AcceptanceWindow::new(2);
+/// for accepted in [true, false, false] {
+///     w.record(accepted);
+/// }
+/// assert_eq!(w.rate(), 0.0); // the first outcome has left the window
+/// ```
+#[derive(Debug, Clone)]
+pub struct AcceptanceWindow {
     window: Vec<bool>,
     /// The window's size, kept apart from the vector's capacity, which a clone does not keep.
-    window_size: usize,
-    window_pos: usize,
-    window_accepted: u32,
+    size: usize,
+    pos: usize,
+    accepted: u32,
 }
 
-impl Trace {
-    /// An empty trace with an acceptance window of `window` proposals, recording every `every`.
-    pub fn new(window: usize, every: u64) -> Self {
-        Trace {
-            proposed: [0; 9],
-            accepted: [0; 9],
-            points: Vec::new(),
-            every: every.max(1),
-            window: Vec::with_capacity(window.max(1)),
-            window_size: window.max(1),
-            window_pos: 0,
-            window_accepted: 0,
-        }
+impl AcceptanceWindow {
+    /// An empty window over `size` proposals (at least one).
+    pub fn new(size: usize) -> Self {
+        AcceptanceWindow { window: Vec::with_capacity(size.max(1)), size: size.max(1), pos: 0, accepted: 0 }
     }
 
     /// Records one proposal's outcome.
-    pub fn record(&mut self, kernel: Kernel, accepted: bool) {
-        self.proposed[kernel.index()] += 1;
-        if accepted {
-            self.accepted[kernel.index()] += 1;
-        }
-        let cap = self.window_size;
+    pub fn record(&mut self, accepted: bool) {
+        let cap = self.size;
         if self.window.len() < cap {
             self.window.push(accepted);
         } else {
-            if self.window[self.window_pos] {
-                self.window_accepted -= 1;
+            if self.window[self.pos] {
+                self.accepted -= 1;
             }
-            self.window[self.window_pos] = accepted;
-            self.window_pos = (self.window_pos + 1) % cap;
+            self.window[self.pos] = accepted;
+            self.pos = (self.pos + 1) % cap;
         }
         if accepted {
-            self.window_accepted += 1;
+            self.accepted += 1;
         }
     }
 
-    /// Acceptance rate over the window.
-    pub fn acceptance(&self) -> f64 {
+    /// Acceptance rate over the window; 0 before the first proposal.
+    pub fn rate(&self) -> f64 {
         if self.window.is_empty() {
             0.0
         } else {
-            self.window_accepted as f64 / self.window.len() as f64
+            self.accepted as f64 / self.window.len() as f64
         }
-    }
-
-    /// Total proposals.
-    pub fn total_proposed(&self) -> u64 {
-        self.proposed.iter().sum()
-    }
-
-    /// Total accepted.
-    pub fn total_accepted(&self) -> u64 {
-        self.accepted.iter().sum()
     }
 }
 
@@ -96,18 +73,17 @@ mod tests {
     use super::*;
 
     #[test]
-    fn a_cloned_trace_keeps_its_window() {
-        let mut t = Trace::new(4, 10);
+    fn a_cloned_window_keeps_its_size() {
+        let mut w = AcceptanceWindow::new(4);
         for i in 0..10 {
-            t.record(Kernel::Add, i % 2 == 0);
+            w.record(i % 2 == 0);
         }
-        assert_eq!(t.acceptance(), 0.5);
-        let mut c = t.clone();
+        assert_eq!(w.rate(), 0.5);
+        let mut c = w.clone();
         for _ in 0..4 {
-            c.record(Kernel::Remove, true);
+            c.record(true);
         }
-        assert_eq!(c.acceptance(), 1.0);
-        assert_eq!(c.total_proposed(), 14);
-        assert_eq!(t.total_proposed(), 10);
+        assert_eq!(c.rate(), 1.0);
+        assert_eq!(w.rate(), 0.5);
     }
 }

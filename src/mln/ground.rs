@@ -901,81 +901,13 @@ impl<'a> Builder<'a> {
         let n = self.atom_key.len();
         let nc = self.clause_feature.len();
         let nf = self.feature_weight.len();
-        let (occ_start, occ) = occurrences(n, &self.lits, &self.clause_start);
         let mut fixed = vec![0u8; n]; // 0 unknown, 1 false, 2 true
         let mut clause_sat = vec![false; nc];
         let mut dead = vec![false; nf];
         if simplify {
-            let mut open: Vec<u32> = (0..nc).map(|c| self.clause_start[c + 1] - self.clause_start[c]).collect();
-            let mut fixed_by = vec![u32::MAX; n];
-            let mut queue: Vec<(u32, u32)> = Vec::new();
-            for f in 0..nf {
-                if self.feature_weight[f].is_infinite() {
-                    for c in self.feature_start[f]..self.feature_start[f + 1] {
-                        if open[c as usize] == 1 {
-                            queue.push((self.lits[self.clause_start[c as usize] as usize], f as u32));
-                        }
-                    }
-                }
-            }
-            while let Some((lit, f)) = queue.pop() {
-                let a = (lit >> 1) as usize;
-                let val = lit & 1 == 0;
-                if fixed[a] != 0 {
-                    if (fixed[a] == 2) != val {
-                        return Err(self.contradiction(a, f, fixed_by[a]));
-                    }
-                    continue;
-                }
-                fixed[a] = 1 + val as u8;
-                fixed_by[a] = f;
-                for &o in &occ[occ_start[a] as usize..occ_start[a + 1] as usize] {
-                    let c = (o >> 1) as usize;
-                    if clause_sat[c] {
-                        continue;
-                    }
-                    if val != (o & 1 == 1) {
-                        clause_sat[c] = true;
-                        continue;
-                    }
-                    open[c] -= 1;
-                    let g = self.clause_feature[c] as usize;
-                    let hard = self.feature_weight[g].is_infinite();
-                    if open[c] == 0 {
-                        if hard {
-                            return Err(self.contradiction(a, g as u32, f));
-                        }
-                        dead[g] = true;
-                    } else if open[c] == 1 && hard {
-                        let range = self.clause_start[c] as usize..self.clause_start[c + 1] as usize;
-                        if let Some(&l) = self.lits[range].iter().find(|&&l| fixed[(l >> 1) as usize] == 0) {
-                            queue.push((l, g as u32));
-                        }
-                    }
-                }
-            }
+            self.propagate(&mut fixed, &mut clause_sat, &mut dead)?;
         }
-        // Which features and clauses survive, and which atoms they use.
-        let mut used = vec![false; n];
-        let mut keep_feature = vec![false; nf];
-        for f in 0..nf {
-            if dead[f] {
-                continue;
-            }
-            let clauses = self.feature_start[f] as usize..self.feature_start[f + 1] as usize;
-            if clauses.clone().all(|c| clause_sat[c]) {
-                if self.feature_weight[f].is_finite() {
-                    self.offset += self.feature_weight[f];
-                }
-                continue;
-            }
-            keep_feature[f] = true;
-            for c in clauses.filter(|&c| !clause_sat[c]) {
-                for &l in &self.lits[self.clause_start[c] as usize..self.clause_start[c + 1] as usize] {
-                    used[(l >> 1) as usize] = true;
-                }
-            }
-        }
+        let (keep_feature, used) = self.surviving(&dead, &clause_sat);
         let mut queried = vec![false; n];
         for &(_, key) in &query {
             let v = self.table.get(key);
@@ -1045,6 +977,90 @@ impl<'a> Builder<'a> {
             offset: self.offset,
             query,
         })
+    }
+
+    /// Unit propagation of the hard clauses: fixes atoms (`fixed`: 1 false, 2 true), marks the
+    /// clauses that became true and the features one of whose clauses became false.
+    fn propagate(&self, fixed: &mut [u8], clause_sat: &mut [bool], dead: &mut [bool]) -> Result<(), MlnError> {
+        let (n, nc, nf) = (self.atom_key.len(), self.clause_feature.len(), self.feature_weight.len());
+        let (occ_start, occ) = occurrences(n, &self.lits, &self.clause_start);
+        let mut open: Vec<u32> = (0..nc).map(|c| self.clause_start[c + 1] - self.clause_start[c]).collect();
+        let mut fixed_by = vec![u32::MAX; n];
+        let mut queue: Vec<(u32, u32)> = Vec::new();
+        for f in 0..nf {
+            if self.feature_weight[f].is_infinite() {
+                for c in self.feature_start[f]..self.feature_start[f + 1] {
+                    if open[c as usize] == 1 {
+                        queue.push((self.lits[self.clause_start[c as usize] as usize], f as u32));
+                    }
+                }
+            }
+        }
+        while let Some((lit, f)) = queue.pop() {
+            let a = (lit >> 1) as usize;
+            let val = lit & 1 == 0;
+            if fixed[a] != 0 {
+                if (fixed[a] == 2) != val {
+                    return Err(self.contradiction(a, f, fixed_by[a]));
+                }
+                continue;
+            }
+            fixed[a] = 1 + val as u8;
+            fixed_by[a] = f;
+            for &o in &occ[occ_start[a] as usize..occ_start[a + 1] as usize] {
+                let c = (o >> 1) as usize;
+                if clause_sat[c] {
+                    continue;
+                }
+                if val != (o & 1 == 1) {
+                    clause_sat[c] = true;
+                    continue;
+                }
+                open[c] -= 1;
+                let g = self.clause_feature[c] as usize;
+                let hard = self.feature_weight[g].is_infinite();
+                if open[c] == 0 {
+                    if hard {
+                        return Err(self.contradiction(a, g as u32, f));
+                    }
+                    dead[g] = true;
+                } else if open[c] == 1 && hard {
+                    let range = self.clause_start[c] as usize..self.clause_start[c + 1] as usize;
+                    if let Some(&l) = self.lits[range].iter().find(|&&l| fixed[(l >> 1) as usize] == 0) {
+                        queue.push((l, g as u32));
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Which features survive (neither dead nor satisfied, whose weight joins the offset) and
+    /// which atoms their open clauses use.
+    fn surviving(&mut self, dead: &[bool], clause_sat: &[bool]) -> (Vec<bool>, Vec<bool>) {
+        let (n, nf) = (self.atom_key.len(), self.feature_weight.len());
+        // Which features and clauses survive, and which atoms they use.
+        let mut used = vec![false; n];
+        let mut keep_feature = vec![false; nf];
+        for f in 0..nf {
+            if dead[f] {
+                continue;
+            }
+            let clauses = self.feature_start[f] as usize..self.feature_start[f + 1] as usize;
+            if clauses.clone().all(|c| clause_sat[c]) {
+                if self.feature_weight[f].is_finite() {
+                    self.offset += self.feature_weight[f];
+                }
+                continue;
+            }
+            keep_feature[f] = true;
+            for c in clauses.filter(|&c| !clause_sat[c]) {
+                for &l in &self.lits[self.clause_start[c] as usize..self.clause_start[c + 1] as usize] {
+                    used[(l >> 1) as usize] = true;
+                }
+            }
+        }
+        (keep_feature, used)
     }
 
     fn contradiction(&self, atom: usize, f: u32, g: u32) -> MlnError {

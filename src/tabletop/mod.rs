@@ -32,7 +32,7 @@
 //! seed; call [`TabletopChain::step`] for a few iterations per frame; read the current or best
 //! poses, and [`TabletopChain::best_analysis`] for query probabilities, decisions and the scene
 //! graph ([`Analysis::graph_json`]). Nothing here reads files, the clock or threads, and the
-//! same seed gives the same result natively and in WebAssembly (`tests/tabletop_pinned.rs`).
+//! same seed gives the same result natively and in WebAssembly (`tests/it/tabletop_pinned.rs`).
 //!
 //! ```
 //! use ksmcmc::tabletop::scene::Scene;

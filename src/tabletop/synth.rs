@@ -451,82 +451,7 @@ pub fn generate(config: &SynthConfig, seed: u64) -> Result<Scene, SynthError> {
     }
     let n_false = n_false.min(config.max_objects);
     let budget = target.max(n_false + config.hovering.unwrap_or(0) + (n_false > 0) as u32).min(config.max_objects);
-    let mut items: Vec<Item> = Vec::new();
-    let mut discs: Vec<(f64, f64, f64)> = Vec::new();
-    let mut visible = 0u32;
-    let mut hovering_left = config.hovering.unwrap_or(0);
-    let mut failures = 0;
-    // Leave room for the false estimates, and make sure they have an object to cut into.
-    let reserve = |visible: u32| budget.saturating_sub(visible).saturating_sub(n_false);
-    let has_target =
-        |items: &[Item]| items.iter().any(|i| i.visible && matches!(i.kind, Kind::Resting | Kind::Stacked));
-    while failures < 40 {
-        let need_target = n_false > 0 && !has_target(&items);
-        if reserve(visible) == 0 && !need_target {
-            break;
-        }
-        let left = reserve(visible);
-        let forced_hover = hovering_left > 0 && (left > 1 || !need_target);
-        let group = if forced_hover {
-            hovering_left -= 1;
-            group_hovering(&mut rng)
-        } else if need_target && left <= 1 {
-            group_resting(&mut rng)
-        } else {
-            let mut w = config.group_weights;
-            if config.hovering.is_some() {
-                w[3] = 0.0;
-            }
-            if left < 2 {
-                w[1] = 0.0;
-                w[2] = 0.0;
-            }
-            if w.iter().sum::<f64>() <= 0.0 {
-                w = [1.0, 0.0, 0.0, 0.0];
-            }
-            let mut pick = rng.uniform() * w.iter().sum::<f64>();
-            let mut kind = 0;
-            for (k, wk) in w.iter().enumerate() {
-                if pick < *wk {
-                    kind = k;
-                    break;
-                }
-                pick -= wk;
-            }
-            match kind {
-                0 => group_resting(&mut rng),
-                1 => group_stack(&mut rng, left),
-                2 => group_leaning(&mut rng),
-                _ => group_hovering(&mut rng),
-            }
-        };
-        let r = radius(&group);
-        let (ax, ay) = (config.area[0] / 2.0 - r, config.area[1] / 2.0 - r);
-        let mut placed = false;
-        if ax > 0.0 && ay > 0.0 {
-            for _ in 0..60 {
-                let (x, y) = (uniform(&mut rng, -ax, ax), uniform(&mut rng, -ay, ay));
-                if discs.iter().all(|&(u, v, s)| ((x - u) * (x - u) + (y - v) * (y - v)).sqrt() > r + s + 0.03) {
-                    let place = at(Vector3::new(x, y, 0.0), yaw(uniform(&mut rng, 0.0, 2.0 * PI)));
-                    discs.push((x, y, r));
-                    for mut it in group {
-                        it.pose = place * it.pose;
-                        visible += it.visible as u32;
-                        items.push(it);
-                    }
-                    placed = true;
-                    break;
-                }
-            }
-        }
-        if !placed {
-            failures += 1;
-            if forced_hover {
-                // A forced hovering box that did not fit is retried.
-                hovering_left += 1;
-            }
-        }
-    }
+    let (mut items, mut visible) = place_groups(config, budget, n_false, &mut rng);
     let placed_hovering = items.iter().filter(|i| i.kind == Kind::Hovering).count() as u32;
     if let Some(h) = config.hovering {
         if placed_hovering < h {
@@ -550,7 +475,107 @@ pub fn generate(config: &SynthConfig, seed: u64) -> Result<Scene, SynthError> {
     if config.false_estimates.is_some_and(|n| added_false < n) {
         return Err(SynthError::NoRoom(format!("placed {added_false} of {n_false} false estimates")));
     }
+    let (objects, hidden_objects) = observe(&items, &camera, config, &mut rng);
+    let mut scene = Scene { table, camera, objects, hidden_objects };
+    scene.camera.pose =
+        Pose { t: scene.camera.pose.t.map(|v| round(v, 1e6)), q: scene.camera.pose.q.map(|v| round(v, 1e9)) };
+    scene
+        .validate()
+        .map_err(|e| SynthError::NoRoom(format!("the generated scene is invalid ({e}); try another seed")))?;
+    Ok(scene)
+}
 
+/// Places groups of boxes (resting, stacked, leaning, hovering) on the table until `budget`
+/// visible boxes, less room for `n_false` false estimates, are placed or 40 groups did not
+/// fit; returns the boxes and how many are visible.
+fn place_groups(config: &SynthConfig, budget: u32, n_false: u32, rng: &mut Rng) -> (Vec<Item>, u32) {
+    let mut items: Vec<Item> = Vec::new();
+    let mut discs: Vec<(f64, f64, f64)> = Vec::new();
+    let mut visible = 0u32;
+    let mut hovering_left = config.hovering.unwrap_or(0);
+    let mut failures = 0;
+    // Leave room for the false estimates, and make sure they have an object to cut into.
+    let reserve = |visible: u32| budget.saturating_sub(visible).saturating_sub(n_false);
+    let has_target =
+        |items: &[Item]| items.iter().any(|i| i.visible && matches!(i.kind, Kind::Resting | Kind::Stacked));
+    while failures < 40 {
+        let need_target = n_false > 0 && !has_target(&items);
+        if reserve(visible) == 0 && !need_target {
+            break;
+        }
+        let left = reserve(visible);
+        let forced_hover = hovering_left > 0 && (left > 1 || !need_target);
+        let group = if forced_hover {
+            hovering_left -= 1;
+            group_hovering(rng)
+        } else if need_target && left <= 1 {
+            group_resting(rng)
+        } else {
+            let mut w = config.group_weights;
+            if config.hovering.is_some() {
+                w[3] = 0.0;
+            }
+            if left < 2 {
+                w[1] = 0.0;
+                w[2] = 0.0;
+            }
+            if w.iter().sum::<f64>() <= 0.0 {
+                w = [1.0, 0.0, 0.0, 0.0];
+            }
+            let mut pick = rng.uniform() * w.iter().sum::<f64>();
+            let mut kind = 0;
+            for (k, wk) in w.iter().enumerate() {
+                if pick < *wk {
+                    kind = k;
+                    break;
+                }
+                pick -= wk;
+            }
+            match kind {
+                0 => group_resting(rng),
+                1 => group_stack(rng, left),
+                2 => group_leaning(rng),
+                _ => group_hovering(rng),
+            }
+        };
+        let r = radius(&group);
+        let (ax, ay) = (config.area[0] / 2.0 - r, config.area[1] / 2.0 - r);
+        let mut placed = false;
+        if ax > 0.0 && ay > 0.0 {
+            for _ in 0..60 {
+                let (x, y) = (uniform(rng, -ax, ax), uniform(rng, -ay, ay));
+                if discs.iter().all(|&(u, v, s)| ((x - u) * (x - u) + (y - v) * (y - v)).sqrt() > r + s + 0.03) {
+                    let place = at(Vector3::new(x, y, 0.0), yaw(uniform(rng, 0.0, 2.0 * PI)));
+                    discs.push((x, y, r));
+                    for mut it in group {
+                        it.pose = place * it.pose;
+                        visible += it.visible as u32;
+                        items.push(it);
+                    }
+                    placed = true;
+                    break;
+                }
+            }
+        }
+        if !placed {
+            failures += 1;
+            if forced_hover {
+                // A forced hovering box that did not fit is retried.
+                hovering_left += 1;
+            }
+        }
+    }
+    (items, visible)
+}
+
+/// What the sensor reports of the visible boxes: noisy poses and keypoints, with the truth;
+/// and the hidden supports of hovering boxes.
+fn observe(
+    items: &[Item],
+    camera: &Camera,
+    config: &SynthConfig,
+    rng: &mut Rng,
+) -> (Vec<SceneObject>, Vec<HiddenObject>) {
     let mut objects = Vec::new();
     let mut hidden_objects = Vec::new();
     let mut count = 0;
@@ -560,8 +585,8 @@ pub fn generate(config: &SynthConfig, seed: u64) -> Result<Scene, SynthError> {
         }
         count += 1;
         let id = format!("o{count}");
-        let kps = keypoints(it, &camera, config, &mut rng);
-        let estimate = perturb(&it.pose, config.pose_noise_t, config.pose_noise_r, &mut rng);
+        let kps = keypoints(it, camera, config, rng);
+        let estimate = perturb(&it.pose, config.pose_noise_t, config.pose_noise_r, rng);
         if it.kind == Kind::Hovering {
             // The support generated just before it.
             if let Some(h) = items[..idx].iter().rev().find(|h| !h.visible) {
@@ -585,13 +610,7 @@ pub fn generate(config: &SynthConfig, seed: u64) -> Result<Scene, SynthError> {
             }),
         });
     }
-    let mut scene = Scene { table, camera, objects, hidden_objects };
-    scene.camera.pose =
-        Pose { t: scene.camera.pose.t.map(|v| round(v, 1e6)), q: scene.camera.pose.q.map(|v| round(v, 1e9)) };
-    scene
-        .validate()
-        .map_err(|e| SynthError::NoRoom(format!("the generated scene is invalid ({e}); try another seed")))?;
-    Ok(scene)
+    (objects, hidden_objects)
 }
 
 /// A false estimate: a tilted box cutting 2 - 4 cm into a stable visible object and touching

@@ -1,30 +1,41 @@
 //! The door detector of Fig. 3.18, for one pair of facing units.
 //!
-//! 1. Expand the facing walls towards each other: the band between them (found by
-//!    [`crate::floorplan::state::facing`]).
+//! It sees rectangles and the map's cell counts, never the chain's state: the caller turns
+//! the runs it finds into doors.
+//!
+//! 1. Expand the facing walls towards each other: the [`Band`] between them, which the caller
+//!    finds from the two units' rectangles.
 //! 2. Localise the part of the walls where the two units overlap: the band's span.
 //! 3. Divide it into one-cell segments and verify each: a segment is open when no cell across
 //!    the band is occupied and at least half are free (the `t'` test of eq. 3.25).
 //! 4. Combine verified segments into runs; runs of door width become door candidates, weighted
 //!    by the share of free cells in their rectangle (eq. 3.23).
 
-use crate::floorplan::state::{door_rect, Axis, DoorSpec, State};
-use crate::floorplan::world::Rect;
+use crate::geometry::{Axis, CellCounts, Rect};
 
-/// Door candidates between `lo` and `hi` over the shared span `start..=end`, with weights.
-#[allow(clippy::too_many_arguments)]
-pub fn detect(
-    s: &State,
-    lo: Rect,
-    hi: Rect,
-    lo_id: u32,
-    hi_id: u32,
-    axis: Axis,
-    start: i32,
-    end: i32,
-) -> Vec<(DoorSpec, f64)> {
-    let limits = s.door_limits;
-    let w = s.wall;
+/// The band between two facing units `lo` and `hi` (walls `wall` cells deep), along the rows
+/// (or columns) `start..=end` their interiors share.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Band {
+    /// The left (or upper) unit's rectangle.
+    pub lo: Rect,
+    /// The right (or lower) unit's rectangle.
+    pub hi: Rect,
+    /// Which way a door would cross the walls.
+    pub axis: Axis,
+    /// Depth of the units' wall rings, cells.
+    pub wall: i32,
+    /// First shared row (or column).
+    pub start: i32,
+    /// Last shared row (or column), inclusive.
+    pub end: i32,
+}
+
+/// Door candidates in `band`: runs `(first, last)` of open segments (rows or columns) that
+/// `door` accepts as a door (it gives the door's rectangle, or `None` when the run is too short
+/// or too long), each with its weight, the share of free cells in that rectangle.
+pub fn detect(counts: &CellCounts, band: &Band, door: impl Fn(i32, i32) -> Option<Rect>) -> Vec<((i32, i32), f64)> {
+    let Band { lo, hi, axis, wall: w, start, end } = *band;
     let segment = |t: i32| -> Rect {
         match axis {
             Axis::Horizontal => Rect::new(lo.right() - w, t, hi.x - lo.right() + 2 * w, 1),
@@ -33,7 +44,7 @@ pub fn detect(
     };
     let open = |t: i32| {
         let r = segment(t);
-        s.occupied_in(r) == 0 && 2 * s.free_in(r) as i64 >= r.area()
+        counts.occupied_in(r) == 0 && 2 * counts.free_in(r) as i64 >= r.area()
     };
     let mut out = Vec::new();
     let mut t = start;
@@ -46,9 +57,8 @@ pub fn detect(
         while t <= end && open(t) {
             t += 1;
         }
-        let d = DoorSpec { lo: lo_id, hi: hi_id, axis, start: run_start, end: t - 1 };
-        if let Some(r) = door_rect(lo, hi, &d, &limits, w) {
-            out.push((d, s.free_in(r) as f64 / r.area() as f64));
+        if let Some(r) = door(run_start, t - 1) {
+            out.push(((run_start, t - 1), counts.free_in(r) as f64 / r.area() as f64));
         }
     }
     out

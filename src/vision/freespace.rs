@@ -2,16 +2,41 @@
 //! current world leaves unexplained become unit candidates, for rooms whose walls the WBU
 //! detector missed (unexplored or hidden behind furniture).
 
-use crate::floorplan::explain::Explanation;
-use crate::floorplan::world::Rect;
-use crate::grid::Cell;
+use crate::geometry::Rect;
+use crate::grid::flood::{Flood, Neighbours};
+use crate::grid::{Cell, Grid};
+
+/// What the detector sees: a grid of cells, some of them free space the current world leaves
+/// unexplained (the chain's explanation implements it; so does a bare map, as the empty world).
+pub trait FreeSpace {
+    /// Grid width.
+    fn width(&self) -> usize;
+    /// Grid height.
+    fn height(&self) -> usize;
+    /// Whether cell `i` (row-major, `y * width + x`) is free on the map and covered by no
+    /// unit.
+    fn is_unexplained(&self, i: usize) -> bool;
+}
+
+/// A map explained by the empty world: every free cell is unexplained.
+impl FreeSpace for Grid<Cell> {
+    fn width(&self) -> usize {
+        Grid::width(self)
+    }
+    fn height(&self) -> usize {
+        Grid::height(self)
+    }
+    fn is_unexplained(&self, i: usize) -> bool {
+        self.cells()[i] == Cell::Free
+    }
+}
 
 /// Bounding boxes (grown by one cell for the walls) of 4-connected components of free cells
 /// covered by no unit, holding at least `min_cells` cells, each trimmed to its dense core: sides
 /// whose edge row or column is less than 40 % unexplained free space are moved inwards, so
 /// that a fan of scan rays yields the dense part near its source rather than a box that is
 /// mostly unknown.
-pub fn unexplained(e: &Explanation, min_cells: usize) -> Vec<Rect> {
+pub fn unexplained(e: &impl FreeSpace, min_cells: usize) -> Vec<Rect> {
     unexplained_with(e, min_cells, &mut Scratch::default())
 }
 
@@ -22,12 +47,12 @@ pub fn unexplained(e: &Explanation, min_cells: usize) -> Vec<Rect> {
 pub struct Scratch {
     /// One bit a cell (a byte a cell would be 1.5 MB on a rotated 1237x672 map).
     seen: Vec<u64>,
-    /// Cell indices (maps have at most 2^25 cells, see `grid::Limits`).
-    stack: Vec<u32>,
+    /// The flood fill's stack.
+    flood: Flood,
 }
 
 /// [`unexplained`] with working memory the caller keeps between calls.
-pub fn unexplained_with(e: &Explanation, min_cells: usize, scratch: &mut Scratch) -> Vec<Rect> {
+pub fn unexplained_with(e: &impl FreeSpace, min_cells: usize, scratch: &mut Scratch) -> Vec<Rect> {
     let boxes = components(e, min_cells, scratch);
     if boxes.is_empty() {
         return boxes;
@@ -38,19 +63,18 @@ pub fn unexplained_with(e: &Explanation, min_cells: usize, scratch: &mut Scratch
 /// Unexplained free cells in `r` (clipped to the map), counted cell by cell: `dense_core`
 /// only asks about one-cell lines, and a summed-area table of the whole map, rebuilt at every
 /// refresh, cost more than all its questions (and 4 bytes a cell).
-fn unexplained_in(e: &Explanation, r: Rect) -> u32 {
+fn unexplained_in(e: &impl FreeSpace, r: Rect) -> u32 {
     let (w, h) = (e.width() as i32, e.height() as i32);
     let mut n = 0;
     for y in r.y.max(0)..r.bottom().min(h) {
         for x in r.x.max(0)..r.right().min(w) {
-            let (x, y) = (x as usize, y as usize);
-            n += (e.map_class(x, y) == Cell::Free && e.cover(x, y) == 0) as u32;
+            n += e.is_unexplained(y as usize * w as usize + x as usize) as u32;
         }
     }
     n
 }
 
-fn dense_core(e: &Explanation, mut r: Rect) -> Option<Rect> {
+fn dense_core(e: &impl FreeSpace, mut r: Rect) -> Option<Rect> {
     let count = |line: Rect| unexplained_in(e, line);
     let dense = |line: Rect| count(line) as f64 >= 0.4 * line.area() as f64;
     loop {
@@ -79,12 +103,11 @@ fn dense_core(e: &Explanation, mut r: Rect) -> Option<Rect> {
     }
 }
 
-fn components(e: &Explanation, min_cells: usize, scratch: &mut Scratch) -> Vec<Rect> {
+fn components(e: &impl FreeSpace, min_cells: usize, scratch: &mut Scratch) -> Vec<Rect> {
     let (w, h) = (e.width(), e.height());
-    let Scratch { seen, stack } = scratch;
+    let Scratch { seen, flood } = scratch;
     seen.clear();
     seen.resize((w * h).div_ceil(64), 0);
-    stack.clear();
     let mut out = Vec::new();
     // Marks cell `i` seen; false if it already was.
     let mark = |seen: &mut Vec<u64>, i: usize| {
@@ -94,27 +117,17 @@ fn components(e: &Explanation, min_cells: usize, scratch: &mut Scratch) -> Vec<R
         fresh
     };
     for start in 0..w * h {
-        let (sx, sy) = (start % w, start / w);
-        if e.map_class(sx, sy) != Cell::Free || e.cover(sx, sy) > 0 || !mark(seen, start) {
+        if seen[start / 64] & (1 << (start % 64)) != 0 || !e.is_unexplained(start) {
             continue;
         }
-        stack.push(start as u32);
+        let (sx, sy) = (start % w, start / w);
         let (mut x0, mut y0, mut x1, mut y1, mut n) = (sx, sy, sx, sy, 0usize);
-        while let Some(i) = stack.pop() {
-            let i = i as usize;
+        let enter = |j: usize| e.is_unexplained(j) && mark(seen, j);
+        flood.fill(w, h, [start], Neighbours::Four, enter, |i| {
             let (x, y) = (i % w, i / w);
             n += 1;
             (x0, y0, x1, y1) = (x0.min(x), y0.min(y), x1.max(x), y1.max(y));
-            let neighbours = [(x.wrapping_sub(1), y), (x + 1, y), (x, y.wrapping_sub(1)), (x, y + 1)];
-            for (nx, ny) in neighbours {
-                if nx < w && ny < h {
-                    let j = ny * w + nx;
-                    if e.map_class(nx, ny) == Cell::Free && e.cover(nx, ny) == 0 && mark(seen, j) {
-                        stack.push(j as u32);
-                    }
-                }
-            }
-        }
+        });
         if n >= min_cells {
             let gx0 = x0.saturating_sub(1);
             let gy0 = y0.saturating_sub(1);
@@ -129,7 +142,6 @@ fn components(e: &Explanation, min_cells: usize, scratch: &mut Scratch) -> Vec<R
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::grid::Grid;
 
     /// Free rectangles on an unknown background.
     fn map(w: usize, h: usize, rooms: &[(usize, usize, usize, usize)]) -> Grid<Cell> {
@@ -146,8 +158,8 @@ mod tests {
 
     #[test]
     fn kept_scratch_gives_the_same_candidates_as_fresh_memory() {
-        let big = Explanation::new(&map(90, 70, &[(5, 5, 30, 20), (50, 10, 25, 40), (10, 40, 8, 8)]));
-        let small = Explanation::new(&map(40, 30, &[(2, 2, 20, 12), (25, 15, 10, 10)]));
+        let big = map(90, 70, &[(5, 5, 30, 20), (50, 10, 25, 40), (10, 40, 8, 8)]);
+        let small = map(40, 30, &[(2, 2, 20, 12), (25, 15, 10, 10)]);
         let mut scratch = Scratch::default();
         // Big map, then a smaller one (stale bits past its end), then the big one again.
         for e in [&big, &small, &big, &small] {

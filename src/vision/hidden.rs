@@ -7,8 +7,8 @@
 //! from every free cell than any wall is thick are therefore treated as unknown, like the
 //! unexplored space they are.
 
+use crate::grid::flood::wavefront;
 use crate::grid::{Cell, Grid};
-use std::collections::VecDeque;
 
 /// How deep into occupied space, in metres, a wall face reaches: thicker than the walls of
 /// ordinary buildings (about 0.3 - 0.5 m), so real walls keep all their cells.
@@ -50,28 +50,18 @@ fn occupied_distance(grid: &Grid<Cell>, source: Cell, depth: u32) -> Vec<u32> {
             .map(move |(nx, ny)| ny * w + nx)
     };
     let mut dist = vec![u32::MAX; w * h];
-    // Cell indices, and only the source cells that touch an occupied cell: the others reach
-    // nothing, and queueing every free cell of a large map as a coordinate pair took 13 MB.
-    let mut queue = VecDeque::new();
+    // Only the source cells that touch an occupied cell start the wavefront: the others reach
+    // nothing, and queueing every free cell of a large map took 13 MB.
+    let mut seeds = Vec::new();
     for (i, &c) in cells.iter().enumerate() {
         if c == source {
             dist[i] = 0;
             if neighbours(i).any(|j| cells[j] == Cell::Occupied) {
-                queue.push_back(i as u32);
+                seeds.push(i);
             }
         }
     }
-    while let Some(i) = queue.pop_front() {
-        let d = dist[i as usize];
-        for j in neighbours(i as usize) {
-            if cells[j] == Cell::Occupied && dist[j] == u32::MAX {
-                dist[j] = d + 1;
-                if d < depth {
-                    queue.push_back(j as u32);
-                }
-            }
-        }
-    }
+    wavefront(w, h, &mut dist, seeds, |j| cells[j] == Cell::Occupied, depth);
     dist
 }
 

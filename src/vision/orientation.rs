@@ -5,7 +5,7 @@
 //! is then resampled into a frame rotated by `φ`, where units are upright rectangles.
 
 use super::hough::Hough;
-use crate::floorplan::world::Frame;
+use crate::geometry::Frame;
 use crate::grid::{Cell, Grid};
 
 /// The dominant wall direction in radians, in `(-π/4, π/4]`, measured from the image x axis

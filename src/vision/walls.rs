@@ -8,8 +8,7 @@
 //! recombination of sub-areas and a unit candidate. Candidates are weighted by their weakest
 //! wall (eq. 3.10), each wall by its share of occupied cells (eq. 3.11).
 
-use crate::floorplan::explain::AreaCounts;
-use crate::floorplan::world::Rect;
+use crate::geometry::{AreaCounts, Rect};
 use crate::grid::{Cell, Grid};
 use serde::{Deserialize, Serialize};
 
@@ -247,7 +246,7 @@ pub fn dilate(grid: &Grid<Cell>, r: i32) -> Grid<Cell> {
 ///
 /// Why the whole thickness: a ring as deep as the wall predicts every cell of an outer wall,
 /// and two units sharing an inner wall both lay their rings on it (a shared wall costs no
-/// overlap penalty, see [`crate::floorplan::posterior`]). Scanned walls are thin and give 1 or
+/// overlap penalty, see the floor plan's posterior). Scanned walls are thin and give 1 or
 /// 2; the dissertation's model is 1. Measured on the original map, not the rotated world
 /// frame, so that resampling does not double thin walls. On our maps this rule picked the
 /// best or nearly the best depth for K(W, M) (see BENCHMARKS.md).

@@ -692,49 +692,10 @@ pub fn chain_config_defaults() -> String {
     serde_json::to_string_pretty(&ChainConfig::default()).unwrap_or_default()
 }
 
-/// Parses a chain configuration: a JSON object whose fields override the defaults. Unknown
-/// fields are refused (a typo would otherwise be silently ignored), and every value is checked.
+/// Parses a chain configuration: a JSON object whose fields override the defaults (see
+/// [`ChainConfig::from_json`]).
 pub fn chain_config(json: Option<&str>) -> Result<ChainConfig, JsError> {
-    let Some(text) = json.filter(|t| !t.trim().is_empty()) else {
-        return Ok(ChainConfig::default());
-    };
-    let given: serde_json::Value = serde_json::from_str(text).map_err(|e| {
-        let hint = if text.contains("NaN") || text.contains("Infinity") {
-            " (NaN and Infinity are not numbers in JSON, nor allowed values: give finite numbers)"
-        } else {
-            ""
-        };
-        JsError::new(&format!("chain config: {e}{hint}"))
-    })?;
-    if !given.is_object() {
-        return Err(JsError::new("chain config: expected a JSON object such as {\"posterior\": {\"temperature\": 2}}"));
-    }
-    let defaults = serde_json::to_value(ChainConfig::default())?;
-    unknown_fields(&given, &defaults, "")?;
-    let config: ChainConfig = serde_json::from_value(given).map_err(|e| JsError::new(&format!("chain config: {e}")))?;
-    config.validate().map_err(|e| JsError::new(&e.to_string()))?;
-    Ok(config)
-}
-
-/// Refuses object keys that the defaults do not have, naming the path and the known keys.
-fn unknown_fields(given: &serde_json::Value, known: &serde_json::Value, path: &str) -> Result<(), JsError> {
-    let (serde_json::Value::Object(g), serde_json::Value::Object(k)) = (given, known) else {
-        return Ok(());
-    };
-    for (key, value) in g {
-        let here = if path.is_empty() { key.clone() } else { format!("{path}.{key}") };
-        match k.get(key) {
-            Some(default) => unknown_fields(value, default, &here)?,
-            None => {
-                let names: Vec<&str> = k.keys().map(String::as_str).collect();
-                return Err(JsError::new(&format!(
-                    "chain config: unknown field `{here}`; the fields here are {}",
-                    names.join(", ")
-                )));
-            }
-        }
-    }
-    Ok(())
+    ChainConfig::from_json(json.unwrap_or("")).map_err(|e| JsError::new(&e.to_string()))
 }
 
 /// Reads an options object through its JSON text, so that unknown fields are refused

@@ -220,7 +220,7 @@ fn synthetic(o: &Opts) -> Result<(), CliError> {
 
 /// Weak prior versus knowledge supervision (the comparison of Fig. 3.34).
 fn knowledge(dir: &Path, o: &Opts) -> Result<(), CliError> {
-    use ksmcmc::floorplan::knowledge::{defect_pairs, defects};
+    use ksmcmc::floorplan::metrics::{defect_pairs, defects};
     println!("\n### Weak prior versus knowledge supervision ({} iterations)\n", o.iterations);
     println!("| maps | mode | K(W,M) | unit count error | defects | type accuracy |");
     println!("|---|---|---|---|---|---|");

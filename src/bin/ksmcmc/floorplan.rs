@@ -39,107 +39,33 @@ Options:
                      thresholds only); a map.yaml always uses its own thresholds
 ";
 
+/// The command line, parsed.
+struct Opts {
+    map: PathBuf,
+    out: PathBuf,
+    config: Option<PathBuf>,
+    iterations: u64,
+    seed: u64,
+    time_limit: Option<f64>,
+    rotation: Option<f64>,
+    classify: String,
+    region: Option<PathBuf>,
+    knowledge: Option<String>,
+}
+
 pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
-    use lexopt::prelude::*;
-    let mut parser = lexopt::Parser::from_args(argv);
-    let (mut map, mut out, mut config_path) = (None, None, None::<PathBuf>);
-    let (mut iterations, mut seed, mut time_limit, mut rotation) = (20_000u64, 1u64, None::<f64>, None::<f64>);
-    let mut classify = String::from("auto");
-    let mut region_path: Option<PathBuf> = None;
-    let mut knowledge: Option<String> = None;
-    while let Some(arg) = parser.next()? {
-        match arg {
-            Value(v) if map.is_none() => map = Some(args::path(v)),
-            Long("out") => out = Some(args::path(parser.value()?)),
-            Long("iterations") => iterations = args::value("--iterations", parser.value()?)?,
-            Long("seed") => seed = args::value("--seed", parser.value()?)?,
-            Long("time-limit") => time_limit = Some(args::value("--time-limit", parser.value()?)?),
-            Long("config") => config_path = Some(args::path(parser.value()?)),
-            Long("rotation") => rotation = Some(args::value("--rotation", parser.value()?)?),
-            Long("classify") => classify = args::value("--classify", parser.value()?)?,
-            Long("region") => region_path = Some(args::path(parser.value()?)),
-            Long("knowledge") => knowledge = Some(args::value("--knowledge", parser.value()?)?),
-            Long("help") | Short('h') => {
-                print!("{HELP}");
-                return Ok(());
-            }
-            _ => return Err(arg.unexpected().into()),
-        }
-    }
-    let map_path = args::required(map, "a MAP", "floorplan")?;
-    let out = args::required(out, "--out DIR", "floorplan")?;
-    if let Some(t) = time_limit {
-        if !(t.is_finite() && t > 0.0) {
-            return Err(CliError::Usage(format!("--time-limit must be a positive number of seconds, not {t}")));
-        }
-    }
-    if let Some(r) = rotation {
-        if !r.is_finite() {
-            return Err(CliError::Usage(format!("--rotation must be a number of degrees, not {r}")));
-        }
-    }
-    let mut config = match &config_path {
-        Some(p) => {
-            let text = std::fs::read_to_string(p).map_err(|e| args::failed(p.display(), e))?;
-            serde_json::from_str::<ChainConfig>(&text).map_err(|e| args::failed(p.display(), e))?
-        }
-        None => ChainConfig::default(),
-    };
-    if rotation.is_some() {
-        config.detectors.rotation_deg = rotation;
-    }
-    match knowledge.as_deref() {
-        Some("none") => config.knowledge.enabled = false,
-        Some("builtin") => config.knowledge.enabled = true,
-        Some("handset") => {
-            config.knowledge.enabled = true;
-            config.knowledge.kb = Some(ksmcmc::floorplan::knowledge::HAND_SET_INDOOR.to_string());
-        }
-        Some(path) => {
-            let text = std::fs::read_to_string(path).map_err(|e| args::failed(path, e))?;
-            // Parse now, so that a broken knowledge base is reported with its file name.
-            ksmcmc::mln::Mln::parse(&text).map_err(|e| args::failed(path, e))?;
-            config.knowledge.enabled = true;
-            config.knowledge.kb = Some(text);
-        }
-        None => {}
-    }
-    let mut map = args::load_map(&map_path)?;
-    let is_yaml = matches!(map_path.extension().and_then(|e| e.to_str()), Some("yaml" | "yml"));
-    match classify.as_str() {
-        "auto" if !is_yaml => {
-            map.set_classifier(ksmcmc::grid::Classifier::auto()).map_err(|e| args::failed("--classify", e))?
-        }
-        "auto" | "fixed" => {}
-        other => return Err(CliError::Usage(format!("--classify must be auto or fixed, not {other:?}"))),
-    }
-    let region = match &region_path {
-        Some(p) => {
-            let bytes = std::fs::read(p).map_err(|e| args::failed(p.display(), e))?;
-            let raster =
-                ksmcmc::grid::decode_image(&bytes, &Default::default()).map_err(|e| args::failed(p.display(), e))?;
-            if (raster.width(), raster.height()) != (map.width(), map.height()) {
-                return Err(CliError::Failed(format!(
-                    "{}: the region is {}x{} but the map is {}x{}",
-                    p.display(),
-                    raster.width(),
-                    raster.height(),
-                    map.width(),
-                    map.height()
-                )));
-            }
-            Some(raster.gray.map(|&g| g > 0))
-        }
-        None => None,
-    };
+    let Some(o) = parse(argv)? else { return Ok(()) };
+    let config = chain_config(&o)?;
+    let map = load_map(&o)?;
+    let region = load_region(&o, &map)?;
     let t0 = Instant::now();
-    let mut chain = Chain::new(&map, config, seed).map_err(|e| args::failed(map_path.display(), e))?;
-    let deadline = time_limit.map(|t| t0 + std::time::Duration::from_secs_f64(t));
-    while chain.iteration() < iterations {
+    let mut chain = Chain::new(&map, config, o.seed).map_err(|e| args::failed(o.map.display(), e))?;
+    let deadline = o.time_limit.map(|t| t0 + std::time::Duration::from_secs_f64(t));
+    while chain.iteration() < o.iterations {
         if deadline.is_some_and(|d| Instant::now() >= d) {
             break;
         }
-        chain.step((iterations - chain.iteration()).min(500));
+        chain.step((o.iterations - chain.iteration()).min(500));
     }
     let seconds = t0.elapsed().as_secs_f64();
     let mut world = chain.best_world_typed();
@@ -167,24 +93,13 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     let rooms = world.rooms.len();
     report["rooms"] = rooms.into();
     let k = report["cell_prediction_rate"].as_f64().unwrap_or(0.0);
-    let overlay = ksmcmc::render::try_render(map.classified(), Some(&world), &Default::default())
-        .map_err(|e| args::failed("overlay.png", e))?;
-    report["map"] = map_path.display().to_string().into();
+    report["map"] = o.map.display().to_string().into();
     report["cell_prediction_rate_region"] =
         serde_json::json!(region.as_ref().map(|r| metrics::prediction_rate_in(map.classified(), &world, Some(r))));
-    args::write(&out.join("world.json"), world.to_json().as_bytes())?;
-    args::write(&out.join("overlay.png"), &ksmcmc::render::encode_png(&overlay))?;
-    let graph = serde_json::to_string_pretty(&graph::world_json(&world)).expect("json");
-    args::write(&out.join("graph.json"), graph.as_bytes())?;
-    args::write(&out.join("trace.csv"), trace.as_bytes())?;
-    args::write(
-        &out.join("labels.pgm"),
-        &ksmcmc::grid::pgm::encode_u16(labels.width(), labels.height(), labels.cells()),
-    )?;
-    args::write(&out.join("report.json"), serde_json::to_string_pretty(&report).expect("json").as_bytes())?;
+    write_outputs(&o.out, &map, &world, &trace, &labels, &report)?;
     println!(
         "{}: {} iterations in {:.2} s ({:.0}/s), K(W,M) = {:.4}, {} units, {} doors, {} rooms -> {}",
-        map_path.display(),
+        o.map.display(),
         iterations_done,
         seconds,
         iterations_done as f64 / seconds.max(1e-9),
@@ -192,7 +107,148 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
         world.units.len(),
         world.doors.len(),
         rooms,
-        out.display()
+        o.out.display()
     );
+    Ok(())
+}
+
+/// Parses and checks the arguments; `None` when `--help` was answered.
+fn parse(argv: Vec<OsString>) -> Result<Option<Opts>, CliError> {
+    use lexopt::prelude::*;
+    let mut parser = lexopt::Parser::from_args(argv);
+    let (mut map, mut out, mut config_path) = (None, None, None::<PathBuf>);
+    let (mut iterations, mut seed, mut time_limit, mut rotation) = (20_000u64, 1u64, None::<f64>, None::<f64>);
+    let mut classify = String::from("auto");
+    let mut region_path: Option<PathBuf> = None;
+    let mut knowledge: Option<String> = None;
+    while let Some(arg) = parser.next()? {
+        match arg {
+            Value(v) if map.is_none() => map = Some(args::path(v)),
+            Long("out") => out = Some(args::path(parser.value()?)),
+            Long("iterations") => iterations = args::value("--iterations", parser.value()?)?,
+            Long("seed") => seed = args::value("--seed", parser.value()?)?,
+            Long("time-limit") => time_limit = Some(args::value("--time-limit", parser.value()?)?),
+            Long("config") => config_path = Some(args::path(parser.value()?)),
+            Long("rotation") => rotation = Some(args::value("--rotation", parser.value()?)?),
+            Long("classify") => classify = args::value("--classify", parser.value()?)?,
+            Long("region") => region_path = Some(args::path(parser.value()?)),
+            Long("knowledge") => knowledge = Some(args::value("--knowledge", parser.value()?)?),
+            Long("help") | Short('h') => {
+                print!("{HELP}");
+                return Ok(None);
+            }
+            _ => return Err(arg.unexpected().into()),
+        }
+    }
+    let map = args::required(map, "a MAP", "floorplan")?;
+    let out = args::required(out, "--out DIR", "floorplan")?;
+    if let Some(t) = time_limit {
+        if !(t.is_finite() && t > 0.0) {
+            return Err(CliError::Usage(format!("--time-limit must be a positive number of seconds, not {t}")));
+        }
+    }
+    if let Some(r) = rotation {
+        if !r.is_finite() {
+            return Err(CliError::Usage(format!("--rotation must be a number of degrees, not {r}")));
+        }
+    }
+    Ok(Some(Opts {
+        map,
+        out,
+        config: config_path,
+        iterations,
+        seed,
+        time_limit,
+        rotation,
+        classify,
+        region: region_path,
+        knowledge,
+    }))
+}
+
+/// The chain configuration: `--config`, then `--rotation` and `--knowledge` over it.
+fn chain_config(o: &Opts) -> Result<ChainConfig, CliError> {
+    let mut config = match &o.config {
+        Some(p) => {
+            let text = std::fs::read_to_string(p).map_err(|e| args::failed(p.display(), e))?;
+            ChainConfig::from_json(&text).map_err(|e| args::failed(p.display(), e))?
+        }
+        None => ChainConfig::default(),
+    };
+    if o.rotation.is_some() {
+        config.detectors.rotation_deg = o.rotation;
+    }
+    match o.knowledge.as_deref() {
+        Some("none") => config.knowledge.enabled = false,
+        Some("builtin") => config.knowledge.enabled = true,
+        Some("handset") => {
+            config.knowledge.enabled = true;
+            config.knowledge.kb = Some(ksmcmc::floorplan::knowledge::HAND_SET_INDOOR.to_string());
+        }
+        Some(path) => {
+            let text = std::fs::read_to_string(path).map_err(|e| args::failed(path, e))?;
+            // Parse now, so that a broken knowledge base is reported with its file name.
+            ksmcmc::mln::Mln::parse(&text).map_err(|e| args::failed(path, e))?;
+            config.knowledge.enabled = true;
+            config.knowledge.kb = Some(text);
+        }
+        None => {}
+    }
+    Ok(config)
+}
+
+/// The map, classified as `--classify` asks (a map.yaml keeps its own thresholds).
+fn load_map(o: &Opts) -> Result<ksmcmc::grid::OccupancyMap, CliError> {
+    let mut map = args::load_map(&o.map)?;
+    let is_yaml = matches!(o.map.extension().and_then(|e| e.to_str()), Some("yaml" | "yml"));
+    match o.classify.as_str() {
+        "auto" if !is_yaml => {
+            map.set_classifier(ksmcmc::grid::Classifier::auto()).map_err(|e| args::failed("--classify", e))?
+        }
+        "auto" | "fixed" => {}
+        other => return Err(CliError::Usage(format!("--classify must be auto or fixed, not {other:?}"))),
+    }
+    Ok(map)
+}
+
+/// The `--region` mask (non-black cells), which must be the map's size.
+fn load_region(o: &Opts, map: &ksmcmc::grid::OccupancyMap) -> Result<Option<ksmcmc::grid::Grid<bool>>, CliError> {
+    let Some(p) = &o.region else { return Ok(None) };
+    let bytes = std::fs::read(p).map_err(|e| args::failed(p.display(), e))?;
+    let raster = ksmcmc::grid::decode_image(&bytes, &Default::default()).map_err(|e| args::failed(p.display(), e))?;
+    if (raster.width(), raster.height()) != (map.width(), map.height()) {
+        return Err(CliError::Failed(format!(
+            "{}: the region is {}x{} but the map is {}x{}",
+            p.display(),
+            raster.width(),
+            raster.height(),
+            map.width(),
+            map.height()
+        )));
+    }
+    Ok(Some(raster.gray.map(|&g| g > 0)))
+}
+
+/// Writes the six output files.
+fn write_outputs(
+    out: &std::path::Path,
+    map: &ksmcmc::grid::OccupancyMap,
+    world: &ksmcmc::floorplan::World,
+    trace: &str,
+    labels: &ksmcmc::grid::Grid<u16>,
+    report: &serde_json::Value,
+) -> Result<(), CliError> {
+    let overlay = ksmcmc::render::try_render(map.classified(), Some(world), &Default::default())
+        .map_err(|e| args::failed("overlay.png", e))?;
+    args::write(&out.join("world.json"), world.to_json().as_bytes())?;
+    args::write(&out.join("overlay.png"), &ksmcmc::render::encode_png(&overlay))?;
+    let graph = serde_json::to_string_pretty(&graph::world_json(world)).expect("json");
+    args::write(&out.join("graph.json"), graph.as_bytes())?;
+    args::write(&out.join("trace.csv"), trace.as_bytes())?;
+    args::write(
+        &out.join("labels.pgm"),
+        &ksmcmc::grid::pgm::encode_u16(labels.width(), labels.height(), labels.cells()),
+    )?;
+    args::write(&out.join("report.json"), serde_json::to_string_pretty(report).expect("json").as_bytes())?;
     Ok(())
 }

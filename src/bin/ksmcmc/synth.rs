@@ -52,60 +52,9 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
             Long("seed") => seed = Some(args::value::<u64>("--seed", parser.value()?)?),
             Long("out") => out = Some(args::path(parser.value()?)),
             Long("config") => config_path = Some(args::path(parser.value()?)),
-            Long("width") => {
-                let v = args::value("--width", parser.value()?)?;
-                overrides.push(Box::new(move |c| c.width = v));
-            }
-            Long("height") => {
-                let v = args::value("--height", parser.value()?)?;
-                overrides.push(Box::new(move |c| c.height = v));
-            }
-            Long("resolution") => {
-                let v = args::value("--resolution", parser.value()?)?;
-                overrides.push(Box::new(move |c| c.resolution = v));
-            }
-            Long("rotation") => {
-                let v = args::value("--rotation", parser.value()?)?;
-                overrides.push(Box::new(move |c| c.rotation_deg = v));
-            }
-            Long("corridors") => {
-                let v = args::value("--corridors", parser.value()?)?;
-                overrides.push(Box::new(move |c| c.corridors = Some(v)));
-            }
-            Long("halls") => {
-                let v = args::value("--halls", parser.value()?)?;
-                overrides.push(Box::new(move |c| c.halls = v));
-            }
-            Long("others") => {
-                let v = args::value("--others", parser.value()?)?;
-                overrides.push(Box::new(move |c| c.others = v));
-            }
-            Long("wall-thickness") => {
-                let v = args::value("--wall-thickness", parser.value()?)?;
-                overrides.push(Box::new(move |c| c.wall_thickness = v));
-            }
-            Long("clutter") => {
-                let v = args::value("--clutter", parser.value()?)?;
-                overrides.push(Box::new(move |c| c.clutter = v));
-            }
-            Long("unexplored") => {
-                let v = args::value("--unexplored", parser.value()?)?;
-                overrides.push(Box::new(move |c| c.unexplored = v));
-            }
-            Long("speckle") => {
-                let v: f64 = args::value("--speckle", parser.value()?)?;
-                overrides.push(Box::new(move |c| {
-                    c.speckle_occupied = v;
-                    c.speckle_unknown = 2.0 * v;
-                }));
-            }
-            Long("wall-roughness") => {
-                let v = args::value("--wall-roughness", parser.value()?)?;
-                overrides.push(Box::new(move |c| c.wall_roughness = v));
-            }
-            Long("wall-gaps") => {
-                let v = args::value("--wall-gaps", parser.value()?)?;
-                overrides.push(Box::new(move |c| c.wall_gaps = v));
+            Long(name) if OVERRIDES.contains(&name) => {
+                let name = name.to_owned();
+                overrides.push(field_override(&name, parser.value()?)?);
             }
             Long("print-config") => print_config = true,
             Long("help") | Short('h') => {
@@ -153,4 +102,84 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
         s.explored.iter().filter(|e| !**e).count()
     );
     Ok(())
+}
+
+/// The options that override one config field.
+const OVERRIDES: [&str; 13] = [
+    "width",
+    "height",
+    "resolution",
+    "rotation",
+    "corridors",
+    "halls",
+    "others",
+    "wall-thickness",
+    "clutter",
+    "unexplored",
+    "speckle",
+    "wall-roughness",
+    "wall-gaps",
+];
+
+/// The override of option `--name` (one of [`OVERRIDES`]) with value `v`.
+fn field_override(name: &str, v: OsString) -> Result<Override, CliError> {
+    let flag = format!("--{name}");
+    Ok(match name {
+        "width" => {
+            let v = args::value(&flag, v)?;
+            Box::new(move |c| c.width = v)
+        }
+        "height" => {
+            let v = args::value(&flag, v)?;
+            Box::new(move |c| c.height = v)
+        }
+        "resolution" => {
+            let v = args::value(&flag, v)?;
+            Box::new(move |c| c.resolution = v)
+        }
+        "rotation" => {
+            let v = args::value(&flag, v)?;
+            Box::new(move |c| c.rotation_deg = v)
+        }
+        "corridors" => {
+            let v = args::value(&flag, v)?;
+            Box::new(move |c| c.corridors = Some(v))
+        }
+        "halls" => {
+            let v = args::value(&flag, v)?;
+            Box::new(move |c| c.halls = v)
+        }
+        "others" => {
+            let v = args::value(&flag, v)?;
+            Box::new(move |c| c.others = v)
+        }
+        "wall-thickness" => {
+            let v = args::value(&flag, v)?;
+            Box::new(move |c| c.wall_thickness = v)
+        }
+        "clutter" => {
+            let v = args::value(&flag, v)?;
+            Box::new(move |c| c.clutter = v)
+        }
+        "unexplored" => {
+            let v = args::value(&flag, v)?;
+            Box::new(move |c| c.unexplored = v)
+        }
+        "speckle" => {
+            let v: f64 = args::value(&flag, v)?;
+            Box::new(move |c| {
+                c.speckle_occupied = v;
+                c.speckle_unknown = 2.0 * v;
+            })
+        }
+        "wall-roughness" => {
+            let v = args::value(&flag, v)?;
+            Box::new(move |c| c.wall_roughness = v)
+        }
+        "wall-gaps" => {
+            let v = args::value(&flag, v)?;
+            Box::new(move |c| c.wall_gaps = v)
+        }
+        other => unreachable!("--{other} is not in OVERRIDES"),
+    })
 }

@@ -5,9 +5,10 @@ use crate::args::{self, CliError};
 use ksmcmc::render::encode_png;
 use ksmcmc::render::tabletop::{draw_graph, draw_view, marks, ViewOptions};
 use ksmcmc::tabletop::eval::{analyse_scene, dissertation_scenes, graph_signature, score, Score};
+use ksmcmc::tabletop::evidence::Evidence;
 use ksmcmc::tabletop::scene::Scene;
 use ksmcmc::tabletop::synth::{generate, SynthConfig};
-use ksmcmc::tabletop::{ChainConfig, Decision, TabletopChain};
+use ksmcmc::tabletop::{Analysis, ChainConfig, Decision, TabletopChain};
 use std::ffi::OsString;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -71,19 +72,6 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     let graph_json = analysis.graph_json();
     let poses: Vec<_> = analysis.objects.iter().map(|o| o.pose).collect();
     let view = draw_view(chain.scene(), &poses, &marks(&analysis), &ViewOptions::default());
-    let ev = &analysis.evidence;
-    let ids: Vec<&str> = chain.scene().objects.iter().map(|o| o.id.as_str()).chain(["table"]).collect();
-    let pairs = |f: &dyn Fn(usize, usize) -> bool, symmetric: bool| {
-        let mut v = Vec::new();
-        for i in 0..ids.len() {
-            for j in 0..ids.len() {
-                if i != j && (!symmetric || i < j) && f(i, j) {
-                    v.push([ids[i], ids[j]]);
-                }
-            }
-        }
-        v
-    };
     let has_truth = chain.scene().objects.iter().any(|o| o.truth.is_some());
     let stats = chain.stats();
     let (hits, misses) = chain.prior_cache_stats();
@@ -102,11 +90,7 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
         "best_iteration": chain.best_iteration(),
         "proposals": stats,
         "prior_cache": { "hits": hits, "computed": misses },
-        "evidence": {
-            "contact": pairs(&|i, j| ev.contact(i, j), true),
-            "intersect": pairs(&|i, j| ev.intersect(i, j), true),
-            "higher": pairs(&|i, j| ev.higher(i, j), false),
-        },
+        "evidence": evidence_json(chain.scene(), &analysis.evidence),
         "score": has_truth.then(|| score(chain.scene(), &analysis)),
         "config": chain.config(),
     });
@@ -115,6 +99,40 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     args::write(&out.join("graph.png"), &encode_png(&draw_graph(&analysis.graph)))?;
     args::write(&out.join("view.png"), &encode_png(&view))?;
     args::write(&out.join("report.json"), pretty(&report).as_bytes())?;
+    print_objects(&analysis);
+    println!(
+        "{iterations} iterations in {:.1} ms ({:.3} ms per iteration); wrote {}",
+        1000.0 * seconds,
+        if iterations > 0 { 1000.0 * sampling / iterations as f64 } else { 0.0 },
+        out.display()
+    );
+    Ok(())
+}
+
+/// The evidence relations as pairs of object ids ("table" last): contact and intersection
+/// (each pair once), and which object is higher than which.
+fn evidence_json(scene: &Scene, ev: &Evidence) -> serde_json::Value {
+    let ids: Vec<&str> = scene.objects.iter().map(|o| o.id.as_str()).chain(["table"]).collect();
+    let pairs = |f: &dyn Fn(usize, usize) -> bool, symmetric: bool| {
+        let mut v = Vec::new();
+        for i in 0..ids.len() {
+            for j in 0..ids.len() {
+                if i != j && (!symmetric || i < j) && f(i, j) {
+                    v.push([ids[i], ids[j]]);
+                }
+            }
+        }
+        v
+    };
+    serde_json::json!({
+        "contact": pairs(&|i, j| ev.contact(i, j), true),
+        "intersect": pairs(&|i, j| ev.intersect(i, j), true),
+        "higher": pairs(&|i, j| ev.higher(i, j), false),
+    })
+}
+
+/// One line per object: its probabilities and the flags decided true.
+fn print_objects(analysis: &Analysis) {
     for o in &analysis.objects {
         let flag = |d: Decision, name: &str| if d == Decision::True { format!(" {name}") } else { String::new() };
         println!(
@@ -126,13 +144,6 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
             flag(o.hidden, "HIDES-AN-OBJECT"),
         );
     }
-    println!(
-        "{iterations} iterations in {:.1} ms ({:.3} ms per iteration); wrote {}",
-        1000.0 * seconds,
-        if iterations > 0 { 1000.0 * sampling / iterations as f64 } else { 0.0 },
-        out.display()
-    );
-    Ok(())
 }
 
 fn read_config(path: Option<&PathBuf>) -> Result<ChainConfig, CliError> {
@@ -172,7 +183,45 @@ Options:
   --quick           parts 1 and 3 only
 ";
 
+/// `tabletop-eval`'s options.
+struct EvalOpts {
+    scenes: u32,
+    iterations: u32,
+    seed: u64,
+    repeats: u32,
+    speed: u32,
+    config: ChainConfig,
+    synth: SynthConfig,
+    json: Option<PathBuf>,
+    quick: bool,
+}
+
 pub fn eval(argv: Vec<OsString>) -> Result<(), CliError> {
+    let Some(o) = parse_eval(argv)? else { return Ok(()) };
+    let (total, objects, accuracy_seconds) = eval_generated(&o)?;
+    let dissertation = if o.quick { serde_json::Value::Null } else { eval_dissertation(&o)? };
+    let (per_iteration, whole, worst) = eval_speed(&o)?;
+    let EvalOpts { scenes, iterations, speed, .. } = o;
+    if let Some(p) = o.json {
+        let v = serde_json::json!({
+            "generated": { "scenes": scenes, "objects": objects, "iterations": iterations, "score": total,
+                           "flag_accuracy": total.flag_accuracy(), "decision_accuracy": total.decision_accuracy(),
+                           "ms_per_scene": 1000.0 * accuracy_seconds / scenes.max(1) as f64 },
+            "dissertation": dissertation,
+            "speed": { "objects": 8, "scenes": speed, "iterations": iterations,
+                       "ms_per_iteration": per_iteration, "analysis_ms": whole, "analysis_ms_worst": worst },
+        });
+        args::write(&p, (serde_json::to_string_pretty(&v).unwrap_or_default() + "\n").as_bytes())?;
+    }
+    Ok(())
+}
+
+fn fail(e: &dyn std::fmt::Display) -> CliError {
+    CliError::Failed(e.to_string())
+}
+
+/// Parses `tabletop-eval`'s arguments and reads its configurations; `None` after `--help`.
+fn parse_eval(argv: Vec<OsString>) -> Result<Option<EvalOpts>, CliError> {
     use lexopt::prelude::*;
     let mut parser = lexopt::Parser::from_args(argv);
     let (mut scenes, mut iterations, mut seed, mut repeats, mut speed) = (200u32, 100u32, 1u64, 20u32, 20u32);
@@ -191,14 +240,12 @@ pub fn eval(argv: Vec<OsString>) -> Result<(), CliError> {
             Long("quick") => quick = true,
             Long("help") | Short('h') => {
                 print!("{EVAL_HELP}");
-                return Ok(());
+                return Ok(None);
             }
             _ => return Err(arg.unexpected().into()),
         }
     }
     let config = read_config(config_path.as_ref())?;
-    let fail = |e: &dyn std::fmt::Display| CliError::Failed(e.to_string());
-
     let synth = match &synth_path {
         Some(p) => {
             let text = std::fs::read_to_string(p).map_err(|e| args::failed(p.display(), e))?;
@@ -207,14 +254,18 @@ pub fn eval(argv: Vec<OsString>) -> Result<(), CliError> {
         None => SynthConfig::default(),
     };
     synth.validate().map_err(|m| CliError::Usage(format!("invalid generator configuration: {m}")))?;
+    Ok(Some(EvalOpts { scenes, iterations, seed, repeats, speed, config, synth, json: json_path, quick }))
+}
 
-    // 1. Accuracy on generated scenes.
+/// 1. Accuracy on generated scenes: the pooled score, the number of objects, the seconds taken.
+fn eval_generated(o: &EvalOpts) -> Result<(Score, usize, f64), CliError> {
+    let EvalOpts { scenes, iterations, seed, config, ref synth, .. } = *o;
     let mut total = Score::default();
     let mut objects = 0usize;
     let mut by_kind: std::collections::BTreeMap<String, [u32; 3]> = Default::default();
     let t = Instant::now();
     for k in 0..scenes {
-        let scene = generate(&synth, seed + k as u64).map_err(|e| fail(&e))?;
+        let scene = generate(synth, seed + k as u64).map_err(|e| fail(&e))?;
         let analysis = analyse_scene(&scene, &config, 1, iterations).map_err(|e| fail(&e))?;
         objects += scene.objects.len();
         total.merge(&score(&scene, &analysis));
@@ -251,56 +302,60 @@ pub fn eval(argv: Vec<OsString>) -> Result<(), CliError> {
         println!("   {kind:<9} {n:>5} objects: undecided hidden {uh}, undecided false {uf}");
     }
     println!("   {:.1} ms per scene", 1000.0 * accuracy_seconds / scenes.max(1) as f64);
+    Ok((total, objects, accuracy_seconds))
+}
 
-    // 2. The dissertation's test.
-    let mut dissertation = serde_json::Value::Null;
-    if !quick {
-        let set = dissertation_scenes(seed, &synth).map_err(|e| fail(&e))?;
-        let (mut hidden, mut falses) = (0, 0);
-        for s in &set {
-            for o in &s.objects {
-                let t = o.truth.as_ref().expect("generated scenes carry truth");
-                hidden += t.hidden as u32;
-                falses += t.false_estimate as u32;
-            }
+/// 2. The dissertation's test: each scene of its set analysed `repeats` times.
+fn eval_dissertation(o: &EvalOpts) -> Result<serde_json::Value, CliError> {
+    let EvalOpts { iterations, seed, repeats, config, ref synth, .. } = *o;
+    let set = dissertation_scenes(seed, synth).map_err(|e| fail(&e))?;
+    let (mut hidden, mut falses) = (0, 0);
+    for s in &set {
+        for o in &s.objects {
+            let t = o.truth.as_ref().expect("generated scenes carry truth");
+            hidden += t.hidden as u32;
+            falses += t.false_estimate as u32;
         }
-        let (mut all_found, mut stable_graphs, mut runs) = (0u32, 0u32, 0u32);
-        let mut positives_found = 0u32;
-        let mut false_alarms = 0u32;
-        for s in &set {
-            let mut signatures = std::collections::BTreeSet::new();
-            let mut ok_every_run = true;
-            for r in 0..repeats {
-                let a = analyse_scene(s, &config, 1 + r as u64, iterations).map_err(|e| fail(&e))?;
-                let sc = score(s, &a);
-                runs += 1;
-                positives_found += sc.hidden.true_positive + sc.false_estimate.true_positive;
-                false_alarms += sc.hidden.false_positive + sc.false_estimate.false_positive;
-                ok_every_run &= sc.flags_correct == sc.total;
-                signatures.insert(graph_signature(&a));
-            }
-            all_found += ok_every_run as u32;
-            stable_graphs += (signatures.len() == 1) as u32;
-        }
-        println!(
-            "2. Dissertation test: {} scenes with {hidden} hidden objects and {falses} false estimates, {repeats} runs each",
-            set.len()
-        );
-        println!(
-            "   scenes inferred correctly in every run: {all_found}/{}; found {positives_found} of {} positives over all runs, {false_alarms} false alarms",
-            set.len(),
-            (hidden + falses) * repeats
-        );
-        println!("   scenes whose scene graph was the same in all {repeats} runs: {stable_graphs}/{}", set.len());
-        dissertation = serde_json::json!({
-            "scenes": set.len(), "hidden": hidden, "false": falses, "repeats": repeats, "runs": runs,
-            "scenes_correct_every_run": all_found, "positives_found": positives_found,
-            "positives_expected": (hidden + falses) * repeats, "false_alarms": false_alarms,
-            "scenes_same_graph": stable_graphs,
-        });
     }
+    let (mut all_found, mut stable_graphs, mut runs) = (0u32, 0u32, 0u32);
+    let mut positives_found = 0u32;
+    let mut false_alarms = 0u32;
+    for s in &set {
+        let mut signatures = std::collections::BTreeSet::new();
+        let mut ok_every_run = true;
+        for r in 0..repeats {
+            let a = analyse_scene(s, &config, 1 + r as u64, iterations).map_err(|e| fail(&e))?;
+            let sc = score(s, &a);
+            runs += 1;
+            positives_found += sc.hidden.true_positive + sc.false_estimate.true_positive;
+            false_alarms += sc.hidden.false_positive + sc.false_estimate.false_positive;
+            ok_every_run &= sc.flags_correct == sc.total;
+            signatures.insert(graph_signature(&a));
+        }
+        all_found += ok_every_run as u32;
+        stable_graphs += (signatures.len() == 1) as u32;
+    }
+    println!(
+        "2. Dissertation test: {} scenes with {hidden} hidden objects and {falses} false estimates, {repeats} runs each",
+        set.len()
+    );
+    println!(
+        "   scenes inferred correctly in every run: {all_found}/{}; found {positives_found} of {} positives over all runs, {false_alarms} false alarms",
+        set.len(),
+        (hidden + falses) * repeats
+    );
+    println!("   scenes whose scene graph was the same in all {repeats} runs: {stable_graphs}/{}", set.len());
+    Ok(serde_json::json!({
+        "scenes": set.len(), "hidden": hidden, "false": falses, "repeats": repeats, "runs": runs,
+        "scenes_correct_every_run": all_found, "positives_found": positives_found,
+        "positives_expected": (hidden + falses) * repeats, "false_alarms": false_alarms,
+        "scenes_same_graph": stable_graphs,
+    }))
+}
 
-    // 3. Speed with 8 objects.
+/// 3. Speed with 8 objects: mean ms per iteration, mean and worst ms per whole analysis.
+fn eval_speed(o: &EvalOpts) -> Result<(f64, f64, f64), CliError> {
+    let EvalOpts { iterations, seed, speed, config, ref synth, .. } = *o;
     let eight = SynthConfig { min_objects: 8, max_objects: 8, ..synth.clone() };
     let (mut per_iteration, mut whole, mut worst) = (Vec::new(), Vec::new(), 0f64);
     for k in 0..speed {
@@ -323,16 +378,5 @@ pub fn eval(argv: Vec<OsString>) -> Result<(), CliError> {
         mean(&whole),
         worst
     );
-    if let Some(p) = json_path {
-        let v = serde_json::json!({
-            "generated": { "scenes": scenes, "objects": objects, "iterations": iterations, "score": total,
-                           "flag_accuracy": total.flag_accuracy(), "decision_accuracy": total.decision_accuracy(),
-                           "ms_per_scene": 1000.0 * accuracy_seconds / scenes.max(1) as f64 },
-            "dissertation": dissertation,
-            "speed": { "objects": 8, "scenes": speed, "iterations": iterations,
-                       "ms_per_iteration": mean(&per_iteration), "analysis_ms": mean(&whole), "analysis_ms_worst": worst },
-        });
-        args::write(&p, (serde_json::to_string_pretty(&v).unwrap_or_default() + "\n").as_bytes())?;
-    }
-    Ok(())
+    Ok((mean(&per_iteration), mean(&whole), worst))
 }

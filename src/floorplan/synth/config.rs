@@ -182,9 +182,64 @@ impl SynthConfig {
         (side(w * c + h * s), side(w * s + h * c))
     }
 
-    /// Validates and converts to cells.
+    /// Validates and converts to cells; the error names the first bad field found.
     pub(super) fn cells(&self) -> Result<Cells, SynthError> {
-        let err = |field: &str, m: String| Err(SynthError(format!("synth config: {field} {m}")));
+        let (mw, mh) = self.check_canvas()?;
+        self.check_counts()?;
+        let resolution = self.resolution;
+        let span = |name: &str, r: [f64; 2]| span(name, r, resolution);
+        let corridor = span("corridor_width", self.corridor_width)?;
+        let room = span("room_width", self.room_width)?;
+        let depth = span("room_depth", self.room_depth)?;
+        let hall = span("hall_width", self.hall_width)?;
+        let other = span("other_width", self.other_width)?;
+        let door = span("door_width", self.door_width)?;
+        let wall = self.wall_thickness as i32;
+        let narrowest = corridor.lo.min(room.lo).min(depth.lo).min(hall.lo).min(other.lo);
+        if wall * 2 > narrowest {
+            return config_err(
+                "wall_thickness",
+                format!(
+                    "is {wall} cells; accepted: at most half the narrowest unit ({narrowest} cells, the least of the \
+                     corridor, room, hall and other widths and the room depth)"
+                ),
+            );
+        }
+        if door.lo + 2 * DOOR_CLEARANCE > narrowest {
+            return config_err(
+                "door_width",
+                format!(
+                    "lower bound is {} cells; accepted: at most {} cells, so that a door and {DOOR_CLEARANCE} cells at \
+                     either end fit the narrowest unit ({narrowest} cells)",
+                    door.lo,
+                    narrowest - 2 * DOOR_CLEARANCE
+                ),
+            );
+        }
+        self.check_probabilities()?;
+        Ok(Cells {
+            canvas: (self.width as i32, self.height as i32),
+            map_size: (mw, mh),
+            angle: self.angle(),
+            resolution,
+            margin: self.margin as i32,
+            wall,
+            corridors: self.corridors,
+            halls: self.halls,
+            others: self.others,
+            rooms: self.rooms,
+            corridor,
+            room,
+            depth,
+            hall,
+            other,
+            door,
+        })
+    }
+
+    /// The canvas: size, resolution, rotation, margin; the map's size.
+    fn check_canvas(&self) -> Result<(u32, u32), SynthError> {
+        let err = config_err;
         for (name, v) in [("width", self.width), ("height", self.height)] {
             if !(16..=MAX_SIDE).contains(&v) {
                 return err(name, format!("is {v}; accepted: 16 to {MAX_SIDE} cells"));
@@ -219,6 +274,12 @@ impl SynthConfig {
                 format!("is {}; accepted: 0 to {} cells (a quarter of the canvas)", self.margin, min_side / 4),
             );
         }
+        Ok((mw, mh))
+    }
+
+    /// The wall thickness and the numbers of corridors, halls, others and rooms.
+    fn check_counts(&self) -> Result<(), SynthError> {
+        let err = config_err;
         if !(1..=20).contains(&self.wall_thickness) {
             return err("wall_thickness", format!("is {}; accepted: 1 to 20 cells", self.wall_thickness));
         }
@@ -237,52 +298,12 @@ impl SynthConfig {
         if rlo > rhi || rhi > 10_000 {
             return err("rooms", format!("is [{rlo}, {rhi}]; accepted: [low, high] with low <= high <= 10000"));
         }
-        let span = |name: &str, r: [f64; 2]| -> Result<Span, SynthError> {
-            let [lo, hi] = r;
-            if !lo.is_finite() || !hi.is_finite() || lo <= 0.0 || lo > hi || hi > 1000.0 {
-                return Err(SynthError(format!(
-                    "synth config: {name} is [{lo}, {hi}]; accepted: [low, high] metres with 0 < low <= high <= 1000"
-                )));
-            }
-            let to_cells = |m: f64| libm::round(m / resolution) as i32;
-            let s = Span { lo: to_cells(lo), hi: to_cells(hi) };
-            let least = if name == "door_width" { 2 } else { 3 };
-            if s.lo < least {
-                return Err(SynthError(format!(
-                    "synth config: {name} [{lo}, {hi}] m is [{}, {}] cells at {resolution} m per cell; accepted: at least {least} cells",
-                    s.lo, s.hi
-                )));
-            }
-            Ok(s)
-        };
-        let corridor = span("corridor_width", self.corridor_width)?;
-        let room = span("room_width", self.room_width)?;
-        let depth = span("room_depth", self.room_depth)?;
-        let hall = span("hall_width", self.hall_width)?;
-        let other = span("other_width", self.other_width)?;
-        let door = span("door_width", self.door_width)?;
-        let wall = self.wall_thickness as i32;
-        let narrowest = corridor.lo.min(room.lo).min(depth.lo).min(hall.lo).min(other.lo);
-        if wall * 2 > narrowest {
-            return err(
-                "wall_thickness",
-                format!(
-                    "is {wall} cells; accepted: at most half the narrowest unit ({narrowest} cells, the least of the \
-                     corridor, room, hall and other widths and the room depth)"
-                ),
-            );
-        }
-        if door.lo + 2 * DOOR_CLEARANCE > narrowest {
-            return err(
-                "door_width",
-                format!(
-                    "lower bound is {} cells; accepted: at most {} cells, so that a door and {DOOR_CLEARANCE} cells at \
-                     either end fit the narrowest unit ({narrowest} cells)",
-                    door.lo,
-                    narrowest - 2 * DOOR_CLEARANCE
-                ),
-            );
-        }
+        Ok(())
+    }
+
+    /// The noise probabilities.
+    fn check_probabilities(&self) -> Result<(), SynthError> {
+        let err = config_err;
         for (name, p, hi) in [
             ("extra_doors", self.extra_doors, 1.0),
             ("speckle_occupied", self.speckle_occupied, 1.0),
@@ -303,23 +324,30 @@ impl SynthConfig {
                 format!("is {}; accepted: at most 1", self.speckle_occupied + self.speckle_unknown),
             );
         }
-        Ok(Cells {
-            canvas: (self.width as i32, self.height as i32),
-            map_size: (mw, mh),
-            angle: self.angle(),
-            resolution,
-            margin: self.margin as i32,
-            wall,
-            corridors: self.corridors,
-            halls: self.halls,
-            others: self.others,
-            rooms: self.rooms,
-            corridor,
-            room,
-            depth,
-            hall,
-            other,
-            door,
-        })
+        Ok(())
     }
+}
+
+fn config_err<T>(field: &str, m: String) -> Result<T, SynthError> {
+    Err(SynthError(format!("synth config: {field} {m}")))
+}
+
+/// A `[low, high]` range of metres in cells at `resolution` metres per cell.
+fn span(name: &str, r: [f64; 2], resolution: f64) -> Result<Span, SynthError> {
+    let [lo, hi] = r;
+    if !lo.is_finite() || !hi.is_finite() || lo <= 0.0 || lo > hi || hi > 1000.0 {
+        return Err(SynthError(format!(
+            "synth config: {name} is [{lo}, {hi}]; accepted: [low, high] metres with 0 < low <= high <= 1000"
+        )));
+    }
+    let to_cells = |m: f64| libm::round(m / resolution) as i32;
+    let s = Span { lo: to_cells(lo), hi: to_cells(hi) };
+    let least = if name == "door_width" { 2 } else { 3 };
+    if s.lo < least {
+        return Err(SynthError(format!(
+                "synth config: {name} [{lo}, {hi}] m is [{}, {}] cells at {resolution} m per cell; accepted: at least {least} cells",
+                s.lo, s.hi
+            )));
+    }
+    Ok(s)
 }

@@ -17,9 +17,9 @@
 //! until the door graph is connected, and further neighbours get a door by chance.
 
 use super::config::{Cells, Span, DOOR_CLEARANCE};
-use super::rng::{below, between, chance, Stream};
 use super::SynthError;
 use crate::floorplan::{Door, Rect, UnitType};
+use crate::mcmc::Rng;
 
 /// One unit of the layout: its free interior and its type.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -105,7 +105,7 @@ impl Plan {
 const ATTEMPTS: u32 = 16;
 
 /// Draws a layout for the canvas; retries a few times when random sizes made it fail.
-pub(super) fn plan(c: &Cells, extra_doors: f64, rng: &mut Stream) -> Result<Plan, SynthError> {
+pub(super) fn plan(c: &Cells, extra_doors: f64, rng: &mut Rng) -> Result<Plan, SynthError> {
     let mut last = None;
     for _ in 0..ATTEMPTS {
         match attempt(c, extra_doors, rng) {
@@ -164,7 +164,9 @@ impl Segment {
     }
 }
 
-fn attempt(c: &Cells, extra_doors: f64, rng: &mut Stream) -> Result<Plan, Failure> {
+/// One try at a layout: bands across the depth (rows of rooms and corridors), halls at the
+/// ends, a connector between two corridors, "other" units, then the rooms, and doors.
+fn attempt(c: &Cells, extra_doors: f64, rng: &mut Rng) -> Result<Plan, Failure> {
     let portrait = c.canvas.1 > c.canvas.0;
     let (cw, ch) = if portrait { (c.canvas.1, c.canvas.0) } else { c.canvas };
     let t = c.wall;
@@ -173,7 +175,26 @@ fn attempt(c: &Cells, extra_doors: f64, rng: &mut Stream) -> Result<Plan, Failur
     let (long_side, short_side) = if portrait { ("height", "width") } else { ("width", "height") };
     let mut spaces = Vec::new();
 
-    // Bands across the depth.
+    let (pattern, corridors) = band_pattern(c, inner, ch, short_side, rng)?;
+    let (corridor_widths, depths) = band_sizes(c, inner, &pattern, rng);
+    let (halls, xa, xb) = place_halls(c, inner, cw, long_side, rng)?;
+    let room_rows = lay_bands(c, inner, (xa, xb), &pattern, &corridor_widths, &depths, &mut spaces);
+    let mut segments = row_segments(c, &room_rows, corridors, (xa, xb), &mut spaces, rng);
+    for h in halls {
+        spaces.push(Space { inner: h, kind: UnitType::Hall });
+    }
+    place_others(c, &mut segments, rng)?;
+    let counts = room_counts(c, &segments, rng)?;
+    fill_segments(c, &segments, &counts, &mut spaces, rng);
+
+    let openings = doors(&spaces, c, extra_doors, rng)?;
+    let plan = Plan { building, spaces, openings };
+    Ok(if portrait { plan.transposed() } else { plan })
+}
+
+/// The bands across the depth, and the number of corridors.
+fn band_pattern(c: &Cells, inner: Rect, ch: i32, short_side: &str, rng: &mut Rng) -> Result<(Vec<Band>, u32), Failure> {
+    let t = c.wall;
     let need = |rows: i32, corridors: i32| rows * c.depth.lo + corridors * c.corridor.lo + (rows + corridors - 1) * t;
     let depth_needed = |n: i32| n + 2 * t + 2 * c.margin;
     let corridors = match c.corridors {
@@ -201,7 +222,7 @@ fn attempt(c: &Cells, extra_doors: f64, rng: &mut Stream) -> Result<Plan, Failur
     } else if need(2, 1) <= inner.h {
         vec![Band::Rooms, Band::Corridor, Band::Rooms]
     } else if need(1, 1) <= inner.h {
-        if chance(rng, 0.5) {
+        if rng.chance(0.5) {
             vec![Band::Rooms, Band::Corridor]
         } else {
             vec![Band::Corridor, Band::Rooms]
@@ -213,19 +234,36 @@ fn attempt(c: &Cells, extra_doors: f64, rng: &mut Stream) -> Result<Plan, Failur
             depth_needed(need(1, 1))
         )));
     };
+    Ok((pattern, corridors))
+}
+
+/// Corridor widths, and each room row's depth beyond the least.
+fn band_sizes(c: &Cells, inner: Rect, pattern: &[Band], rng: &mut Rng) -> (Vec<i32>, Vec<i32>) {
+    let t = c.wall;
     let rows = pattern.iter().filter(|b| **b == Band::Rooms).count() as i32;
     let n_corridors = pattern.len() as i32 - rows;
     let mut budget = inner.h - (pattern.len() as i32 - 1) * t - rows * c.depth.lo;
     let mut corridor_widths = Vec::new();
     for k in 0..n_corridors {
         let rest = (n_corridors - k - 1) * c.corridor.lo;
-        let w = between(rng, c.corridor.lo, c.corridor.hi.min(budget - rest));
+        let w = rng.between(c.corridor.lo, c.corridor.hi.min(budget - rest));
         budget -= w;
         corridor_widths.push(w);
     }
     let depths = share(rng, rows as usize, budget, i32::MAX);
+    (corridor_widths, depths)
+}
 
-    // Halls at the ends, leaving room for at least one room along the corridors.
+/// Halls at the ends, leaving room for at least one room along the corridors; with the columns
+/// `xa..xb` left between them.
+fn place_halls(
+    c: &Cells,
+    inner: Rect,
+    cw: i32,
+    long_side: &str,
+    rng: &mut Rng,
+) -> Result<(Vec<Rect>, i32, i32), Failure> {
+    let t = c.wall;
     let hall_room = (inner.w - c.room.lo - c.halls as i32 * t) / (c.halls.max(1) as i32);
     if c.halls > 0 && hall_room < c.hall.lo {
         return Err(fatal(format!(
@@ -239,7 +277,7 @@ fn attempt(c: &Cells, extra_doors: f64, rng: &mut Stream) -> Result<Plan, Failur
     let (mut xa, mut xb) = (inner.x, inner.right());
     let mut halls = Vec::new();
     for k in 0..c.halls {
-        let w = between(rng, c.hall.lo, c.hall.hi.min(hall_room));
+        let w = rng.between(c.hall.lo, c.hall.hi.min(hall_room));
         if k == 0 {
             halls.push(Rect::new(xa, inner.y, w, inner.h));
             xa += w + t;
@@ -255,11 +293,24 @@ fn attempt(c: &Cells, extra_doors: f64, rng: &mut Stream) -> Result<Plan, Failur
             cw + c.room.lo - (xb - xa)
         )));
     }
+    Ok((halls, xa, xb))
+}
 
-    // Lay the bands out top to bottom.
+/// Lays the bands out top to bottom over columns `xa..xb`: corridors become spaces, room rows
+/// are returned.
+fn lay_bands(
+    c: &Cells,
+    inner: Rect,
+    (xa, xb): (i32, i32),
+    pattern: &[Band],
+    corridor_widths: &[i32],
+    depths: &[i32],
+    spaces: &mut Vec<Space>,
+) -> Vec<Rect> {
+    let t = c.wall;
     let (mut y, mut ci, mut ri) = (inner.y, 0, 0);
     let mut room_rows = Vec::new();
-    for band in &pattern {
+    for band in pattern {
         let h = match band {
             Band::Corridor => corridor_widths[ci],
             Band::Rooms => c.depth.lo + depths[ri],
@@ -278,16 +329,28 @@ fn attempt(c: &Cells, extra_doors: f64, rng: &mut Stream) -> Result<Plan, Failur
         y += h + t;
     }
     debug_assert_eq!(y - t, inner.bottom());
+    room_rows
+}
 
-    // Row segments; with two corridors and no hall, a connector cuts the middle rows.
+/// Row segments; with two corridors and no hall, a connector (a corridor space) cuts the
+/// middle rows.
+fn row_segments(
+    c: &Cells,
+    room_rows: &[Rect],
+    corridors: u32,
+    (xa, xb): (i32, i32),
+    spaces: &mut Vec<Space>,
+    rng: &mut Rng,
+) -> Vec<Segment> {
+    let t = c.wall;
     let mut segments: Vec<Segment> = Vec::new();
     let whole = |row: Rect| Segment::new(row, row.x, row.right());
     if corridors == 2 && c.halls == 0 {
         let len = xb - xa;
-        let mut w = between(rng, c.corridor.lo, c.corridor.hi);
+        let mut w = rng.between(c.corridor.lo, c.corridor.hi);
         let side = c.room.lo + t;
         let cx = if len >= 2 * side + w {
-            between(rng, xa + side, xb - side - w)
+            rng.between(xa + side, xb - side - w)
         } else if len >= side + w {
             xa
         } else {
@@ -311,13 +374,14 @@ fn attempt(c: &Cells, extra_doors: f64, rng: &mut Stream) -> Result<Plan, Failur
     } else {
         segments.extend(room_rows.iter().map(|r| whole(*r)));
     }
-    for h in halls {
-        spaces.push(Space { inner: h, kind: UnitType::Hall });
-    }
+    segments
+}
 
-    // "Other" units go to segments that keep room for a room beside them.
+/// "Other" units go to segments that keep room for a room beside them.
+fn place_others(c: &Cells, segments: &mut [Segment], rng: &mut Rng) -> Result<(), Failure> {
+    let t = c.wall;
     for placed in 0..c.others {
-        let w = between(rng, c.other.lo, c.other.hi);
+        let w = rng.between(c.other.lo, c.other.hi);
         let fits: Vec<usize> = (0..segments.len()).filter(|&i| segments[i].rest(t) - (w + t) >= c.room.lo).collect();
         if fits.is_empty() {
             return Err(Failure::Unlucky(SynthError(format!(
@@ -326,10 +390,14 @@ fn attempt(c: &Cells, extra_doors: f64, rng: &mut Stream) -> Result<Plan, Failur
                 c.others
             ))));
         }
-        segments[fits[below(rng, fits.len())]].others.push(w);
+        segments[fits[rng.index(fits.len())]].others.push(w);
     }
+    Ok(())
+}
 
-    // How many rooms each segment gets: drawn per segment, then nudged into the accepted range.
+/// How many rooms each segment gets: drawn per segment, then nudged into the accepted range.
+fn room_counts(c: &Cells, segments: &[Segment], rng: &mut Rng) -> Result<Vec<i32>, Failure> {
+    let t = c.wall;
     let bounds: Vec<(i32, i32)> = segments.iter().map(|s| s.counts(t, c.room)).collect();
     let (fewest, most) = bounds.iter().fold((0i64, 0i64), |(a, b), (lo, hi)| (a + *lo as i64, b + *hi as i64));
     let (lo, hi) = (fewest.max(c.rooms[0] as i64), most.min(c.rooms[1] as i64));
@@ -340,25 +408,29 @@ fn attempt(c: &Cells, extra_doors: f64, rng: &mut Stream) -> Result<Plan, Failur
             c.rooms[0], c.rooms[1]
         ))));
     }
-    let mut counts: Vec<i32> = bounds.iter().map(|&(a, b)| between(rng, a, b)).collect();
+    let mut counts: Vec<i32> = bounds.iter().map(|&(a, b)| rng.between(a, b)).collect();
     let mut total: i64 = counts.iter().map(|&k| k as i64).sum();
     while total < lo || total > hi {
         let grow = total < lo;
         let can: Vec<usize> = (0..counts.len())
             .filter(|&i| if grow { counts[i] < bounds[i].1 } else { counts[i] > bounds[i].0 })
             .collect();
-        let i = can[below(rng, can.len())];
+        let i = can[rng.index(can.len())];
         counts[i] += if grow { 1 } else { -1 };
         total += if grow { 1 } else { -1 };
     }
+    Ok(counts)
+}
 
-    // Split each segment into its rooms and "other" units, left to right.
-    for (seg, &k) in segments.iter().zip(&counts) {
+/// Splits each segment into its rooms and "other" units, left to right.
+fn fill_segments(c: &Cells, segments: &[Segment], counts: &[i32], spaces: &mut Vec<Space>, rng: &mut Rng) {
+    let t = c.wall;
+    for (seg, &k) in segments.iter().zip(counts) {
         let extra = seg.rest(t) - (k - 1) * t - k * c.room.lo;
         let widths = share(rng, k as usize, extra, c.room.hi - c.room.lo);
         let mut seq: Vec<(UnitType, i32)> = widths.iter().map(|w| (UnitType::Room, c.room.lo + w)).collect();
         for &w in &seg.others {
-            let at = below(rng, seq.len() + 1);
+            let at = rng.index(seq.len() + 1);
             seq.insert(at, (UnitType::Other, w));
         }
         let mut x = seg.x0;
@@ -368,10 +440,6 @@ fn attempt(c: &Cells, extra_doors: f64, rng: &mut Stream) -> Result<Plan, Failur
         }
         debug_assert_eq!(x - t, seg.x1);
     }
-
-    let openings = doors(&spaces, c, extra_doors, rng)?;
-    let plan = Plan { building, spaces, openings };
-    Ok(if portrait { plan.transposed() } else { plan })
 }
 
 /// Two spaces that share a wall long enough for a door: `a` left of / above `b`, their
@@ -408,7 +476,7 @@ fn is_hub(kind: UnitType) -> bool {
 
 /// Chooses the doors: each room and "other" unit onto a corridor (else a hall) it touches, hubs
 /// joined until everything is connected, other neighbours by chance.
-fn doors(spaces: &[Space], c: &Cells, extra_doors: f64, rng: &mut Stream) -> Result<Vec<Opening>, Failure> {
+fn doors(spaces: &[Space], c: &Cells, extra_doors: f64, rng: &mut Rng) -> Result<Vec<Opening>, Failure> {
     let n = spaces.len();
     let mut contacts = Vec::new();
     for i in 0..n {
@@ -470,14 +538,14 @@ fn doors(spaces: &[Space], c: &Cells, extra_doors: f64, rng: &mut Stream) -> Res
         )));
     }
     for ch in chosen.iter_mut() {
-        let extra = chance(rng, extra_doors);
+        let extra = rng.chance(extra_doors);
         *ch |= extra;
     }
     let mut openings = Vec::new();
     for (ct, _) in contacts.iter().zip(&chosen).filter(|(_, &ch)| ch) {
         let room = ct.hi - ct.lo - 2 * DOOR_CLEARANCE;
-        let len = between(rng, c.door.lo, c.door.hi).min(room);
-        let along = between(rng, ct.lo + DOOR_CLEARANCE, ct.hi - DOOR_CLEARANCE - len);
+        let len = rng.between(c.door.lo, c.door.hi).min(room);
+        let along = rng.between(ct.lo + DOOR_CLEARANCE, ct.hi - DOOR_CLEARANCE - len);
         openings.push(Opening { a: ct.a, b: ct.b, vertical: ct.vertical, wall: ct.wall, along, len });
     }
     Ok(openings)
@@ -485,7 +553,7 @@ fn doors(spaces: &[Space], c: &Cells, extra_doors: f64, rng: &mut Stream) -> Res
 
 /// Shares `total` extra cells among `n` parts in random chunks, each part taking at most `cap`
 /// until all are full; then the rest is spread evenly.
-fn share(rng: &mut Stream, n: usize, total: i32, cap: i32) -> Vec<i32> {
+fn share(rng: &mut Rng, n: usize, total: i32, cap: i32) -> Vec<i32> {
     let mut add = vec![0; n];
     if n == 0 || total <= 0 {
         return add;
@@ -501,7 +569,7 @@ fn share(rng: &mut Stream, n: usize, total: i32, cap: i32) -> Vec<i32> {
             }
             break;
         }
-        let i = open[below(rng, open.len())];
+        let i = open[rng.index(open.len())];
         let g = chunk.min(left).min(cap - add[i]);
         add[i] += g;
         left -= g;
@@ -512,11 +580,10 @@ fn share(rng: &mut Stream, n: usize, total: i32, cap: i32) -> Vec<i32> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use rand::SeedableRng;
 
     #[test]
     fn share_gives_everything_and_respects_caps() {
-        let mut rng = Stream::seed_from_u64(1);
+        let mut rng = Rng::seed(1);
         for (n, total, cap) in [(1, 10, 100), (5, 37, 10), (4, 100, 10), (3, 0, 5), (7, 1000, i32::MAX)] {
             let add = share(&mut rng, n, total, cap);
             assert_eq!(add.len(), n);

@@ -17,9 +17,9 @@
 
 use super::config::Cells;
 use super::layout::{Opening, Plan, Space};
-use super::rng::{below, between, chance, unit, Stream};
 use crate::floorplan::{Rect, UnitType};
 use crate::grid::{Cell, Grid};
+use crate::mcmc::Rng;
 
 /// The noise settings, all probabilities or fractions.
 #[derive(Debug, Clone, Copy)]
@@ -56,7 +56,7 @@ fn fill<T: Copy>(g: &mut Grid<T>, r: Rect, v: T) {
 }
 
 /// Rasterises the plan in the world frame and degrades it as a scan would.
-pub(super) fn observe(plan: &Plan, explored: &[bool], c: &Cells, noise: &Noise, rng: &mut Stream) -> Observed {
+pub(super) fn observe(plan: &Plan, explored: &[bool], c: &Cells, noise: &Noise, rng: &mut Rng) -> Observed {
     let (w, h) = (c.canvas.0 as usize, c.canvas.1 as usize);
     let t = c.wall;
     let mut kind = Grid::new(w, h, OUTSIDE);
@@ -86,7 +86,7 @@ pub(super) fn observe(plan: &Plan, explored: &[bool], c: &Cells, noise: &Noise, 
         }
         for o in plan.openings.iter().filter(|o| o.a == u || o.b == u) {
             let v = o.other(u);
-            if explored[v] && chance(rng, noise.peek) {
+            if explored[v] && rng.chance(noise.peek) {
                 peek(&mut cells, o, s, &plan.spaces[v], v == o.a, t);
             }
         }
@@ -115,11 +115,11 @@ pub(super) fn observe(plan: &Plan, explored: &[bool], c: &Cells, noise: &Noise, 
             for ((x0, y0), (dx, dy), (ox, oy), len) in sides {
                 let mut i = 0;
                 while i < len {
-                    if !chance(rng, noise.wall_gaps) {
+                    if !rng.chance(noise.wall_gaps) {
                         i += 1;
                         continue;
                     }
-                    let g = between(rng, 2, 8);
+                    let g = rng.between(2, 8);
                     for j in i..(i + g).min(len) {
                         for k in 0..t {
                             let (x, y) = (x0 + dx * j + ox * k, y0 + dy * j + oy * k);
@@ -210,7 +210,7 @@ fn furnish(
     keep_out: &[Rect],
     fraction: f64,
     resolution: f64,
-    rng: &mut Stream,
+    rng: &mut Rng,
 ) {
     let target = libm::round(fraction * room.area() as f64) as i64;
     let size = |m: f64| (libm::round(m / resolution) as i32).max(2);
@@ -220,8 +220,8 @@ fn furnish(
     let mut attempts = 0;
     while covered < target && attempts < 400 {
         attempts += 1;
-        let mut bw = between(rng, smin, smax).min(room.w - 2);
-        let mut bh = between(rng, smin, smax).min(room.h - 2);
+        let mut bw = rng.between(smin, smax).min(room.w - 2);
+        let mut bh = rng.between(smin, smax).min(room.h - 2);
         // Near the target, smaller pieces: overshoot by a quarter at most.
         let budget = ((target - covered) * 5 / 4).max((smin * smin) as i64) as i32;
         if bw * bh > budget {
@@ -232,15 +232,15 @@ fn furnish(
             return;
         }
         // Most furniture stands against a wall.
-        let (x, y) = if chance(rng, 0.6) {
-            match below(rng, 4) {
-                0 => (between(rng, room.x, room.right() - bw), room.y),
-                1 => (between(rng, room.x, room.right() - bw), room.bottom() - bh),
-                2 => (room.x, between(rng, room.y, room.bottom() - bh)),
-                _ => (room.right() - bw, between(rng, room.y, room.bottom() - bh)),
+        let (x, y) = if rng.chance(0.6) {
+            match rng.index(4) {
+                0 => (rng.between(room.x, room.right() - bw), room.y),
+                1 => (rng.between(room.x, room.right() - bw), room.bottom() - bh),
+                2 => (room.x, rng.between(room.y, room.bottom() - bh)),
+                _ => (room.right() - bw, rng.between(room.y, room.bottom() - bh)),
             }
         } else {
-            (between(rng, room.x + 1, room.right() - bw - 1), between(rng, room.y + 1, room.bottom() - bh - 1))
+            (rng.between(room.x + 1, room.right() - bw - 1), rng.between(room.y + 1, room.bottom() - bh - 1))
         };
         let r = Rect::new(x, y, bw, bh);
         let grown = Rect::new(x - 3, y - 3, bw + 6, bh + 6);
@@ -250,7 +250,7 @@ fn furnish(
             continue;
         }
         placed.push(r);
-        let round = chance(rng, 0.4);
+        let round = rng.chance(0.4);
         let (cx, cy, rx, ry) =
             (x as f64 + bw as f64 / 2.0, y as f64 + bh as f64 / 2.0, bw as f64 / 2.0, bh as f64 / 2.0);
         let inside = |px: i32, py: i32| {
@@ -270,7 +270,7 @@ fn furnish(
                 }
                 let edge = !(inside(px - 1, py) && inside(px + 1, py) && inside(px, py - 1) && inside(px, py + 1));
                 // The laser sees part of the outline; the inside stays unknown.
-                let seen = edge && unit(rng) < 0.7;
+                let seen = edge && rng.uniform() < 0.7;
                 *cells.at_mut(px as usize, py as usize) = if seen { Cell::Occupied } else { Cell::Unknown };
                 *object.at_mut(px as usize, py as usize) = true;
                 covered += 1;
@@ -305,7 +305,7 @@ fn dilate(g: &Grid<bool>, r: usize) -> Grid<bool> {
 }
 
 /// Samples the world-frame observation into the map frame and adds speckle.
-pub(super) fn to_map(obs: &Observed, c: &Cells, noise: &Noise, rng: &mut Stream) -> (Grid<Cell>, Grid<u16>) {
+pub(super) fn to_map(obs: &Observed, c: &Cells, noise: &Noise, rng: &mut Rng) -> (Grid<Cell>, Grid<u16>) {
     let (ww, wh) = (c.canvas.0 as usize, c.canvas.1 as usize);
     let (mw, mh) = (c.map_size.0 as usize, c.map_size.1 as usize);
     let (s, co) = (libm::sin(c.angle), libm::cos(c.angle));
@@ -339,7 +339,7 @@ pub(super) fn to_map(obs: &Observed, c: &Cells, noise: &Noise, rng: &mut Stream)
                     || (x + 1 < mw && occupied(x + 1, y))
                     || (y > 0 && occupied(x, y - 1))
                     || (y + 1 < mh && occupied(x, y + 1));
-                if beside && chance(rng, noise.wall_roughness) {
+                if beside && rng.chance(noise.wall_roughness) {
                     cells[y * mw + x] = Cell::Occupied;
                 }
             }
@@ -348,7 +348,7 @@ pub(super) fn to_map(obs: &Observed, c: &Cells, noise: &Noise, rng: &mut Stream)
     let (po, pu) = (noise.speckle_occupied, noise.speckle_unknown);
     if po + pu > 0.0 {
         for cell in cells.iter_mut().filter(|c| **c == Cell::Free) {
-            let d = unit(rng);
+            let d = rng.uniform();
             if d < po {
                 *cell = Cell::Occupied;
             } else if d < po + pu {
@@ -362,13 +362,12 @@ pub(super) fn to_map(obs: &Observed, c: &Cells, noise: &Noise, rng: &mut Stream)
 #[cfg(test)]
 mod tests {
     use super::*;
-    use rand::{Rng, SeedableRng};
 
     #[test]
     fn dilate_matches_brute_force() {
-        let mut rng = Stream::seed_from_u64(3);
+        let mut rng = Rng::seed(3);
         let (w, h) = (23, 17);
-        let cells: Vec<bool> = (0..w * h).map(|_| rng.gen_bool(0.05)).collect();
+        let cells: Vec<bool> = (0..w * h).map(|_| rng.chance(0.05)).collect();
         let g = Grid::from_vec(w, h, cells).unwrap();
         for r in [0, 1, 3] {
             let d = dilate(&g, r);

@@ -3,7 +3,7 @@
 
 #![allow(clippy::field_reassign_with_default)] // configs are built by adjusting defaults
 
-use ksmcmc::floorplan::knowledge::defects;
+use ksmcmc::floorplan::metrics::defects;
 use ksmcmc::floorplan::synth::{generate, SynthConfig};
 use ksmcmc::floorplan::{Chain, ChainConfig, UnitType, World};
 

@@ -6,11 +6,10 @@
 
 #![allow(clippy::field_reassign_with_default)] // configs are built by adjusting defaults, field by field
 
-use ksmcmc::floorplan::explain::Explanation;
 use ksmcmc::floorplan::posterior::Posterior;
-use ksmcmc::floorplan::{Chain, ChainConfig, Rect};
+use ksmcmc::floorplan::{Chain, ChainConfig, Explanation, Rect};
+use ksmcmc::floorplan::{KernelWeights, Schedule};
 use ksmcmc::grid::{Cell, Grid};
-use ksmcmc::mcmc::{KernelWeights, Schedule};
 use std::collections::HashMap;
 
 /// A 6 x 4 map: two small rooms with a gap, so the posterior has structure. It is small so

@@ -1,5 +1,5 @@
 //! Pixel tests for `ksmcmc::render`: map colours, world overlays, frames, labels, PNG output,
-//! and every real map in `shared/datasets`.
+//! and every real map in `shared/datasets` (skipped without it) or generated stand-ins.
 
 use ksmcmc::floorplan::{Door, Frame, UnexplainedArea, Unit, UnitType, World};
 use ksmcmc::grid::{Cell, Grid, OccupancyMap};
@@ -486,14 +486,10 @@ fn unchecked_worlds_do_not_panic() {
     assert_eq!(rgb(&p, 5, 5), CYAN);
 }
 
-/// `shared/datasets`, beside the repository.
-fn datasets() -> std::path::PathBuf {
-    std::path::PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/datasets"))
-}
-
 #[test]
 fn every_dataset_map_renders_with_its_cell_counts() {
-    let dir = datasets().join("bormann2016");
+    let Some(datasets) = crate::common::datasets("every_dataset_map_renders_with_its_cell_counts") else { return };
+    let dir = datasets.join("bormann2016");
     let mut paths: Vec<_> = std::fs::read_dir(&dir)
         .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
         .map(|e| e.expect("directory entry").path())
@@ -501,7 +497,7 @@ fn every_dataset_map_renders_with_its_cell_counts() {
         .collect();
     paths.sort();
     assert!(paths.len() >= 10, "found only {} maps in {}", paths.len(), dir.display());
-    paths.push(datasets().join("radish/ubremen-cartesium.png"));
+    paths.push(datasets.join("radish/ubremen-cartesium.png"));
 
     // Two threads: the maps are independent and the machine has two cores.
     let (left, right) = paths.split_at(paths.len() / 2);
@@ -511,6 +507,39 @@ fn every_dataset_map_renders_with_its_cell_counts() {
         a.join().expect("first half");
         b.join().expect("second half");
     });
+}
+
+/// The same check on a synthetic map (PGM) and a drawn gray+alpha PNG.
+#[test]
+fn generated_maps_render_with_their_cell_counts() {
+    let dir = std::env::temp_dir().join(format!("ksmcmc-render-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let synth = ksmcmc::floorplan::synth::generate(&Default::default(), 5).expect("synth");
+    let pgm = dir.join("synth.pgm");
+    std::fs::write(&pgm, synth.map_pgm()).expect("write");
+    check_dataset_map(&pgm);
+    let (w, h) = (50u32, 40u32);
+    let mut data = Vec::new();
+    for y in 0..h {
+        for x in 0..w {
+            let gray = if x < 5 || y < 5 {
+                205
+            } else if x == 5 || y == 5 || x == 45 || y == 35 {
+                0
+            } else {
+                255
+            };
+            data.extend([gray, 255u8]);
+        }
+    }
+    let mut bytes = Vec::new();
+    let mut enc = png::Encoder::new(&mut bytes, w, h);
+    enc.set_color(png::ColorType::GrayscaleAlpha);
+    enc.set_depth(png::BitDepth::Eight);
+    enc.write_header().expect("header").write_image_data(&data).expect("data");
+    let gray_alpha = dir.join("gray_alpha.png");
+    std::fs::write(&gray_alpha, bytes).expect("write");
+    check_dataset_map(&gray_alpha);
 }
 
 fn check_dataset_map(path: &std::path::Path) {

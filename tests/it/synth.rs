@@ -546,7 +546,7 @@ fn bad_configs_are_errors_naming_the_field() {
 }
 
 #[test]
-fn large_building_is_fast_enough_and_consistent() {
+fn large_building_is_consistent() {
     let c = SynthConfig {
         width: 1237,
         height: 672,
@@ -557,10 +557,8 @@ fn large_building_is_fast_enough_and_consistent() {
         rotation_deg: 20.0,
         ..SynthConfig::default()
     };
-    let start = std::time::Instant::now();
+    // Its generation time is measured by `ksmcmc bench` ("synthetic map generated"), not here.
     let s = gen(&c, 11);
-    // Generous: debug builds are ~10x slower than release, where this takes well under 0.1 s.
-    assert!(start.elapsed().as_secs_f64() < 10.0);
     assert!(s.truth.units.iter().filter(|u| u.kind == UnitType::Room).count() >= 20);
     check_truth(&s, &c, 11);
 }

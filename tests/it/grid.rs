@@ -1,22 +1,21 @@
 //! Map loading and classification: every real map, every colour type, every bad input.
 
+use crate::common::datasets;
 use ksmcmc::grid::{pgm, Cell, Classifier, Grid, Limits, MapError, MapYaml, Mode, OccupancyMap};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
-fn datasets() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/datasets")
-}
-
-fn dataset_maps() -> Vec<PathBuf> {
-    let mut maps = vec![datasets().join("radish/ubremen-cartesium.png")];
-    let mut b: Vec<PathBuf> = std::fs::read_dir(datasets().join("bormann2016"))
-        .expect("../shared/datasets/bormann2016 must exist beside the checkout")
+/// The radish map and every Bormann image, or `None` (skip) without the datasets.
+fn dataset_maps(test: &str) -> Option<Vec<PathBuf>> {
+    let datasets = datasets(test)?;
+    let mut maps = vec![datasets.join("radish/ubremen-cartesium.png")];
+    let mut b: Vec<PathBuf> = std::fs::read_dir(datasets.join("bormann2016"))
+        .expect("the datasets folder holds bormann2016/")
         .map(|e| e.unwrap().path())
         .filter(|p| p.extension().is_some_and(|e| e == "png"))
         .collect();
     b.sort();
     maps.extend(b);
-    maps
+    Some(maps)
 }
 
 fn tmpdir(name: &str) -> PathBuf {
@@ -44,7 +43,7 @@ fn png_bytes(w: u32, h: u32, color: png::ColorType, depth: png::BitDepth, sample
 
 #[test]
 fn every_dataset_map_loads_with_all_three_classes() {
-    let maps = dataset_maps();
+    let Some(maps) = dataset_maps("every_dataset_map_loads_with_all_three_classes") else { return };
     assert_eq!(maps.len(), 31, "radish map and 30 Bormann images expected");
     for path in maps {
         let m = OccupancyMap::load(&path, &Limits::default()).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
@@ -60,11 +59,40 @@ fn every_dataset_map_loads_with_all_three_classes() {
 #[test]
 fn cartesium_unexplored_gray_is_unknown_not_free() {
     // The Radish map marks unexplored space with gray 230 (16-bit RGBA); it must not be free.
-    let m = OccupancyMap::load(&datasets().join("radish/ubremen-cartesium.png"), &Limits::default()).unwrap();
+    let Some(datasets) = datasets("cartesium_unexplored_gray_is_unknown_not_free") else { return };
+    let m = OccupancyMap::load(&datasets.join("radish/ubremen-cartesium.png"), &Limits::default()).unwrap();
     assert_eq!((m.width(), m.height()), (1237, 672));
     assert!(m.raster().alpha.is_some());
     let (f, u) = (m.count(Cell::Free), m.count(Cell::Unknown));
     assert!(u > 3 * f, "unexplored space dominates the Cartesium map: free {f}, unknown {u}");
+    assert!(m.classified().at(0, 0) == &Cell::Unknown);
+}
+
+/// The fixture for the Cartesium test above, drawn here: a 16-bit RGBA map whose unexplored
+/// outside is gray 230, around a walled room of white free space.
+#[test]
+fn unexplored_gray_230_in_16_bit_rgba_is_unknown_not_free() {
+    let (w, h) = (40u32, 30u32);
+    let mut samples = Vec::new();
+    for y in 0..h {
+        for x in 0..w {
+            let (inside, wall) =
+                ((10..30).contains(&x) && (8..22).contains(&y), x == 10 || x == 29 || y == 8 || y == 21);
+            let gray: u16 = if !inside {
+                230
+            } else if wall {
+                0
+            } else {
+                255
+            };
+            samples.extend([gray * 257, gray * 257, gray * 257, 65535]);
+        }
+    }
+    let m = OccupancyMap::from_bytes(&png_bytes(w, h, png::ColorType::Rgba, png::BitDepth::Sixteen, &samples)).unwrap();
+    assert!(m.raster().alpha.is_some());
+    let (f, u, o) = (m.count(Cell::Free), m.count(Cell::Unknown), m.count(Cell::Occupied));
+    assert_eq!((f, o), (18 * 12, 2 * 20 + 2 * 12));
+    assert_eq!(u, (w * h) as usize - f - o);
     assert!(m.classified().at(0, 0) == &Cell::Unknown);
 }
 
@@ -207,7 +235,12 @@ fn yaml_naming_a_missing_image_and_non_utf8_yaml() {
 
 #[test]
 fn bad_images_are_errors_with_messages() {
-    let real = std::fs::read(datasets().join("bormann2016/lab_ipa.png")).unwrap();
+    // A valid gray PNG of scattered map classes (it compresses poorly: well over 200 bytes) to
+    // cut short and corrupt.
+    let samples: Vec<u16> =
+        (0..64 * 64u32).map(|i| [0, 205, 254][(i.wrapping_mul(2_654_435_761) >> 13) as usize % 3]).collect();
+    let real = png_bytes(64, 64, png::ColorType::Grayscale, png::BitDepth::Eight, &samples);
+    assert!(real.len() > 200 && OccupancyMap::from_bytes(&real).is_ok());
     let cases: Vec<(&str, Vec<u8>, &str)> = vec![
         ("empty", vec![], "empty"),
         ("wrong magic", b"hello world".to_vec(), "not an occupancy map"),

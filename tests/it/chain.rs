@@ -3,8 +3,8 @@
 #![allow(clippy::field_reassign_with_default)] // configs are built by adjusting defaults, field by field
 
 use ksmcmc::floorplan::{Chain, ChainConfig, ChainError};
+use ksmcmc::floorplan::{KernelWeights, Schedule};
 use ksmcmc::grid::{Cell, Grid, OccupancyMap};
-use ksmcmc::mcmc::{KernelWeights, Schedule};
 
 /// Three rooms in a row with doors between them and a corridor below; walls 2 cells thick.
 fn rooms_map() -> Grid<Cell> {
@@ -70,7 +70,7 @@ fn incremental_posterior_equals_full_recomputation_after_every_step() {
             doors_seen = doors_seen.max(chain.current_rects().1.len());
         }
         let t = chain.trace();
-        for k in ksmcmc::mcmc::Kernel::ALL {
+        for k in ksmcmc::floorplan::Kernel::ALL {
             assert!(t.proposed[k.index()] > 0, "seed {seed}: {} never proposed", k.name());
         }
         assert!(t.total_accepted() > 50, "seed {seed}: the chain barely moved: {:?}", t.accepted);
@@ -169,6 +169,29 @@ fn config_json_accepts_partial_objects() {
     assert_eq!(c.posterior.temperature, 2.0);
     assert_eq!(c.kernels.min_side, 4);
     assert_eq!(c.posterior.overlap_penalty, ChainConfig::default().posterior.overlap_penalty);
+}
+
+/// `ChainConfig::from_json`, which the CLI's `--config` and the browser's `configJson` share:
+/// blank text is the defaults, and every refusal says what is wrong.
+#[test]
+fn config_json_errors_name_the_problem() {
+    assert_eq!(ChainConfig::from_json(" ").unwrap(), ChainConfig::default());
+    assert_eq!(ChainConfig::from_json("{}").unwrap(), ChainConfig::default());
+    let c = ChainConfig::from_json(r#"{"posterior": {"temperature": 2.0}, "kernels": {"min_side": 4}}"#).unwrap();
+    assert_eq!((c.posterior.temperature, c.kernels.min_side), (2.0, 4));
+    let err = |json: &str| ChainConfig::from_json(json).unwrap_err().to_string();
+    for (json, needle) in [
+        ("{", "chain config"),
+        ("[1, 2]", "JSON object"),
+        (r#"{"posterior": {"temperature": NaN}}"#, "NaN"),
+        (r#"{"posterior": {"temperature": -1}}"#, "temperature -1"),
+        (r#"{"posterior": {"temprature": 2}}"#, "unknown field `posterior.temprature`"),
+        (r#"{"iterations": 5}"#, "unknown field `iterations`"),
+        (r#"{"kernels": {"min_side": "big"}}"#, "chain config"),
+    ] {
+        let e = err(json);
+        assert!(e.contains(needle), "{json}: {e}");
+    }
 }
 
 #[test]

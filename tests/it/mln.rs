@@ -12,8 +12,8 @@ use ksmcmc::mln::{
     Network, SliceMoves, Source,
 };
 
-const INDOOR: &str = include_str!("../samples/knowledge/indoor.mln");
-const TABLETOP: &str = include_str!("../samples/knowledge/tabletop.mln");
+const INDOOR: &str = include_str!("../../samples/knowledge/indoor.mln");
+const TABLETOP: &str = include_str!("../../samples/knowledge/tabletop.mln");
 const INDOOR_QUERY: [&str; 5] = ["Room", "Corr", "Hall", "Other", "SaLe"];
 const INDOOR_EVIDENCE: [&str; 5] = ["RoLi", "CoLi", "HaLi", "MulDoor", "Adj"];
 const TABLETOP_QUERY: [&str; 4] = ["hidden", "false", "supportive", "supported"];
@@ -250,7 +250,7 @@ fn tabletop_scenes() {
     // The shipped scene: O6 intersects O1 and is not stable, so it is the likely false
     // estimate; O5 hovers, so something is probably hidden under it.
     let mln = Mln::parse(TABLETOP).unwrap();
-    let db = Database::parse(include_str!("../samples/knowledge/tabletop.db"), &mln).unwrap();
+    let db = Database::parse(include_str!("../../samples/knowledge/tabletop.db"), &mln).unwrap();
     let net = Network::ground(&mln, &db, &GroundConfig::query(&TABLETOP_QUERY)).unwrap();
     let m = check_samplers("tabletop.db", &net, true);
     assert!(m.get("false", &["O6"]).unwrap() > 0.85);
@@ -296,7 +296,7 @@ fn indoor_worlds() {
 #[test]
 fn shipped_indoor_example_grounds_and_is_sensible() {
     let mln = Mln::parse(INDOOR).unwrap();
-    let db = Database::parse(include_str!("../samples/knowledge/indoor.db"), &mln).unwrap();
+    let db = Database::parse(include_str!("../../samples/knowledge/indoor.db"), &mln).unwrap();
     let net = Network::ground(&mln, &db, &GroundConfig::query(&INDOOR_QUERY)).unwrap();
     assert_eq!(net.query_count(), 4 * 4 + 16);
     let m = infer(&net, Method::Auto, 1, 1);

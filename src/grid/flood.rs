@@ -1,0 +1,166 @@
+//! Flood fills and wavefronts over a row-major grid of cells, by cell index (`y * width + x`).
+//!
+//! The detectors and metrics find connected regions in several places: free space no unit
+//! explains, walls joined into one network, the unexplored outside of a building. They differ in
+//! which cells may be entered and what is collected, not in how the region grows, so the growing
+//! lives here once: [`Flood::fill`] pops cells off a stack, hands each to `visit`, and pushes each
+//! neighbour that `enter` admits. `enter` is asked once per neighbour and must mark what it
+//! admits (so that no cell is pushed twice); the stack is kept between fills, so a caller that
+//! fills again and again allocates it once. [`wavefront`] grows a region breadth first instead,
+//! for the distances of its cells from where it started.
+//!
+//! ```
+//! use ksmcmc::grid::flood::{Flood, Neighbours};
+//!
+//! // Two regions of ones in a 4x2 grid; the fill from cell 0 finds the left one.
+//! let cells = [1, 1, 0, 1, 0, 1, 0, 1];
+//! let mut seen = [false; 8];
+//! let mut region = Vec::new();
+//! let mut enter = |j: usize| cells[j] == 1 && !std::mem::replace(&mut seen[j], true);
+//! Flood::default().fill(4, 2, [0], Neighbours::Four, &mut enter, |i| region.push(i));
+//! region.sort();
+//! assert_eq!(region, [0, 1, 5]);
+//! ```
+
+/// Which cells are neighbours.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Neighbours {
+    /// Left, right, up, down.
+    Four,
+    /// The eight cells around, diagonals included.
+    Eight,
+}
+
+/// A flood fill's working memory: a stack of cell indices (`u32`: maps have at most 2^25
+/// cells, see `grid::Limits`).
+#[derive(Debug, Clone, Default)]
+pub struct Flood {
+    stack: Vec<u32>,
+}
+
+impl Flood {
+    /// Fills a `width` x `height` grid from `seeds` (each pushed if `enter` admits it): visits
+    /// every cell reachable through cells `enter` admits, in no particular order.
+    pub fn fill(
+        &mut self,
+        width: usize,
+        height: usize,
+        seeds: impl IntoIterator<Item = usize>,
+        neighbours: Neighbours,
+        mut enter: impl FnMut(usize) -> bool,
+        mut visit: impl FnMut(usize),
+    ) {
+        let stack = &mut self.stack;
+        stack.clear();
+        for s in seeds {
+            if enter(s) {
+                stack.push(s as u32);
+            }
+        }
+        while let Some(i) = stack.pop() {
+            let i = i as usize;
+            visit(i);
+            let (x, y) = (i % width, i / width);
+            match neighbours {
+                Neighbours::Four => {
+                    if x > 0 && enter(i - 1) {
+                        stack.push(i as u32 - 1);
+                    }
+                    if x + 1 < width && enter(i + 1) {
+                        stack.push(i as u32 + 1);
+                    }
+                    if y > 0 && enter(i - width) {
+                        stack.push((i - width) as u32);
+                    }
+                    if y + 1 < height && enter(i + width) {
+                        stack.push((i + width) as u32);
+                    }
+                }
+                Neighbours::Eight => {
+                    for ny in y.saturating_sub(1)..(y + 2).min(height) {
+                        for nx in x.saturating_sub(1)..(x + 2).min(width) {
+                            let j = ny * width + nx;
+                            if j != i && enter(j) {
+                                stack.push(j as u32);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// A breadth-first wavefront (4-neighbour steps): from the cells in `seeds`, whose `dist` the
+/// caller has set, into every neighbour `enter` admits whose `dist` is still `u32::MAX`, which
+/// gets its neighbour's distance + 1. Cells at distance `limit` + 1 are reached but not grown
+/// from; cells never reached keep `u32::MAX`.
+///
+/// ```
+/// use ksmcmc::grid::flood::wavefront;
+///
+/// // A 5x1 corridor, from its left end, up to 2 steps (the third cell out is reached, at 3).
+/// let mut dist = [0, u32::MAX, u32::MAX, u32::MAX, u32::MAX];
+/// wavefront(5, 1, &mut dist, [0], |_| true, 2);
+/// assert_eq!(dist, [0, 1, 2, 3, u32::MAX]);
+/// ```
+pub fn wavefront(
+    width: usize,
+    height: usize,
+    dist: &mut [u32],
+    seeds: impl IntoIterator<Item = usize>,
+    enter: impl Fn(usize) -> bool,
+    limit: u32,
+) {
+    let mut queue: std::collections::VecDeque<u32> = seeds.into_iter().map(|i| i as u32).collect();
+    while let Some(i) = queue.pop_front() {
+        let i = i as usize;
+        let d = dist[i];
+        let (x, y) = (i % width, i / width);
+        let neighbours = [
+            (x > 0, i.wrapping_sub(1)),
+            (x + 1 < width, i + 1),
+            (y > 0, i.wrapping_sub(width)),
+            (y + 1 < height, i + width),
+        ];
+        for (inside, j) in neighbours {
+            if inside && dist[j] == u32::MAX && enter(j) {
+                dist[j] = d + 1;
+                if d < limit {
+                    queue.push_back(j as u32);
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn eight_neighbours_cross_diagonals_four_do_not() {
+        // A diagonal line of ones in a 3x3 grid.
+        let cells = [1, 0, 0, 0, 1, 0, 0, 0, 1];
+        let region = |n: Neighbours| {
+            let mut seen = [false; 9];
+            let mut found = Vec::new();
+            let enter = |j: usize| cells[j] == 1 && !std::mem::replace(&mut seen[j], true);
+            Flood::default().fill(3, 3, [0], n, enter, |i| found.push(i));
+            found.sort();
+            found
+        };
+        assert_eq!(region(Neighbours::Four), [0]);
+        assert_eq!(region(Neighbours::Eight), [0, 4, 8]);
+    }
+
+    #[test]
+    fn several_seeds_and_no_cell_twice() {
+        let cells = [1u8; 12];
+        let mut seen = [false; 12];
+        let mut visits = 0;
+        let enter = |j: usize| cells[j] == 1 && !std::mem::replace(&mut seen[j], true);
+        Flood::default().fill(4, 3, [0, 11, 0], Neighbours::Four, enter, |_| visits += 1);
+        assert_eq!(visits, 12);
+    }
+}

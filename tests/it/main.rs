@@ -1,0 +1,24 @@
+//! The integration tests, one crate (one link of the library) with a module per area.
+//!
+//! Tests on real maps need `../shared/datasets` (or `KSMCMC_DATASETS`) and skip without it;
+//! see [`common::datasets`].
+
+mod chain;
+mod chain_exact;
+mod cli_floorplan;
+mod cli_render;
+mod cli_synth;
+mod common;
+mod grid;
+mod knowledge;
+mod mln;
+mod mln_cli;
+mod pinned;
+mod render;
+mod synth;
+mod tabletop;
+mod tabletop_cli;
+mod tabletop_input;
+mod tabletop_pinned;
+mod vision;
+mod world;

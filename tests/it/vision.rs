@@ -1,0 +1,95 @@
+//! The detectors on real maps nobody on this project drew (../shared/datasets; the tests skip
+//! without them), and on drawn fixtures with the same features.
+
+use ksmcmc::grid::{Cell, Classifier, Grid, Limits, OccupancyMap};
+use ksmcmc::vision::{hidden, orientation};
+
+/// A Bormann map with the automatic classifier, or `None` (skip) without the datasets.
+fn load(test: &str, name: &str) -> Option<OccupancyMap> {
+    let path = crate::common::datasets(test)?.join("bormann2016").join(name);
+    let mut map = OccupancyMap::load(&path, &Limits::default()).unwrap();
+    map.set_classifier(Classifier::auto()).unwrap();
+    Some(map)
+}
+
+/// A drawn floor like lab_ipa: three upright rooms with 3-cell walls in a solid occupied
+/// outside, a 45-degree wall across one room, and small furniture outlines in another.
+fn solid_outside_fixture() -> Grid<Cell> {
+    let (w, h) = (200usize, 160usize);
+    let mut g = Grid::new(w, h, Cell::Occupied);
+    for (x0, y0, x1, y1) in [(10, 10, 70, 60), (73, 10, 150, 60), (10, 63, 150, 110)] {
+        for y in y0..y1 {
+            for x in x0..x1 {
+                *g.at_mut(x, y) = Cell::Free;
+            }
+        }
+    }
+    for i in 0..30 {
+        *g.at_mut(20 + i, 20 + i) = Cell::Occupied;
+    }
+    for (fx, fy) in [(90, 20), (110, 30), (130, 40)] {
+        for d in 0..4 {
+            *g.at_mut(fx + d, fy) = Cell::Occupied;
+            *g.at_mut(fx, fy + d) = Cell::Occupied;
+        }
+    }
+    g
+}
+
+#[test]
+fn on_a_fixture_the_dominant_angle_follows_the_walls_and_the_solid_outside_is_hidden() {
+    let c = solid_outside_fixture();
+    let deg = orientation::dominant_angle(&c).to_degrees();
+    assert!(deg.abs() < 3.0, "the walls are upright, found {deg:.2} degrees");
+    let out = hidden::hide_interior(&c, 3);
+    let occupied = |g: &Grid<Cell>| g.cells().iter().filter(|&&k| k == Cell::Occupied).count();
+    assert!(occupied(&out) * 3 < occupied(&c), "{} of {} occupied cells kept", occupied(&out), occupied(&c));
+    let faces = orientation::wall_surface(&c);
+    for (i, (&f, &o)) in faces.cells().iter().zip(out.cells()).enumerate() {
+        assert!(f != Cell::Occupied || o == Cell::Occupied, "wall face {i} hidden");
+    }
+    // With unknown space around it instead, the building keeps every wall.
+    let mut open = c.clone();
+    for (i, k) in open.cells_mut().iter_mut().enumerate() {
+        let (x, y) = (i % 200, i / 200);
+        if !(7..153).contains(&x) || !(7..113).contains(&y) {
+            *k = Cell::Unknown;
+        }
+    }
+    assert_eq!(hidden::hide_interior(&open, 3), open);
+}
+
+/// lab_ipa is drawn with the outside filled in as occupied, and its free space has 45-degree
+/// walls; Freiburg101 with furniture has many small furniture outlines. Their walls are
+/// (nearly) upright in the image.
+#[test]
+fn the_dominant_angle_follows_the_walls_not_the_solid_outside() {
+    for name in ["lab_ipa.png", "lab_ipa_furnitures.png", "Freiburg101_scan_furnitures.png"] {
+        let Some(map) = load("the_dominant_angle_follows_the_walls_not_the_solid_outside", name) else { return };
+        let deg = orientation::dominant_angle(map.classified()).to_degrees();
+        assert!(deg.abs() < 3.0, "{name}: the walls are upright, found {deg:.2} degrees");
+    }
+}
+
+/// The solid outside of lab_ipa is not wall: all but a wall's depth of it is hidden, while
+/// every occupied cell next to free space (a wall face) stays occupied.
+#[test]
+fn the_inside_of_a_solid_outside_is_hidden() {
+    let Some(map) = load("the_inside_of_a_solid_outside_is_hidden", "lab_ipa.png") else { return };
+    let c = map.classified();
+    let out = hidden::hide_interior(c, hidden::depth_cells(map.yaml().resolution));
+    let occupied = |g: &ksmcmc::grid::Grid<Cell>| g.cells().iter().filter(|&&k| k == Cell::Occupied).count();
+    assert!(occupied(&out) * 5 < occupied(c), "{} of {} occupied cells kept", occupied(&out), occupied(c));
+    let faces = orientation::wall_surface(c);
+    for (i, (&f, &o)) in faces.cells().iter().zip(out.cells()).enumerate() {
+        assert!(f != Cell::Occupied || o == Cell::Occupied, "wall face {i} hidden");
+    }
+}
+
+/// Maps with unknown space around the building keep their walls: nothing of lab_c is hidden.
+#[test]
+fn walls_beside_unexplored_space_are_kept() {
+    let Some(map) = load("walls_beside_unexplored_space_are_kept", "lab_c_scan.png") else { return };
+    let out = hidden::hide_interior(map.classified(), hidden::depth_cells(map.yaml().resolution));
+    assert_eq!(&out, map.classified());
+}

@@ -45,6 +45,10 @@ pub struct RoomConfig {
     /// Segments smaller than this (cells) join the neighbour they share the longest boundary
     /// with: a sliver between two units, a nook cut off by a cupboard. 0 keeps them.
     pub min_segment_cells: usize,
+    /// A door at least this share as wide as the stretch along which its two units face each
+    /// other is an opening, not a door: the units have an open boundary ([`open_pairs`]).
+    /// Above 1 no door is.
+    pub wide_door_share: f64,
 }
 
 impl Default for RoomConfig {
@@ -58,6 +62,7 @@ impl Default for RoomConfig {
             min_core_cells: 1000,
             min_room_depth: 6,
             min_segment_cells: 1000,
+            wide_door_share: 0.8,
         }
     }
 }
@@ -139,7 +144,33 @@ fn open_boundary(a: Rect, b: Rect, t: i32, world_map: &Grid<Cell>, c: &RoomConfi
     found
 }
 
-/// Every pair of space-enclosing units ([`encloses_space`]) with an open boundary.
+/// Whether units `a` and `b` (indices) are joined by a door nearly as wide as the stretch they
+/// face each other along ([`RoomConfig::wide_door_share`]), and whether that stretch is flush
+/// (as in [`OpenPair::flush`]); `None` if not.
+fn wide_door(world: &World, a: usize, b: usize, c: &RoomConfig) -> Option<bool> {
+    let t = world.wall_thickness;
+    let (ua, ub) = (&world.units[a], &world.units[b]);
+    let door =
+        world.doors.iter().filter(|d| d.units.contains(&ua.id) && d.units.contains(&ub.id)).map(|d| d.len()).max()?;
+    for (lo, hi) in [(ua.rect(), ub.rect()), (ub.rect(), ua.rect())] {
+        for axis in [Axis::Horizontal, Axis::Vertical] {
+            // Facing across a door: walls up to two wall depths apart (as doors allow).
+            let Some((s, e)) = facing(lo, hi, axis, 2 * t, t) else { continue };
+            let span = (e - s + 1) as f64;
+            if (door as f64) >= c.wide_door_share * span {
+                let side = |r: Rect| match axis {
+                    Axis::Horizontal => (r.h - 2 * t).max(1),
+                    Axis::Vertical => (r.w - 2 * t).max(1),
+                } as f64;
+                return Some((span / side(lo)).min(span / side(hi)) >= FLUSH_SHARE);
+            }
+        }
+    }
+    None
+}
+
+/// Every pair of space-enclosing units ([`encloses_space`]) with an open boundary, or joined
+/// by a door as wide as their shared stretch ([`RoomConfig::wide_door_share`]).
 pub fn open_pairs(world: &World, world_map: &Grid<Cell>, c: &RoomConfig) -> Vec<OpenPair> {
     let t = world.wall_thickness;
     let space: Vec<bool> = world.units.iter().map(|u| encloses_space(u, t, world_map)).collect();
@@ -149,7 +180,9 @@ pub fn open_pairs(world: &World, world_map: &Grid<Cell>, c: &RoomConfig) -> Vec<
             if !space[a] || !space[b] {
                 continue;
             }
-            if let Some(flush) = open_boundary(world.units[a].rect(), world.units[b].rect(), t, world_map, c) {
+            let (ra, rb) = (world.units[a].rect(), world.units[b].rect());
+            let open = open_boundary(ra, rb, t, world_map, c).or_else(|| wide_door(world, a, b, c));
+            if let Some(flush) = open {
                 pairs.push(OpenPair { a, b, flush });
             }
         }
@@ -610,6 +643,27 @@ mod tests {
         assert_eq!(*labels.at(27, 10), 2, "nearer to the right unit");
         assert_eq!(*labels.at(25, 0), 0, "an isolated free cell is no room");
         assert_eq!(*labels.at(0, 0), 0, "unknown cells are not labelled");
+    }
+
+    #[test]
+    fn a_door_as_wide_as_the_shared_wall_is_an_opening() {
+        // Two 41x40 units sharing the wall at column 40, which the map has only at its ends
+        // (rows 0..3 and 37..40): the chain explains the gap with a 34-cell door.
+        let mut map = Grid::new(81, 40, Cell::Free);
+        for y in (0..3).chain(37..40) {
+            *map.at_mut(40, y) = Cell::Occupied;
+        }
+        let mut world = World::empty(81, 40);
+        world.units = vec![unit(1, 0, 0, 41, 40), unit(2, 40, 0, 41, 40)];
+        world.doors = vec![crate::floorplan::Door { id: 1, units: [1, 2], x0: 40, y0: 3, x1: 40, y1: 36 }];
+        let c = RoomConfig::default();
+        assert_eq!(open_pairs(&world, &map, &c), vec![OpenPair { a: 0, b: 1, flush: true }]);
+        // Not when wide doors are doors (the wall band is 15 % occupied: no opening by itself).
+        let doors = RoomConfig { wide_door_share: 2.0, ..c };
+        assert!(open_pairs(&world, &map, &doors).is_empty());
+        // A narrow door stays a door.
+        world.doors[0].y1 = 12;
+        assert!(open_pairs(&world, &map, &c).is_empty());
     }
 
     #[test]

@@ -14,14 +14,24 @@ use crate::grid::{Grid, OccupancyMap};
 /// status and per-kernel counts.
 pub fn report(chain: &Chain, map: &OccupancyMap, world: &World, labels: &Grid<u16>, seconds: f64) -> serde_json::Value {
     let mut r = summary(chain, map, world, seconds);
-    // The room layer when the world has one (one room per label), else the labels' count.
+    add_rooms(&mut r, world, labels);
+    r
+}
+
+/// Sets `rooms` (the room layer's count, or the labels' when the world has no room layer)
+/// and `room_types` (rooms per type) in a report.
+pub fn add_rooms(r: &mut serde_json::Value, world: &World, labels: &Grid<u16>) {
     r["rooms"] = if world.rooms.is_empty() {
         labels.cells().iter().copied().max().unwrap_or(0) as usize
     } else {
         world.rooms.len()
     }
     .into();
-    r
+    let mut types = std::collections::BTreeMap::new();
+    for room in &world.rooms {
+        *types.entry(room.kind.name()).or_insert(0u32) += 1;
+    }
+    r["room_types"] = serde_json::json!(types);
 }
 
 /// [`report`] without `rooms`, which needs the room labels: a caller short of memory can

@@ -91,7 +91,7 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     );
     drop((cells, world_map));
     let rooms = world.rooms.len();
-    report["rooms"] = rooms.into();
+    ksmcmc::floorplan::report::add_rooms(&mut report, &world, &labels);
     let k = report["cell_prediction_rate"].as_f64().unwrap_or(0.0);
     report["map"] = o.map.display().to_string().into();
     report["cell_prediction_rate_region"] =

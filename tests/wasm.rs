@@ -592,3 +592,16 @@ fn tabletop_constructs_steps_and_analyses() {
     assert!(tt.set_rules("not ( rules").is_err());
     assert_eq!(tt.rules(), tabletop_rules_default(), "the last good rules stay");
 }
+
+#[wasm_bindgen_test]
+fn rules_learn_from_a_labelled_world() {
+    use ksmcmc::wasm::knowledge::{hand_set_indoor_rules, learn_rules};
+    let truth = include_str!("../samples/office-small/truth.json");
+    let learned = learn_rules(&hand_set_indoor_rules(), truth, 0.05, None).unwrap();
+    assert!(learned.contains("// was 2.1972"), "{learned}");
+    assert!(ksmcmc::mln::Mln::parse(&learned).is_ok());
+    assert_ne!(learned, hand_set_indoor_rules(), "the weights move");
+    // A world that does not parse, and an unknown method, are errors, not panics.
+    assert!(learn_rules(&hand_set_indoor_rules(), "{", 0.05, None).is_err());
+    assert!(learn_rules(&hand_set_indoor_rules(), truth, 0.05, Some("magic".into())).is_err());
+}

@@ -172,6 +172,53 @@ pub fn training_facts(world: &World, resolution: f64, classifier: &GeometryClass
     facts
 }
 
+/// Learns the weights of `kb` from labelled worlds (every unit typed; `resolution` metres per
+/// cell): each world becomes a training database ([`training_facts`], only the predicates `kb`
+/// declares), then [`crate::mln::learn_weights`] learns with `config`, whose query predicates
+/// default to those of the indoor rules that `kb` declares. Returns the knowledge base text
+/// with the learned weights, `header` as its leading comment.
+///
+/// ```
+/// use ksmcmc::floorplan::knowledge::{learn_from_worlds, HAND_SET_INDOOR};
+/// use ksmcmc::floorplan::synth::{generate, SynthConfig};
+/// use ksmcmc::mln::{LearnConfig, Mln};
+///
+/// let truth = generate(&SynthConfig::default(), 3).unwrap().truth;
+/// let text = learn_from_worlds(HAND_SET_INDOOR, &[truth], 0.05, &LearnConfig::default(), "learned").unwrap();
+/// assert!(text.starts_with("// learned"));
+/// assert_eq!(Mln::parse(&text).unwrap().formulas().len(), Mln::parse(HAND_SET_INDOOR).unwrap().formulas().len());
+/// // Each soft formula says what its weight was before learning.
+/// assert!(text.contains("// was 2.1972"));
+/// ```
+pub fn learn_from_worlds(
+    kb: &str,
+    worlds: &[World],
+    resolution: f64,
+    config: &crate::mln::LearnConfig,
+    header: &str,
+) -> Result<String, crate::mln::MlnError> {
+    use crate::mln::{learn_weights, Database, Mln};
+    let mln = Mln::parse(kb)?;
+    let classifier = GeometryClassifier::default();
+    let dbs = worlds
+        .iter()
+        .map(|w| {
+            let mut facts = training_facts(w, resolution, &classifier);
+            facts.retain(|f| mln.predicate(f.0).is_some());
+            Database::parse(&database_text(&facts), &mln)
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let mut config = config.clone();
+    if config.query.is_empty() {
+        config.query = ["Room", "Corr", "Hall", "Other", "SaLe"]
+            .into_iter()
+            .filter(|q| mln.predicate(q).is_some())
+            .map(String::from)
+            .collect();
+    }
+    Ok(learn_weights(&mln, &dbs, &config)?.to_mln(&mln, header))
+}
+
 /// Facts as an evidence database (`ksmcmc::mln::Database::parse` reads it): one true atom
 /// per line, in the order given. False atoms are left out, since training worlds and the
 /// predicates they mention are closed world.

@@ -40,6 +40,31 @@ pub fn builtin_indoor_rules() -> String {
     knowledge::BUILTIN_INDOOR.to_string()
 }
 
+/// The hand-set indoor knowledge base (Tab. 3.5 as transcribed), beside the learned default.
+#[wasm_bindgen(js_name = handSetIndoorRules)]
+pub fn hand_set_indoor_rules() -> String {
+    knowledge::HAND_SET_INDOOR.to_string()
+}
+
+/// Learns the weights of knowledge base `rules` from a labelled world (`world.json` text with
+/// typed units, e.g. a sample's `truth.json`) at `resolution` metres per cell, by
+/// pseudo-likelihood (`method` "pll", the default: milliseconds) or discriminatively
+/// ("discriminative": MC-SAT, seconds; run it in a worker). Returns the knowledge base text
+/// with the learned weights; throws with the reason when the world or the rules do not fit.
+#[wasm_bindgen(js_name = learnRules)]
+pub fn learn_rules(
+    rules: &str,
+    #[wasm_bindgen(js_name = worldJson)] world_json: &str,
+    resolution: f64,
+    #[wasm_bindgen(unchecked_optional_param_type = "'pll' | 'discriminative'")] method: Option<String>,
+) -> Result<String, JsError> {
+    let world = World::from_json(world_json).map_err(|e| JsError::new(&e.to_string()))?;
+    let method = method.as_deref().unwrap_or("pll").parse().map_err(|e: String| JsError::new(&e))?;
+    let config = crate::mln::LearnConfig { method, ..Default::default() };
+    knowledge::learn_from_worlds(rules, &[world], resolution, &config, "Weights learned in the rules editor")
+        .map_err(|e| JsError::new(&e.to_string()))
+}
+
 /// Parses a knowledge base: `null` when it is fine, else `{line, column, message}`.
 #[wasm_bindgen(js_name = checkRules, unchecked_return_type = "{ line: number; column: number; message: string } | null")]
 pub fn check_rules(text: &str) -> Result<JsValue, JsError> {

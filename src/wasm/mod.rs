@@ -19,7 +19,7 @@
 //! Objects returned as classes (`Map`, `Rendered`, `Synthetic`) live in wasm memory; call
 //! `.free()` on them when done, or let the garbage collector's finaliser do it.
 
-mod knowledge;
+pub mod knowledge;
 mod mapper;
 pub mod tabletop;
 

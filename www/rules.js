@@ -6,6 +6,7 @@
 import init, { Map as OccMap, Mapper, builtinIndoorRules, checkRules, drawMapper, inferWorld } from './pkg/ksmcmc.js';
 import { messages } from './lib/messages.js';
 import { rulesEditor } from './lib/rules-editor.js';
+import { naturalCompare } from './lib/natural.js';
 
 const SAMPLE = 'office-small';
 const BUDGET_MS = 12;
@@ -52,7 +53,7 @@ function infer() {
   const inf = state.inferred;
   ui.evidence.textContent = inf.evidence.filter((f) => f.value).map((f) => `${f.predicate}(${f.args.join(',')})`).join('  ') || '(none)';
   ui.marginals.replaceChildren(
-    ...Object.entries(inf.types).map(([u, t]) => {
+    ...Object.entries(inf.types).sort(([a], [b]) => naturalCompare(a, b)).map(([u, t]) => {
       const tr = document.createElement('tr');
       tr.dataset.unit = u;
       cell(tr, u);

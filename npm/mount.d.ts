@@ -15,10 +15,21 @@ export interface MountOptions {
   map?: OccupancyMap | Uint8Array | ArrayBuffer | { yaml: string; image: Uint8Array | ArrayBuffer };
   /** A map to fetch: a PGM or PNG, or a map.yaml (its image is fetched relative to it). */
   url?: string | URL;
+  /**
+   * How a plain PGM or PNG (`map` bytes or `url`) is classified: `'auto'` (default) finds the
+   * background grays from the histogram, as `ksmcmc floorplan` does; `'fixed'` uses the
+   * default intensity thresholds (`Map.fromBytes`). A map.yaml's own thresholds always apply.
+   */
+  classify?: 'auto' | 'fixed';
   /** The chain's seed, a whole number >= 0 (default 1): the same seed gives the same chain. */
   seed?: number | bigint;
   /** Chain settings: a JSON object (or its text) of any subset of `chainConfigDefaults()`. */
   config?: string | Record<string, unknown>;
+  /**
+   * Knowledge supervision with the built-in indoor rules (default true, as `ksmcmc floorplan`);
+   * false runs the weak prior (sets `knowledge.enabled` to false in `config`).
+   */
+  knowledge?: boolean;
   /**
    * Start running at once (default false). Honours `prefers-reduced-motion: reduce` by staying
    * paused; `'always'` starts regardless.

@@ -22,7 +22,7 @@ const ui = {
   message: $('message'), messageText: $('message-text'), messageClose: $('message-close'),
   status: $('status'), version: $('version'),
   run: $('run'), step: $('step'), reset: $('reset'), seed: $('seed'), ipf: $('ipf'),
-  config: $('config'), configDefaults: $('config-defaults'), knowledge: $('knowledge'),
+  config: $('config'), configDefaults: $('config-defaults'), knowledge: $('knowledge'), stopSettled: $('stop-settled'),
   sampleForm: $('sample-form'), sample: $('sample'), sampleLoad: $('sample-load'), sampleHint: $('sample-hint'),
   file: $('file'), classify: $('classify'),
   paint: $('paint'), brush: $('brush'), brushValue: $('brush-value'),
@@ -35,6 +35,7 @@ const ui = {
   stat: {
     iteration: $('stat-iteration'), rate: $('stat-rate'), lp: $('stat-lp'), best: $('stat-best'), acc: $('stat-acc'),
     units: $('stat-units'), doors: $('stat-doors'), k: $('stat-k'), rotation: $('stat-rotation'), setup: $('stat-setup'),
+    settled: $('stat-settled'),
   },
   exports: {
     world: $('export-world'), labels: $('export-labels'), png: $('export-png'), graph: $('export-graph'),
@@ -118,10 +119,19 @@ function chainArgs() {
   return { config: chainSettings() || undefined, seed, reference: state.referenceJson };
 }
 
+/**
+ * Takes on the chain's numbers from a reply, unless a later reply's are already here: the
+ * worker numbers them in the order it made them (a picture asked for before a change may
+ * arrive after the change's reply).
+ */
+function takeStats(stats) {
+  if (!state.stats || stats.seq > state.stats.seq) state.stats = stats;
+}
+
 /** Takes on a new chain's numbers (the worker has replaced the chain) and starts the statistics afresh. */
 function adopt({ stats, referenceDropped }) {
   stopped();
-  state.stats = stats;
+  takeStats(stats);
   if (referenceDropped) {
     state.referenceJson = null;
     say('The reference world does not fit this map and was dropped.');
@@ -142,7 +152,7 @@ function adopt({ stats, referenceDropped }) {
  * Shows a new map and starts a chain on it; `source` says how the worker makes the same map.
  * If the chain cannot start, nothing changes (and `map` is freed).
  */
-async function setMap(map, source, { name, label, sample = null }) {
+async function setMap(map, source, { name, label, sample = null, uploaded = false }) {
   let reply;
   try {
     reply = await state.chain.call('load', { source, ...chainArgs() });
@@ -160,6 +170,8 @@ async function setMap(map, source, { name, label, sample = null }) {
   if (old && old !== map) old.free();
   ui.mapName.textContent = label ? `· ${label}` : '';
   showSampleChoice(sample);
+  // An opened map is explained until it settles; a sample or a painted map runs on.
+  ui.stopSettled.checked = uploaded;
   ui.truth.disabled = !(sample && state.samples.find((s) => s.name === sample)?.truth);
   adopt(reply);
   clearError();
@@ -180,7 +192,7 @@ function play() {
   ui.run.textContent = 'Pause';
   document.documentElement.dataset.running = 'true';
   say('Running. Space pauses.');
-  state.chain.call('play', { ipf: state.ipf }).catch(showError);
+  state.chain.call('play', { ipf: state.ipf, stopWhenSettled: ui.stopSettled.checked }).catch(showError);
   requestRedraw();
 }
 
@@ -199,7 +211,7 @@ function pause() {
   state.chain.call('pause').then((stats) => {
     // Marked paused once the worker has stopped, with its last numbers drawn.
     if (state.running || stats.generation !== generation) return;
-    state.stats = stats;
+    takeStats(stats);
     document.documentElement.dataset.running = 'false';
     say(`Paused at iteration ${formatNumber(stats.iteration)}.`);
     requestRedraw();
@@ -211,9 +223,20 @@ function toggle() {
   else play();
 }
 
+/** The worker paused the chain because it settled. */
+function chainSettled(stats) {
+  takeStats(stats);
+  stopped();
+  say(
+    `Settled at iteration ${formatNumber(stats.settledAt)}: the best log posterior improved by less than 0.01 % ` +
+      `over the last ${formatNumber(stats.settleWindow)} iterations. Start runs on.`,
+  );
+  requestRedraw();
+}
+
 /** The worker stopped the chain because a step failed. */
 function chainFailed(message, stats) {
-  if (stats) state.stats = stats;
+  if (stats) takeStats(stats);
   stopped();
   showError(new Error(message));
   requestRedraw();
@@ -290,7 +313,7 @@ function step() {
   attempt(async () => {
     state.ipf = parseIterationsPerFrame(ui.ipf.value);
     const n = state.ipf === 'auto' ? AUTO_STEP : state.ipf;
-    state.stats = await state.chain.call('step', { n });
+    takeStats(await state.chain.call('step', { n }));
     say(`Ran ${formatNumber(n)} iterations.`);
     requestRedraw();
   });
@@ -328,7 +351,7 @@ function drawBitmap(canvas, bitmap) {
 }
 
 function draw({ stats, trace, picture, graph }) {
-  state.stats = stats;
+  takeStats(stats);
   if (state.painting && state.strokeAt) {
     picture.close();
   } else {
@@ -379,6 +402,9 @@ function updateStats() {
   s.k.textContent = formatNumber(m.bestPredictionRate, 4);
   s.rotation.textContent = `${formatNumber(m.rotationDeg, 1)}°`;
   s.setup.textContent = `${formatNumber(m.setupMs)} ms`;
+  s.settled.textContent = m.settledAt !== null
+    ? `at iteration ${formatNumber(m.settledAt)}`
+    : `not yet (last improvement at ${formatNumber(m.improvedAt ?? 0)}, window ${formatNumber(m.settleWindow)})`;
   const d = ui.stats.dataset;
   d.iteration = String(m.iteration);
   d.logPosterior = String(m.logPosterior);
@@ -470,7 +496,7 @@ async function openFiles(fileList) {
       map.free();
       map = auto;
     }
-    await setMap(map, { kind: 'image', bytes, classify }, { name: stem(file.name), label: file.name });
+    await setMap(map, { kind: 'image', bytes, classify }, { name: stem(file.name), label: file.name, uploaded: true });
     return;
   }
   const yamlText = await byName(plan.yaml).text();
@@ -478,7 +504,7 @@ async function openFiles(fileList) {
   if ('message' in pick) throw new Error(pick.message);
   const image = new Uint8Array(await byName(pick.image).arrayBuffer());
   const source = { kind: 'yaml', yaml: yamlText, image };
-  await setMap(OccMap.fromYaml(yamlText, image), source, { name: stem(plan.yaml), label: `${plan.yaml} + ${pick.image}` });
+  await setMap(OccMap.fromYaml(yamlText, image), source, { name: stem(plan.yaml), label: `${plan.yaml} + ${pick.image}`, uploaded: true });
 }
 
 /** A blank map to paint on: one free room inside a two-cell wall, which the chain explains at once. */
@@ -624,7 +650,7 @@ function updateReferenceControls() {
 }
 
 async function setReference(text, name) {
-  state.stats = await state.chain.call('setReference', { json: text });
+  takeStats(await state.chain.call('setReference', { json: text }));
   state.referenceJson = text;
   state.referenceName = name;
   updateReferenceControls();
@@ -697,6 +723,9 @@ function wire() {
     ui.file.value = '';
   });
   ui.paint.addEventListener('change', () => setPainting(ui.paint.checked));
+  ui.stopSettled.addEventListener('change', () => {
+    if (state.stats) state.chain.call('stopWhenSettled', { on: ui.stopSettled.checked }).catch(showError);
+  });
   for (const radio of document.querySelectorAll('input[name="tool"]')) {
     radio.addEventListener('change', () => {
       state.tool = radio.value;
@@ -726,7 +755,7 @@ function wire() {
   );
   ui.referenceClear.addEventListener('click', () =>
     attempt(async () => {
-      state.stats = await state.chain.call('setReference', { json: null });
+      takeStats(await state.chain.call('setReference', { json: null }));
       state.referenceJson = null;
       updateReferenceControls();
       say('Reference cleared.');
@@ -794,6 +823,10 @@ function expose() {
         frames: state.frames,
         traceLength: state.trace.iteration.length,
         hasReference: Boolean(m?.hasReference),
+        settledAt: m?.settledAt ?? null,
+        improvedAt: m?.improvedAt ?? null,
+        settleWindow: m?.settleWindow ?? 0,
+        stopWhenSettled: ui.stopSettled.checked,
         show: state.show,
         cloud: state.cloud,
         scale: state.scale,
@@ -810,7 +843,7 @@ async function main() {
   wire();
   expose();
   if (!(await loadWasm(init))) return;
-  state.chain = new RemoteChain(chainFailed);
+  state.chain = new RemoteChain(chainFailed, chainSettled);
   ui.version.textContent = version();
   setBrush(ui.brush.value);
   for (const el of [ui.file, ui.blankCreate, ui.worldFile]) el.disabled = false;

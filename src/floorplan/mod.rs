@@ -12,6 +12,7 @@ pub mod metrics;
 pub mod posterior;
 pub mod report;
 pub mod rooms;
+pub mod settled;
 pub mod state;
 pub mod synth;
 pub mod unexplained;

@@ -124,8 +124,10 @@ describe('Live mapper', () => {
       window.__counting = true;
       requestAnimationFrame(tick);
     });
+    assert.match(await page.textContent('#status'), /Press Start/);
     await key(page, 'Space');
     await page.waitForFunction(() => document.documentElement.dataset.running === 'true');
+    assert.doesNotMatch(await page.textContent('#status'), /Press Start/, 'no call to start while running');
     await page.waitForTimeout(2000);
     await key(page, 'Space');
     await page.waitForFunction(() => document.documentElement.dataset.running === 'false');
@@ -150,6 +152,7 @@ describe('Live mapper', () => {
     assert.equal(Number(stats.iteration), end.iteration);
     assert.equal(Number(stats.bestUnits), end.bestUnits);
     assert.equal((await page.textContent('#stat-iteration')).replace(/\D/g, ''), String(end.iteration));
+    assert.equal(await page.textContent('#stat-units'), `${end.units} now, ${end.bestUnits} best`);
     const map = await pixels(page, '#map');
     assert.equal(map.width, 400 * end.scale);
     assert.ok(map.blue > 1000, `the world's walls are drawn: ${map.blue} blue pixels`);
@@ -352,6 +355,9 @@ describe('Live mapper', () => {
     await until(page, (s, v) => s.width === v, 520);
     assert.equal(await page.isVisible('#message'), false);
     assert.match(await page.textContent('#map-name'), /map\.yaml \+ map\.pgm/);
+    // The sample list no longer claims the sample.
+    assert.equal(await page.inputValue('#sample'), '');
+    assert.match(await page.$eval('#sample', (s) => s.selectedOptions[0].textContent), /opened or painted map/);
     assert.equal((await snap(page)).hasReference, false, 'a 400x300 reference does not fit the new map');
     await done(page);
   });
@@ -401,6 +407,37 @@ describe('Live mapper', () => {
     await done(page);
   });
 
+  test('stop when settled: the chain pauses where `ksmcmc floorplan --until-settled` stops', async () => {
+    const out = join(tmp, 'settled');
+    cli('floorplan', join(SAMPLE, 'map.yaml'), '--until-settled', '--iterations', '1000000', '--out', out);
+    const native = JSON.parse(readFileSync(join(out, 'report.json'), 'utf8'));
+    assert.equal(native.settled_at, native.iterations, 'the CLI stops where it settles');
+    const page = await openMapper();
+    assert.equal(await page.isChecked('#stop-settled'), false, 'a sample runs on by default');
+    await page.check('#stop-settled');
+    await key(page, 'Space');
+    await page.waitForFunction(() => document.documentElement.dataset.running === 'true');
+    await page.waitForFunction(() => document.documentElement.dataset.running === 'false', null, { timeout: 120_000 });
+    await settled(page);
+    const s = await snap(page);
+    assert.equal(s.settledAt, native.settled_at, 'settled at the same iteration as natively');
+    assert.ok(s.iteration >= s.settledAt && s.iteration < s.settledAt + 5000, `stopped soon after: ${s.iteration}`);
+    assert.ok(s.settledAt >= s.improvedAt + s.settleWindow);
+    assert.match(await page.textContent('#status'), /^Settled at iteration [\d,]+: the best log posterior improved by less than 0\.01 %/);
+    assert.equal(await page.textContent('#stat-settled'), `at iteration ${s.settledAt.toLocaleString('en-US')}`);
+    // Start runs on past the settled state.
+    await key(page, 'Space');
+    await until(page, (x, v) => x.iteration > v + 1000, s.iteration);
+    assert.equal((await snap(page)).running, true);
+    await key(page, 'Space');
+    await page.waitForFunction(() => document.documentElement.dataset.running === 'false');
+    // An opened map stops when settled by default.
+    await page.setInputFiles('#file', join(REPO, 'samples/furnished/map.pgm'));
+    await until(page, (x) => x.name === 'map' && x.iteration === 0);
+    assert.equal(await page.isChecked('#stop-settled'), true, 'on for an opened map');
+    await done(page);
+  });
+
   test('paint a blank map, and the chain explains it', async () => {
     const page = await openMapper();
     await page.fill('#blank-width', '80');
@@ -445,6 +482,8 @@ describe('Live mapper on a real map', () => {
     await page.setInputFiles('#file', CARTESIUM);
     await until(page, (s) => s.width === 1237 && s.height === 672, undefined, 60_000);
     assert.equal(await page.isChecked('#knowledge'), true, 'the default settings: knowledge on');
+    // Thirty seconds of running, not until the chain settles.
+    await page.uncheck('#stop-settled');
     await page.evaluate(() => {
       window.__long = [];
       window.__t0 = performance.now();

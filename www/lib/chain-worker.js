@@ -32,6 +32,9 @@ const state = {
   /** A `frame` request waiting for the next slice: { id, view }. */
   frame: null,
   scheduled: false,
+  /** Pause when the chain settles, and whether it was settled when it started running. */
+  stopWhenSettled: false,
+  wasSettled: false,
   /** Milliseconds a picture takes (a running average), and when the last one was done. */
   drawMs: 0,
   drawnAt: 0,
@@ -47,9 +50,13 @@ function schedule() {
   tick.port2.postMessage(0);
 }
 
+/** Numbers the statistics in the order they are made. */
+let seq = 0;
+
 function stats() {
   const m = state.mapper;
   return {
+    seq: ++seq,
     generation: state.generation,
     running: state.running,
     width: m.width,
@@ -70,6 +77,9 @@ function stats() {
     elapsedMs: m.elapsedMs,
     traceLength: m.traceLength,
     hasReference: m.hasReference,
+    settledAt: m.settledAt ?? null,
+    improvedAt: m.improvedAt ?? null,
+    settleWindow: m.settleWindow,
   };
 }
 
@@ -177,6 +187,12 @@ function loop() {
     fail(err);
     return;
   }
+  if (state.stopWhenSettled && !state.wasSettled && state.mapper.settledAt !== undefined) {
+    state.running = false;
+    dropFrame();
+    postMessage({ event: 'settled', stats: stats() });
+    return;
+  }
   if (state.ipf === 'auto') schedule();
 }
 
@@ -194,10 +210,17 @@ const ops = {
     if (!state.map) throw new Error('no map yet');
     return start(null, args);
   },
-  play({ ipf }) {
+  play({ ipf, stopWhenSettled }) {
     state.ipf = ipf;
+    state.stopWhenSettled = Boolean(stopWhenSettled);
+    state.wasSettled = state.mapper.settledAt !== undefined;
     state.running = true;
     schedule();
+    return stats();
+  },
+  stopWhenSettled({ on }) {
+    state.stopWhenSettled = Boolean(on);
+    state.wasSettled = state.mapper.settledAt !== undefined;
     return stats();
   },
   pause() {

@@ -4,8 +4,10 @@ export class RemoteChain {
   /**
    * @param {(message: string, stats: object | null) => void} onError  called when the running
    *   chain fails (the worker has paused it)
+   * @param {(stats: object) => void} onSettled  called when the worker paused the chain
+   *   because it settled
    */
-  constructor(onError) {
+  constructor(onError, onSettled) {
     this.worker = new Worker(new URL('./chain-worker.js', import.meta.url), { type: 'module' });
     this.pending = new Map();
     this.next = 1;
@@ -13,6 +15,10 @@ export class RemoteChain {
       const { id, result, error, event } = e.data;
       if (event === 'error') {
         onError(e.data.message, e.data.stats);
+        return;
+      }
+      if (event === 'settled') {
+        onSettled(e.data.stats);
         return;
       }
       const p = this.pending.get(id);

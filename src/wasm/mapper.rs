@@ -215,7 +215,7 @@ impl Mapper {
     }
 
     /// Runs iterations until `budgetMs` milliseconds have passed by `performance.now()`,
-    /// checking the clock every 64 iterations (so at least 64 run). Returns how many ran.
+    /// checking the clock every 16 iterations (so at least 16 run). Returns how many ran.
     /// `budgetMs` is a number from 0 to 60000.
     #[wasm_bindgen(js_name = runFor)]
     pub fn run_for(&mut self, #[wasm_bindgen(js_name = budgetMs)] budget_ms: f64) -> Result<f64, JsError> {

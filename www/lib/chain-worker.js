@@ -8,7 +8,7 @@
 // and of the scene graph as ImageBitmaps (transferred, not copied), the statistics and the new
 // trace points. Same map, seed and settings, same chain as on the main thread or natively.
 
-import init, { Map as OccMap, Mapper, renderMapperRgba, renderSceneGraphRgba } from '../pkg/ksmcmc.js';
+import init, { Map as OccMap, Mapper, inferWorld, renderMapperRgba, renderSceneGraphRgba } from '../pkg/ksmcmc.js';
 
 /** Milliseconds of iterations between looking at the page's requests. */
 const SLICE_MS = 8;
@@ -234,6 +234,15 @@ const ops = {
   setReference({ json }) {
     state.mapper.setReference(json ?? undefined);
     return stats();
+  },
+  /** What the rules `kb` infer from the best world (the rules page): `inferWorld`'s JSON. */
+  infer({ kb, resolution }) {
+    const world = state.mapper.bestWorldJson();
+    try {
+      return { generation: state.generation, world, inferred: inferWorld(kb, world, resolution), error: null };
+    } catch (err) {
+      return { generation: state.generation, world, inferred: null, error: err instanceof Error ? err.message : String(err) };
+    }
   },
   invoke({ name, args = [] }) {
     if (!INVOKABLE.has(name)) throw new Error(`${name} is not a method the page may call`);

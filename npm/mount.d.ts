@@ -35,6 +35,11 @@ export interface MountOptions {
    * paused; `'always'` starts regardless.
    */
   autoplay?: boolean | 'always';
+  /**
+   * Pause once the chain has settled (`Mapper.settledAt`: the best log posterior stopped
+   * improving); Start runs on. Default: true for your own `map` or `url`, false for a sample.
+   */
+  stopWhenSettled?: boolean;
   /** Milliseconds of iterations per animation frame (default 8). */
   budgetMs?: number;
   /** A fixed number of iterations per frame instead of a time budget. */
@@ -72,6 +77,8 @@ export interface MapperStats {
   bestPredictionRate: number;
   /** Measured while running; 0 when paused. */
   iterationsPerSecond: number;
+  /** The iteration at which the chain settled (`Mapper.settledAt`), or null. */
+  settledAt: number | null;
   running: boolean;
 }
 

@@ -17,7 +17,7 @@ export { SAMPLES };
 
 const OPTIONS = [
   'sample', 'map', 'url', 'classify', 'seed', 'config', 'knowledge', 'autoplay', 'budgetMs', 'iterationsPerFrame',
-  'show', 'cloud', 'labels', 'graph', 'controls', 'wasm', 'onUpdate', 'onError',
+  'stopWhenSettled', 'show', 'cloud', 'labels', 'graph', 'controls', 'wasm', 'onUpdate', 'onError',
 ];
 const STYLE_ID = 'ksmcmc-mount-style';
 const CSS = `
@@ -119,6 +119,9 @@ function checkOptions(options) {
   if (options.classify !== undefined && !['auto', 'fixed'].includes(options.classify)) {
     throw new Error(`mount: classify ${JSON.stringify(options.classify)} must be 'auto' or 'fixed'`);
   }
+  if (options.stopWhenSettled !== undefined && typeof options.stopWhenSettled !== 'boolean') {
+    throw new Error(`mount: stopWhenSettled ${JSON.stringify(options.stopWhenSettled)} must be true or false`);
+  }
   if (options.knowledge !== undefined && typeof options.knowledge !== 'boolean') {
     throw new Error(`mount: knowledge ${JSON.stringify(options.knowledge)} must be true or false`);
   }
@@ -169,6 +172,9 @@ export async function mount(element, options = {}) {
   await ready(options.wasm);
   const { budgetMs = 8, iterationsPerFrame, labels = false, graph = true, controls = true } = options;
   let show = options.show ?? 'current';
+  // Your own map is explained until it settles; a sample runs on (as on the live mapper page).
+  const stopWhenSettled = options.stopWhenSettled ?? (options.map !== undefined || options.url !== undefined);
+  let settledWhenStarted = false;
   let cloud = Boolean(options.cloud);
   const name = options.sample ?? (options.url !== undefined ? String(options.url).split('/').pop() : options.map ? 'map' : 'office-small');
 
@@ -242,6 +248,7 @@ export async function mount(element, options = {}) {
     predictionRate: mapper.predictionRate,
     bestPredictionRate: mapper.bestPredictionRate,
     iterationsPerSecond: rate.perSecond,
+    settledAt: mapper.settledAt ?? null,
     running,
   });
 
@@ -283,7 +290,8 @@ export async function mount(element, options = {}) {
       statsLine.textContent =
         `iteration ${s.iteration.toLocaleString('en-US')} · log p ${s.bestLogPosterior.toFixed(0)} · ` +
         `${s.bestUnits} units · K ${s.bestPredictionRate.toFixed(3)}` +
-        (running ? ` · ${Math.round(s.iterationsPerSecond).toLocaleString('en-US')}/s` : '');
+        (running ? ` · ${Math.round(s.iterationsPerSecond).toLocaleString('en-US')}/s` : '') +
+        (s.settledAt !== null ? ` · settled at ${s.settledAt.toLocaleString('en-US')}` : '');
     }
     options.onUpdate?.(stats());
   };
@@ -301,6 +309,10 @@ export async function mount(element, options = {}) {
       fail(err);
       return;
     }
+    if (stopWhenSettled && !settledWhenStarted && mapper.settledAt !== undefined) {
+      pause();
+      return;
+    }
     draw();
     schedule();
   }
@@ -308,6 +320,7 @@ export async function mount(element, options = {}) {
   function play() {
     if (destroyed || running) return;
     running = true;
+    settledWhenStarted = mapper.settledAt !== undefined;
     errorLine.textContent = '';
     toggleButton.textContent = 'Pause';
     rate = { iteration: mapper.iteration, time: performance.now(), perSecond: 0 };

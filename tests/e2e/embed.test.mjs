@@ -9,7 +9,7 @@ import { copyFileSync, cpSync, existsSync, mkdirSync, mkdtempSync, readFileSync,
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { chromium } from 'playwright-core';
-import { CHROMIUM, DATASETS, REPO } from './harness.mjs';
+import { CHROMIUM, DATASETS, REPO, cli } from './harness.mjs';
 import { serve } from './server.mjs';
 
 const LAB_A = join(DATASETS, 'bormann2016/lab_a_scan.png');
@@ -71,6 +71,33 @@ describe('The embed as pkg/README.md shows it', () => {
         { timeout: 30_000 },
       );
       assert.equal(await page.textContent('#demo button >> nth=0'), 'Pause', 'running');
+      assert.deepEqual(page.problems, []);
+    } finally {
+      await page.context().close();
+    }
+  });
+
+  test('mount({ stopWhenSettled }) pauses where `ksmcmc floorplan --until-settled` stops', async () => {
+    const out = join(site, 'settled');
+    cli('floorplan', join(REPO, 'samples/office-small/map.yaml'), '--until-settled', '--iterations', '1000000', '--out', out);
+    const native = JSON.parse(readFileSync(join(out, 'report.json'), 'utf8'));
+    const page = await open();
+    try {
+      await page.waitForSelector('#demo .ksmcmc-mapper');
+      await page.evaluate(async () => {
+        const { mount } = await import('./node_modules/ksmcmc/mount.js');
+        const div = document.body.appendChild(document.createElement('div'));
+        window.__settling = await mount(div, { sample: 'office-small', stopWhenSettled: true, autoplay: 'always' });
+      });
+      await page.waitForFunction(() => !window.__settling.running, null, { timeout: 120_000 });
+      const s = await page.evaluate(() => window.__settling.stats());
+      assert.equal(s.settledAt, native.settled_at, 'settled at the iteration the CLI stops at');
+      assert.ok(s.iteration >= s.settledAt && s.iteration < s.settledAt + 5000, `paused soon after: ${s.iteration}`);
+      assert.match(await page.evaluate(() => window.__settling.element.textContent), /settled at [\d,]+/);
+      // Start runs on.
+      await page.evaluate(() => window.__settling.play());
+      await page.waitForFunction((it) => window.__settling.stats().iteration > it + 500, s.iteration);
+      assert.equal(await page.evaluate(() => window.__settling.running), true);
       assert.deepEqual(page.problems, []);
     } finally {
       await page.context().close();

@@ -27,10 +27,17 @@ CHROMEDRIVER ?= /usr/bin/chromedriver
 WASM_TEST_ENV := CARGO_TARGET_WASM32_UNKNOWN_UNKNOWN_RUNNER=wasm-bindgen-test-runner \
 	CHROMEDRIVER=$(CHROMEDRIVER) WASM_BINDGEN_TEST_TIMEOUT=180 \
 	WASM_BINDGEN_TEST_WEBDRIVER_JSON=$(CURDIR)/webdriver.json
-WASM := target/$(WASM_TARGET)/release/ksmcmc.wasm
+# The package's wasm: the wasm-release profile of Cargo.toml (no debug names), then wasm-opt.
+WASM := target/$(WASM_TARGET)/wasm-release/ksmcmc.wasm
+# wasm-opt (binaryen) shrinks rustc's output before wasm-bindgen reads it: Debian's binaryen
+# 108 cannot parse the externref-table code wasm-bindgen adds (table.fill). It is told the
+# features rustc's wasm32 target uses, and drops the name section.
+WASM_OPT := target/$(WASM_TARGET)/wasm-release/ksmcmc.opt.wasm
+WASM_OPT_FLAGS := -O3 --enable-bulk-memory --enable-nontrapping-float-to-int --enable-sign-ext \
+	--enable-mutable-globals --enable-reference-types --enable-multivalue
 
 .PHONY: help demo serve pkg www-pkg www-samples test lint fmt fmt-check clippy test-native test-wasm \
-	test-e2e cli release-cli bench-wasm tools rust-tools wasm-tools browser-tools e2e-deps clean-pkg
+	test-e2e cli release-cli bench-wasm tools rust-tools wasm-tools wasm-opt-tool browser-tools e2e-deps clean-pkg
 
 help:
 	@echo "make demo      build pkg/ and serve www/ on http://$(HOST):$(PORT)"
@@ -43,7 +50,7 @@ help:
 
 # ---------------------------------------------------------------- tools
 
-tools: rust-tools wasm-tools browser-tools e2e-deps
+tools: rust-tools wasm-tools wasm-opt-tool browser-tools e2e-deps
 
 rust-tools:
 	@command -v rustup >/dev/null || { echo "rustup is needed: https://rustup.rs" >&2; exit 1; }
@@ -57,6 +64,15 @@ wasm-tools: rust-tools
 	    [ "$$(wasm-bindgen-test-runner --version 2>/dev/null)" != "wasm-bindgen-test-runner $(WASM_BINDGEN_VERSION)" ]; then \
 	  echo "installing wasm-bindgen-cli $(WASM_BINDGEN_VERSION) (a few minutes, once)"; \
 	  $(CARGO) install wasm-bindgen-cli --version $(WASM_BINDGEN_VERSION); \
+	fi
+
+# binaryen's wasm-opt, which shrinks the package's .wasm (Debian's binaryen package).
+wasm-opt-tool:
+	@if ! command -v wasm-opt >/dev/null; then \
+	  echo "installing Debian's binaryen (wasm-opt)"; \
+	  sudo=; [ "$$(id -u)" = 0 ] || sudo=sudo; \
+	  $$sudo apt-get update -q; \
+	  DEBIAN_FRONTEND=noninteractive $$sudo apt-get install -y -q binaryen; \
 	fi
 
 browser-tools:
@@ -78,12 +94,13 @@ tests/e2e/node_modules/.package-lock.json: tests/e2e/package.json tests/e2e/pack
 
 # The npm package: release wasm, wasm-bindgen's ES module and .d.ts, the hand-written modules
 # in npm/ (the `mount` embed, the sample recipes) and package.json.
-pkg: wasm-tools
-	$(CARGO) build --lib --release --target $(WASM_TARGET)
-	wasm-bindgen --target web --out-dir pkg --out-name ksmcmc $(WASM)
+pkg: wasm-tools wasm-opt-tool
+	$(CARGO) build --lib --profile wasm-release --target $(WASM_TARGET)
+	wasm-opt $(WASM_OPT_FLAGS) $(WASM) -o $(WASM_OPT)
+	wasm-bindgen --target web --out-dir pkg --out-name ksmcmc $(WASM_OPT)
 	cp npm/*.js npm/*.d.ts pkg/
 	node scripts/pkg-json.mjs Cargo.toml npm > pkg/package.json
-	@echo "pkg/: $$(du -h pkg/ksmcmc_bg.wasm | cut -f1) of wasm, version $$(node -p 'require("./pkg/package.json").version')"
+	@echo "pkg/: $$(wc -c < pkg/ksmcmc_bg.wasm) bytes of wasm ($$(gzip -9 -c pkg/ksmcmc_bg.wasm | wc -c) gzipped), version $$(node -p 'require("./pkg/package.json").version')"
 
 # The pages load the package from www/pkg and the live mapper its samples from www/samples
 # (copies, not committed).

@@ -15,15 +15,31 @@ export interface MountOptions {
   map?: OccupancyMap | Uint8Array | ArrayBuffer | { yaml: string; image: Uint8Array | ArrayBuffer };
   /** A map to fetch: a PGM or PNG, or a map.yaml (its image is fetched relative to it). */
   url?: string | URL;
+  /**
+   * How a plain PGM or PNG (`map` bytes or `url`) is classified: `'auto'` (default) finds the
+   * background grays from the histogram, as `ksmcmc floorplan` does; `'fixed'` uses the
+   * default intensity thresholds (`Map.fromBytes`). A map.yaml's own thresholds always apply.
+   */
+  classify?: 'auto' | 'fixed';
   /** The chain's seed, a whole number >= 0 (default 1): the same seed gives the same chain. */
   seed?: number | bigint;
   /** Chain settings: a JSON object (or its text) of any subset of `chainConfigDefaults()`. */
   config?: string | Record<string, unknown>;
   /**
+   * Knowledge supervision with the built-in indoor rules (default true, as `ksmcmc floorplan`);
+   * false runs the weak prior (sets `knowledge.enabled` to false in `config`).
+   */
+  knowledge?: boolean;
+  /**
    * Start running at once (default false). Honours `prefers-reduced-motion: reduce` by staying
    * paused; `'always'` starts regardless.
    */
   autoplay?: boolean | 'always';
+  /**
+   * Pause once the chain has settled (`Mapper.settledAt`: the best log posterior stopped
+   * improving); Start runs on. Default: true for your own `map` or `url`, false for a sample.
+   */
+  stopWhenSettled?: boolean;
   /** Milliseconds of iterations per animation frame (default 8). */
   budgetMs?: number;
   /** A fixed number of iterations per frame instead of a time budget. */
@@ -61,6 +77,8 @@ export interface MapperStats {
   bestPredictionRate: number;
   /** Measured while running; 0 when paused. */
   iterationsPerSecond: number;
+  /** The iteration at which the chain settled (`Mapper.settledAt`), or null. */
+  settledAt: number | null;
   running: boolean;
 }
 

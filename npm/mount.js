@@ -16,8 +16,8 @@ import { SAMPLES, sampleRecipe } from './samples.js';
 export { SAMPLES };
 
 const OPTIONS = [
-  'sample', 'map', 'url', 'seed', 'config', 'autoplay', 'budgetMs', 'iterationsPerFrame', 'show', 'cloud',
-  'labels', 'graph', 'controls', 'wasm', 'onUpdate', 'onError',
+  'sample', 'map', 'url', 'classify', 'seed', 'config', 'knowledge', 'autoplay', 'budgetMs', 'iterationsPerFrame',
+  'stopWhenSettled', 'show', 'cloud', 'labels', 'graph', 'controls', 'wasm', 'onUpdate', 'onError',
 ];
 const STYLE_ID = 'ksmcmc-mount-style';
 const CSS = `
@@ -65,8 +65,22 @@ export function loadSample(name) {
   }
 }
 
+/**
+ * A plain PGM or PNG, classified by `rule`: 'auto' finds the background grays from the
+ * histogram (as `ksmcmc floorplan` does), 'fixed' uses the default thresholds.
+ */
+function imageMap(bytes, rule) {
+  const map = OccupancyMap.fromBytes(bytes);
+  if (rule !== 'auto') return map;
+  try {
+    return map.reclassify('auto');
+  } finally {
+    map.free();
+  }
+}
+
 /** Fetches a map: a PGM or PNG, or a map.yaml and the image it names (relative to it). */
-async function fetchMap(url) {
+async function fetchMap(url, rule) {
   const get = async (u) => {
     const r = await fetch(u);
     if (!r.ok) throw new Error(`${u}: ${r.status} ${r.statusText}`);
@@ -74,7 +88,7 @@ async function fetchMap(url) {
   };
   const base = new URL(String(url), document.baseURI);
   if (!/\.ya?ml$/i.test(base.pathname)) {
-    return OccupancyMap.fromBytes(new Uint8Array(await (await get(base)).arrayBuffer()));
+    return imageMap(new Uint8Array(await (await get(base)).arrayBuffer()), rule);
   }
   const yaml = await (await get(base)).text();
   const m = /^\s*image\s*:\s*["']?([^"'#\r\n]+?)["']?\s*(#.*)?$/m.exec(yaml);
@@ -102,6 +116,36 @@ function checkOptions(options) {
   if (options.show !== undefined && !['current', 'best'].includes(options.show)) {
     throw new Error(`mount: show ${JSON.stringify(options.show)} must be 'current' or 'best'`);
   }
+  if (options.classify !== undefined && !['auto', 'fixed'].includes(options.classify)) {
+    throw new Error(`mount: classify ${JSON.stringify(options.classify)} must be 'auto' or 'fixed'`);
+  }
+  if (options.stopWhenSettled !== undefined && typeof options.stopWhenSettled !== 'boolean') {
+    throw new Error(`mount: stopWhenSettled ${JSON.stringify(options.stopWhenSettled)} must be true or false`);
+  }
+  if (options.knowledge !== undefined && typeof options.knowledge !== 'boolean') {
+    throw new Error(`mount: knowledge ${JSON.stringify(options.knowledge)} must be true or false`);
+  }
+}
+
+/**
+ * The chain settings as JSON text: `config` (an object or its text) with knowledge supervision
+ * turned off when `knowledge` is false. Text that is not a JSON object goes to the chain as it
+ * is, so that its own error names the problem.
+ */
+function chainSettings(config, knowledge) {
+  const text = config === undefined || typeof config === 'string' ? config : JSON.stringify(config);
+  if (knowledge !== false) return text;
+  let settings = {};
+  if (text?.trim()) {
+    try {
+      settings = JSON.parse(text);
+    } catch {
+      return text;
+    }
+  }
+  if (settings === null || typeof settings !== 'object' || Array.isArray(settings)) return text;
+  const k = typeof settings.knowledge === 'object' && settings.knowledge !== null ? settings.knowledge : {};
+  return JSON.stringify({ ...settings, knowledge: { ...k, enabled: false } });
 }
 
 function el(tag, props = {}, children = []) {
@@ -128,6 +172,9 @@ export async function mount(element, options = {}) {
   await ready(options.wasm);
   const { budgetMs = 8, iterationsPerFrame, labels = false, graph = true, controls = true } = options;
   let show = options.show ?? 'current';
+  // Your own map is explained until it settles; a sample runs on (as on the live mapper page).
+  const stopWhenSettled = options.stopWhenSettled ?? (options.map !== undefined || options.url !== undefined);
+  let settledWhenStarted = false;
   let cloud = Boolean(options.cloud);
   const name = options.sample ?? (options.url !== undefined ? String(options.url).split('/').pop() : options.map ? 'map' : 'office-small');
 
@@ -139,15 +186,15 @@ export async function mount(element, options = {}) {
   } else if (options.map && typeof options.map === 'object' && 'yaml' in options.map) {
     map = OccupancyMap.fromYaml(String(options.map.yaml), new Uint8Array(options.map.image));
   } else if (options.map instanceof Uint8Array || options.map instanceof ArrayBuffer) {
-    map = OccupancyMap.fromBytes(new Uint8Array(options.map));
+    map = imageMap(new Uint8Array(options.map), options.classify ?? 'auto');
   } else if (options.map !== undefined) {
     throw new Error('mount: map must be a Map, the bytes of a PGM or PNG, or { yaml, image }');
   } else if (options.url !== undefined) {
-    map = await fetchMap(options.url);
+    map = await fetchMap(options.url, options.classify ?? 'auto');
   } else {
     map = loadSample(options.sample ?? 'office-small');
   }
-  const config = options.config === undefined || typeof options.config === 'string' ? options.config : JSON.stringify(options.config);
+  const config = chainSettings(options.config, options.knowledge);
   let mapper;
   try {
     mapper = new Mapper(map, config, options.seed ?? 1);
@@ -201,6 +248,7 @@ export async function mount(element, options = {}) {
     predictionRate: mapper.predictionRate,
     bestPredictionRate: mapper.bestPredictionRate,
     iterationsPerSecond: rate.perSecond,
+    settledAt: mapper.settledAt ?? null,
     running,
   });
 
@@ -242,7 +290,8 @@ export async function mount(element, options = {}) {
       statsLine.textContent =
         `iteration ${s.iteration.toLocaleString('en-US')} · log p ${s.bestLogPosterior.toFixed(0)} · ` +
         `${s.bestUnits} units · K ${s.bestPredictionRate.toFixed(3)}` +
-        (running ? ` · ${Math.round(s.iterationsPerSecond).toLocaleString('en-US')}/s` : '');
+        (running ? ` · ${Math.round(s.iterationsPerSecond).toLocaleString('en-US')}/s` : '') +
+        (s.settledAt !== null ? ` · settled at ${s.settledAt.toLocaleString('en-US')}` : '');
     }
     options.onUpdate?.(stats());
   };
@@ -260,6 +309,10 @@ export async function mount(element, options = {}) {
       fail(err);
       return;
     }
+    if (stopWhenSettled && !settledWhenStarted && mapper.settledAt !== undefined) {
+      pause();
+      return;
+    }
     draw();
     schedule();
   }
@@ -267,6 +320,7 @@ export async function mount(element, options = {}) {
   function play() {
     if (destroyed || running) return;
     running = true;
+    settledWhenStarted = mapper.settledAt !== undefined;
     errorLine.textContent = '';
     toggleButton.textContent = 'Pause';
     rate = { iteration: mapper.iteration, time: performance.now(), perSecond: 0 };

@@ -1,23 +1,17 @@
 // The live mapper page: a data-driven MCMC chain explains an occupancy map with a semantic
 // floor plan while you watch. The chain, the pictures and the exports are the library's
-// (pkg/ksmcmc.js); this file is wiring: a requestAnimationFrame loop that gives the chain a
-// time budget (or a number of iterations) per frame and redraws at most once per frame.
+// (pkg/ksmcmc.js). The chain runs in a Web Worker (lib/chain-worker.js), so that no step of it,
+// however long, blocks a frame of the page; the page draws the pictures the worker sends, at
+// most one per animation frame, and asks for the next one when it has drawn the last.
 
-import init, {
-  Map as OccMap, Mapper, chainConfigDefaults, drawMapper, drawSceneGraph, drawToCanvas, version,
-} from './pkg/ksmcmc.js';
+import init, { Map as OccMap, chainConfigDefaults, drawToCanvas, version } from './pkg/ksmcmc.js';
 import { TOOLS, MAX_BRUSH, brushOffsets, stamp, strokeTo, cellAt } from './lib/paint.js';
 import { planOpen, pickYamlImage, stem, parseSeed, onDroppedFiles } from './lib/files.js';
 import { drawPlot, formatNumber, parseIterationsPerFrame } from './lib/plot.js';
 import { messages } from './lib/messages.js';
 import { download } from './lib/download.js';
+import { RemoteChain } from './lib/remote-chain.js';
 
-/**
- * Milliseconds per animation frame for iterating and drawing together in `auto` mode: the
- * chain gets what drawing leaves of it (at least MIN_BUDGET_MS), so frames keep to 60 Hz.
- */
-const FRAME_MS = 14;
-const MIN_BUDGET_MS = 4;
 /** Step runs this many iterations when the speed is `auto`. */
 const AUTO_STEP = 500;
 /** The most pixels per cell the page draws (more only costs time per frame). */
@@ -28,7 +22,7 @@ const ui = {
   message: $('message'), messageText: $('message-text'), messageClose: $('message-close'),
   status: $('status'), version: $('version'),
   run: $('run'), step: $('step'), reset: $('reset'), seed: $('seed'), ipf: $('ipf'),
-  config: $('config'), configDefaults: $('config-defaults'), knowledge: $('knowledge'),
+  config: $('config'), configDefaults: $('config-defaults'), knowledge: $('knowledge'), stopSettled: $('stop-settled'),
   sampleForm: $('sample-form'), sample: $('sample'), sampleLoad: $('sample-load'), sampleHint: $('sample-hint'),
   file: $('file'), classify: $('classify'),
   paint: $('paint'), brush: $('brush'), brushValue: $('brush-value'),
@@ -41,6 +35,7 @@ const ui = {
   stat: {
     iteration: $('stat-iteration'), rate: $('stat-rate'), lp: $('stat-lp'), best: $('stat-best'), acc: $('stat-acc'),
     units: $('stat-units'), doors: $('stat-doors'), k: $('stat-k'), rotation: $('stat-rotation'), setup: $('stat-setup'),
+    settled: $('stat-settled'),
   },
   exports: {
     world: $('export-world'), labels: $('export-labels'), png: $('export-png'), graph: $('export-graph'),
@@ -52,17 +47,21 @@ const { showError, clearError, say, attempt, loadWasm } = messages(ui);
 
 const state = {
   ready: false,
-  /** The map being explained (a wasm Map, owned here) and what it is. */
+  /** The map being explained (a wasm Map on this thread: for painting and its size). */
   map: null,
   name: 'map',
   label: '',
   sample: null,
   samples: [],
-  /** The chain (a wasm Mapper), or null before the first map. */
-  mapper: null,
+  /** The chain in its worker, and its numbers as last reported (null before the first map). */
+  chain: null,
+  stats: null,
   running: false,
   raf: 0,
+  /** A picture is wanted (the view or the chain changed), one is on its way, one waits to be drawn. */
   redrawPending: false,
+  inFlight: false,
+  picture: null,
   ipf: 'auto',
   show: 'current',
   cloud: false,
@@ -73,11 +72,11 @@ const state = {
   /** The trace as read so far (plain arrays, appended to each frame). */
   trace: { iteration: [], logPosterior: [], acceptance: [] },
   initialLogPosterior: NaN,
-  /** Frames in which the chain advanced, and when it last started: for iterations/s. */
+  /** Pictures drawn while the chain ran, and when the rate was last measured: for iterations/s. */
   frames: 0,
   rate: { iteration: 0, time: 0, perSecond: 0 },
-  /** Milliseconds a redraw takes (a running average). */
-  drawMs: 4,
+  /** Milliseconds drawing a picture takes on this thread (a running average). */
+  drawMs: 0,
   scale: 1,
   /** Painting: cell codes as loaded and as painted, the stroke's last cell. */
   painting: false,
@@ -113,44 +112,50 @@ function chainSettings() {
   return JSON.stringify({ ...settings, knowledge: { ...knowledge, enabled: false } });
 }
 
-/** A new chain on `map` with the seed and settings in the form; throws with the reason. */
-function newMapper(map) {
+/** The seed and settings in the form for a new chain; throws with the reason. */
+function chainArgs() {
   const seed = parseSeed(ui.seed.value);
   state.ipf = parseIterationsPerFrame(ui.ipf.value);
-  const mapper = new Mapper(map, chainSettings(), seed);
-  if (state.referenceJson !== null) {
-    try {
-      mapper.setReference(state.referenceJson);
-    } catch {
-      state.referenceJson = null;
-      say('The reference world does not fit this map and was dropped.');
-    }
-  }
-  return mapper;
+  return { config: chainSettings() || undefined, seed, reference: state.referenceJson };
 }
 
-/** Replaces the chain (freeing the old one) and starts the statistics afresh. */
-function adopt(mapper) {
-  const wasRunning = state.running;
-  pause();
-  state.mapper?.free();
-  state.mapper = mapper;
+/**
+ * Takes on the chain's numbers from a reply, unless a later reply's are already here: the
+ * worker numbers them in the order it made them (a picture asked for before a change may
+ * arrive after the change's reply).
+ */
+function takeStats(stats) {
+  if (!state.stats || stats.seq > state.stats.seq) state.stats = stats;
+}
+
+/** Takes on a new chain's numbers (the worker has replaced the chain) and starts the statistics afresh. */
+function adopt({ stats, referenceDropped }) {
+  stopped();
+  takeStats(stats);
+  if (referenceDropped) {
+    state.referenceJson = null;
+    say('The reference world does not fit this map and was dropped.');
+  }
   state.trace = { iteration: [], logPosterior: [], acceptance: [] };
-  state.initialLogPosterior = mapper.logPosterior;
+  state.initialLogPosterior = stats.logPosterior;
   state.frames = 0;
   state.rate = { iteration: 0, time: performance.now(), perSecond: 0 };
+  state.picture?.picture.close();
+  state.picture = null;
   updateReferenceControls();
   for (const b of [ui.run, ui.step, ui.reset, ...Object.values(ui.exports)]) b.disabled = false;
   fit();
   requestRedraw();
-  return wasRunning;
 }
 
-/** Shows a new map and starts a chain on it. If the chain cannot start, nothing changes. */
-function setMap(map, { name, label, sample = null }) {
-  let mapper;
+/**
+ * Shows a new map and starts a chain on it; `source` says how the worker makes the same map.
+ * If the chain cannot start, nothing changes (and `map` is freed).
+ */
+async function setMap(map, source, { name, label, sample = null, uploaded = false }) {
+  let reply;
   try {
-    mapper = newMapper(map);
+    reply = await state.chain.call('load', { source, ...chainArgs() });
   } catch (err) {
     map.free();
     throw err;
@@ -164,14 +169,17 @@ function setMap(map, { name, label, sample = null }) {
   state.codes = state.base.slice();
   if (old && old !== map) old.free();
   ui.mapName.textContent = label ? `· ${label}` : '';
+  showSampleChoice(sample);
+  // An opened map is explained until it settles; a sample or a painted map runs on.
+  ui.stopSettled.checked = uploaded;
   ui.truth.disabled = !(sample && state.samples.find((s) => s.name === sample)?.truth);
-  adopt(mapper);
+  adopt(reply);
   clearError();
-  say(`${label}: ${map.width} × ${map.height} cells. ${state.running ? '' : 'Press Start (or Space).'}`);
+  say(`${label}: ${map.width} × ${map.height} cells. Press Start (or Space).`);
 }
 
 function play() {
-  if (!state.mapper || state.running) return;
+  if (!state.stats || state.running) return;
   try {
     state.ipf = parseIterationsPerFrame(ui.ipf.value);
   } catch (err) {
@@ -180,18 +188,34 @@ function play() {
   }
   if (state.painting) setPainting(false);
   state.running = true;
-  state.rate = { iteration: state.mapper.iteration, time: performance.now(), perSecond: state.rate.perSecond };
+  state.rate = { iteration: state.stats.iteration, time: performance.now(), perSecond: state.rate.perSecond };
   ui.run.textContent = 'Pause';
   document.documentElement.dataset.running = 'true';
-  if (!state.raf) state.raf = requestAnimationFrame(frame);
+  say('Running. Space pauses.');
+  state.chain.call('play', { ipf: state.ipf, stopWhenSettled: ui.stopSettled.checked }).catch(showError);
+  requestRedraw();
+}
+
+/** The page's side of stopping: the buttons and the flag. */
+function stopped() {
+  state.running = false;
+  ui.run.textContent = 'Start';
+  document.documentElement.dataset.running = 'false';
 }
 
 function pause() {
   if (!state.running) return;
   state.running = false;
   ui.run.textContent = 'Start';
-  document.documentElement.dataset.running = 'false';
-  requestRedraw();
+  const generation = state.stats.generation;
+  state.chain.call('pause').then((stats) => {
+    // Marked paused once the worker has stopped, with its last numbers drawn.
+    if (state.running || stats.generation !== generation) return;
+    takeStats(stats);
+    document.documentElement.dataset.running = 'false';
+    say(`Paused at iteration ${formatNumber(stats.iteration)}.`);
+    requestRedraw();
+  }, showError);
 }
 
 function toggle() {
@@ -199,47 +223,97 @@ function toggle() {
   else play();
 }
 
+/** The worker paused the chain because it settled. */
+function chainSettled(stats) {
+  takeStats(stats);
+  stopped();
+  say(
+    `Settled at iteration ${formatNumber(stats.settledAt)}: the best log posterior improved by less than 0.01 % ` +
+      `over the last ${formatNumber(stats.settleWindow)} iterations. Start runs on.`,
+  );
+  requestRedraw();
+}
+
+/** The worker stopped the chain because a step failed. */
+function chainFailed(message, stats) {
+  if (stats) takeStats(stats);
+  stopped();
+  showError(new Error(message));
+  requestRedraw();
+}
+
+/** What the worker draws: the view and the pixel sizes of the two canvases. */
+function view() {
+  const s = state.stats;
+  const dpr = globalThis.devicePixelRatio || 1;
+  const gw = Math.max(80, Math.round(ui.graph.clientWidth * dpr) || 320);
+  const gh = Math.max(60, Math.round(gw * Math.min(1, Math.max(0.45, s.height / s.width))));
+  return {
+    generation: s.generation,
+    show: state.show,
+    cloud: state.cloud,
+    labels: state.labels,
+    scale: state.scale,
+    graphWidth: gw,
+    graphHeight: gh,
+    graphShow: state.show === 'none' ? 'best' : state.show,
+    traceFrom: state.trace.iteration.length,
+  };
+}
+
+/** Asks the worker for a picture, unless one is on its way. */
+function requestPicture() {
+  if (state.inFlight || !state.stats) return;
+  state.inFlight = true;
+  state.redrawPending = false;
+  const asked = view();
+  state.chain.call('frame', asked).then(
+    (result) => {
+      state.inFlight = false;
+      if (!result || result.stats.generation !== state.stats.generation) {
+        result?.picture.close();
+        result?.graph.close();
+        if (state.running || state.redrawPending) schedule();
+        return;
+      }
+      state.picture?.picture.close();
+      state.picture?.graph.close();
+      state.picture = result;
+      schedule();
+    },
+    (err) => {
+      state.inFlight = false;
+      stopped();
+      showError(err);
+    },
+  );
+}
+
+function schedule() {
+  if (!state.raf) state.raf = requestAnimationFrame(frame);
+}
+
 /**
- * One animation frame: advance the chain, then draw. Drawing a large map takes longer than a
- * frame can spare, so it is spread out: with a redraw of `drawMs`, only every
- * ceil(drawMs / 7)-th frame draws, and the other frames give the chain the whole budget.
+ * One animation frame: draws the picture the worker sent, if one came, and asks for the next
+ * one while the chain runs (or the view changed). Nothing here waits for the chain.
  */
 function frame() {
   state.raf = 0;
-  if (!state.running || !state.mapper) {
-    if (state.redrawPending) redraw();
-    return;
-  }
-  const every = Math.max(1, Math.ceil(state.drawMs / (FRAME_MS / 2)));
-  const draws = state.frames % every === 0;
-  try {
-    if (state.ipf !== 'auto') state.mapper.step(state.ipf);
-    else state.mapper.runFor(draws ? Math.max(MIN_BUDGET_MS, FRAME_MS - state.drawMs) : FRAME_MS - 2);
-  } catch (err) {
-    pause();
-    showError(err);
-    return;
-  }
-  state.frames++;
-  const now = performance.now();
-  if (now - state.rate.time >= 500) {
-    const it = state.mapper.iteration;
-    state.rate = { iteration: it, time: now, perSecond: ((it - state.rate.iteration) * 1000) / (now - state.rate.time) };
-  }
-  if (draws) {
+  if (state.picture) {
     const t0 = performance.now();
-    redraw();
+    draw(state.picture);
+    state.picture = null;
     state.drawMs = 0.8 * state.drawMs + 0.2 * (performance.now() - t0);
   }
-  state.raf = requestAnimationFrame(frame);
+  if (state.running || state.redrawPending) requestPicture();
 }
 
 function step() {
-  if (!state.mapper) return;
-  attempt(() => {
+  if (!state.stats) return;
+  attempt(async () => {
     state.ipf = parseIterationsPerFrame(ui.ipf.value);
     const n = state.ipf === 'auto' ? AUTO_STEP : state.ipf;
-    state.mapper.step(n);
+    takeStats(await state.chain.call('step', { n }));
     say(`Ran ${formatNumber(n)} iterations.`);
     requestRedraw();
   });
@@ -248,8 +322,9 @@ function step() {
 /** Starts the chain over on the same map, with the seed and settings now in the form. */
 function reset() {
   if (!state.map) return;
-  attempt(() => {
-    const wasRunning = adopt(newMapper(state.map));
+  attempt(async () => {
+    const wasRunning = state.running;
+    adopt(await state.chain.call('start', chainArgs()));
     clearError();
     say(`Started over with seed ${ui.seed.value.trim()}.`);
     if (wasRunning) play();
@@ -258,40 +333,48 @@ function reset() {
 
 // ---------------------------------------------------------------- drawing
 
-/** Redraws at the next animation frame (once, however often it is asked). */
+/** Draws at the next animation frame (once, however often it is asked). */
 function requestRedraw() {
   state.redrawPending = true;
-  if (!state.raf) state.raf = requestAnimationFrame(frame);
+  schedule();
 }
 
-function redraw() {
-  state.redrawPending = false;
-  const m = state.mapper;
-  if (!m) return;
-  try {
-    drawMapper(ui.canvas, m, { show: state.show, cloud: state.cloud, labels: state.labels, scale: state.scale });
-    const dpr = globalThis.devicePixelRatio || 1;
-    const gw = Math.max(80, Math.round(ui.graph.clientWidth * dpr) || 320);
-    const gh = Math.max(60, Math.round(gw * Math.min(1, Math.max(0.45, m.height / m.width))));
-    drawSceneGraph(ui.graph, m, { show: state.show === 'none' ? 'best' : state.show, width: gw, height: gh });
-  } catch (err) {
-    pause();
-    showError(err);
-    return;
+function drawBitmap(canvas, bitmap) {
+  if (canvas.width !== bitmap.width || canvas.height !== bitmap.height) {
+    canvas.width = bitmap.width;
+    canvas.height = bitmap.height;
+  }
+  const ctx = canvas.getContext('2d');
+  ctx.clearRect(0, 0, canvas.width, canvas.height);
+  ctx.drawImage(bitmap, 0, 0);
+  bitmap.close();
+}
+
+function draw({ stats, trace, picture, graph }) {
+  takeStats(stats);
+  if (state.painting && state.strokeAt) {
+    picture.close();
+  } else {
+    drawBitmap(ui.canvas, picture);
+  }
+  drawBitmap(ui.graph, graph);
+  if (stats.running) state.frames++;
+  const now = performance.now();
+  if (now - state.rate.time >= 500) {
+    state.rate = { iteration: stats.iteration, time: now, perSecond: ((stats.iteration - state.rate.iteration) * 1000) / (now - state.rate.time) };
+  }
+  if (trace) {
+    const t = state.trace;
+    t.iteration.push(...trace.iteration);
+    t.logPosterior.push(...trace.logPosterior);
+    t.acceptance.push(...trace.acceptance);
   }
   updateTrace();
   updateStats();
 }
 
 function updateTrace() {
-  const m = state.mapper;
   const t = state.trace;
-  if (m.traceLength > t.iteration.length) {
-    const more = m.trace(t.iteration.length);
-    t.iteration.push(...more.iteration);
-    t.logPosterior.push(...more.logPosterior);
-    t.acceptance.push(...more.acceptance);
-  }
   const dark = matchMedia('(prefers-color-scheme: dark)').matches;
   drawPlot(ui.plotLp, t.iteration, t.logPosterior, { color: dark ? '#6ea8ff' : '#1f5fbf' });
   drawPlot(ui.plotAcc, t.iteration, t.acceptance, { color: dark ? '#f0a500' : '#b35900', range: [0, 1] });
@@ -307,29 +390,31 @@ function updateTrace() {
 }
 
 function updateStats() {
-  const m = state.mapper;
+  const m = state.stats;
   const s = ui.stat;
-  const bestUnits = m.bestUnits;
   s.iteration.textContent = formatNumber(m.iteration);
   s.rate.textContent = state.running ? formatNumber(state.rate.perSecond) : '–';
   s.lp.textContent = formatNumber(m.logPosterior, 1);
   s.best.textContent = formatNumber(m.bestLogPosterior, 1);
   s.acc.textContent = `${formatNumber(100 * m.acceptance, 1)} %`;
-  s.units.textContent = `${m.units} (${bestUnits})`;
-  s.doors.textContent = `${m.doors} (${m.bestDoors})`;
+  s.units.textContent = `${m.units} now, ${m.bestUnits} best`;
+  s.doors.textContent = `${m.doors} now, ${m.bestDoors} best`;
   s.k.textContent = formatNumber(m.bestPredictionRate, 4);
   s.rotation.textContent = `${formatNumber(m.rotationDeg, 1)}°`;
   s.setup.textContent = `${formatNumber(m.setupMs)} ms`;
+  s.settled.textContent = m.settledAt !== null
+    ? `at iteration ${formatNumber(m.settledAt)}`
+    : `not yet (last improvement at ${formatNumber(m.improvedAt ?? 0)}, window ${formatNumber(m.settleWindow)})`;
   const d = ui.stats.dataset;
   d.iteration = String(m.iteration);
   d.logPosterior = String(m.logPosterior);
   d.bestLogPosterior = String(m.bestLogPosterior);
   d.units = String(m.units);
-  d.bestUnits = String(bestUnits);
+  d.bestUnits = String(m.bestUnits);
   ui.canvas.setAttribute(
     'aria-label',
     `${state.label || 'Map'}, ${m.width} by ${m.height} cells, with the ${state.show === 'none' ? 'map only' : `${state.show} world`}: ` +
-      `${bestUnits} units in the best world after ${formatNumber(m.iteration)} iterations`,
+      `${m.bestUnits} units in the best world after ${formatNumber(m.iteration)} iterations`,
   );
 }
 
@@ -339,7 +424,7 @@ function updateStats() {
  * than blown up, except for small maps on large screens.
  */
 function fit() {
-  const m = state.mapper ?? state.map;
+  const m = state.map;
   if (!m) return;
   const box = ui.stage.getBoundingClientRect();
   const availW = Math.max(64, box.width - 16);
@@ -356,7 +441,32 @@ function fit() {
 
 // ---------------------------------------------------------------- maps
 
+function describeSample() {
+  ui.sampleHint.textContent = state.samples.find((s) => s.name === ui.sample.value)?.description ?? '';
+}
+
+/**
+ * The sample list shows the sample on the map, or, for any other map, an entry saying so
+ * (disabled: it cannot be picked, only left by picking a sample).
+ */
+function showSampleChoice(sample) {
+  let other = ui.sample.querySelector('option[value=""]');
+  if (sample) {
+    other?.remove();
+    ui.sample.value = sample;
+  } else {
+    if (!other) {
+      other = new Option('(an opened or painted map)', '');
+      other.disabled = true;
+      ui.sample.prepend(other);
+    }
+    ui.sample.value = '';
+  }
+  describeSample();
+}
+
 async function loadSample(name) {
+  if (!name) throw new Error('Pick a sample from the list first.');
   const info = state.samples.find((s) => s.name === name);
   if (!info) throw new Error(`There is no sample "${name}".`);
   const get = async (file) => {
@@ -365,9 +475,9 @@ async function loadSample(name) {
     return r;
   };
   const [yaml, pgm] = await Promise.all([get('map.yaml').then((r) => r.text()), get('map.pgm').then((r) => r.arrayBuffer())]);
-  const map = OccMap.fromYaml(yaml, new Uint8Array(pgm));
-  ui.sample.value = name;
-  setMap(map, { name, label: name, sample: name });
+  const image = new Uint8Array(pgm);
+  const map = OccMap.fromYaml(yaml, image);
+  await setMap(map, { kind: 'yaml', yaml, image }, { name, label: name, sample: name });
 }
 
 /** Loads a map from the picked files: one image, or a map.yaml with the image it names. */
@@ -378,24 +488,27 @@ async function openFiles(fileList) {
   const byName = (n) => files.find((f) => f.name === n);
   if (plan.kind === 'image') {
     const file = byName(plan.image);
-    let map = OccMap.fromBytes(new Uint8Array(await file.arrayBuffer()));
-    if (ui.classify.value === 'auto') {
+    const bytes = new Uint8Array(await file.arrayBuffer());
+    const classify = ui.classify.value;
+    let map = OccMap.fromBytes(bytes);
+    if (classify === 'auto') {
       const auto = map.reclassify('auto');
       map.free();
       map = auto;
     }
-    setMap(map, { name: stem(file.name), label: file.name });
+    await setMap(map, { kind: 'image', bytes, classify }, { name: stem(file.name), label: file.name, uploaded: true });
     return;
   }
   const yamlText = await byName(plan.yaml).text();
   const pick = pickYamlImage(plan.yaml, yamlText, plan.images);
   if ('message' in pick) throw new Error(pick.message);
   const image = new Uint8Array(await byName(pick.image).arrayBuffer());
-  setMap(OccMap.fromYaml(yamlText, image), { name: stem(plan.yaml), label: `${plan.yaml} + ${pick.image}` });
+  const source = { kind: 'yaml', yaml: yamlText, image };
+  await setMap(OccMap.fromYaml(yamlText, image), source, { name: stem(plan.yaml), label: `${plan.yaml} + ${pick.image}`, uploaded: true });
 }
 
 /** A blank map to paint on: one free room inside a two-cell wall, which the chain explains at once. */
-function blankMap() {
+async function blankMap() {
   const read = (input, what) => {
     const v = Number(input.value);
     if (!Number.isInteger(v) || v < 12 || v > 2000) throw new Error(`${what} must be a whole number from 12 to 2000 cells.`);
@@ -409,7 +522,7 @@ function blankMap() {
       if (x < 2 || y < 2 || x >= w - 2 || y >= h - 2) codes[y * w + x] = 2;
     }
   }
-  setMap(OccMap.fromCells(w, h, codes), { name: 'painted', label: `blank ${w} × ${h}` });
+  await setMap(OccMap.fromCells(w, h, codes), { kind: 'cells', width: w, height: h, codes }, { name: 'painted', label: `blank ${w} × ${h}` });
   setPainting(true);
   ui.stage.scrollIntoView({ block: 'nearest' });
   say(`New ${w} × ${h} map: paint walls into it, then press Start.`);
@@ -473,22 +586,23 @@ function onPointerMove(e) {
 }
 
 /** The stroke is done: the painted map replaces the map, and the chain starts over on it. */
-function onPointerUp() {
+async function onPointerUp() {
   if (!state.strokeAt) return;
   state.strokeAt = null;
   const { width, height } = state.map;
   try {
-    const painted = OccMap.fromCells(width, height, state.codes);
-    let mapper;
+    const codes = state.codes.slice();
+    const painted = OccMap.fromCells(width, height, codes);
+    let reply;
     try {
-      mapper = newMapper(painted);
+      reply = await state.chain.call('load', { source: { kind: 'cells', width, height, codes }, ...chainArgs() });
     } catch (err) {
       painted.free();
       throw err;
     }
     state.map.free();
     state.map = painted;
-    adopt(mapper);
+    adopt(reply);
     clearError();
     say('Painted. Press Start to explain the painted map.');
   } catch (err) {
@@ -509,7 +623,7 @@ function setBrush(size) {
 // ---------------------------------------------------------------- view and reference
 
 function setShow(show) {
-  if (show === 'reference' && !state.mapper?.hasReference) return;
+  if (show === 'reference' && !state.stats?.hasReference) return;
   state.show = show;
   const radio = document.querySelector(`input[name="show"][value="${show}"]`);
   if (radio) radio.checked = true;
@@ -529,14 +643,14 @@ function setLabels(on) {
 }
 
 function updateReferenceControls() {
-  const has = Boolean(state.mapper?.hasReference);
+  const has = Boolean(state.stats?.hasReference);
   ui.showReference.disabled = !has;
   ui.referenceClear.disabled = !has;
   if (!has && state.show === 'reference') setShow('best');
 }
 
-function setReference(text, name) {
-  state.mapper.setReference(text);
+async function setReference(text, name) {
+  takeStats(await state.chain.call('setReference', { json: text }));
   state.referenceJson = text;
   state.referenceName = name;
   updateReferenceControls();
@@ -546,6 +660,11 @@ function setReference(text, name) {
 }
 
 // ---------------------------------------------------------------- exports
+
+/** Calls one of the chain's export methods in the worker. */
+function invoke(name, ...args) {
+  return state.chain.call('invoke', { name, args });
+}
 
 function save(name, data, type) {
   download(name, data, type);
@@ -604,6 +723,9 @@ function wire() {
     ui.file.value = '';
   });
   ui.paint.addEventListener('change', () => setPainting(ui.paint.checked));
+  ui.stopSettled.addEventListener('change', () => {
+    if (state.stats) state.chain.call('stopWhenSettled', { on: ui.stopSettled.checked }).catch(showError);
+  });
   for (const radio of document.querySelectorAll('input[name="tool"]')) {
     radio.addEventListener('change', () => {
       state.tool = radio.value;
@@ -631,22 +753,24 @@ function wire() {
       setReference(await r.text(), `${state.sample}/truth.json`);
     }),
   );
-  ui.referenceClear.addEventListener('click', () => {
-    state.mapper?.setReference();
-    state.referenceJson = null;
-    updateReferenceControls();
-    say('Reference cleared.');
-    requestRedraw();
-  });
+  ui.referenceClear.addEventListener('click', () =>
+    attempt(async () => {
+      takeStats(await state.chain.call('setReference', { json: null }));
+      state.referenceJson = null;
+      updateReferenceControls();
+      say('Reference cleared.');
+      requestRedraw();
+    }),
+  );
 
   const ex = ui.exports;
-  ex.world.addEventListener('click', () => attempt(() => save('world.json', state.mapper.bestWorldJson(), 'application/json')));
-  ex.labels.addEventListener('click', () => attempt(() => save('labels.pgm', state.mapper.labelsPgm(), 'image/x-portable-graymap')));
-  ex.png.addEventListener('click', () =>
-    attempt(() => save('overlay.png', state.mapper.toPng({ show: state.show, cloud: state.cloud, labels: state.labels }), 'image/png')),
-  );
-  ex.graph.addEventListener('click', () => attempt(() => save('graph.json', state.mapper.graphJson(), 'application/json')));
-  ex.report.addEventListener('click', () => attempt(() => save('report.json', state.mapper.reportJson(), 'application/json')));
+  const exporter = (name, type, method, args = () => []) => () =>
+    attempt(async () => save(name, await invoke(method, ...args()), type));
+  ex.world.addEventListener('click', exporter('world.json', 'application/json', 'bestWorldJson'));
+  ex.labels.addEventListener('click', exporter('labels.pgm', 'image/x-portable-graymap', 'labelsPgm'));
+  ex.png.addEventListener('click', exporter('overlay.png', 'image/png', 'toPng', () => [{ show: state.show, cloud: state.cloud, labels: state.labels }]));
+  ex.graph.addEventListener('click', exporter('graph.json', 'application/json', 'graphJson'));
+  ex.report.addEventListener('click', exporter('report.json', 'application/json', 'reportJson'));
 
   ui.canvas.addEventListener('pointerdown', onPointerDown);
   ui.canvas.addEventListener('pointermove', onPointerMove);
@@ -662,11 +786,25 @@ function wire() {
 /** For tests and the curious: the page's numbers, read from the running chain. */
 function expose() {
   window.__ksmcmc = {
-    get mapper() {
-      return state.mapper;
+    /** The chain's exports and report, as promises (the chain is in a worker). */
+    mapper: Object.fromEntries(['bestWorldJson', 'worldJson', 'labelsPgm', 'graphJson', 'reportJson', 'toPng'].map((name) => [name, (...args) => invoke(name, ...args)])),
+    /** The map on the page (a wasm Map). */
+    get map() {
+      return state.map;
+    },
+    /** Resolves once the page has drawn the chain's latest state and waits for nothing. */
+    idle() {
+      return new Promise((resolve) => {
+        const check = () => {
+          const paused = !state.running && document.documentElement.dataset.running === 'false';
+          if (paused && !state.inFlight && !state.redrawPending && !state.picture && state.chain.busy === 0) resolve();
+          else requestAnimationFrame(check);
+        };
+        requestAnimationFrame(check);
+      });
     },
     snapshot() {
-      const m = state.mapper;
+      const m = state.stats;
       return {
         ready: state.ready,
         running: state.running,
@@ -685,6 +823,10 @@ function expose() {
         frames: state.frames,
         traceLength: state.trace.iteration.length,
         hasReference: Boolean(m?.hasReference),
+        settledAt: m?.settledAt ?? null,
+        improvedAt: m?.improvedAt ?? null,
+        settleWindow: m?.settleWindow ?? 0,
+        stopWhenSettled: ui.stopSettled.checked,
         show: state.show,
         cloud: state.cloud,
         scale: state.scale,
@@ -701,6 +843,7 @@ async function main() {
   wire();
   expose();
   if (!(await loadWasm(init))) return;
+  state.chain = new RemoteChain(chainFailed, chainSettled);
   ui.version.textContent = version();
   setBrush(ui.brush.value);
   for (const el of [ui.file, ui.blankCreate, ui.worldFile]) el.disabled = false;
@@ -716,20 +859,17 @@ async function main() {
       ui.sample.append(new Option(`${s.name} (${s.width} × ${s.height})`, s.name));
     }
     ui.sample.disabled = ui.sampleLoad.disabled = false;
-    const describe = () => {
-      ui.sampleHint.textContent = state.samples.find((s) => s.name === ui.sample.value)?.description ?? '';
-    };
-    ui.sample.addEventListener('change', describe);
+    ui.sample.addEventListener('change', describeSample);
     const wanted = params.get('sample') ?? 'office-small';
     ui.sample.value = state.samples.some((s) => s.name === wanted) ? wanted : state.samples[0]?.name;
-    describe();
+    describeSample();
   } catch (err) {
     ui.sampleHint.textContent = `The samples did not load (${err.message}): \`make demo\` copies them into www/samples. Open or paint a map instead.`;
   }
   state.ready = true;
   const first = state.samples.length > 0 ? attempt(() => loadSample(ui.sample.value)) : attempt(blankMap);
   await first;
-  if (!state.mapper) await attempt(blankMap);
+  if (!state.stats) await attempt(blankMap);
   document.documentElement.dataset.state = 'ready';
   if (params.get('autoplay') === '1') play();
 }

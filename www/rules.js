@@ -1,21 +1,26 @@
 // The rules editor: edit the knowledge base that supervises the floor-plan chain, see where it
 // is wrong, what evidence the chain's best world gives and what the rules infer from it, and
 // restart the chain with the edited rules. The engine is the library's (pkg/ksmcmc.js); this
-// file is wiring.
+// file is wiring. The chain and the inference run in a Web Worker (lib/chain-worker.js), as on
+// the live mapper page, so that neither blocks a frame of the page.
 
-import init, { Map as OccMap, Mapper, builtinIndoorRules, checkRules, drawMapper, inferWorld } from './pkg/ksmcmc.js';
+import init, { builtinIndoorRules, checkRules } from './pkg/ksmcmc.js';
 import { messages } from './lib/messages.js';
+import { RemoteChain } from './lib/remote-chain.js';
 import { rulesEditor } from './lib/rules-editor.js';
+import { naturalCompare } from './lib/natural.js';
 
 const SAMPLE = 'office-small';
-const BUDGET_MS = 12;
 const INFER_EVERY_MS = 400;
 
 const $ = (id) => document.getElementById(id);
 const { showError } = messages({ message: $('message'), messageText: $('message-text') });
 const ui = { kb: $('kb'), error: $('kb-error'), map: $('map'), evidence: $('evidence'), marginals: $('marginals').tBodies[0], sale: $('salele').tBodies[0] };
 
-const state = { editor: null, map: null, resolution: 0.05, mapper: null, goodKb: '', kbUsed: '', error: null, runs: 0, lastInfer: 0, inferred: null, worldUnits: 0, inferError: null };
+const state = {
+  editor: null, source: null, resolution: 0.05, chain: null, generation: -1, stats: null, busy: false,
+  goodKb: '', kbUsed: '', error: null, runs: 0, lastInfer: 0, inferred: null, worldUnits: 0, inferError: null,
+};
 
 /** A good text becomes the knowledge base; a bad one is reported and the last good one stays. */
 function checked(text, err) {
@@ -23,14 +28,26 @@ function checked(text, err) {
   if (!err) state.goodKb = text;
 }
 
-function run() {
-  state.mapper?.free();
+/** Starts the chain over with the last good rules (in the worker; the numbers follow). */
+async function run() {
   state.kbUsed = state.goodKb;
-  state.mapper = new Mapper(state.map, JSON.stringify({ knowledge: { enabled: true, kb: state.kbUsed } }), 1);
   state.runs++;
+  const runs = state.runs;
   state.inferred = null;
+  state.stats = null;
+  state.generation = -1;
   state.lastInfer = 0;
   $('runs').textContent = String(state.runs);
+  try {
+    const config = JSON.stringify({ knowledge: { enabled: true, kb: state.kbUsed } });
+    const { stats } = await state.chain.call('load', { source: state.source, config, seed: 1 });
+    if (runs !== state.runs) return;
+    state.generation = stats.generation;
+    state.stats = stats;
+    await state.chain.call('play', { ipf: 'auto' });
+  } catch (e) {
+    showError(e);
+  }
 }
 
 function cell(tr, text) {
@@ -39,20 +56,19 @@ function cell(tr, text) {
   tr.append(td);
 }
 
-function infer() {
-  const world = state.mapper.bestWorldJson();
+/** Shows what the rules infer from the chain's best world (as the worker computed it). */
+function showInferred({ world, inferred, error }) {
   state.worldUnits = JSON.parse(world).units.length;
-  try {
-    state.inferred = JSON.parse(inferWorld(state.kbUsed, world, state.resolution));
-    state.inferError = null;
-  } catch (e) {
-    state.inferError = String(e.message ?? e);
+  if (error !== null) {
+    state.inferError = error;
     return;
   }
+  state.inferred = JSON.parse(inferred);
+  state.inferError = null;
   const inf = state.inferred;
   ui.evidence.textContent = inf.evidence.filter((f) => f.value).map((f) => `${f.predicate}(${f.args.join(',')})`).join('  ') || '(none)';
   ui.marginals.replaceChildren(
-    ...Object.entries(inf.types).map(([u, t]) => {
+    ...Object.entries(inf.types).sort(([a], [b]) => naturalCompare(a, b)).map(([u, t]) => {
       const tr = document.createElement('tr');
       tr.dataset.unit = u;
       cell(tr, u);
@@ -72,18 +88,41 @@ function infer() {
   );
 }
 
+/** Every INFER_EVERY_MS: the best world's picture and inference from the worker. */
+async function refresh() {
+  const { generation, runs } = state;
+  const view = { generation, show: 'best', cloud: false, labels: true, scale: 2, graphWidth: 80, graphHeight: 60, graphShow: 'best', traceFrom: Infinity };
+  const [frame, inferred] = await Promise.all([
+    state.chain.call('frame', view),
+    state.chain.call('infer', { kb: state.kbUsed, resolution: state.resolution }),
+  ]);
+  frame?.graph.close();
+  if (!frame || runs !== state.runs || generation !== state.generation || inferred.generation !== generation) {
+    frame?.picture.close();
+    return;
+  }
+  state.stats = frame.stats;
+  $('iteration').textContent = String(frame.stats.iteration);
+  $('units').textContent = String(frame.stats.bestUnits);
+  const c = ui.map;
+  if (c.width !== frame.picture.width || c.height !== frame.picture.height) {
+    c.width = frame.picture.width;
+    c.height = frame.picture.height;
+  }
+  c.getContext('2d').drawImage(frame.picture, 0, 0);
+  frame.picture.close();
+  showInferred(inferred);
+}
+
 function frame(now) {
-  try {
-    state.mapper.runFor(BUDGET_MS);
-    $('iteration').textContent = String(state.mapper.iteration);
-    $('units').textContent = String(state.mapper.bestUnits);
-    if (now - state.lastInfer > INFER_EVERY_MS) {
-      state.lastInfer = now;
-      infer();
-      drawMapper(ui.map, state.mapper, { show: 'best', scale: 2 });
-    }
-  } catch (e) {
-    showError(e);
+  if (!state.busy && state.stats && now - state.lastInfer > INFER_EVERY_MS) {
+    state.lastInfer = now;
+    state.busy = true;
+    refresh()
+      .catch(showError)
+      .finally(() => {
+        state.busy = false;
+      });
   }
   requestAnimationFrame(frame);
 }
@@ -98,11 +137,12 @@ async function main() {
     };
     const yaml = await (await get('map.yaml')).text();
     const pgm = new Uint8Array(await (await get('map.pgm')).arrayBuffer());
-    state.map = OccMap.fromYaml(yaml, pgm);
+    state.source = { kind: 'yaml', yaml, image: pgm };
+    state.chain = new RemoteChain(showError, () => {});
     state.resolution = Number(yaml.match(/resolution:\s*([0-9.eE+-]+)/)?.[1] ?? 0.05);
     ui.kb.value = builtinIndoorRules();
     state.editor = rulesEditor(ui.kb, { check: checkRules, status: ui.error, okText: 'Knowledge base OK', gutterId: 'gutter', onCheck: checked });
-    $('rerun').addEventListener('click', run);
+    $('rerun').addEventListener('click', () => run());
     $('builtin').addEventListener('click', () => {
       ui.kb.value = builtinIndoorRules();
       state.editor.check();
@@ -111,7 +151,7 @@ async function main() {
     window.__rules = {
       snapshot: () => ({
         runs: state.runs,
-        iteration: state.mapper?.iteration ?? 0,
+        iteration: state.stats?.iteration ?? 0,
         error: state.error,
         goodKb: state.goodKb,
         kbUsed: state.kbUsed,

@@ -46,6 +46,26 @@ function parseSeed(text) {
   return BigInt(t);
 }
 
+/**
+ * What a scene holds. The chain sees estimates; a generated scene's truth says which are false
+ * (no object there) and lists the objects hidden under others, which the camera did not see:
+ * the objects on the table are the true estimates and the hidden ones.
+ */
+function describeScene(sceneJson, estimates) {
+  let scene = {};
+  try {
+    scene = JSON.parse(sceneJson);
+  } catch {
+    // The chain parsed it; nothing more to say.
+  }
+  const objects = Array.isArray(scene.objects) ? scene.objects : [];
+  if (!objects.some((o) => o.truth)) return `${estimates} estimated objects`;
+  const falses = objects.filter((o) => o.truth?.false).length;
+  const hidden = scene.hidden_objects?.length ?? 0;
+  const seen = estimates - falses;
+  return `${seen + hidden} objects: ${seen} seen, ${hidden} hidden under them; ${estimates} estimates, ${falses} false`;
+}
+
 /** Starts a chain on scene text; on error the old chain stays and the error is thrown. */
 function load(sceneJson, name) {
   const tt = new Tabletop(sceneJson, undefined, parseSeed(ui.seed.value), state.rules);
@@ -53,7 +73,7 @@ function load(sceneJson, name) {
   state.tt = tt;
   state.sceneJson = sceneJson;
   state.sceneName = name;
-  ui.sceneName.textContent = `${name} (${tt.objects} objects)`;
+  ui.sceneName.textContent = `${name} (${describeScene(sceneJson, tt.objects)})`;
   state.rate = { t: performance.now(), it: 0 };
   state.dirty = true;
   redraw();
@@ -214,6 +234,8 @@ function expose() {
       rulesInUse: state.rules,
     }),
     synthText: () => tabletopSynth(9),
+    /** The scene.json text the chain analyses. */
+    sceneText: () => state.sceneJson,
     /** Milliseconds of a whole analysis: synth, construct, `iterations` steps, analysis JSON. */
     bench(objects = 8, iterations = 100, seed = 3) {
       const t0 = performance.now();

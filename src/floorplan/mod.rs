@@ -18,6 +18,7 @@ pub mod report;
 pub mod room_layer;
 pub mod rooms;
 mod schedule;
+pub mod settled;
 pub(crate) mod state;
 pub mod synth;
 pub mod topology;

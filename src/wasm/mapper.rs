@@ -19,8 +19,9 @@
 use super::{js_message, put_rgba, seed_from_js, Map, Rendered, MAX_RENDER_PIXELS};
 use crate::floorplan::report::report as ksmcmc_report;
 use crate::floorplan::rooms::RoomConfig;
+use crate::floorplan::settled::Settled;
 use crate::floorplan::{graph, metrics, Chain, ChainConfig, Rect, World};
-use crate::grid::{Grid, OccupancyMap};
+use crate::grid::{Cell, Grid, OccupancyMap};
 use crate::render::{self, RenderOptions};
 use serde::Deserialize;
 use tiny_skia::Pixmap;
@@ -69,6 +70,8 @@ pub struct Mapper {
     /// when an export or the room list asks (a pass over the map and a small inference).
     rooms: Option<((u64, u64), World, Grid<u16>)>,
     reference: Option<World>,
+    /// Whether the best world has stopped improving (the library's rule).
+    settled: Settled,
     setup_ms: f64,
     busy_ms: f64,
 }
@@ -122,6 +125,7 @@ impl Mapper {
 
     fn restart(&mut self, chain: Chain) {
         self.chain = chain;
+        self.settled = Settled::for_map(self.map.count(Cell::Free));
         self.best = None;
         self.rooms = None;
         self.current = None;
@@ -211,6 +215,7 @@ impl Mapper {
             current: None,
             rooms: None,
             reference: None,
+            settled: Settled::for_map(inner.count(Cell::Free)),
             setup_ms,
             busy_ms: 0.0,
         })
@@ -220,19 +225,19 @@ impl Mapper {
     pub fn step(&mut self, n: f64) -> Result<f64, JsError> {
         let steps = super::iterations_from_js("step", n, MAX_STEP)?;
         let t0 = now_ms();
-        self.chain.step(steps);
+        self.settled.step(&mut self.chain, steps);
         self.busy_ms += now_ms() - t0;
         Ok(n)
     }
 
     /// Runs iterations until `budgetMs` milliseconds have passed by `performance.now()`,
-    /// checking the clock every 64 iterations (so at least 64 run). Returns how many ran.
+    /// checking the clock every 16 iterations (so at least 16 run). Returns how many ran.
     /// `budgetMs` is a number from 0 to 60000.
     #[wasm_bindgen(js_name = runFor)]
     pub fn run_for(&mut self, #[wasm_bindgen(js_name = budgetMs)] budget_ms: f64) -> Result<f64, JsError> {
         let budget_ms = super::budget_from_js("runFor", budget_ms, MAX_BUDGET_MS)?;
         let t0 = now_ms();
-        let done = self.chain.run_for(budget_ms, &mut now_ms);
+        let done = self.settled.run_for(&mut self.chain, budget_ms, &mut now_ms);
         self.busy_ms += now_ms() - t0;
         Ok(done as f64)
     }
@@ -254,6 +259,29 @@ impl Mapper {
         self.setup_ms = now_ms() - t0;
         self.restart(chain);
         Ok(())
+    }
+
+    /// The iteration at which the chain settled: its best log posterior improved by less than
+    /// 0.01 % over the last `settleWindow` iterations (looked at every 100 iterations; the same
+    /// seed settles at the same iteration however the iterations are chunked). `undefined`
+    /// while it has not, or since it improved again.
+    #[wasm_bindgen(getter, js_name = settledAt)]
+    pub fn settled_at(&self) -> Option<f64> {
+        self.settled.settled_at().map(|i| i as f64)
+    }
+
+    /// Iterations without a real improvement that make the chain settled: a quarter of the
+    /// map's free cells, from 5,000 to 200,000.
+    #[wasm_bindgen(getter, js_name = settleWindow)]
+    pub fn settle_window(&self) -> f64 {
+        self.settled.window() as f64
+    }
+
+    /// The last iteration (a multiple of 100) at which the best log posterior improved by more
+    /// than 0.01 %.
+    #[wasm_bindgen(getter, js_name = improvedAt)]
+    pub fn improved_at(&self) -> Option<f64> {
+        self.settled.improved_at().map(|i| i as f64)
     }
 
     /// Iterations run since the start (or the last reset).

@@ -72,8 +72,8 @@ export async function startBrowser() {
  * Opens the Maps page in a fresh context and waits until the wasm module is ready. Records
  * console errors and page errors in `page.problems`.
  */
-export async function openPage(env, path = 'index.html') {
-  const context = await env.browser.newContext({ acceptDownloads: true, viewport: { width: 1280, height: 900 } });
+export async function openPage(env, path = 'index.html', viewport = { width: 1280, height: 900 }) {
+  const context = await env.browser.newContext({ acceptDownloads: true, viewport });
   const page = await context.newPage();
   page.problems = [];
   page.on('console', (m) => {

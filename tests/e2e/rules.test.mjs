@@ -36,6 +36,8 @@ test('marginals table, syntax errors at line and column, re-run with edited rule
   let s = await snap(page);
   assert.equal(s.runs, 1);
   assert.equal(Object.keys(s.inferred.types).length, s.worldUnits, 'one row per unit');
+  const order = await page.$$eval('#marginals tbody tr', (rows) => rows.map((r) => Number(r.dataset.unit.replace(/\D/g, ''))));
+  assert.deepEqual(order, [...order].sort((a, b) => a - b), `rows in the order of the unit numbers: ${order}`);
   assert.ok(s.inferred.evidence.some((f) => f.predicate === 'RoLi'), 'evidence has RoLi facts');
   assert.ok((await page.textContent('#evidence')).length > 0);
   for (const t of Object.values(s.inferred.types)) {

@@ -59,6 +59,16 @@ describe('table-top page', () => {
     assert.equal(s.running, false);
     assert.ok(s.iteration > 0, `the chain ran: ${s.iteration}`);
     assert.ok(s.objects >= 3 && s.objects <= 8, `objects: ${s.objects}`);
+    // Objects on the table are the true estimates and those hidden under them (seed 5: all 8
+    // placed); false estimates are not objects. The page says so.
+    const scene = JSON.parse(await page.evaluate(() => window.__ksmcmc.sceneText()));
+    const hidden = scene.hidden_objects?.length ?? 0;
+    const falses = scene.objects.filter((o) => o.truth.false).length;
+    assert.equal(s.objects - falses + hidden, 8, 'seen + hidden = the objects asked for');
+    assert.equal(
+      await page.textContent('#scene-name'),
+      `synthetic, seed 5 (8 objects: ${s.objects - falses} seen, ${hidden} hidden under them; ${s.objects} estimates, ${falses} false)`,
+    );
     assert.equal(s.error, null);
     const rows = await tableRows(page);
     assert.equal(rows.length, s.objects, 'one row per object');

@@ -5,6 +5,13 @@ import assert from 'node:assert/strict';
 import { brushOffsets, cellAt, line, stamp, strokeTo, TOOLS } from '../../www/lib/paint.js';
 import { matchImage, parseSeed, pickYamlImage, planOpen, stem, yamlImageName } from '../../www/lib/files.js';
 import { errorSpan, errorText } from '../../www/lib/rules-editor.js';
+import { naturalCompare } from '../../www/lib/natural.js';
+
+test('unit names sort by their numbers', () => {
+  assert.deepEqual(['U10', 'U2', 'U1', 'U21', 'U3'].sort(naturalCompare), ['U1', 'U2', 'U3', 'U10', 'U21']);
+  assert.ok(naturalCompare('U9', 'U10') < 0);
+  assert.equal(naturalCompare('U7', 'U7'), 0);
+});
 
 test('brushes are round and centred', () => {
   assert.deepEqual(brushOffsets(1), [[0, 0]]);

@@ -2,7 +2,9 @@
 
 use crate::args::{self, CliError};
 use ksmcmc::floorplan::rooms::RoomConfig;
+use ksmcmc::floorplan::settled::{self, Settled};
 use ksmcmc::floorplan::{graph, metrics, Chain, ChainConfig};
+use ksmcmc::grid::Cell;
 use std::ffi::OsString;
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -23,6 +25,8 @@ data-driven MCMC, and writes:
 Options:
   --iterations N     iterations to run (default 20000)
   --time-limit SEC   stop after this many seconds even if iterations remain
+  --until-settled    stop once the best world has settled (floorplan::settled; the live
+                     mapper's rule), at most --iterations; report.json gives settled_at
   --seed S           random seed (default 1); same seed, same result
   --config FILE      chain configuration JSON (any subset of fields; see the docs)
       --rotation DEG     map rotation in degrees instead of estimating it
@@ -51,6 +55,7 @@ struct Opts {
     classify: String,
     region: Option<PathBuf>,
     knowledge: Option<String>,
+    until_settled: bool,
 }
 
 pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
@@ -61,11 +66,14 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     let t0 = Instant::now();
     let mut chain = Chain::new(&map, config, o.seed).map_err(|e| args::failed(o.map.display(), e))?;
     let deadline = o.time_limit.map(|t| t0 + std::time::Duration::from_secs_f64(t));
+    let mut settled = Settled::for_map(map.count(Cell::Free));
+    let chunk = if o.until_settled { settled::STRIDE } else { 500 };
     while chain.iteration() < o.iterations {
-        if deadline.is_some_and(|d| Instant::now() >= d) {
+        if deadline.is_some_and(|d| Instant::now() >= d) || (o.until_settled && settled.settled_at().is_some()) {
             break;
         }
-        chain.step((o.iterations - chain.iteration()).min(500));
+        let n = (o.iterations - chain.iteration()).min(chunk);
+        settled.step(&mut chain, n);
     }
     let seconds = t0.elapsed().as_secs_f64();
     let mut world = chain.best_world_typed();
@@ -94,6 +102,9 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     ksmcmc::floorplan::report::add_rooms(&mut report, &world, &labels);
     let k = report["cell_prediction_rate"].as_f64().unwrap_or(0.0);
     report["map"] = o.map.display().to_string().into();
+    if o.until_settled {
+        report["settled_at"] = serde_json::json!(settled.settled_at());
+    }
     report["cell_prediction_rate_region"] =
         serde_json::json!(region.as_ref().map(|r| metrics::prediction_rate_in(map.classified(), &world, Some(r))));
     write_outputs(&o.out, &map, &world, &trace, &labels, &report)?;
@@ -121,6 +132,7 @@ fn parse(argv: Vec<OsString>) -> Result<Option<Opts>, CliError> {
     let mut classify = String::from("auto");
     let mut region_path: Option<PathBuf> = None;
     let mut knowledge: Option<String> = None;
+    let mut until_settled = false;
     while let Some(arg) = parser.next()? {
         match arg {
             Value(v) if map.is_none() => map = Some(args::path(v)),
@@ -133,6 +145,7 @@ fn parse(argv: Vec<OsString>) -> Result<Option<Opts>, CliError> {
             Long("classify") => classify = args::value("--classify", parser.value()?)?,
             Long("region") => region_path = Some(args::path(parser.value()?)),
             Long("knowledge") => knowledge = Some(args::value("--knowledge", parser.value()?)?),
+            Long("until-settled") => until_settled = true,
             Long("help") | Short('h') => {
                 print!("{HELP}");
                 return Ok(None);
@@ -163,6 +176,7 @@ fn parse(argv: Vec<OsString>) -> Result<Option<Opts>, CliError> {
         classify,
         region: region_path,
         knowledge,
+        until_settled,
     }))
 }
 

@@ -244,7 +244,9 @@ pub fn room_labels(world: &World, map: &Grid<Cell>, world_map: &Grid<Cell>, c: &
 }
 
 /// [`room_labels`] for a given grouping of units into rooms (`rooms[i]` is unit `i`'s room,
-/// 1-based, 0 for none), as [`join`] makes it.
+/// 1-based, 0 for none), as [`join`] makes it: the units' free cells, then a wavefront within
+/// reach, then free regions beyond reach ([`label_far_regions`]), split at doorways and with
+/// small segments joined to their neighbours.
 pub fn labels_of_groups(
     world: &World,
     rooms: &[u16],
@@ -252,8 +254,18 @@ pub fn labels_of_groups(
     world_map: &Grid<Cell>,
     c: &RoomConfig,
 ) -> Grid<u16> {
+    let owner = room_owner(world, rooms, world_map);
+    let (mut labels, queue) = label_unit_cells(world, &owner, world_map.width(), map);
+    spread_labels(&mut labels, map, queue, c.max_reach);
+    label_far_regions(&mut labels, map, rooms.iter().copied().max().unwrap_or(0), c);
+    split_at_doorways(&mut labels, map, c);
+    merge_small_segments(&mut labels, c.min_segment_cells);
+    labels
+}
+
+/// Owner room of every world cell: the room of the first unit covering it (0 for none).
+fn room_owner(world: &World, rooms: &[u16], world_map: &Grid<Cell>) -> Vec<u16> {
     let (ww, wh) = (world_map.width(), world_map.height());
-    // Owner room of every world cell: the first unit covering it.
     let mut owner = vec![0u16; ww * wh];
     for (u, &room) in world.units.iter().zip(rooms) {
         if room == 0 {
@@ -269,6 +281,12 @@ pub fn labels_of_groups(
             }
         }
     }
+    owner
+}
+
+/// Labels every free map cell whose world cell has an owner room, and queues those cells.
+fn label_unit_cells(world: &World, owner: &[u16], ww: usize, map: &Grid<Cell>) -> (Grid<u16>, VecDeque<u32>) {
+    let wh = owner.len() / ww.max(1);
     let mut labels = Grid::new(map.width(), map.height(), 0u16);
     let mut queue = VecDeque::new();
     for my in 0..map.height() {
@@ -292,14 +310,19 @@ pub fn labels_of_groups(
             }
         }
     }
-    // Wavefront: unlabelled free cells within reach take the label of the nearest labelled one.
+    (labels, queue)
+}
+
+/// Wavefront: unlabelled free cells within `max_reach` steps take the label of the nearest
+/// labelled one.
+fn spread_labels(labels: &mut Grid<u16>, map: &Grid<Cell>, mut queue: VecDeque<u32>, max_reach: u32) {
     let (w, h) = (map.width(), map.height());
     let mut dist = vec![0u32; w * h];
     while let Some(i) = queue.pop_front() {
         let (x, y) = (i as usize % w, i as usize / w);
         let l = *labels.at(x, y);
         let d = dist[y * w + x];
-        if d >= c.max_reach {
+        if d >= max_reach {
             continue;
         }
         for (nx, ny) in [(x.wrapping_sub(1), y), (x + 1, y), (x, y.wrapping_sub(1)), (x, y + 1)] {
@@ -310,16 +333,22 @@ pub fn labels_of_groups(
             }
         }
     }
-    // Free regions out of every unit's reach: rooms of their own, if deep enough.
+}
+
+/// Free regions out of every unit's reach become rooms of their own, numbered after `last`,
+/// if big and deep enough ([`RoomConfig::min_room_cells`], [`RoomConfig::min_room_depth`]);
+/// the others stay unlabelled.
+fn label_far_regions(labels: &mut Grid<u16>, map: &Grid<Cell>, last: u16, c: &RoomConfig) {
+    let (w, h) = (map.width(), map.height());
     let depth = if c.min_room_depth > 0 { free_depth(map) } else { vec![u32::MAX; w * h] };
-    let mut next = rooms.iter().copied().max().unwrap_or(0);
+    let mut next = last;
     let mut stack = Vec::new();
     for start in 0..w * h {
         let (sx, sy) = (start % w, start / w);
         if *map.at(sx, sy) != Cell::Free || *labels.at(sx, sy) != 0 {
             continue;
         }
-        // Flood the region with a provisional id, then keep it only if it is big enough.
+        // Flood the region with a provisional id, then keep it only if it is a room.
         let id = next.saturating_add(1);
         let mut region = vec![(sx, sy)];
         *labels.at_mut(sx, sy) = id;
@@ -348,9 +377,6 @@ pub fn labels_of_groups(
             *l = 0;
         }
     }
-    split_at_doorways(&mut labels, map, c);
-    merge_small_segments(&mut labels, c.min_segment_cells);
-    labels
 }
 
 /// Joins every segment smaller than `min_cells` to the neighbouring segment it shares the

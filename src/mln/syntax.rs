@@ -52,6 +52,35 @@ fn describe(t: &Token, src: &str) -> String {
     }
 }
 
+/// The index after the run of characters from `i` on that satisfy `keep`.
+fn digits_end(chars: &[(usize, char)], i: usize, keep: impl Fn(char) -> bool) -> usize {
+    let mut j = i;
+    while j < chars.len() && keep(chars[j].1) {
+        j += 1;
+    }
+    j
+}
+
+/// The index after the number starting at `i`: digits, an optional fraction, an optional
+/// exponent (`e`, a sign, digits; an `e` without digits is not part of the number).
+fn number_end(chars: &[(usize, char)], i: usize) -> usize {
+    let digit = |c: char| c.is_ascii_digit();
+    let mut j = digits_end(chars, i, digit);
+    if j < chars.len() && chars[j].1 == '.' && chars.get(j + 1).is_some_and(|d| d.1.is_ascii_digit()) {
+        j = digits_end(chars, j + 1, digit);
+    }
+    if j < chars.len() && matches!(chars[j].1, 'e' | 'E') {
+        let mut k = j + 1;
+        if k < chars.len() && matches!(chars[k].1, '+' | '-') {
+            k += 1;
+        }
+        if k < chars.len() && chars[k].1.is_ascii_digit() {
+            j = digits_end(chars, k, digit);
+        }
+    }
+    j
+}
+
 /// Splits a text into tokens; `//` and `/* */` comments are dropped, line ends kept.
 pub(crate) fn lex(src: &str) -> Result<Vec<Token>, MlnError> {
     let mut out = Vec::new();
@@ -123,37 +152,13 @@ pub(crate) fn lex(src: &str) -> Result<Vec<Token>, MlnError> {
             '<' if next == Some('=') && chars.get(i + 2).map(|c| c.1) == Some('>') => push(Tok::Equiv, 3, &mut out),
             '.' if !next.is_some_and(|d| d.is_ascii_digit()) => push(Tok::Dot, 1, &mut out),
             c if c.is_ascii_digit() || c == '.' => {
-                let mut j = i;
-                while j < chars.len() && chars[j].1.is_ascii_digit() {
-                    j += 1;
-                }
-                if j < chars.len() && chars[j].1 == '.' && chars.get(j + 1).is_some_and(|d| d.1.is_ascii_digit()) {
-                    j += 1;
-                    while j < chars.len() && chars[j].1.is_ascii_digit() {
-                        j += 1;
-                    }
-                }
-                if j < chars.len() && matches!(chars[j].1, 'e' | 'E') {
-                    let mut k = j + 1;
-                    if k < chars.len() && matches!(chars[k].1, '+' | '-') {
-                        k += 1;
-                    }
-                    if k < chars.len() && chars[k].1.is_ascii_digit() {
-                        while k < chars.len() && chars[k].1.is_ascii_digit() {
-                            k += 1;
-                        }
-                        j = k;
-                    }
-                }
+                let j = number_end(&chars, i);
                 let text = &src[start..byte(j)];
                 let v: f64 = text.parse().map_err(|_| MlnError::syntax(at, "a number", format!("'{text}'")))?;
                 push(Tok::Number(v), j - i, &mut out)
             }
             c if c.is_alphabetic() || c == '_' => {
-                let mut j = i;
-                while j < chars.len() && (chars[j].1.is_alphanumeric() || chars[j].1 == '_') {
-                    j += 1;
-                }
+                let j = digits_end(&chars, i, |c| c.is_alphanumeric() || c == '_');
                 let name = src[start..byte(j)].to_string();
                 push(Tok::Ident(name), j - i, &mut out)
             }

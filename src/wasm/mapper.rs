@@ -134,6 +134,13 @@ impl Mapper {
 
     /// The picture `drawMapper` shows.
     pub fn picture(&mut self, options: &DrawOptions) -> Result<Pixmap, JsError> {
+        self.picture_of(options, false)
+    }
+
+    /// [`Mapper::picture`]; with `rooms`, the best world is drawn with its room layer (a label
+    /// per room, as `overlay.png`), which costs a pass over the map once per improvement and
+    /// so is for exports, not for every frame.
+    fn picture_of(&mut self, options: &DrawOptions, rooms: bool) -> Result<Pixmap, JsError> {
         let (w, h) = (self.map.width(), self.map.height());
         let scale = options.scale;
         let pixels = w as u128 * h as u128 * scale as u128 * scale as u128;
@@ -154,7 +161,11 @@ impl Mapper {
             self.base = Some((scale, base));
         }
         let mut pixmap = self.base.as_ref().expect("just drawn").1.clone();
-        if let Some(world) = self.world_for(options.show) {
+        let world = match options.show {
+            Show::Best if rooms => Some(self.best_rooms().0.clone()),
+            show => self.world_for(show),
+        };
+        if let Some(world) = world {
             render::draw_world(&mut pixmap, w, h, &world, scale, options.labels);
         }
         if options.cloud {
@@ -551,15 +562,16 @@ impl Mapper {
         self.reference.is_some()
     }
 
-    /// The picture `drawMapper` shows, as PNG bytes. With the default options but
-    /// `show: 'best'` it is the `overlay.png` of `ksmcmc floorplan`.
+    /// The picture `drawMapper` shows, as PNG bytes, but with the best world's room layer
+    /// (one label per room). With the default options but `show: 'best'` it is the
+    /// `overlay.png` of `ksmcmc floorplan`.
     #[wasm_bindgen(js_name = toPng)]
     pub fn to_png(
         &mut self,
         #[wasm_bindgen(unchecked_optional_param_type = "MapperDrawOptions")] options: Option<JsValue>,
     ) -> Result<Vec<u8>, JsError> {
         let options = DrawOptions::from_js(options.as_ref())?;
-        let pixmap = self.picture(&options)?;
+        let pixmap = self.picture_of(&options, true)?;
         Ok(render::encode_png(&pixmap))
     }
 }

@@ -67,25 +67,7 @@ impl Projection {
 fn eliminate(net: &Network, max_clique: usize) -> Result<Vec<Clique>, TooWide> {
     let max_clique = max_clique.min(30);
     let n = net.atom_count();
-    let mut adj: Vec<Vec<u32>> = vec![Vec::new(); n];
-    let mut scope = Vec::new();
-    for f in 0..net.feature_count() {
-        feature_scope(net, f, &mut scope);
-        if scope.len() > max_clique {
-            return Err(TooWide { clique: scope.len() });
-        }
-        for &a in &scope {
-            for &b in &scope {
-                if a != b {
-                    adj[a as usize].push(b);
-                }
-            }
-        }
-    }
-    for v in adj.iter_mut() {
-        v.sort_unstable();
-        v.dedup();
-    }
+    let mut adj = interaction_graph(net, max_clique)?;
     let mut alive = vec![true; n];
     let mut order_of = vec![usize::MAX; n];
     let mut cliques = Vec::with_capacity(n);
@@ -159,6 +141,39 @@ fn eliminate(net: &Network, max_clique: usize) -> Result<Vec<Clique>, TooWide> {
         vars.extend(&nb);
         cliques.push(Clique { vars, parent: None, children: Vec::new(), potential: Vec::new() });
     }
+    attach(net, &mut cliques, &order_of);
+    Ok(cliques)
+}
+
+/// Every atom's neighbours (atoms sharing a feature with it), sorted; too wide if one
+/// feature alone has more than `max_clique` atoms.
+fn interaction_graph(net: &Network, max_clique: usize) -> Result<Vec<Vec<u32>>, TooWide> {
+    let mut adj: Vec<Vec<u32>> = vec![Vec::new(); net.atom_count()];
+    let mut scope = Vec::new();
+    for f in 0..net.feature_count() {
+        feature_scope(net, f, &mut scope);
+        if scope.len() > max_clique {
+            return Err(TooWide { clique: scope.len() });
+        }
+        for &a in &scope {
+            for &b in &scope {
+                if a != b {
+                    adj[a as usize].push(b);
+                }
+            }
+        }
+    }
+    for v in adj.iter_mut() {
+        v.sort_unstable();
+        v.dedup();
+    }
+    Ok(adj)
+}
+
+/// Links the cliques into a tree (`order_of[atom]` is the step that eliminated it) and puts
+/// each feature's table into one clique's potential.
+fn attach(net: &Network, cliques: &mut [Clique], order_of: &[usize]) {
+    let n = cliques.len();
     // The parent of a clique is that of its separator atom eliminated first.
     for i in 0..n {
         let parent = cliques[i].vars[1..].iter().map(|&a| order_of[a as usize]).min();
@@ -172,7 +187,7 @@ fn eliminate(net: &Network, max_clique: usize) -> Result<Vec<Clique>, TooWide> {
     for c in cliques.iter_mut() {
         c.potential = vec![1.0; 1 << c.vars.len()];
     }
-    let mut table = Vec::new();
+    let (mut table, mut scope) = (Vec::new(), Vec::new());
     for f in 0..net.feature_count() {
         feature_scope(net, f, &mut scope);
         let home = scope
@@ -188,7 +203,6 @@ fn eliminate(net: &Network, max_clique: usize) -> Result<Vec<Clique>, TooWide> {
             *p *= table[proj.at(x)];
         }
     }
-    Ok(cliques)
 }
 
 /// The sorted atoms of a feature.

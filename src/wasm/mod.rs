@@ -464,19 +464,8 @@ fn describe(v: &JsValue) -> String {
     }
 }
 
-/// Parses a generator config: the JSON object's fields over the defaults.
+/// Parses a generator config: the JSON object's fields over the defaults (see
+/// [`SynthConfig::parse_json`]; `generate` validates it).
 pub fn synth_config(json: Option<&str>) -> Result<SynthConfig, JsError> {
-    let Some(text) = json.filter(|t| !t.trim().is_empty()) else {
-        return Ok(SynthConfig::default());
-    };
-    let given: serde_json::Value =
-        serde_json::from_str(text).map_err(|e| JsError::new(&format!("synth config: {e}")))?;
-    let serde_json::Value::Object(given) = given else {
-        return Err(JsError::new("synth config: expected a JSON object such as {\"width\": 200}"));
-    };
-    let mut config = serde_json::to_value(SynthConfig::default())?;
-    if let serde_json::Value::Object(fields) = &mut config {
-        fields.extend(given);
-    }
-    serde_json::from_value(config).map_err(|e| JsError::new(&format!("synth config: {e}")))
+    Ok(SynthConfig::parse_json(json.unwrap_or(""))?)
 }

@@ -43,15 +43,7 @@ fn seed_or(seed: Option<JsValue>, default: u64) -> Result<u64, JsError> {
 }
 
 fn chain_config(json: Option<&str>) -> Result<ChainConfig, JsError> {
-    match json.filter(|t| !t.trim().is_empty()) {
-        None => Ok(ChainConfig::default()),
-        Some(text) => {
-            let c: ChainConfig =
-                serde_json::from_str(text).map_err(|e| JsError::new(&format!("table-top config: {e}")))?;
-            c.validate().map_err(err)?;
-            Ok(c)
-        }
-    }
+    ChainConfig::from_json(json.unwrap_or("")).map_err(err)
 }
 
 /// A table-top chain over one scene, for a page's frame loop.
@@ -243,10 +235,7 @@ pub fn tabletop_synth(
     #[wasm_bindgen(js_name = configJson, unchecked_optional_param_type = "string")] config_json: Option<String>,
 ) -> Result<String, JsError> {
     let seed = seed_or(seed, 1)?;
-    let config: SynthConfig = match config_json.as_deref().filter(|t| !t.trim().is_empty()) {
-        None => SynthConfig::default(),
-        Some(t) => serde_json::from_str(t).map_err(|e| JsError::new(&format!("synth config: {e}")))?,
-    };
+    let config = SynthConfig::from_json(config_json.as_deref().unwrap_or("")).map_err(err)?;
     Ok(synth::generate(&config, seed).map_err(err)?.to_json())
 }
 

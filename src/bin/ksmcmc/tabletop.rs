@@ -150,7 +150,7 @@ fn read_config(path: Option<&PathBuf>) -> Result<ChainConfig, CliError> {
     let config = match path {
         Some(p) => {
             let text = std::fs::read_to_string(p).map_err(|e| args::failed(p.display(), e))?;
-            serde_json::from_str::<ChainConfig>(&text).map_err(|e| args::failed(p.display(), e))?
+            ChainConfig::parse_json(&text).map_err(|e| args::failed(p.display(), e))?
         }
         None => ChainConfig::default(),
     };
@@ -249,7 +249,7 @@ fn parse_eval(argv: Vec<OsString>) -> Result<Option<EvalOpts>, CliError> {
     let synth = match &synth_path {
         Some(p) => {
             let text = std::fs::read_to_string(p).map_err(|e| args::failed(p.display(), e))?;
-            serde_json::from_str::<SynthConfig>(&text).map_err(|e| args::failed(p.display(), e))?
+            SynthConfig::parse_json(&text).map_err(|e| args::failed(p.display(), e))?
         }
         None => SynthConfig::default(),
     };

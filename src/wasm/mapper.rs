@@ -16,7 +16,7 @@
 //! requestAnimationFrame(frame);
 //! ```
 
-use super::{js_message, put_rgba, seed_from_js, Map, Rendered, MAX_RENDER_PIXELS};
+use super::{js_message, put_rgba, seed_from_js, Map, Rendered};
 use crate::floorplan::report::report as ksmcmc_report;
 use crate::floorplan::rooms::RoomConfig;
 use crate::floorplan::{graph, metrics, Chain, ChainConfig, Rect, World};
@@ -132,17 +132,7 @@ impl Mapper {
     pub fn picture(&mut self, options: &DrawOptions) -> Result<Pixmap, JsError> {
         let (w, h) = (self.map.width(), self.map.height());
         let scale = options.scale;
-        let pixels = w as u128 * h as u128 * scale as u128 * scale as u128;
-        let most = ((MAX_RENDER_PIXELS as f64 / (w * h).max(1) as f64).sqrt() as u32).max(1);
-        if scale == 0 {
-            return Err(JsError::new(&format!("scale 0: give a whole number of pixels per cell from 1 to {most}")));
-        }
-        if pixels > MAX_RENDER_PIXELS as u128 {
-            return Err(JsError::new(&format!(
-                "scale {scale}: a {w}x{h} map at that scale would be over the limit of {MAX_RENDER_PIXELS} \
-                 pixels; give a scale from 1 to {most}"
-            )));
-        }
+        render::check_size(w, h, scale)?;
         if self.base.as_ref().is_none_or(|(s, _)| *s != scale) {
             let opts = RenderOptions { scale, labels: false };
             let base =

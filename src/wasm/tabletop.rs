@@ -21,6 +21,7 @@ use crate::render;
 use crate::render::tabletop::{draw_graph, draw_view, marks, ViewOptions};
 use crate::tabletop::knowledge::{Knowledge, TABLETOP_MLN};
 use crate::tabletop::scene::Scene;
+use crate::tabletop::summary::AnalysisSummary;
 use crate::tabletop::synth::{self, SynthConfig};
 use crate::tabletop::{Analysis, ChainConfig, TabletopChain};
 use wasm_bindgen::prelude::*;
@@ -164,43 +165,10 @@ impl Tabletop {
     /// ground truth `{ hidden, false }` or null.
     #[wasm_bindgen(js_name = analysisJson)]
     pub fn analysis_json(&mut self) -> Result<String, JsError> {
-        let iteration = self.chain.iteration();
-        let best_lp = self.chain.best_log_posterior();
-        let truths: Vec<_> = self
-            .scene
-            .objects
-            .iter()
-            .map(|o| o.truth.as_ref().map(|t| serde_json::json!({ "hidden": t.hidden, "false": t.false_estimate })))
-            .collect();
-        let a = self.best()?;
-        let objects: Vec<_> = a
-            .objects
-            .iter()
-            .zip(truths)
-            .map(|(o, truth)| {
-                serde_json::json!({
-                    "id": o.id,
-                    "stable": o.stable,
-                    "hover": o.hover,
-                    "p_hidden": o.probabilities.hidden,
-                    "p_false": o.probabilities.false_estimate,
-                    "supported": o.probabilities.supported,
-                    "supportive": o.probabilities.supportive,
-                    "hidden": o.hidden,
-                    "false": o.false_estimate,
-                    "truth": truth,
-                })
-            })
-            .collect();
-        let out = serde_json::json!({
-            "iteration": iteration,
-            "logPosterior": best_lp,
-            "logPrior": a.log_prior,
-            "logLikelihood": a.log_likelihood,
-            "objects": objects,
-            "graph": a.graph_json(),
-        });
-        Ok(out.to_string())
+        let (iteration, best_lp) = (self.chain.iteration(), self.chain.best_log_posterior());
+        self.best()?;
+        let a = &self.best.as_ref().expect("just filled").1;
+        Ok(serde_json::to_string(&AnalysisSummary::new(&self.scene, a, iteration, best_lp))?)
     }
 
     /// Draws the best analysis' scene graph on `canvas` (resized to the picture).

@@ -5,8 +5,8 @@ use crate::args::{self, CliError};
 use ksmcmc::render::encode_png;
 use ksmcmc::render::tabletop::{draw_graph, draw_view, marks, ViewOptions};
 use ksmcmc::tabletop::eval::{analyse_scene, dissertation_scenes, graph_signature, score, Score};
-use ksmcmc::tabletop::evidence::Evidence;
 use ksmcmc::tabletop::scene::Scene;
+use ksmcmc::tabletop::summary::EvidencePairs;
 use ksmcmc::tabletop::synth::{generate, SynthConfig};
 use ksmcmc::tabletop::{Analysis, ChainConfig, Decision, TabletopChain};
 use std::ffi::OsString;
@@ -90,7 +90,7 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
         "best_iteration": chain.best_iteration(),
         "proposals": stats,
         "prior_cache": { "hits": hits, "computed": misses },
-        "evidence": evidence_json(chain.scene(), &analysis.evidence),
+        "evidence": EvidencePairs::new(chain.scene(), &analysis.evidence),
         "score": has_truth.then(|| score(chain.scene(), &analysis)),
         "config": chain.config(),
     });
@@ -107,28 +107,6 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
         out.display()
     );
     Ok(())
-}
-
-/// The evidence relations as pairs of object ids ("table" last): contact and intersection
-/// (each pair once), and which object is higher than which.
-fn evidence_json(scene: &Scene, ev: &Evidence) -> serde_json::Value {
-    let ids: Vec<&str> = scene.objects.iter().map(|o| o.id.as_str()).chain(["table"]).collect();
-    let pairs = |f: &dyn Fn(usize, usize) -> bool, symmetric: bool| {
-        let mut v = Vec::new();
-        for i in 0..ids.len() {
-            for j in 0..ids.len() {
-                if i != j && (!symmetric || i < j) && f(i, j) {
-                    v.push([ids[i], ids[j]]);
-                }
-            }
-        }
-        v
-    };
-    serde_json::json!({
-        "contact": pairs(&|i, j| ev.contact(i, j), true),
-        "intersect": pairs(&|i, j| ev.intersect(i, j), true),
-        "higher": pairs(&|i, j| ev.higher(i, j), false),
-    })
 }
 
 /// One line per object: its probabilities and the flags decided true.

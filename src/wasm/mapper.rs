@@ -484,7 +484,8 @@ impl Mapper {
 
     /// Sets a world to compare with (`show: 'reference'`), e.g. a sample's `truth.json` or a
     /// saved result, or clears it with no argument. The world must be valid `world.json` for a
-    /// map of this map's size; otherwise this throws and keeps the old reference.
+    /// map of this map's size whose units land on the map ([`World::fits`]); otherwise this
+    /// throws and keeps the old reference.
     #[wasm_bindgen(js_name = setReference)]
     pub fn set_reference(
         &mut self,
@@ -495,14 +496,7 @@ impl Mapper {
             return Ok(());
         };
         let world = World::from_json(&text)?;
-        let (w, h) = (self.map.width() as u32, self.map.height() as u32);
-        if world.frame.map_size != [w, h] {
-            let [mw, mh] = world.frame.map_size;
-            return Err(JsError::new(&format!(
-                "world.json: this world explains a {mw}x{mh} map, but the map is {w}x{h}; its units \
-                 would lie outside the map"
-            )));
-        }
+        world.fits(self.map.width(), self.map.height())?;
         self.reference = Some(world);
         Ok(())
     }

@@ -11,28 +11,9 @@
 
 use crate::floorplan::knowledge::{self, Knowledge, KnowledgeConfig};
 use crate::floorplan::World;
-use crate::mln::{Database, GroundConfig, Mln, MlnError};
+use crate::mln::{Database, GroundConfig, Mln, RuleError};
 use serde::Serialize;
 use wasm_bindgen::prelude::*;
-
-/// A knowledge-base error as the editor shows it: 1-based line and column (0 when the error
-/// has no position) and the message without the position.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct RuleError {
-    /// Line, from 1 (0: no position).
-    pub line: u32,
-    /// Column, from 1, in characters (0: no position).
-    pub column: u32,
-    /// What went wrong.
-    pub message: String,
-}
-
-impl From<&MlnError> for RuleError {
-    fn from(e: &MlnError) -> Self {
-        let (line, column) = e.position.map_or((0, 0), |p| (p.line, p.column));
-        RuleError { line, column, message: e.kind.to_string() }
-    }
-}
 
 /// The built-in indoor knowledge base (Tab. 3.3 - 3.5) as text.
 #[wasm_bindgen(js_name = builtinIndoorRules)]

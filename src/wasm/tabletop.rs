@@ -17,6 +17,7 @@
 
 use super::mapper::now_ms;
 use super::{put_rgba, seed_from_js};
+use crate::mln::RuleError;
 use crate::render;
 use crate::render::tabletop::{draw_graph, draw_view, marks, ViewOptions};
 use crate::tabletop::knowledge::{Knowledge, TABLETOP_MLN};
@@ -218,18 +219,8 @@ pub fn tabletop_rules_default() -> String {
 /// Unlike `checkRules`, which only parses, this also checks the table-top predicates.
 #[wasm_bindgen(js_name = tabletopCheckRules)]
 pub fn check_rules(text: &str) -> Result<JsValue, JsError> {
-    let e = match Knowledge::with_text(text, 1) {
-        Ok(_) => return Ok(JsValue::NULL),
-        Err(e) => e,
-    };
-    let (line, column) = e.position.map(|p| (p.line, p.column)).unwrap_or((0, 0));
-    let o = js_sys::Object::new();
-    for (k, v) in [
-        ("line", JsValue::from(line)),
-        ("column", JsValue::from(column)),
-        ("message", JsValue::from_str(&e.kind.to_string())),
-    ] {
-        js_sys::Reflect::set(&o, &JsValue::from_str(k), &v).map_err(|_| JsError::new("checkRules: cannot build"))?;
+    match Knowledge::with_text(text, 1) {
+        Ok(_) => Ok(JsValue::NULL),
+        Err(e) => Ok(serde_wasm_bindgen::to_value(&RuleError::from(&e))?),
     }
-    Ok(o.into())
 }

@@ -9,6 +9,7 @@
 
 pub mod chain;
 pub(crate) mod explain;
+pub mod export;
 pub mod graph;
 pub(crate) mod kernels;
 pub mod knowledge;

@@ -14,18 +14,24 @@ use crate::grid::{Grid, OccupancyMap};
 /// status and per-kernel counts.
 pub fn report(chain: &Chain, map: &OccupancyMap, world: &World, labels: &Grid<u16>, seconds: f64) -> serde_json::Value {
     let mut r = summary(chain, map, world, seconds);
-    // The room layer when the world has one (one room per label), else the labels' count.
-    r["rooms"] = if world.rooms.is_empty() {
+    add_rooms(&mut r, world, labels);
+    r
+}
+
+/// Sets a [`summary`]'s `rooms`: the room layer's count when the world has one (one room per
+/// label), else the labels' count.
+pub fn add_rooms(report: &mut serde_json::Value, world: &World, labels: &Grid<u16>) {
+    report["rooms"] = if world.rooms.is_empty() {
         labels.cells().iter().copied().max().unwrap_or(0) as usize
     } else {
         world.rooms.len()
     }
     .into();
-    r
 }
 
 /// [`report`] without `rooms`, which needs the room labels: a caller short of memory can
-/// drop the chain before computing them and add `rooms` itself.
+/// drop the chain before computing them ([`super::export::RoomInput`]) and then
+/// [`add_rooms`].
 pub fn summary(chain: &Chain, map: &OccupancyMap, world: &World, seconds: f64) -> serde_json::Value {
     let t = chain.trace();
     let kernels: serde_json::Map<String, serde_json::Value> = Kernel::ALL

@@ -19,7 +19,7 @@
 use super::{js_message, put_rgba, seed_from_js, Map, Rendered};
 use crate::floorplan::report::report as ksmcmc_report;
 use crate::floorplan::rooms::RoomConfig;
-use crate::floorplan::{graph, metrics, Chain, ChainConfig, Rect, World};
+use crate::floorplan::{export, metrics, Chain, ChainConfig, Rect, World};
 use crate::grid::{Grid, OccupancyMap};
 use crate::render::{self, RenderOptions};
 use serde::Deserialize;
@@ -385,7 +385,7 @@ impl Mapper {
     /// `id` (its value in `labelsPgm`), `type`, `units`, `area_m2`, `doors` and `opens_to`.
     #[wasm_bindgen(js_name = roomsJson)]
     pub fn rooms_json(&mut self) -> Result<String, JsError> {
-        Ok(serde_json::to_string(&self.best_rooms().0.rooms)?)
+        Ok(export::rooms_json(self.best_rooms().0))
     }
 
     /// The recorded trace from point `from` on (default 0): one point every
@@ -448,8 +448,7 @@ impl Mapper {
     /// id per free cell, 0 elsewhere): `labels.pgm` of `ksmcmc floorplan`.
     #[wasm_bindgen(js_name = labelsPgm)]
     pub fn labels_pgm(&mut self) -> Vec<u8> {
-        let labels = self.best_rooms().1;
-        crate::grid::pgm::encode_u16(labels.width(), labels.height(), labels.cells())
+        export::labels_pgm(self.best_rooms().1)
     }
 
     /// The scene graph of the best world (or the current one, `which = 'current'`) as
@@ -465,7 +464,7 @@ impl Mapper {
             Some("current") => self.current().clone(),
             Some(other) => return Err(JsError::new(&format!("graphJson: {other:?} is neither 'best' nor 'current'"))),
         };
-        Ok(serde_json::to_string_pretty(&graph::world_json(&world))?)
+        Ok(export::graph_json(&world))
     }
 
     /// A summary of the run as JSON text, with the fields of `ksmcmc floorplan`'s
@@ -479,7 +478,7 @@ impl Mapper {
         let (world, labels) = (world.clone(), labels.clone());
         let mut report = ksmcmc_report(&self.chain, &self.map, &world, &labels, seconds);
         report["setup_seconds"] = (self.setup_ms / 1000.0).into();
-        Ok(serde_json::to_string_pretty(&report)?)
+        Ok(export::report_json(&report))
     }
 
     /// Sets a world to compare with (`show: 'reference'`), e.g. a sample's `truth.json` or a

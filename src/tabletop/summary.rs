@@ -1,14 +1,17 @@
 //! The analysis as JSON for its readers: the live page's summary of the best analysis
-//! ([`AnalysisSummary`]) and the evidence relations of `report.json` ([`EvidencePairs`]).
+//! ([`AnalysisSummary`]) and `report.json` of `ksmcmc tabletop` ([`RunReport`], with the
+//! evidence relations as [`EvidencePairs`]).
 //!
 //! Both are plain [`Serialize`] structs built from an [`Analysis`] and its [`Scene`], so the
 //! command line and the WebAssembly bindings write them with serde and hold no JSON of their
 //! own. Fields are declared in the order serde_json sorts object keys, which keeps the bytes
 //! those readers wrote before.
 
+use super::chain::ProposalStats;
+use super::eval::{score, Score};
 use super::evidence::Evidence;
 use super::scene::Scene;
-use super::{Analysis, Decision};
+use super::{Analysis, ChainConfig, Decision, ObjectAnalysis, TabletopChain};
 use serde::Serialize;
 
 /// The best analysis as the live page shows it (`Tabletop.analysisJson()`).
@@ -148,6 +151,111 @@ impl<'a> EvidencePairs<'a> {
     }
 }
 
+/// `report.json` of `ksmcmc tabletop`: the run's settings and times, the refined objects,
+/// the best state's log probabilities, the proposal and prior-cache counts, the evidence, the
+/// score against the scene's truth (when it has one) and the configuration.
+#[derive(Debug, Clone, Serialize)]
+pub struct RunReport<'a> {
+    /// The scene's name (its path on the command line).
+    pub scene: String,
+    /// The seed.
+    pub seed: u64,
+    /// Iterations run.
+    pub iterations: u32,
+    /// Seconds of the whole run.
+    pub seconds: f64,
+    /// Milliseconds per iteration of sampling (0 without iterations).
+    pub ms_per_iteration: f64,
+    /// Milliseconds of setup.
+    pub setup_ms: f64,
+    /// Milliseconds of the final inference.
+    pub inference_ms: f64,
+    /// The analysis of each object.
+    pub objects: &'a [ObjectAnalysis],
+    /// `log p(M)` of the best state.
+    pub log_prior: f64,
+    /// `log p(D|M)` of the best state.
+    pub log_likelihood: f64,
+    /// The best log posterior.
+    pub log_posterior: f64,
+    /// The iteration of the best state.
+    pub best_iteration: u64,
+    /// What the proposals did.
+    pub proposals: ProposalStats,
+    /// Priors taken from the cache and computed.
+    pub prior_cache: PriorCache,
+    /// The evidence of the best state.
+    pub evidence: EvidencePairs<'a>,
+    /// The score against the scene's truth, if it has one.
+    pub score: Option<Score>,
+    /// The chain's configuration.
+    pub config: &'a ChainConfig,
+}
+
+/// The prior cache's counts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub struct PriorCache {
+    /// Priors found in the cache.
+    pub hits: u64,
+    /// Priors computed.
+    pub computed: u64,
+}
+
+/// The times of a run, in seconds.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Timings {
+    /// Building the chain.
+    pub setup: f64,
+    /// The iterations.
+    pub sampling: f64,
+    /// The final inference.
+    pub inference: f64,
+    /// The whole run.
+    pub total: f64,
+}
+
+impl<'a> RunReport<'a> {
+    /// The report of `chain` (started from `seed`, run `iterations` times, scene named
+    /// `scene`) with its best `analysis` and the `timings`.
+    pub fn new(
+        chain: &'a TabletopChain,
+        analysis: &'a Analysis,
+        scene: &str,
+        seed: u64,
+        iterations: u32,
+        timings: Timings,
+    ) -> RunReport<'a> {
+        let has_truth = chain.scene().objects.iter().any(|o| o.truth.is_some());
+        let (hits, computed) = chain.prior_cache_stats();
+        RunReport {
+            scene: scene.to_string(),
+            seed,
+            iterations,
+            seconds: timings.total,
+            ms_per_iteration: if iterations > 0 { 1000.0 * timings.sampling / iterations as f64 } else { 0.0 },
+            setup_ms: 1000.0 * timings.setup,
+            inference_ms: 1000.0 * timings.inference,
+            objects: &analysis.objects,
+            log_prior: analysis.log_prior,
+            log_likelihood: analysis.log_likelihood,
+            log_posterior: chain.best_log_posterior(),
+            best_iteration: chain.best_iteration(),
+            proposals: chain.stats(),
+            prior_cache: PriorCache { hits, computed },
+            evidence: EvidencePairs::new(chain.scene(), &analysis.evidence),
+            score: has_truth.then(|| score(chain.scene(), analysis)),
+            config: chain.config(),
+        }
+    }
+
+    /// `report.json`'s text: pretty, every object's keys sorted (as serde_json orders a
+    /// `Value`), and a final newline.
+    pub fn to_json(&self) -> String {
+        let value = serde_json::to_value(self).expect("a report serialises");
+        serde_json::to_string_pretty(&value).expect("a JSON value serialises") + "\n"
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -189,5 +297,18 @@ mod tests {
         assert!(!pairs.contact.is_empty(), "objects rest on the table");
         let old = json!({ "contact": pairs.contact, "intersect": pairs.intersect, "higher": pairs.higher });
         assert_eq!(serde_json::to_string_pretty(&pairs).unwrap(), serde_json::to_string_pretty(&old).unwrap());
+
+        let t = Timings { setup: 0.25, sampling: 0.5, inference: 0.125, total: 1.0 };
+        let report = RunReport::new(&chain, &a, "s.json", 2, 3, t);
+        let (hits, misses) = chain.prior_cache_stats();
+        let old = json!({
+            "scene": "s.json", "seed": 2, "iterations": 3, "seconds": 1.0,
+            "ms_per_iteration": 1000.0 * 0.5 / 3.0, "setup_ms": 250.0, "inference_ms": 125.0,
+            "objects": a.objects, "log_prior": a.log_prior, "log_likelihood": a.log_likelihood,
+            "log_posterior": chain.best_log_posterior(), "best_iteration": chain.best_iteration(),
+            "proposals": chain.stats(), "prior_cache": { "hits": hits, "computed": misses },
+            "evidence": pairs, "score": Some(crate::tabletop::eval::score(&scene, &a)), "config": chain.config(),
+        });
+        assert_eq!(report.to_json(), serde_json::to_string_pretty(&old).unwrap() + "\n");
     }
 }

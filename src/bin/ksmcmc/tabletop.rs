@@ -6,7 +6,7 @@ use ksmcmc::render::encode_png;
 use ksmcmc::render::tabletop::{draw_graph, draw_view, marks, ViewOptions};
 use ksmcmc::tabletop::eval::{analyse_scene, dissertation_scenes, graph_signature, score, Score};
 use ksmcmc::tabletop::scene::Scene;
-use ksmcmc::tabletop::summary::EvidencePairs;
+use ksmcmc::tabletop::summary::{RunReport, Timings};
 use ksmcmc::tabletop::synth::{generate, SynthConfig};
 use ksmcmc::tabletop::{Analysis, ChainConfig, Decision, TabletopChain};
 use std::ffi::OsString;
@@ -72,33 +72,13 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     let graph_json = analysis.graph_json();
     let poses: Vec<_> = analysis.objects.iter().map(|o| o.pose).collect();
     let view = draw_view(chain.scene(), &poses, &marks(&analysis), &ViewOptions::default());
-    let has_truth = chain.scene().objects.iter().any(|o| o.truth.is_some());
-    let stats = chain.stats();
-    let (hits, misses) = chain.prior_cache_stats();
-    let report = serde_json::json!({
-        "scene": scene_path.display().to_string(),
-        "seed": seed,
-        "iterations": iterations,
-        "seconds": seconds,
-        "ms_per_iteration": if iterations > 0 { 1000.0 * sampling / iterations as f64 } else { 0.0 },
-        "setup_ms": 1000.0 * setup,
-        "inference_ms": 1000.0 * inference,
-        "objects": analysis.objects,
-        "log_prior": analysis.log_prior,
-        "log_likelihood": analysis.log_likelihood,
-        "log_posterior": chain.best_log_posterior(),
-        "best_iteration": chain.best_iteration(),
-        "proposals": stats,
-        "prior_cache": { "hits": hits, "computed": misses },
-        "evidence": EvidencePairs::new(chain.scene(), &analysis.evidence),
-        "score": has_truth.then(|| score(chain.scene(), &analysis)),
-        "config": chain.config(),
-    });
+    let timings = Timings { setup, sampling, inference, total: seconds };
+    let report = RunReport::new(&chain, &analysis, &scene_path.display().to_string(), seed, iterations, timings);
     let pretty = |v: &serde_json::Value| serde_json::to_string_pretty(v).unwrap_or_default() + "\n";
     args::write(&out.join("graph.json"), pretty(&graph_json).as_bytes())?;
     args::write(&out.join("graph.png"), &encode_png(&draw_graph(&analysis.graph)))?;
     args::write(&out.join("view.png"), &encode_png(&view))?;
-    args::write(&out.join("report.json"), pretty(&report).as_bytes())?;
+    args::write(&out.join("report.json"), report.to_json().as_bytes())?;
     print_objects(&analysis);
     println!(
         "{iterations} iterations in {:.1} ms ({:.3} ms per iteration); wrote {}",

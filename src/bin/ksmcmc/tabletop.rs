@@ -4,7 +4,10 @@
 use crate::args::{self, CliError};
 use ksmcmc::render::encode_png;
 use ksmcmc::render::tabletop::{draw_graph, draw_view, marks, ViewOptions};
-use ksmcmc::tabletop::eval::{analyse_scene, dissertation_scenes, graph_signature, score, Score};
+use ksmcmc::tabletop::eval::{
+    analyse_scene, dissertation_scenes, graph_signature, score, DissertationResult, EvalReport, GeneratedResult, Score,
+    SpeedResult,
+};
 use ksmcmc::tabletop::scene::Scene;
 use ksmcmc::tabletop::summary::{RunReport, Timings};
 use ksmcmc::tabletop::synth::{generate, SynthConfig};
@@ -157,19 +160,28 @@ struct EvalOpts {
 pub fn eval(argv: Vec<OsString>) -> Result<(), CliError> {
     let Some(o) = parse_eval(argv)? else { return Ok(()) };
     let (total, objects, accuracy_seconds) = eval_generated(&o)?;
-    let dissertation = if o.quick { serde_json::Value::Null } else { eval_dissertation(&o)? };
+    let dissertation = if o.quick { None } else { Some(eval_dissertation(&o)?) };
     let (per_iteration, whole, worst) = eval_speed(&o)?;
     let EvalOpts { scenes, iterations, speed, .. } = o;
     if let Some(p) = o.json {
-        let v = serde_json::json!({
-            "generated": { "scenes": scenes, "objects": objects, "iterations": iterations, "score": total,
-                           "flag_accuracy": total.flag_accuracy(), "decision_accuracy": total.decision_accuracy(),
-                           "ms_per_scene": 1000.0 * accuracy_seconds / scenes.max(1) as f64 },
-            "dissertation": dissertation,
-            "speed": { "objects": 8, "scenes": speed, "iterations": iterations,
-                       "ms_per_iteration": per_iteration, "analysis_ms": whole, "analysis_ms_worst": worst },
-        });
-        args::write(&p, (serde_json::to_string_pretty(&v).unwrap_or_default() + "\n").as_bytes())?;
+        let generated = GeneratedResult {
+            scenes,
+            objects,
+            iterations,
+            score: total,
+            flag_accuracy: total.flag_accuracy(),
+            decision_accuracy: total.decision_accuracy(),
+            ms_per_scene: 1000.0 * accuracy_seconds / scenes.max(1) as f64,
+        };
+        let speed = SpeedResult {
+            objects: 8,
+            scenes: speed,
+            iterations,
+            ms_per_iteration: per_iteration,
+            analysis_ms: whole,
+            analysis_ms_worst: worst,
+        };
+        args::write(&p, EvalReport { generated, dissertation, speed }.to_json().as_bytes())?;
     }
     Ok(())
 }
@@ -264,7 +276,7 @@ fn eval_generated(o: &EvalOpts) -> Result<(Score, usize, f64), CliError> {
 }
 
 /// 2. The dissertation's test: each scene of its set analysed `repeats` times.
-fn eval_dissertation(o: &EvalOpts) -> Result<serde_json::Value, CliError> {
+fn eval_dissertation(o: &EvalOpts) -> Result<DissertationResult, CliError> {
     let EvalOpts { iterations, seed, repeats, config, ref synth, .. } = *o;
     let set = dissertation_scenes(seed, synth).map_err(|e| fail(&e))?;
     let (mut hidden, mut falses) = (0, 0);
@@ -303,12 +315,18 @@ fn eval_dissertation(o: &EvalOpts) -> Result<serde_json::Value, CliError> {
         (hidden + falses) * repeats
     );
     println!("   scenes whose scene graph was the same in all {repeats} runs: {stable_graphs}/{}", set.len());
-    Ok(serde_json::json!({
-        "scenes": set.len(), "hidden": hidden, "false": falses, "repeats": repeats, "runs": runs,
-        "scenes_correct_every_run": all_found, "positives_found": positives_found,
-        "positives_expected": (hidden + falses) * repeats, "false_alarms": false_alarms,
-        "scenes_same_graph": stable_graphs,
-    }))
+    Ok(DissertationResult {
+        scenes: set.len(),
+        hidden,
+        false_estimates: falses,
+        repeats,
+        runs,
+        scenes_correct_every_run: all_found,
+        positives_found,
+        positives_expected: (hidden + falses) * repeats,
+        false_alarms,
+        scenes_same_graph: stable_graphs,
+    })
 }
 
 /// 3. Speed with 8 objects: mean ms per iteration, mean and worst ms per whole analysis.

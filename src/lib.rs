@@ -58,6 +58,7 @@
 pub mod floorplan;
 pub mod geometry;
 pub mod grid;
+mod json;
 pub mod mcmc;
 pub mod mln;
 pub mod render;

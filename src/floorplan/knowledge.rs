@@ -574,3 +574,98 @@ impl Knowledge {
         Ok(out)
     }
 }
+
+/// What a knowledge base makes of a world, as the rules page shows it: the evidence the world
+/// gives, the unit types with their four marginals, and the same-length pairs above the
+/// threshold. Serialises as `{evidence: [{predicate, args, value}], types: {U1: {kind, room,
+/// corr, hall, other}}, sameLength: [{p, q, probability}]}`.
+///
+/// ```
+/// use ksmcmc::floorplan::knowledge::{WorldInference, BUILTIN_INDOOR};
+/// use ksmcmc::floorplan::{Unit, World};
+/// let mut w = World::empty(100, 60);
+/// w.units.push(Unit { id: 1, x: 2, y: 2, w: 80, h: 12, kind: Default::default() });
+/// let inf = WorldInference::new(BUILTIN_INDOOR, &w, 0.05).unwrap();
+/// assert!(inf.types.contains_key("U1"));
+/// assert!(inf.to_json().starts_with(r#"{"evidence":["#));
+/// assert!(WorldInference::new("Room(unit", &w, 0.05).is_err());
+/// ```
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct WorldInference {
+    /// The evidence atoms of the world.
+    pub evidence: Vec<EvidenceFact>,
+    /// Per unit constant (`U1`, ...), its most probable type and the marginals.
+    pub types: std::collections::BTreeMap<String, TypeMarginals>,
+    /// Unit pairs that should have connecting walls of the same length.
+    #[serde(rename = "sameLength")]
+    pub same_length: Vec<SameLengthPair>,
+}
+
+/// One evidence atom of a [`WorldInference`].
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub struct EvidenceFact {
+    /// The predicate, e.g. `RoLi`.
+    pub predicate: &'static str,
+    /// Its arguments, unit constants.
+    pub args: Vec<String>,
+    /// Whether the atom is true.
+    pub value: bool,
+}
+
+/// A unit's type marginals in a [`WorldInference`].
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct TypeMarginals {
+    /// The most probable type, e.g. `Room`.
+    pub kind: String,
+    /// P(Room).
+    pub room: f64,
+    /// P(Corr).
+    pub corr: f64,
+    /// P(Hall).
+    pub hall: f64,
+    /// P(Other).
+    pub other: f64,
+}
+
+/// A same-length pair of a [`WorldInference`].
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SameLengthPair {
+    /// The first unit's constant.
+    pub p: String,
+    /// The second unit's constant.
+    pub q: String,
+    /// P(SaLe(p, q)).
+    pub probability: f64,
+}
+
+impl WorldInference {
+    /// Infers with the knowledge base `rules` (Alchemy text) on `world` at `resolution` metres
+    /// per cell; the error is the knowledge base's, with line and column.
+    pub fn new(rules: &str, world: &World, resolution: f64) -> Result<WorldInference, crate::mln::MlnError> {
+        let config = KnowledgeConfig { kb: Some(rules.to_string()), ..Default::default() };
+        let inferred = Knowledge::new(&config)?.infer(world, resolution)?;
+        let evidence = evidence(world, resolution, &config.geometry)
+            .into_iter()
+            .map(|(predicate, args, value)| EvidenceFact { predicate, args, value })
+            .collect();
+        let types = inferred
+            .types
+            .iter()
+            .map(|(id, (kind, p))| {
+                let row = TypeMarginals { kind: format!("{kind:?}"), room: p[0], corr: p[1], hall: p[2], other: p[3] };
+                (constant(*id), row)
+            })
+            .collect();
+        let same_length = inferred
+            .same_length
+            .iter()
+            .map(|&(p, q, probability)| SameLengthPair { p: constant(p), q: constant(q), probability })
+            .collect();
+        Ok(WorldInference { evidence, types, same_length })
+    }
+
+    /// The compact JSON text.
+    pub fn to_json(&self) -> String {
+        serde_json::to_string(self).expect("an inference serialises")
+    }
+}

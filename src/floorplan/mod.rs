@@ -6,9 +6,12 @@
 //! serialised form (schema in [`world`]). The chain's working state (units and doors over an
 //! incremental [`Explanation`], the moves that change it, the proposal distributions) is
 //! internal: callers drive a [`Chain`] and read worlds, traces and reports from it.
+//! [`export`] turns a finished run into its files, the same for the command line and the
+//! browser.
 
 pub mod chain;
 pub(crate) mod explain;
+pub mod export;
 pub mod graph;
 pub(crate) mod kernels;
 pub mod knowledge;

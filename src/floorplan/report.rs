@@ -35,7 +35,8 @@ pub fn add_rooms(r: &mut serde_json::Value, world: &World, labels: &Grid<u16>) {
 }
 
 /// [`report`] without `rooms`, which needs the room labels: a caller short of memory can
-/// drop the chain before computing them and add `rooms` itself.
+/// drop the chain before computing them ([`super::export::RoomInput`]) and then
+/// [`add_rooms`].
 pub fn summary(chain: &Chain, map: &OccupancyMap, world: &World, seconds: f64) -> serde_json::Value {
     let t = chain.trace();
     let kernels: serde_json::Map<String, serde_json::Value> = Kernel::ALL

@@ -284,6 +284,52 @@ impl World {
         Ok(w)
     }
 
+    /// Checks that this world belongs to a `map_width` x `map_height` map: its frame was made
+    /// for a map of that size, and every unit lands at least partly on the map (checked on
+    /// the bounding box of its corners). [`World::validate`] keeps units inside the world
+    /// frame; in a rotated or larger frame a unit can still miss the map entirely.
+    ///
+    /// ```
+    /// use ksmcmc::floorplan::{Unit, World};
+    /// let mut w = World::empty(64, 40);
+    /// assert!(w.fits(64, 40).is_ok());
+    /// let e = w.fits(100, 100).unwrap_err().to_string();
+    /// assert!(e.contains("explains a 64x40 map, but the map is 100x100"), "{e}");
+    /// w.frame.world_size = [200, 40];
+    /// w.units.push(Unit { id: 7, x: 190, y: 0, w: 10, h: 10, kind: Default::default() }); // frames share their centre
+    /// let e = w.fits(64, 40).unwrap_err().to_string();
+    /// assert!(e.contains("unit 7 (10x10 at 190,0) lies entirely outside the 64x40 map"), "{e}");
+    /// ```
+    pub fn fits(&self, map_width: usize, map_height: usize) -> Result<(), WorldError> {
+        let [fw, fh] = self.frame.map_size;
+        if [fw as usize, fh as usize] != [map_width, map_height] {
+            return Err(WorldError(format!(
+                "world.json: this world explains a {fw}x{fh} map, but the map is {map_width}x{map_height} \
+                 cells (see frame.map_size): it was made for a different map (or the map was cropped or \
+                 resized since)"
+            )));
+        }
+        match self.units.iter().find(|u| !self.touches_map(u, map_width, map_height)) {
+            Some(u) => Err(WorldError(format!(
+                "world.json: unit {} ({}x{} at {},{}) lies entirely outside the {map_width}x{map_height} map",
+                u.id, u.w, u.h, u.x, u.y
+            ))),
+            None => Ok(()),
+        }
+    }
+
+    /// Whether any part of `unit` lands on the map (checked on the bounding box of its corners).
+    fn touches_map(&self, unit: &Unit, w: usize, h: usize) -> bool {
+        let r = unit.rect();
+        let corners = [(r.x, r.y), (r.right(), r.y), (r.x, r.bottom()), (r.right(), r.bottom())]
+            .map(|(x, y)| self.frame.to_map(x as f64, y as f64));
+        let min_x = corners.iter().map(|c| c.0).fold(f64::INFINITY, f64::min);
+        let max_x = corners.iter().map(|c| c.0).fold(f64::NEG_INFINITY, f64::max);
+        let min_y = corners.iter().map(|c| c.1).fold(f64::INFINITY, f64::min);
+        let max_y = corners.iter().map(|c| c.1).fold(f64::NEG_INFINITY, f64::max);
+        max_x > 0.0 && max_y > 0.0 && min_x < w as f64 && min_y < h as f64
+    }
+
     /// Checks the format tag, frame, unit geometry and door references.
     pub fn validate(&self) -> Result<(), WorldError> {
         let bad = |m: String| Err(WorldError(m));

@@ -154,6 +154,34 @@ pub struct MlnError {
     pub source: Option<Source>,
 }
 
+/// An [`MlnError`] as a rules editor shows it: 1-based line and column (0 when the error has
+/// no place in the text) and the message without the position. Serialises as
+/// `{"line", "column", "message"}`, what the wasm `checkRules` and `tabletopCheckRules` return.
+///
+/// ```
+/// use ksmcmc::mln::{Mln, RuleError};
+/// let e = Mln::parse("Room(unit)\n1 Room(x) =>").unwrap_err();
+/// let r = RuleError::from(&e);
+/// assert_eq!((r.line, r.column), (2, 13));
+/// assert!(!r.message.contains("line 2"), "{}", r.message);
+/// ```
+#[derive(Debug, Clone, PartialEq, Eq, serde::Serialize)]
+pub struct RuleError {
+    /// Line, from 1 (0: no position).
+    pub line: u32,
+    /// Column, from 1, in characters (0: no position).
+    pub column: u32,
+    /// What went wrong.
+    pub message: String,
+}
+
+impl From<&MlnError> for RuleError {
+    fn from(e: &MlnError) -> Self {
+        let (line, column) = e.position.map_or((0, 0), |p| (p.line, p.column));
+        RuleError { line, column, message: e.kind.to_string() }
+    }
+}
+
 impl MlnError {
     pub(crate) fn new(kind: ErrorKind, position: Option<Position>) -> Self {
         MlnError { kind, position, source: None }

@@ -143,7 +143,7 @@ mod learn;
 mod logic;
 mod syntax;
 
-pub use error::{ErrorKind, MlnError, Position, Source};
+pub use error::{ErrorKind, MlnError, Position, RuleError, Source};
 pub use ground::{GroundConfig, Network};
 pub use infer::{InferenceConfig, MapConfig, MapMethod, MapWorld, Marginals, Method, SliceMoves, AUTO_EXACT_ATOMS};
 pub use kb::{Database, Evidence, Formula, GroundAtom, Mln, Predicate, Weight};

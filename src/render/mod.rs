@@ -120,7 +120,7 @@ impl std::fmt::Display for RenderError {
             RenderError::Empty { width, height } => {
                 write!(f, "cannot draw a {width}x{height} map: it has no cells")
             }
-            RenderError::ZeroScale => write!(f, "the scale must be at least 1 pixel per cell"),
+            RenderError::ZeroScale => write!(f, "scale 0: the scale must be at least 1 pixel per cell"),
             RenderError::TooLarge { width, height, scale, max_scale } => {
                 let pixels = (*width as u128) * (*height as u128) * (*scale as u128) * (*scale as u128);
                 write!(
@@ -236,6 +236,34 @@ pub fn render(classified: &Grid<Cell>, world: Option<&World>, options: &RenderOp
     }
 }
 
+/// The one size check of every picture of a map: a `width` x `height` map at `scale` pixels
+/// per cell must have cells, a scale of at least 1 and at most [`MAX_PIXELS`] pixels. Returns
+/// the picture's size in pixels.
+///
+/// ```
+/// use ksmcmc::render::{check_size, RenderError, MAX_PIXELS};
+/// assert_eq!(check_size(40, 30, 2), Ok((80, 60)));
+/// assert_eq!(check_size(40, 30, 0), Err(RenderError::ZeroScale));
+/// assert_eq!(MAX_PIXELS, 1 << 26);
+/// assert_eq!(check_size(1 << 13, 1 << 13, 1), Ok((1 << 13, 1 << 13)));
+/// assert!(matches!(check_size(1 << 13, 1 << 13, 2), Err(RenderError::TooLarge { max_scale: 1, .. })));
+/// assert!(matches!(check_size(1 << 13, 1 << 14, 1), Err(RenderError::TooLarge { max_scale: 0, .. })));
+/// ```
+pub fn check_size(width: usize, height: usize, scale: u32) -> Result<(u32, u32), RenderError> {
+    if width == 0 || height == 0 {
+        return Err(RenderError::Empty { width, height });
+    }
+    if scale == 0 {
+        return Err(RenderError::ZeroScale);
+    }
+    let pixels = (width as u128) * (height as u128) * (scale as u128) * (scale as u128);
+    if pixels > MAX_PIXELS as u128 {
+        return Err(RenderError::TooLarge { width, height, scale, max_scale: max_scale(width, height) });
+    }
+    // Both sides are now at most MAX_PIXELS (2^26), well inside u32 and tiny-skia's limits.
+    Ok(((width as u64 * scale as u64) as u32, (height as u64 * scale as u64) as u32))
+}
+
 /// Like [`render`], but refuses what `render` would quietly adjust: a scale of 0, a map with
 /// no cells, or an output over [`MAX_PIXELS`] pixels.
 ///
@@ -254,21 +282,10 @@ pub fn try_render(
     options: &RenderOptions,
 ) -> Result<Pixmap, RenderError> {
     let (width, height) = (classified.width(), classified.height());
-    if width == 0 || height == 0 {
-        return Err(RenderError::Empty { width, height });
-    }
     let scale = options.scale;
-    if scale == 0 {
-        return Err(RenderError::ZeroScale);
-    }
+    let (out_w, out_h) = check_size(width, height, scale)?;
     let too_large = || RenderError::TooLarge { width, height, scale, max_scale: max_scale(width, height) };
-    let pixels = (width as u128) * (height as u128) * (scale as u128) * (scale as u128);
-    if pixels > MAX_PIXELS as u128 {
-        return Err(too_large());
-    }
-    // Both sides are now at most MAX_PIXELS (2^26), well inside u32 and tiny-skia's limits.
-    let (out_w, out_h) = (width as u64 * scale as u64, height as u64 * scale as u64);
-    let mut pixmap = Pixmap::new(out_w as u32, out_h as u32).ok_or_else(too_large)?;
+    let mut pixmap = Pixmap::new(out_w, out_h).ok_or_else(too_large)?;
     paint_cells(&mut pixmap, classified, scale as usize);
     if let Some(world) = world {
         draw_world(&mut pixmap, width, height, world, scale, options.labels);

@@ -178,6 +178,27 @@ impl Default for ChainConfig {
 }
 
 impl ChainConfig {
+    /// Parses a JSON config (missing fields take their defaults; blank text is the defaults)
+    /// and validates it: what `ksmcmc tabletop --config` and the wasm `Tabletop` read.
+    ///
+    /// ```
+    /// use ksmcmc::tabletop::ChainConfig;
+    /// let c = ChainConfig::from_json(r#"{"prior_weight": 2}"#).unwrap();
+    /// assert_eq!(c.prior_weight, 2.0);
+    /// let e = ChainConfig::from_json(r#"{"proposal": {"candidates": 0}}"#).unwrap_err();
+    /// assert!(e.to_string().starts_with("invalid configuration: proposal: candidates"));
+    /// ```
+    pub fn from_json(text: &str) -> Result<ChainConfig, TabletopError> {
+        let c = ChainConfig::parse_json(text)?;
+        c.validate()?;
+        Ok(c)
+    }
+
+    /// Parses a JSON config like [`ChainConfig::from_json`] but leaves validation to the caller.
+    pub fn parse_json(text: &str) -> Result<ChainConfig, TabletopError> {
+        crate::json::settings(text, r#"{"prior_weight": 2}"#).map_err(TabletopError::Config)
+    }
+
     /// Checks every number, naming the field at fault.
     pub fn validate(&self) -> Result<(), TabletopError> {
         let bad = |m: String| Err(TabletopError::Config(m));

@@ -192,3 +192,95 @@ pub fn dissertation_config(k: u32, base: &SynthConfig) -> SynthConfig {
 pub fn dissertation_scenes(seed: u64, base: &SynthConfig) -> Result<Vec<Scene>, SynthError> {
     (0..25u32).map(|k| generate(&dissertation_config(k, base), seed.wrapping_add(k as u64))).collect()
 }
+
+/// The results of `ksmcmc tabletop-eval --json`: accuracy on generated scenes, the
+/// dissertation's test (absent with `--quick`) and speed with eight objects.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct EvalReport {
+    /// 1. Accuracy on generated scenes.
+    pub generated: GeneratedResult,
+    /// 2. The dissertation's test set, when it was run.
+    pub dissertation: Option<DissertationResult>,
+    /// 3. Speed with eight objects.
+    pub speed: SpeedResult,
+}
+
+/// Accuracy on generated scenes.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct GeneratedResult {
+    /// Scenes analysed.
+    pub scenes: u32,
+    /// Objects in them.
+    pub objects: usize,
+    /// Iterations per scene.
+    pub iterations: u32,
+    /// The pooled score.
+    pub score: Score,
+    /// [`Score::flag_accuracy`].
+    pub flag_accuracy: f64,
+    /// [`Score::decision_accuracy`].
+    pub decision_accuracy: f64,
+    /// Milliseconds per scene.
+    pub ms_per_scene: f64,
+}
+
+/// The dissertation's test: its scenes analysed several times each.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub struct DissertationResult {
+    /// Scenes.
+    pub scenes: usize,
+    /// Objects hiding another one, over the scenes.
+    pub hidden: u32,
+    /// False estimates, over the scenes.
+    #[serde(rename = "false")]
+    pub false_estimates: u32,
+    /// Runs per scene.
+    pub repeats: u32,
+    /// Runs in all.
+    pub runs: u32,
+    /// Scenes whose every flag was right in every run.
+    pub scenes_correct_every_run: u32,
+    /// True positives over all runs.
+    pub positives_found: u32,
+    /// Positives there were to find over all runs.
+    pub positives_expected: u32,
+    /// False positives over all runs.
+    pub false_alarms: u32,
+    /// Scenes whose scene graph was the same in every run.
+    pub scenes_same_graph: u32,
+}
+
+/// Speed of whole analyses.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SpeedResult {
+    /// Objects per scene.
+    pub objects: u32,
+    /// Scenes timed.
+    pub scenes: u32,
+    /// Iterations per scene.
+    pub iterations: u32,
+    /// Mean milliseconds per iteration.
+    pub ms_per_iteration: f64,
+    /// Mean milliseconds per whole analysis.
+    pub analysis_ms: f64,
+    /// Worst milliseconds of a whole analysis.
+    pub analysis_ms_worst: f64,
+}
+
+impl EvalReport {
+    /// The JSON text: pretty, every object's keys sorted, and a final newline.
+    ///
+    /// ```
+    /// use ksmcmc::tabletop::eval::*;
+    /// let generated = GeneratedResult { scenes: 1, objects: 3, iterations: 10, score: Score::default(),
+    ///     flag_accuracy: 1.0, decision_accuracy: 1.0, ms_per_scene: 2.0 };
+    /// let speed = SpeedResult { objects: 8, scenes: 1, iterations: 10, ms_per_iteration: 0.1,
+    ///     analysis_ms: 1.0, analysis_ms_worst: 1.0 };
+    /// let text = EvalReport { generated, dissertation: None, speed }.to_json();
+    /// assert!(text.starts_with("{\n  \"dissertation\": null,\n  \"generated\": {\n    \"decision_accuracy\""));
+    /// ```
+    pub fn to_json(&self) -> String {
+        let value = serde_json::to_value(self).expect("a report serialises");
+        serde_json::to_string_pretty(&value).expect("a JSON value serialises") + "\n"
+    }
+}

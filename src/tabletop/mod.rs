@@ -66,6 +66,7 @@ pub mod graph;
 pub mod knowledge;
 pub mod scene;
 pub mod sensor;
+pub mod summary;
 pub mod synth;
 
 pub use chain::{Analysis, ChainConfig, Decision, DecisionRule, ObjectAnalysis, ProposalConfig, TabletopChain};

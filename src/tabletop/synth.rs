@@ -119,6 +119,28 @@ impl Default for SynthConfig {
 }
 
 impl SynthConfig {
+    /// Parses a JSON config (missing fields take their defaults; blank text is the defaults)
+    /// and validates it: what `ksmcmc tabletop-synth --config` and the wasm `tabletopSynth`
+    /// read.
+    ///
+    /// ```
+    /// use ksmcmc::tabletop::synth::SynthConfig;
+    /// assert_eq!(SynthConfig::from_json(r#"{"max_objects": 5}"#).unwrap().max_objects, 5);
+    /// let e = SynthConfig::from_json(r#"{"max_objects": 0}"#).unwrap_err().to_string();
+    /// assert!(e.starts_with("invalid synthetic scene configuration: need"), "{e}");
+    /// ```
+    pub fn from_json(text: &str) -> Result<SynthConfig, SynthError> {
+        let c = SynthConfig::parse_json(text)?;
+        c.validate().map_err(SynthError::Config)?;
+        Ok(c)
+    }
+
+    /// Parses a JSON config like [`SynthConfig::from_json`] but leaves validation to the
+    /// caller, who may change fields first (as the command line's options do).
+    pub fn parse_json(text: &str) -> Result<SynthConfig, SynthError> {
+        crate::json::settings(text, r#"{"max_objects": 5}"#).map_err(SynthError::Config)
+    }
+
     /// Checks every field, naming the one at fault.
     pub fn validate(&self) -> Result<(), String> {
         let range = |name: &str, r: [f64; 2], lo: f64, hi: f64| {

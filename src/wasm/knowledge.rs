@@ -9,30 +9,10 @@
 //! mlnLogWeight("Left(pt)\n2 Left(x)", "Left(X)"); // 2
 //! ```
 
-use crate::floorplan::knowledge::{self, Knowledge, KnowledgeConfig};
+use crate::floorplan::knowledge::{self, WorldInference};
 use crate::floorplan::World;
-use crate::mln::{Database, GroundConfig, Mln, MlnError};
-use serde::Serialize;
+use crate::mln::{Database, GroundConfig, Mln, RuleError};
 use wasm_bindgen::prelude::*;
-
-/// A knowledge-base error as the editor shows it: 1-based line and column (0 when the error
-/// has no position) and the message without the position.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct RuleError {
-    /// Line, from 1 (0: no position).
-    pub line: u32,
-    /// Column, from 1, in characters (0: no position).
-    pub column: u32,
-    /// What went wrong.
-    pub message: String,
-}
-
-impl From<&MlnError> for RuleError {
-    fn from(e: &MlnError) -> Self {
-        let (line, column) = e.position.map_or((0, 0), |p| (p.line, p.column));
-        RuleError { line, column, message: e.kind.to_string() }
-    }
-}
 
 /// The built-in indoor knowledge base (Tab. 3.3 - 3.5) as text.
 #[wasm_bindgen(js_name = builtinIndoorRules)]
@@ -74,37 +54,6 @@ pub fn check_rules(text: &str) -> Result<JsValue, JsError> {
     }
 }
 
-#[derive(Serialize)]
-struct Fact {
-    predicate: &'static str,
-    args: Vec<String>,
-    value: bool,
-}
-
-#[derive(Serialize)]
-struct TypeRow {
-    kind: String,
-    room: f64,
-    corr: f64,
-    hall: f64,
-    other: f64,
-}
-
-#[derive(Serialize)]
-struct SameLength {
-    p: String,
-    q: String,
-    probability: f64,
-}
-
-#[derive(Serialize)]
-struct Inference {
-    evidence: Vec<Fact>,
-    types: std::collections::BTreeMap<String, TypeRow>,
-    #[serde(rename = "sameLength")]
-    same_length: Vec<SameLength>,
-}
-
 /// The evidence `worldJson` (a `world.json` text) gives at `resolution` metres per cell, and
 /// what the knowledge base `rulesText` infers from it, as JSON text
 /// `{evidence: [{predicate, args, value}], types: {U1: {kind, room, corr, hall, other}},
@@ -120,27 +69,8 @@ pub fn infer_world(
         return Err(JsError::new(&format!("inferWorld: resolution {resolution} must be a positive number")));
     }
     let world = World::from_json(world_json).map_err(|e| JsError::new(&e.to_string()))?;
-    let config = KnowledgeConfig { kb: Some(rules_text.to_string()), ..Default::default() };
-    let mut k = Knowledge::new(&config).map_err(|e| JsError::new(&e.to_string()))?;
-    let inferred = k.infer(&world, resolution).map_err(|e| JsError::new(&e.to_string()))?;
-    let evidence = knowledge::evidence(&world, resolution, &config.geometry)
-        .into_iter()
-        .map(|(predicate, args, value)| Fact { predicate, args, value })
-        .collect();
-    let types = inferred
-        .types
-        .iter()
-        .map(|(id, (kind, p))| {
-            let row = TypeRow { kind: format!("{kind:?}"), room: p[0], corr: p[1], hall: p[2], other: p[3] };
-            (knowledge::constant(*id), row)
-        })
-        .collect();
-    let same_length = inferred
-        .same_length
-        .iter()
-        .map(|&(p, q, probability)| SameLength { p: knowledge::constant(p), q: knowledge::constant(q), probability })
-        .collect();
-    Ok(serde_json::to_string(&Inference { evidence, types, same_length })?)
+    let inference = WorldInference::new(rules_text, &world, resolution).map_err(|e| JsError::new(&e.to_string()))?;
+    Ok(inference.to_json())
 }
 
 /// The unnormalised log probability `sum_i w_i n_i(x)` of the complete world `evidenceText`

@@ -16,11 +16,11 @@
 //! requestAnimationFrame(frame);
 //! ```
 
-use super::{js_message, put_rgba, seed_from_js, Map, Rendered, MAX_RENDER_PIXELS};
+use super::{js_message, put_rgba, seed_from_js, Map, Rendered};
 use crate::floorplan::report::report as ksmcmc_report;
 use crate::floorplan::rooms::RoomConfig;
 use crate::floorplan::settled::Settled;
-use crate::floorplan::{graph, metrics, Chain, ChainConfig, Rect, World};
+use crate::floorplan::{export, metrics, Chain, ChainConfig, Rect, World};
 use crate::grid::{Cell, Grid, OccupancyMap};
 use crate::render::{self, RenderOptions};
 use serde::Deserialize;
@@ -143,17 +143,7 @@ impl Mapper {
     fn picture_of(&mut self, options: &DrawOptions, rooms: bool) -> Result<Pixmap, JsError> {
         let (w, h) = (self.map.width(), self.map.height());
         let scale = options.scale;
-        let pixels = w as u128 * h as u128 * scale as u128 * scale as u128;
-        let most = ((MAX_RENDER_PIXELS as f64 / (w * h).max(1) as f64).sqrt() as u32).max(1);
-        if scale == 0 {
-            return Err(JsError::new(&format!("scale 0: give a whole number of pixels per cell from 1 to {most}")));
-        }
-        if pixels > MAX_RENDER_PIXELS as u128 {
-            return Err(JsError::new(&format!(
-                "scale {scale}: a {w}x{h} map at that scale would be over the limit of {MAX_RENDER_PIXELS} \
-                 pixels; give a scale from 1 to {most}"
-            )));
-        }
+        render::check_size(w, h, scale)?;
         if self.base.as_ref().is_none_or(|(s, _)| *s != scale) {
             let opts = RenderOptions { scale, labels: false };
             let base =
@@ -434,7 +424,7 @@ impl Mapper {
     /// `id` (its value in `labelsPgm`), `type`, `units`, `area_m2`, `doors` and `opens_to`.
     #[wasm_bindgen(js_name = roomsJson)]
     pub fn rooms_json(&mut self) -> Result<String, JsError> {
-        Ok(serde_json::to_string(&self.best_rooms().0.rooms)?)
+        Ok(export::rooms_json(self.best_rooms().0))
     }
 
     /// The recorded trace from point `from` on (default 0): one point every
@@ -497,8 +487,7 @@ impl Mapper {
     /// id per free cell, 0 elsewhere): `labels.pgm` of `ksmcmc floorplan`.
     #[wasm_bindgen(js_name = labelsPgm)]
     pub fn labels_pgm(&mut self) -> Vec<u8> {
-        let labels = self.best_rooms().1;
-        crate::grid::pgm::encode_u16(labels.width(), labels.height(), labels.cells())
+        export::labels_pgm(self.best_rooms().1)
     }
 
     /// The scene graph of the best world (or the current one, `which = 'current'`) as
@@ -514,7 +503,7 @@ impl Mapper {
             Some("current") => self.current().clone(),
             Some(other) => return Err(JsError::new(&format!("graphJson: {other:?} is neither 'best' nor 'current'"))),
         };
-        Ok(serde_json::to_string_pretty(&graph::world_json(&world))?)
+        Ok(export::graph_json(&world))
     }
 
     /// A summary of the run as JSON text, with the fields of `ksmcmc floorplan`'s
@@ -528,12 +517,13 @@ impl Mapper {
         let (world, labels) = (world.clone(), labels.clone());
         let mut report = ksmcmc_report(&self.chain, &self.map, &world, &labels, seconds);
         report["setup_seconds"] = (self.setup_ms / 1000.0).into();
-        Ok(serde_json::to_string_pretty(&report)?)
+        Ok(export::report_json(&report))
     }
 
     /// Sets a world to compare with (`show: 'reference'`), e.g. a sample's `truth.json` or a
     /// saved result, or clears it with no argument. The world must be valid `world.json` for a
-    /// map of this map's size; otherwise this throws and keeps the old reference.
+    /// map of this map's size whose units land on the map ([`World::fits`]); otherwise this
+    /// throws and keeps the old reference.
     #[wasm_bindgen(js_name = setReference)]
     pub fn set_reference(
         &mut self,
@@ -544,14 +534,7 @@ impl Mapper {
             return Ok(());
         };
         let world = World::from_json(&text)?;
-        let (w, h) = (self.map.width() as u32, self.map.height() as u32);
-        if world.frame.map_size != [w, h] {
-            let [mw, mh] = world.frame.map_size;
-            return Err(JsError::new(&format!(
-                "world.json: this world explains a {mw}x{mh} map, but the map is {w}x{h}; its units \
-                 would lie outside the map"
-            )));
-        }
+        world.fits(self.map.width(), self.map.height())?;
         self.reference = Some(world);
         Ok(())
     }

@@ -64,10 +64,6 @@ pub fn version() -> String {
     env!("CARGO_PKG_VERSION").to_string()
 }
 
-/// The most pixels a render may have: the default map cell limit, so that a map at scale 1
-/// always renders, and a large `scale` cannot ask for gigabytes.
-pub const MAX_RENDER_PIXELS: u64 = crate::grid::DEFAULT_MAX_CELLS as u64;
-
 /// The number of cells of each class in a map, as `map.counts()` returns it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 pub struct Counts {
@@ -305,25 +301,13 @@ pub fn put_rgba(canvas: &web_sys::HtmlCanvasElement, width: u32, height: u32, rg
     Ok(())
 }
 
-/// Checks scale and output size before anything is allocated.
+/// Checks scale and output size ([`render::check_size`]) before anything is allocated.
 // `..defaults` keeps this compiling when the renderer grows options.
 #[allow(clippy::needless_update)]
 fn options(map: &Map, scale: Option<u32>, labels: Option<bool>) -> Result<RenderOptions, JsError> {
     let defaults = RenderOptions::default();
     let scale = scale.unwrap_or(defaults.scale);
-    if scale == 0 {
-        return Err(JsError::new("scale must be at least 1 (output pixels per map cell)"));
-    }
-    let (w, h) = (map.inner.width() as u128 * scale as u128, map.inner.height() as u128 * scale as u128);
-    if w * h > MAX_RENDER_PIXELS as u128 {
-        return Err(JsError::new(&format!(
-            "a {}x{} map at scale {scale} would be {w}x{h} = {} pixels, over the limit of \
-             {MAX_RENDER_PIXELS}; use a smaller scale",
-            map.inner.width(),
-            map.inner.height(),
-            w * h
-        )));
-    }
+    render::check_size(map.inner.width(), map.inner.height(), scale)?;
     Ok(RenderOptions { scale, labels: labels.unwrap_or(defaults.labels), ..defaults })
 }
 
@@ -464,19 +448,8 @@ fn describe(v: &JsValue) -> String {
     }
 }
 
-/// Parses a generator config: the JSON object's fields over the defaults.
+/// Parses a generator config: the JSON object's fields over the defaults (see
+/// [`SynthConfig::parse_json`]; `generate` validates it).
 pub fn synth_config(json: Option<&str>) -> Result<SynthConfig, JsError> {
-    let Some(text) = json.filter(|t| !t.trim().is_empty()) else {
-        return Ok(SynthConfig::default());
-    };
-    let given: serde_json::Value =
-        serde_json::from_str(text).map_err(|e| JsError::new(&format!("synth config: {e}")))?;
-    let serde_json::Value::Object(given) = given else {
-        return Err(JsError::new("synth config: expected a JSON object such as {\"width\": 200}"));
-    };
-    let mut config = serde_json::to_value(SynthConfig::default())?;
-    if let serde_json::Value::Object(fields) = &mut config {
-        fields.extend(given);
-    }
-    serde_json::from_value(config).map_err(|e| JsError::new(&format!("synth config: {e}")))
+    Ok(SynthConfig::parse_json(json.unwrap_or(""))?)
 }

@@ -17,10 +17,12 @@
 
 use super::mapper::now_ms;
 use super::{put_rgba, seed_from_js};
+use crate::mln::RuleError;
 use crate::render;
 use crate::render::tabletop::{draw_graph, draw_view, marks, ViewOptions};
 use crate::tabletop::knowledge::{Knowledge, TABLETOP_MLN};
 use crate::tabletop::scene::Scene;
+use crate::tabletop::summary::AnalysisSummary;
 use crate::tabletop::synth::{self, SynthConfig};
 use crate::tabletop::{Analysis, ChainConfig, TabletopChain};
 use wasm_bindgen::prelude::*;
@@ -43,15 +45,7 @@ fn seed_or(seed: Option<JsValue>, default: u64) -> Result<u64, JsError> {
 }
 
 fn chain_config(json: Option<&str>) -> Result<ChainConfig, JsError> {
-    match json.filter(|t| !t.trim().is_empty()) {
-        None => Ok(ChainConfig::default()),
-        Some(text) => {
-            let c: ChainConfig =
-                serde_json::from_str(text).map_err(|e| JsError::new(&format!("table-top config: {e}")))?;
-            c.validate().map_err(err)?;
-            Ok(c)
-        }
-    }
+    ChainConfig::from_json(json.unwrap_or("")).map_err(err)
 }
 
 /// A table-top chain over one scene, for a page's frame loop.
@@ -172,43 +166,10 @@ impl Tabletop {
     /// ground truth `{ hidden, false }` or null.
     #[wasm_bindgen(js_name = analysisJson)]
     pub fn analysis_json(&mut self) -> Result<String, JsError> {
-        let iteration = self.chain.iteration();
-        let best_lp = self.chain.best_log_posterior();
-        let truths: Vec<_> = self
-            .scene
-            .objects
-            .iter()
-            .map(|o| o.truth.as_ref().map(|t| serde_json::json!({ "hidden": t.hidden, "false": t.false_estimate })))
-            .collect();
-        let a = self.best()?;
-        let objects: Vec<_> = a
-            .objects
-            .iter()
-            .zip(truths)
-            .map(|(o, truth)| {
-                serde_json::json!({
-                    "id": o.id,
-                    "stable": o.stable,
-                    "hover": o.hover,
-                    "p_hidden": o.probabilities.hidden,
-                    "p_false": o.probabilities.false_estimate,
-                    "supported": o.probabilities.supported,
-                    "supportive": o.probabilities.supportive,
-                    "hidden": o.hidden,
-                    "false": o.false_estimate,
-                    "truth": truth,
-                })
-            })
-            .collect();
-        let out = serde_json::json!({
-            "iteration": iteration,
-            "logPosterior": best_lp,
-            "logPrior": a.log_prior,
-            "logLikelihood": a.log_likelihood,
-            "objects": objects,
-            "graph": a.graph_json(),
-        });
-        Ok(out.to_string())
+        let (iteration, best_lp) = (self.chain.iteration(), self.chain.best_log_posterior());
+        self.best()?;
+        let a = &self.best.as_ref().expect("just filled").1;
+        Ok(serde_json::to_string(&AnalysisSummary::new(&self.scene, a, iteration, best_lp))?)
     }
 
     /// Draws the best analysis' scene graph on `canvas` (resized to the picture).
@@ -243,10 +204,7 @@ pub fn tabletop_synth(
     #[wasm_bindgen(js_name = configJson, unchecked_optional_param_type = "string")] config_json: Option<String>,
 ) -> Result<String, JsError> {
     let seed = seed_or(seed, 1)?;
-    let config: SynthConfig = match config_json.as_deref().filter(|t| !t.trim().is_empty()) {
-        None => SynthConfig::default(),
-        Some(t) => serde_json::from_str(t).map_err(|e| JsError::new(&format!("synth config: {e}")))?,
-    };
+    let config = SynthConfig::from_json(config_json.as_deref().unwrap_or("")).map_err(err)?;
     Ok(synth::generate(&config, seed).map_err(err)?.to_json())
 }
 
@@ -261,18 +219,8 @@ pub fn tabletop_rules_default() -> String {
 /// Unlike `checkRules`, which only parses, this also checks the table-top predicates.
 #[wasm_bindgen(js_name = tabletopCheckRules)]
 pub fn check_rules(text: &str) -> Result<JsValue, JsError> {
-    let e = match Knowledge::with_text(text, 1) {
-        Ok(_) => return Ok(JsValue::NULL),
-        Err(e) => e,
-    };
-    let (line, column) = e.position.map(|p| (p.line, p.column)).unwrap_or((0, 0));
-    let o = js_sys::Object::new();
-    for (k, v) in [
-        ("line", JsValue::from(line)),
-        ("column", JsValue::from(column)),
-        ("message", JsValue::from_str(&e.kind.to_string())),
-    ] {
-        js_sys::Reflect::set(&o, &JsValue::from_str(k), &v).map_err(|_| JsError::new("checkRules: cannot build"))?;
+    match Knowledge::with_text(text, 1) {
+        Ok(_) => Ok(JsValue::NULL),
+        Err(e) => Ok(serde_wasm_bindgen::to_value(&RuleError::from(&e))?),
     }
-    Ok(o.into())
 }

@@ -100,7 +100,11 @@ fn bad_arguments_and_configs_fail_cleanly() {
     std::fs::write(&bad_json, "{ \"width\": ").unwrap();
     let typo = dir.join("typo.json");
     std::fs::write(&typo, r#"{ "wall_thicknes": 3 }"#).unwrap();
-    let (bad_json, typo) = (bad_json.to_str().unwrap(), typo.to_str().unwrap());
+    let array = dir.join("array.json");
+    std::fs::write(&array, "[1, 2]").unwrap();
+    let (bad_json, typo, array) = (bad_json.to_str().unwrap(), typo.to_str().unwrap(), array.to_str().unwrap());
+    // The wasm `synth` reads configs through the same function and so says the same.
+    let not_object = ksmcmc::floorplan::synth::SynthConfig::from_json("[1, 2]").unwrap_err().to_string();
     let cases: &[(&[&str], i32, &str)] = &[
         (&["synth", "--seed", "x", "--out", d], 2, "--seed"),
         (&["synth", "--seed", "-3", "--out", d], 2, "--seed"),
@@ -116,6 +120,7 @@ fn bad_arguments_and_configs_fail_cleanly() {
         (&["synth", "--seed", "1", "--out", d, "--width", "100000", "--height", "100000"], 1, "width"),
         (&["synth", "--seed", "1", "--out", d, "--config", bad_json], 1, "bad.json"),
         (&["synth", "--seed", "1", "--out", d, "--config", typo], 1, "wall_thicknes"),
+        (&["synth", "--seed", "1", "--out", d, "--config", array], 1, &not_object),
         (&["synth", "--seed", "1", "--out", d, "--config", "/nonexistent/c.json"], 1, "c.json"),
     ];
     for (args, code, needle) in cases {

@@ -443,7 +443,7 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
             Long("config") => {
                 let p = args::path(parser.value()?);
                 let text = std::fs::read_to_string(&p).map_err(|e| args::failed(p.display(), e))?;
-                o.config = serde_json::from_str(&text).map_err(|e| args::failed(p.display(), e))?;
+                o.config = ChainConfig::from_json(&text).map_err(|e| args::failed(p.display(), e))?;
             }
             Long("help") | Short('h') => {
                 print!("{HELP}");

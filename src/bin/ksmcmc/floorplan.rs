@@ -3,10 +3,9 @@
 use crate::args::{self, CliError};
 use ksmcmc::floorplan::rooms::RoomConfig;
 use ksmcmc::floorplan::settled::{self, Settled};
-use ksmcmc::floorplan::{graph, metrics, Chain, ChainConfig};
+use ksmcmc::floorplan::{export, metrics, Chain, ChainConfig};
 use ksmcmc::grid::Cell;
 use std::ffi::OsString;
-use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -76,38 +75,28 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
         settled.step(&mut chain, n);
     }
     let seconds = t0.elapsed().as_secs_f64();
-    let mut world = chain.best_world_typed();
-    let mut trace = String::from("iteration,log_posterior,acceptance,units\n");
-    for p in &chain.trace().points {
-        let _ = writeln!(trace, "{},{:.3},{:.4},{}", p.iteration, p.log_posterior, p.acceptance, p.size);
-    }
-    let mut report = ksmcmc::floorplan::report::summary(&chain, &map, &world, seconds);
+    let trace = export::trace_csv(chain.trace());
+    let input = export::RoomInput::of(&mut chain);
+    let mut report = ksmcmc::floorplan::report::summary(&chain, &map, input.world(), seconds);
     let iterations_done = chain.iteration();
     // The room labels need the best world and the world-frame map, not the chain's tables:
     // free those first (tens of MB on a large map) to keep the run's peak memory down.
-    // `world` is the best world (typed, which the segmentation ignores): no second export.
-    let (cells, world_map) = (chain.map().clone(), chain.world_map().clone());
-    let (resolution, knowledge_on) = (chain.resolution(), chain.config().knowledge.enabled);
     drop(chain);
-    let labels = ksmcmc::floorplan::room_layer::explain_world_rooms(
-        &mut world,
-        &cells,
-        &world_map,
-        &RoomConfig::default(),
-        resolution,
-        knowledge_on,
-    );
-    drop((cells, world_map));
-    let rooms = world.rooms.len();
+    let (world, labels) = input.explain(&RoomConfig::default());
     ksmcmc::floorplan::report::add_rooms(&mut report, &world, &labels);
+    let rooms = world.rooms.len();
     let k = report["cell_prediction_rate"].as_f64().unwrap_or(0.0);
     report["map"] = o.map.display().to_string().into();
     if o.until_settled {
         report["settled_at"] = serde_json::json!(settled.settled_at());
     }
     report["cell_prediction_rate_region"] =
-        serde_json::json!(region.as_ref().map(|r| metrics::prediction_rate_in(map.classified(), &world, Some(r))));
-    write_outputs(&o.out, &map, &world, &trace, &labels, &report)?;
+        region.as_ref().map(|r| metrics::prediction_rate_in(map.classified(), &world, Some(r))).into();
+    let outputs =
+        export::Outputs::new(&map, &world, &labels, &report, trace).map_err(|e| args::failed("overlay.png", e))?;
+    for (name, bytes) in outputs.files() {
+        args::write(&o.out.join(name), bytes)?;
+    }
     println!(
         "{}: {} iterations in {:.2} s ({:.0}/s), K(W,M) = {:.4}, {} units, {} doors, {} rooms -> {}",
         o.map.display(),
@@ -241,28 +230,4 @@ fn load_region(o: &Opts, map: &ksmcmc::grid::OccupancyMap) -> Result<Option<ksmc
         )));
     }
     Ok(Some(raster.gray.map(|&g| g > 0)))
-}
-
-/// Writes the six output files.
-fn write_outputs(
-    out: &std::path::Path,
-    map: &ksmcmc::grid::OccupancyMap,
-    world: &ksmcmc::floorplan::World,
-    trace: &str,
-    labels: &ksmcmc::grid::Grid<u16>,
-    report: &serde_json::Value,
-) -> Result<(), CliError> {
-    let overlay = ksmcmc::render::try_render(map.classified(), Some(world), &Default::default())
-        .map_err(|e| args::failed("overlay.png", e))?;
-    args::write(&out.join("world.json"), world.to_json().as_bytes())?;
-    args::write(&out.join("overlay.png"), &ksmcmc::render::encode_png(&overlay))?;
-    let graph = serde_json::to_string_pretty(&graph::world_json(world)).expect("json");
-    args::write(&out.join("graph.json"), graph.as_bytes())?;
-    args::write(&out.join("trace.csv"), trace.as_bytes())?;
-    args::write(
-        &out.join("labels.pgm"),
-        &ksmcmc::grid::pgm::encode_u16(labels.width(), labels.height(), labels.cells()),
-    )?;
-    args::write(&out.join("report.json"), serde_json::to_string_pretty(report).expect("json").as_bytes())?;
-    Ok(())
 }

@@ -53,7 +53,7 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
 
     let map = args::load_map(&map_path)?;
     let world = match &world {
-        Some(path) => Some(load_world(path, &map, &map_path)?),
+        Some(path) => Some(load_world(path, &map)?),
         None => None,
     };
     let pixmap = render::try_render(map.classified(), world.as_ref(), &options)
@@ -79,7 +79,7 @@ fn scale(v: OsString) -> Result<u32, CliError> {
 }
 
 /// Reads a world.json and checks that it belongs to `map`.
-fn load_world(path: &Path, map: &OccupancyMap, map_path: &Path) -> Result<World, CliError> {
+fn load_world(path: &Path, map: &OccupancyMap) -> Result<World, CliError> {
     let bytes = std::fs::read(path).map_err(|e| args::failed(path.display(), e))?;
     let text = std::str::from_utf8(&bytes).map_err(|e| {
         args::failed(
@@ -88,46 +88,6 @@ fn load_world(path: &Path, map: &OccupancyMap, map_path: &Path) -> Result<World,
         )
     })?;
     let world = World::from_json(text).map_err(|e| args::failed(path.display(), e))?;
-    let map_size = [map.width(), map.height()];
-    let [fw, fh] = world.frame.map_size;
-    if [fw as usize, fh as usize] != map_size {
-        return Err(CliError::Failed(format!(
-            "{}: frame.map_size is {fw}x{fh} but {} is {}x{} cells; this world was made for a \
-             different map (or the map was cropped or resized since)",
-            path.display(),
-            map_path.display(),
-            map_size[0],
-            map_size[1]
-        )));
-    }
-    // validate() keeps units inside the world frame; in a rotated or larger world frame a unit
-    // can still miss the map entirely, which means the world and map do not belong together.
-    for unit in &world.units {
-        if !touches_map(&world, unit, map_size) {
-            return Err(CliError::Failed(format!(
-                "{}: unit {} ({}x{} at {},{}) lies entirely outside the {}x{} map",
-                path.display(),
-                unit.id,
-                unit.w,
-                unit.h,
-                unit.x,
-                unit.y,
-                map_size[0],
-                map_size[1]
-            )));
-        }
-    }
+    world.fits(map.width(), map.height()).map_err(|e| args::failed(path.display(), e))?;
     Ok(world)
-}
-
-/// Whether any part of `unit` lands on the map (checked on the bounding box of its corners).
-fn touches_map(world: &World, unit: &ksmcmc::floorplan::Unit, [w, h]: [usize; 2]) -> bool {
-    let r = unit.rect();
-    let corners = [(r.x, r.y), (r.right(), r.y), (r.x, r.bottom()), (r.right(), r.bottom())]
-        .map(|(x, y)| world.frame.to_map(x as f64, y as f64));
-    let min_x = corners.iter().map(|c| c.0).fold(f64::INFINITY, f64::min);
-    let max_x = corners.iter().map(|c| c.0).fold(f64::NEG_INFINITY, f64::max);
-    let min_y = corners.iter().map(|c| c.1).fold(f64::INFINITY, f64::min);
-    let max_y = corners.iter().map(|c| c.1).fold(f64::NEG_INFINITY, f64::max);
-    max_x > 0.0 && max_y > 0.0 && min_x < w as f64 && min_y < h as f64
 }

@@ -2,7 +2,7 @@
 
 use crate::args::{self, CliError};
 use ksmcmc::floorplan::metrics::{regions, score_segmentation};
-use ksmcmc::grid::{decode_image, Grid, Limits};
+use ksmcmc::grid::{decode_image, white_cells, Grid, Limits};
 use std::ffi::OsString;
 use std::path::Path;
 
@@ -29,33 +29,8 @@ pub fn label_image(path: &Path) -> Result<Grid<u32>, CliError> {
 /// The benchmark's truth segments: 4-connected regions whose every channel is at least 250.
 pub fn truth_regions(path: &Path) -> Result<Grid<u32>, CliError> {
     let bytes = std::fs::read(path).map_err(|e| args::failed(path.display(), e))?;
-    let white = white_cells(&bytes).map_err(|e| args::failed(path.display(), e))?;
+    let white = white_cells(&bytes, &Limits::default()).map_err(|e| args::failed(path.display(), e))?;
     Ok(regions(&white))
-}
-
-fn white_cells(bytes: &[u8]) -> Result<Grid<bool>, String> {
-    if !bytes.starts_with(b"\x89PNG") {
-        // Gray images: white is a gray level of at least 250/255.
-        let raster = decode_image(bytes, &Limits::default()).map_err(|e| e.to_string())?;
-        return Ok(raster.gray.map(|&g| g >= 250 * 257));
-    }
-    let mut decoder = png::Decoder::new(bytes);
-    decoder.set_transformations(png::Transformations::EXPAND | png::Transformations::STRIP_16);
-    let mut reader = decoder.read_info().map_err(|e| e.to_string())?;
-    let (w, h) = (reader.info().width as u64, reader.info().height as u64);
-    let (w, h) = Limits::default().check(w, h).map_err(|e| e.to_string())?;
-    let mut buf = vec![0u8; reader.output_buffer_size()];
-    let frame = reader.next_frame(&mut buf).map_err(|e| e.to_string())?;
-    let (color, _) = reader.output_color_type();
-    let channels = color.samples();
-    let colour = matches!(color, png::ColorType::Rgb | png::ColorType::Rgba) as usize * 2 + 1;
-    let cells = (0..h)
-        .flat_map(|y| {
-            let row = &buf[y * frame.line_size..];
-            (0..w).map(move |x| row[x * channels..x * channels + colour].iter().all(|&v| v >= 250))
-        })
-        .collect();
-    Ok(Grid::from_vec(w, h, cells).expect("sized"))
 }
 
 pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {

@@ -4,9 +4,12 @@
 use crate::args::{self, CliError};
 use ksmcmc::render::encode_png;
 use ksmcmc::render::tabletop::{draw_graph, draw_view, marks, ViewOptions};
-use ksmcmc::tabletop::eval::{analyse_scene, dissertation_scenes, graph_signature, score, Score};
-use ksmcmc::tabletop::evidence::Evidence;
+use ksmcmc::tabletop::eval::{
+    analyse_scene, dissertation_scenes, graph_signature, score, DissertationResult, EvalReport, GeneratedResult, Score,
+    SpeedResult,
+};
 use ksmcmc::tabletop::scene::Scene;
+use ksmcmc::tabletop::summary::{RunReport, Timings};
 use ksmcmc::tabletop::synth::{generate, SynthConfig};
 use ksmcmc::tabletop::{Analysis, ChainConfig, Decision, TabletopChain};
 use std::ffi::OsString;
@@ -72,33 +75,13 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     let graph_json = analysis.graph_json();
     let poses: Vec<_> = analysis.objects.iter().map(|o| o.pose).collect();
     let view = draw_view(chain.scene(), &poses, &marks(&analysis), &ViewOptions::default());
-    let has_truth = chain.scene().objects.iter().any(|o| o.truth.is_some());
-    let stats = chain.stats();
-    let (hits, misses) = chain.prior_cache_stats();
-    let report = serde_json::json!({
-        "scene": scene_path.display().to_string(),
-        "seed": seed,
-        "iterations": iterations,
-        "seconds": seconds,
-        "ms_per_iteration": if iterations > 0 { 1000.0 * sampling / iterations as f64 } else { 0.0 },
-        "setup_ms": 1000.0 * setup,
-        "inference_ms": 1000.0 * inference,
-        "objects": analysis.objects,
-        "log_prior": analysis.log_prior,
-        "log_likelihood": analysis.log_likelihood,
-        "log_posterior": chain.best_log_posterior(),
-        "best_iteration": chain.best_iteration(),
-        "proposals": stats,
-        "prior_cache": { "hits": hits, "computed": misses },
-        "evidence": evidence_json(chain.scene(), &analysis.evidence),
-        "score": has_truth.then(|| score(chain.scene(), &analysis)),
-        "config": chain.config(),
-    });
+    let timings = Timings { setup, sampling, inference, total: seconds };
+    let report = RunReport::new(&chain, &analysis, &scene_path.display().to_string(), seed, iterations, timings);
     let pretty = |v: &serde_json::Value| serde_json::to_string_pretty(v).unwrap_or_default() + "\n";
     args::write(&out.join("graph.json"), pretty(&graph_json).as_bytes())?;
     args::write(&out.join("graph.png"), &encode_png(&draw_graph(&analysis.graph)))?;
     args::write(&out.join("view.png"), &encode_png(&view))?;
-    args::write(&out.join("report.json"), pretty(&report).as_bytes())?;
+    args::write(&out.join("report.json"), report.to_json().as_bytes())?;
     print_objects(&analysis);
     println!(
         "{iterations} iterations in {:.1} ms ({:.3} ms per iteration); wrote {}",
@@ -107,28 +90,6 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
         out.display()
     );
     Ok(())
-}
-
-/// The evidence relations as pairs of object ids ("table" last): contact and intersection
-/// (each pair once), and which object is higher than which.
-fn evidence_json(scene: &Scene, ev: &Evidence) -> serde_json::Value {
-    let ids: Vec<&str> = scene.objects.iter().map(|o| o.id.as_str()).chain(["table"]).collect();
-    let pairs = |f: &dyn Fn(usize, usize) -> bool, symmetric: bool| {
-        let mut v = Vec::new();
-        for i in 0..ids.len() {
-            for j in 0..ids.len() {
-                if i != j && (!symmetric || i < j) && f(i, j) {
-                    v.push([ids[i], ids[j]]);
-                }
-            }
-        }
-        v
-    };
-    serde_json::json!({
-        "contact": pairs(&|i, j| ev.contact(i, j), true),
-        "intersect": pairs(&|i, j| ev.intersect(i, j), true),
-        "higher": pairs(&|i, j| ev.higher(i, j), false),
-    })
 }
 
 /// One line per object: its probabilities and the flags decided true.
@@ -150,7 +111,7 @@ fn read_config(path: Option<&PathBuf>) -> Result<ChainConfig, CliError> {
     let config = match path {
         Some(p) => {
             let text = std::fs::read_to_string(p).map_err(|e| args::failed(p.display(), e))?;
-            serde_json::from_str::<ChainConfig>(&text).map_err(|e| args::failed(p.display(), e))?
+            ChainConfig::parse_json(&text).map_err(|e| args::failed(p.display(), e))?
         }
         None => ChainConfig::default(),
     };
@@ -199,19 +160,28 @@ struct EvalOpts {
 pub fn eval(argv: Vec<OsString>) -> Result<(), CliError> {
     let Some(o) = parse_eval(argv)? else { return Ok(()) };
     let (total, objects, accuracy_seconds) = eval_generated(&o)?;
-    let dissertation = if o.quick { serde_json::Value::Null } else { eval_dissertation(&o)? };
+    let dissertation = if o.quick { None } else { Some(eval_dissertation(&o)?) };
     let (per_iteration, whole, worst) = eval_speed(&o)?;
     let EvalOpts { scenes, iterations, speed, .. } = o;
     if let Some(p) = o.json {
-        let v = serde_json::json!({
-            "generated": { "scenes": scenes, "objects": objects, "iterations": iterations, "score": total,
-                           "flag_accuracy": total.flag_accuracy(), "decision_accuracy": total.decision_accuracy(),
-                           "ms_per_scene": 1000.0 * accuracy_seconds / scenes.max(1) as f64 },
-            "dissertation": dissertation,
-            "speed": { "objects": 8, "scenes": speed, "iterations": iterations,
-                       "ms_per_iteration": per_iteration, "analysis_ms": whole, "analysis_ms_worst": worst },
-        });
-        args::write(&p, (serde_json::to_string_pretty(&v).unwrap_or_default() + "\n").as_bytes())?;
+        let generated = GeneratedResult {
+            scenes,
+            objects,
+            iterations,
+            score: total,
+            flag_accuracy: total.flag_accuracy(),
+            decision_accuracy: total.decision_accuracy(),
+            ms_per_scene: 1000.0 * accuracy_seconds / scenes.max(1) as f64,
+        };
+        let speed = SpeedResult {
+            objects: 8,
+            scenes: speed,
+            iterations,
+            ms_per_iteration: per_iteration,
+            analysis_ms: whole,
+            analysis_ms_worst: worst,
+        };
+        args::write(&p, EvalReport { generated, dissertation, speed }.to_json().as_bytes())?;
     }
     Ok(())
 }
@@ -249,7 +219,7 @@ fn parse_eval(argv: Vec<OsString>) -> Result<Option<EvalOpts>, CliError> {
     let synth = match &synth_path {
         Some(p) => {
             let text = std::fs::read_to_string(p).map_err(|e| args::failed(p.display(), e))?;
-            serde_json::from_str::<SynthConfig>(&text).map_err(|e| args::failed(p.display(), e))?
+            SynthConfig::parse_json(&text).map_err(|e| args::failed(p.display(), e))?
         }
         None => SynthConfig::default(),
     };
@@ -306,7 +276,7 @@ fn eval_generated(o: &EvalOpts) -> Result<(Score, usize, f64), CliError> {
 }
 
 /// 2. The dissertation's test: each scene of its set analysed `repeats` times.
-fn eval_dissertation(o: &EvalOpts) -> Result<serde_json::Value, CliError> {
+fn eval_dissertation(o: &EvalOpts) -> Result<DissertationResult, CliError> {
     let EvalOpts { iterations, seed, repeats, config, ref synth, .. } = *o;
     let set = dissertation_scenes(seed, synth).map_err(|e| fail(&e))?;
     let (mut hidden, mut falses) = (0, 0);
@@ -345,12 +315,18 @@ fn eval_dissertation(o: &EvalOpts) -> Result<serde_json::Value, CliError> {
         (hidden + falses) * repeats
     );
     println!("   scenes whose scene graph was the same in all {repeats} runs: {stable_graphs}/{}", set.len());
-    Ok(serde_json::json!({
-        "scenes": set.len(), "hidden": hidden, "false": falses, "repeats": repeats, "runs": runs,
-        "scenes_correct_every_run": all_found, "positives_found": positives_found,
-        "positives_expected": (hidden + falses) * repeats, "false_alarms": false_alarms,
-        "scenes_same_graph": stable_graphs,
-    }))
+    Ok(DissertationResult {
+        scenes: set.len(),
+        hidden,
+        false_estimates: falses,
+        repeats,
+        runs,
+        scenes_correct_every_run: all_found,
+        positives_found,
+        positives_expected: (hidden + falses) * repeats,
+        false_alarms,
+        scenes_same_graph: stable_graphs,
+    })
 }
 
 /// 3. Speed with 8 objects: mean ms per iteration, mean and worst ms per whole analysis.

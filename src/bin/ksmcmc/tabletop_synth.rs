@@ -83,7 +83,7 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     let mut config = match &config_path {
         Some(p) => {
             let text = std::fs::read_to_string(p).map_err(|e| args::failed(p.display(), e))?;
-            serde_json::from_str::<SynthConfig>(&text).map_err(|e| args::failed(p.display(), e))?
+            SynthConfig::parse_json(&text).map_err(|e| args::failed(p.display(), e))?
         }
         None => SynthConfig::default(),
     };

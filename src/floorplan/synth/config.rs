@@ -150,11 +150,26 @@ pub(super) struct Cells {
 }
 
 impl SynthConfig {
-    /// Parses a JSON config (missing fields take their defaults) and validates it.
+    /// Parses a JSON config (missing fields take their defaults; blank text is the defaults)
+    /// and validates it: what `ksmcmc synth --config` and the wasm `synth` read.
     pub fn from_json(text: &str) -> Result<SynthConfig, SynthError> {
-        let c: SynthConfig = serde_json::from_str(text).map_err(|e| SynthError(format!("synth config: {e}")))?;
+        let c = SynthConfig::parse_json(text)?;
         c.validate()?;
         Ok(c)
+    }
+
+    /// Parses a JSON config like [`SynthConfig::from_json`] but leaves validation to the
+    /// caller, who may change fields first (as the command line's options do).
+    ///
+    /// ```
+    /// use ksmcmc::floorplan::synth::SynthConfig;
+    /// let c = SynthConfig::parse_json(r#"{ "width": 0 }"#).unwrap();
+    /// assert!(c.validate().is_err());
+    /// let e = SynthConfig::parse_json("[1]").unwrap_err().to_string();
+    /// assert_eq!(e, r#"synth config: expected a JSON object such as {"width": 200}"#);
+    /// ```
+    pub fn parse_json(text: &str) -> Result<SynthConfig, SynthError> {
+        crate::json::settings(text, r#"{"width": 200}"#).map_err(|m| SynthError(format!("synth config: {m}")))
     }
 
     /// The config as pretty JSON.

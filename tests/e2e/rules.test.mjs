@@ -102,3 +102,49 @@ test('marginals table, syntax errors at line and column, re-run with edited rule
   assert.deepEqual(page.problems, []);
   await page.context().close();
 });
+
+test('learn the weights from the reference world, undo, hand-set weights, and the inference runs', async () => {
+  const page = await openPage(env, 'rules.html');
+  const builtin = await page.inputValue('#kb');
+  assert.equal(await page.isDisabled('#learn'), true, 'nothing to learn from yet');
+  await page.click('#truth');
+  await page.waitForFunction(() => !document.getElementById('learn').disabled);
+  assert.match(await page.textContent('#reference'), /office-small\/truth\.json, \d+ units, \d+ of them typed/);
+  await page.click('#learn');
+  await until(page, 's.learned === 1 && !s.learning');
+  const learned = await page.inputValue('#kb');
+  assert.match(learned, /\/\/ was /, 'the learned weights say what they were');
+  assert.match(learned, /Weights learned in the rules editor/, 'learned here, not the built-in text');
+  assert.notEqual(learned, builtin);
+  let s = await snap(page);
+  assert.equal(s.error, null, 'the learned rules parse');
+  assert.equal(s.goodKb, learned);
+  assert.match(await page.textContent('#reference'), /^Learned the weights from office-small\/truth\.json/);
+  // Ctrl+Z in the editor brings the rules from before back.
+  await page.focus('#kb');
+  await page.keyboard.press('Control+z');
+  await page.waitForFunction((b) => document.getElementById('kb').value === b, builtin);
+  // The hand-set weights of Tab. 3.5.
+  await page.click('#handset');
+  const handset = await page.evaluate(async () => (await import('./pkg/ksmcmc.js')).handSetIndoorRules());
+  assert.equal(await page.inputValue('#kb'), handset);
+  assert.notEqual(handset, builtin);
+  // Learn again (from the hand-set rules) and run the chain and the inference with them.
+  await page.click('#learn');
+  await until(page, 's.learned === 2 && !s.learning');
+  const relearned = await page.inputValue('#kb');
+  assert.match(relearned, /\/\/ was /);
+  assert.match(relearned, /Weights learned in the rules editor/);
+  await settled(page);
+  assert.equal((await snap(page)).error, null);
+  await page.click('#rerun');
+  s = await snap(page);
+  assert.equal(s.runs, 2);
+  assert.equal(s.kbUsed, relearned);
+  await until(page, 's.inferred && s.worldUnits >= 2 && s.rows === s.worldUnits && s.inferError === null');
+  s = await snap(page);
+  assert.ok(s.inferred.evidence.some((f) => f.predicate === 'RoLi'), 'the inference ran with the learned rules');
+  assert.equal(await page.isVisible('#message'), false, 'no error shown');
+  assert.deepEqual(page.problems, []);
+  await page.context().close();
+});

@@ -123,6 +123,15 @@ impl Mapper {
         }
     }
 
+    /// The world an export shows: the best world as `bestWorldJson` gives it (with the room
+    /// layer's unit types, as `ksmcmc floorplan` draws `overlay.png`), the others as drawn live.
+    fn exported_world_for(&mut self, show: Show) -> Option<World> {
+        match show {
+            Show::Best => Some(self.best_rooms().0.clone()),
+            _ => self.world_for(show),
+        }
+    }
+
     fn restart(&mut self, chain: Chain) {
         self.chain = chain;
         self.settled = Settled::for_map(self.map.count(Cell::Free));
@@ -134,6 +143,11 @@ impl Mapper {
 
     /// The picture `drawMapper` shows.
     pub fn picture(&mut self, options: &DrawOptions) -> Result<Pixmap, JsError> {
+        self.picture_of(options, false)
+    }
+
+    /// The picture of `options`; `exported`: with the exported best world (`toPng`).
+    fn picture_of(&mut self, options: &DrawOptions, exported: bool) -> Result<Pixmap, JsError> {
         let (w, h) = (self.map.width(), self.map.height());
         let scale = options.scale;
         let pixels = w as u128 * h as u128 * scale as u128 * scale as u128;
@@ -154,7 +168,8 @@ impl Mapper {
             self.base = Some((scale, base));
         }
         let mut pixmap = self.base.as_ref().expect("just drawn").1.clone();
-        if let Some(world) = self.world_for(options.show) {
+        let world = if exported { self.exported_world_for(options.show) } else { self.world_for(options.show) };
+        if let Some(world) = world {
             render::draw_world(&mut pixmap, w, h, &world, scale, options.labels);
         }
         if options.cloud {
@@ -551,7 +566,8 @@ impl Mapper {
         self.reference.is_some()
     }
 
-    /// The picture `drawMapper` shows, as PNG bytes. With the default options but
+    /// The picture `drawMapper` shows, as PNG bytes, but the best world as `bestWorldJson`
+    /// gives it (its units typed by the room layer too). With the default options but
     /// `show: 'best'` it is the `overlay.png` of `ksmcmc floorplan`.
     #[wasm_bindgen(js_name = toPng)]
     pub fn to_png(
@@ -559,7 +575,7 @@ impl Mapper {
         #[wasm_bindgen(unchecked_optional_param_type = "MapperDrawOptions")] options: Option<JsValue>,
     ) -> Result<Vec<u8>, JsError> {
         let options = DrawOptions::from_js(options.as_ref())?;
-        let pixmap = self.picture(&options)?;
+        let pixmap = self.picture_of(&options, true)?;
         Ok(render::encode_png(&pixmap))
     }
 }

@@ -1109,6 +1109,23 @@ function expose() {
     get map() {
       return state.map;
     },
+    /** What the page waits for (for tests that time out waiting for idle()). */
+    waits() {
+      const w = state.weak;
+      const r = (f) => ({ inFlight: f.inFlight, again: f.again, generation: f.generation, readAt: f.readAt });
+      return {
+        running: state.running,
+        dataRunning: document.documentElement.dataset.running,
+        inFlight: state.inFlight,
+        redrawPending: state.redrawPending,
+        picture: Boolean(state.picture),
+        busy: state.chain.busy,
+        generation: state.stats?.generation,
+        iteration: state.stats?.iteration,
+        rooms: r(state.rooms),
+        weak: w && { iteration: w.stats?.iteration, generation: w.stats?.generation, inFlight: w.inFlight, redrawPending: w.redrawPending, picture: Boolean(w.picture), busy: w.chain.busy, rooms: r(w.rooms) },
+      };
+    },
     /** Resolves once the page has drawn the chain's latest state and waits for nothing. */
     idle() {
       return new Promise((resolve) => {

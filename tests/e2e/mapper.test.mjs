@@ -46,7 +46,15 @@ async function until(page, predicate, arg, timeout = 20_000) {
  * Waits until the page has drawn the chain's latest state (the chain runs in a worker, and
  * the page draws the pictures it sends, at most one per animation frame).
  */
-const settled = (page) => page.evaluate(() => window.__ksmcmc.idle());
+async function settled(page, timeout = 60_000) {
+  let timer;
+  const late = new Promise((resolve) => {
+    timer = setTimeout(() => resolve('late'), timeout);
+  });
+  const got = await Promise.race([page.evaluate(() => window.__ksmcmc.idle().then(() => 'idle')), late]);
+  clearTimeout(timer);
+  if (got !== 'idle') assert.fail(`the page was not idle after ${timeout} ms: it waits for ${JSON.stringify(await page.evaluate(() => window.__ksmcmc.waits()))}`);
+}
 
 /** Pixels of a canvas by kind: wall blue, cloud magenta, unit-node gray, and not white. */
 function pixels(page, selector) {

@@ -228,6 +228,11 @@ const ops = {
   },
   pause() {
     state.running = false;
+    // A picture waiting for the next slice would wait for ever: it is drawn now (its reply
+    // follows this one's).
+    const waiting = state.frame;
+    state.frame = null;
+    if (waiting) frame(waiting.id, waiting.view).catch(fail);
     return stats();
   },
   step({ n }) {

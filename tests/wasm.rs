@@ -506,7 +506,7 @@ fn mapper_draws_on_canvases() {
     assert!(magenta(&shown) > 50, "the cloud is drawn");
     let plain = wasm::render_mapper_rgba(&mut m, opts(r#"{"show": "best", "scale": 3}"#)).unwrap();
     assert_eq!(magenta(&plain.rgba().0), 0, "no cloud unless asked for");
-    // PNG export: the same picture.
+    // PNG export: the picture, with the best world as exported (the room layer types its units).
     let png = m.to_png(opts(r#"{"show": "best"}"#)).unwrap();
     assert!(png.starts_with(b"\x89PNG"));
     // Defaults: current world, scale 1.

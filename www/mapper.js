@@ -16,6 +16,12 @@ import { RemoteChain } from './lib/remote-chain.js';
 const AUTO_STEP = 500;
 /** The most pixels per cell the page draws (more only costs time per frame). */
 const MAX_SCALE = 3;
+/** While the chain runs, the rooms are read at most this often (the worker computes them). */
+const ROOMS_EVERY_MS = 2000;
+/** The weak prior's chain catches up with the main one in steps of at most this many iterations. */
+const WEAK_STEP_MAX = 20000;
+/** The room types, in the order the page lists them. */
+const ROOM_TYPES = ['room', 'corridor', 'hall', 'other', 'unknown'];
 
 const $ = (id) => document.getElementById(id);
 const ui = {
@@ -30,11 +36,14 @@ const ui = {
   showReference: $('show-reference'), cloud: $('cloud'), labels: $('labels'),
   worldFile: $('world-file'), truth: $('truth'), referenceClear: $('reference-clear'),
   stage: $('stage'), canvas: $('map'), graph: $('graph'), mapName: $('map-name'),
+  compare: $('compare'), mainCaption: $('main-caption'), mainTitle: $('main-title'), mainSide: $('main-side'),
+  weakFigure: $('weak-figure'), weakCanvas: $('weak-map'), weakSide: $('weak-side'),
+  rooms: $('rooms').tBodies[0], roomsSummary: $('rooms-summary'),
   plotLp: $('plot-lp'), plotAcc: $('plot-acc'), plotLpValue: $('plot-lp-value'), plotAccValue: $('plot-acc-value'),
   stats: $('stats'),
   stat: {
     iteration: $('stat-iteration'), rate: $('stat-rate'), lp: $('stat-lp'), best: $('stat-best'), acc: $('stat-acc'),
-    units: $('stat-units'), doors: $('stat-doors'), k: $('stat-k'), rotation: $('stat-rotation'), setup: $('stat-setup'),
+    units: $('stat-units'), doors: $('stat-doors'), rooms: $('stat-rooms'), k: $('stat-k'), rotation: $('stat-rotation'), setup: $('stat-setup'),
     settled: $('stat-settled'),
   },
   exports: {
@@ -49,6 +58,14 @@ const state = {
   ready: false,
   /** The map being explained (a wasm Map on this thread: for painting and its size). */
   map: null,
+  /** How the worker makes the map (what `load` was given): the weak prior's chain loads it too. */
+  source: null,
+  /** The best world's rooms, read from the worker (a RoomsFeed, made in main()). */
+  rooms: null,
+  /** The weak prior's chain beside this one (Compare with the weak prior), or null. */
+  weak: null,
+  /** What the chain was started with (chainArgs()). */
+  args: null,
   name: 'map',
   label: '',
   sample: null,
@@ -98,7 +115,11 @@ const state = {
  */
 function chainSettings() {
   const text = ui.config.value.trim();
-  if (ui.knowledge.checked) return text;
+  return ui.knowledge.checked ? text : withoutKnowledge(text);
+}
+
+/** Settings text with knowledge supervision turned off (text that is not a JSON object: as it is). */
+function withoutKnowledge(text) {
   let settings = {};
   if (text) {
     try {
@@ -116,7 +137,135 @@ function chainSettings() {
 function chainArgs() {
   const seed = parseSeed(ui.seed.value);
   state.ipf = parseIterationsPerFrame(ui.ipf.value);
-  return { config: chainSettings() || undefined, seed, reference: state.referenceJson };
+  return { config: chainSettings() || undefined, seed, reference: state.referenceJson, knowledge: ui.knowledge.checked };
+}
+
+// ---------------------------------------------------------------- rooms
+
+/**
+ * The best world's rooms of one chain, read from its worker (`roomsJson`, computed there):
+ * never more than one request on its way; one asked for meanwhile follows when it is back.
+ */
+class RoomsFeed {
+  /**
+   * @param {() => RemoteChain} chain  the chain's worker
+   * @param {(rooms: object[] | null) => void} show  called with the rooms (null: none read yet)
+   */
+  constructor(chain, show) {
+    this.chain = chain;
+    this.show = show;
+    this.generation = -1;
+    this.rooms = null;
+    /** The rooms' JSON text as last read. */
+    this.text = null;
+    this.inFlight = false;
+    this.again = false;
+    this.at = 0;
+    this.readAt = -1;
+  }
+
+  /** A new chain: forget the old one's rooms and read the new one's. */
+  restart(generation, iteration) {
+    this.generation = generation;
+    this.rooms = null;
+    this.text = null;
+    this.readAt = iteration;
+    this.show(null);
+    this.request();
+  }
+
+  /**
+   * Keeps the rooms up to date with the chain whose numbers are `stats`: every ROOMS_EVERY_MS
+   * while it runs, and once more when it has stopped (paused, settled or stepped).
+   */
+  follow(stats, running, now) {
+    if (!stats || stats.generation !== this.generation) return;
+    if (running) {
+      if (!this.inFlight && now - this.at >= ROOMS_EVERY_MS) {
+        this.readAt = stats.iteration;
+        this.request();
+      }
+    } else if (this.readAt !== stats.iteration) {
+      this.readAt = stats.iteration;
+      this.request();
+    }
+  }
+
+  /** Whether the rooms shown are those of the chain at `stats`, with nothing on its way. */
+  current(stats) {
+    return !this.inFlight && !this.again && stats?.generation === this.generation && this.readAt === stats.iteration;
+  }
+
+  request() {
+    if (this.inFlight) {
+      this.again = true;
+      return;
+    }
+    this.inFlight = true;
+    this.again = false;
+    this.at = performance.now();
+    const generation = this.generation;
+    this.chain()
+      .call('invoke', { name: 'roomsJson' })
+      .then(
+        (text) => {
+          if (generation !== this.generation) {
+            this.again = true;
+            return;
+          }
+          // The same rooms as last time (the best world has not changed): nothing to redo.
+          if (text === this.text && this.rooms) return;
+          this.text = text;
+          this.rooms = JSON.parse(text);
+          this.show(this.rooms);
+        },
+        (err) => showError(err),
+      )
+      .finally(() => {
+        this.inFlight = false;
+        if (this.again) this.request();
+      });
+  }
+
+}
+
+/** "3 rooms, 1 corridor" for a rooms list. */
+function roomsByType(rooms) {
+  const counts = new Map();
+  for (const r of rooms) counts.set(r.type, (counts.get(r.type) ?? 0) + 1);
+  const order = (t) => (ROOM_TYPES.indexOf(t) + ROOM_TYPES.length + 1) % (ROOM_TYPES.length + 1);
+  return [...counts].sort(([a], [b]) => order(a) - order(b) || a.localeCompare(b)).map(([t, n]) => `${n} ${t}`).join(', ');
+}
+
+function cell(tr, text) {
+  const td = document.createElement('td');
+  td.textContent = text;
+  tr.append(td);
+}
+
+/** The rooms table and the rooms count of the main chain. */
+function showRooms(rooms) {
+  ui.stat.rooms.textContent = rooms ? String(rooms.length) : '–';
+  ui.stats.dataset.rooms = rooms ? String(rooms.length) : '';
+  ui.rooms.replaceChildren(
+    ...(rooms ?? []).map((r) => {
+      const tr = document.createElement('tr');
+      tr.dataset.room = String(r.id);
+      tr.dataset.type = r.type;
+      cell(tr, String(r.id));
+      cell(tr, r.type);
+      cell(tr, formatNumber(r.area_m2, 1));
+      cell(tr, r.units.join(', '));
+      cell(tr, r.opens_to.length ? r.opens_to.join(', ') : '–');
+      return tr;
+    }),
+  );
+  ui.roomsSummary.textContent = !rooms
+    ? 'Reading the best world\'s rooms…'
+    : rooms.length === 0
+      ? 'The best world has no rooms yet.'
+      : `The best world's ${rooms.length} room${rooms.length === 1 ? '' : 's'}: ${roomsByType(rooms)} (units merged where no wall parts them, as in world.json).`;
+  updateSides();
 }
 
 /**
@@ -128,10 +277,18 @@ function takeStats(stats) {
   if (!state.stats || stats.seq > state.stats.seq) state.stats = stats;
 }
 
-/** Takes on a new chain's numbers (the worker has replaced the chain) and starts the statistics afresh. */
-function adopt({ stats, referenceDropped }) {
+/**
+ * Takes on a new chain's numbers (the worker has replaced the chain) and starts the statistics
+ * afresh; `args` (and `source`, for a new map) are what the chain was started with: the weak
+ * prior's chain, if shown, starts over with them.
+ */
+function adopt({ stats, referenceDropped }, args, source) {
   stopped();
   takeStats(stats);
+  if (source) state.source = source;
+  state.args = args;
+  state.rooms.restart(stats.generation, stats.iteration);
+  startWeak();
   if (referenceDropped) {
     state.referenceJson = null;
     say('The reference world does not fit this map and was dropped.');
@@ -154,8 +311,10 @@ function adopt({ stats, referenceDropped }) {
  */
 async function setMap(map, source, { name, label, sample = null, uploaded = false }) {
   let reply;
+  let args;
   try {
-    reply = await state.chain.call('load', { source, ...chainArgs() });
+    args = chainArgs();
+    reply = await state.chain.call('load', { source, ...args });
   } catch (err) {
     map.free();
     throw err;
@@ -173,7 +332,7 @@ async function setMap(map, source, { name, label, sample = null, uploaded = fals
   // An opened map is explained until it settles; a sample or a painted map runs on.
   ui.stopSettled.checked = uploaded;
   ui.truth.disabled = !(sample && state.samples.find((s) => s.name === sample)?.truth);
-  adopt(reply);
+  adopt(reply, args, source);
   clearError();
   say(`${label}: ${map.width} × ${map.height} cells. Press Start (or Space).`);
 }
@@ -306,6 +465,142 @@ function frame() {
     state.drawMs = 0.8 * state.drawMs + 0.2 * (performance.now() - t0);
   }
   if (state.running || state.redrawPending) requestPicture();
+  const now = performance.now();
+  state.rooms.follow(state.stats, state.running, now);
+  const weak = state.weak;
+  if (weak) {
+    if (weak.picture) {
+      drawBitmap(ui.weakCanvas, weak.picture);
+      weak.picture = null;
+      updateSides();
+    }
+    const caughtUp = weak.stats && state.stats && weak.stats.iteration === state.stats.iteration;
+    weak.rooms.follow(weak.stats, !caughtUp || state.running, now);
+    advanceWeak();
+  }
+}
+
+// ---------------------------------------------------------------- the weak prior beside it
+
+/** Turns the comparison with the weak prior on or off (a second chain in its own worker). */
+function setCompare(on) {
+  ui.compare.checked = on;
+  if (on && !state.weak) {
+    const weak = {
+      chain: new RemoteChain((message) => showError(new Error(`The weak prior's chain: ${message}`)), () => {}),
+      stats: null,
+      picture: null,
+      inFlight: false,
+      redrawPending: false,
+      /** Counts the weak chain's restarts: replies about an older one are dropped. */
+      token: 0,
+    };
+    weak.rooms = new RoomsFeed(() => weak.chain, () => updateSides());
+    state.weak = weak;
+    startWeak();
+  } else if (!on && state.weak) {
+    state.weak.chain.worker.terminate();
+    state.weak.picture?.close();
+    state.weak = null;
+  }
+  ui.weakFigure.hidden = !on;
+  ui.mainCaption.hidden = !on;
+  // The two pictures take the width of the page; the scene graph and the plots go below.
+  ui.stage.closest('.mapper-grid').classList.toggle('comparing', on);
+  fit();
+  updateSides();
+}
+
+/**
+ * Starts the weak prior's chain over on the main chain's map with its seed and settings, but
+ * knowledge supervision off; it then follows the main chain's iterations.
+ */
+async function startWeak() {
+  const weak = state.weak;
+  if (!weak || !state.source || !state.args) return;
+  const token = ++weak.token;
+  weak.stats = null;
+  weak.picture?.close();
+  weak.picture = null;
+  const { seed, config } = state.args;
+  try {
+    const { stats } = await weak.chain.call('load', { source: state.source, config: withoutKnowledge(config ?? '') || undefined, seed });
+    if (state.weak !== weak || token !== weak.token) return;
+    weak.stats = stats;
+    weak.rooms.restart(stats.generation, stats.iteration);
+    weak.redrawPending = true;
+    schedule();
+  } catch (err) {
+    if (state.weak === weak && token === weak.token) showError(new Error(`The weak prior's chain did not start: ${err.message}`));
+  }
+}
+
+/** What the weak prior's worker draws: the main view (a reference world it does not have: its best). */
+function weakView(generation) {
+  return {
+    generation,
+    show: state.show === 'reference' ? 'best' : state.show,
+    cloud: state.cloud,
+    labels: state.labels,
+    scale: state.scale,
+    graphWidth: 80,
+    graphHeight: 60,
+    graphShow: 'best',
+    traceFrom: Infinity,
+  };
+}
+
+/**
+ * Steps the weak prior's chain towards the main chain's iteration (at most WEAK_STEP_MAX at a
+ * time) and asks for its picture; one request at a time, in its own worker, so the page waits
+ * for nothing.
+ */
+function advanceWeak() {
+  const weak = state.weak;
+  if (!weak || !weak.stats || weak.inFlight || !state.stats) return;
+  const behind = state.stats.iteration - weak.stats.iteration;
+  if (behind <= 0 && !weak.redrawPending) return;
+  weak.inFlight = true;
+  weak.redrawPending = false;
+  const token = weak.token;
+  const steps = behind > 0 ? weak.chain.call('step', { n: Math.min(WEAK_STEP_MAX, behind) }) : null;
+  const picture = weak.chain.call('frame', weakView(weak.stats.generation));
+  Promise.all([steps, picture]).then(
+    ([, result]) => {
+      weak.inFlight = false;
+      result?.graph.close();
+      if (state.weak !== weak || token !== weak.token || !result) {
+        result?.picture.close();
+      } else {
+        weak.picture?.close();
+        weak.picture = result.picture;
+        weak.stats = result.stats;
+      }
+      schedule();
+    },
+    (err) => {
+      weak.inFlight = false;
+      if (state.weak === weak && token === weak.token) showError(new Error(`The weak prior's chain: ${err.message}`));
+    },
+  );
+}
+
+/** A side's summary: K(W,M), units, rooms and rooms by type. */
+function sideText(stats, rooms) {
+  if (!stats) return 'starting…';
+  const parts = [`K(W,M) ${formatNumber(stats.bestPredictionRate, 4)}`, `${stats.bestUnits} units`];
+  parts.push(rooms ? `${rooms.length} rooms${rooms.length ? ` (${roomsByType(rooms)})` : ''}` : 'rooms …');
+  return `iteration ${formatNumber(stats.iteration)} · ${parts.join(' · ')}`;
+}
+
+/** The captions of the two pictures when the weak prior is shown beside the main chain. */
+function updateSides() {
+  const weak = state.weak;
+  if (!weak) return;
+  ui.mainTitle.textContent = state.args?.knowledge === false ? 'This chain (knowledge supervision off)' : 'Knowledge';
+  ui.mainSide.textContent = sideText(state.stats, state.rooms.rooms);
+  ui.weakSide.textContent = sideText(weak.stats, weak.rooms.rooms);
+  ui.weakCanvas.setAttribute('aria-label', `The weak prior's chain: ${ui.weakSide.textContent}`);
 }
 
 function step() {
@@ -324,7 +619,8 @@ function reset() {
   if (!state.map) return;
   attempt(async () => {
     const wasRunning = state.running;
-    adopt(await state.chain.call('start', chainArgs()));
+    const args = chainArgs();
+    adopt(await state.chain.call('start', args), args);
     clearError();
     say(`Started over with seed ${ui.seed.value.trim()}.`);
     if (wasRunning) play();
@@ -336,6 +632,7 @@ function reset() {
 /** Draws at the next animation frame (once, however often it is asked). */
 function requestRedraw() {
   state.redrawPending = true;
+  if (state.weak) state.weak.redrawPending = true;
   schedule();
 }
 
@@ -371,6 +668,7 @@ function draw({ stats, trace, picture, graph }) {
   }
   updateTrace();
   updateStats();
+  updateSides();
 }
 
 function updateTrace() {
@@ -427,15 +725,21 @@ function fit() {
   const m = state.map;
   if (!m) return;
   const box = ui.stage.getBoundingClientRect();
-  const availW = Math.max(64, box.width - 16);
+  // Side by side when comparing, unless the stage is narrow (a phone): then stacked.
+  const sideBySide = state.weak && box.width >= 640;
+  const availW = Math.max(64, sideBySide ? Math.floor((box.width - 40) / 2) : box.width - 16);
   const availH = Math.max(200, Math.min(window.innerHeight * 0.7, 1200));
   const s = Math.min(availW / m.width, availH / m.height);
-  ui.canvas.style.width = `${Math.max(1, Math.round(m.width * s))}px`;
-  ui.canvas.style.height = `${Math.max(1, Math.round(m.height * s))}px`;
+  for (const c of [ui.canvas, ui.weakCanvas]) {
+    c.style.width = `${Math.max(1, Math.round(m.width * s))}px`;
+    c.style.height = `${Math.max(1, Math.round(m.height * s))}px`;
+  }
   const dpr = globalThis.devicePixelRatio || 1;
   state.scale = Math.min(MAX_SCALE, Math.max(1, Math.ceil(s * dpr - 0.01)));
   // Shrinking with nearest-neighbour drops thin lines: smooth it; enlarging stays crisp.
   ui.canvas.classList.toggle('smooth', state.scale >= s * dpr);
+  ui.weakCanvas.classList.toggle('smooth', state.scale >= s * dpr);
+  if (state.weak) state.weak.redrawPending = true;
   requestRedraw();
 }
 
@@ -593,16 +897,19 @@ async function onPointerUp() {
   try {
     const codes = state.codes.slice();
     const painted = OccMap.fromCells(width, height, codes);
+    const source = { kind: 'cells', width, height, codes };
     let reply;
+    let args;
     try {
-      reply = await state.chain.call('load', { source: { kind: 'cells', width, height, codes }, ...chainArgs() });
+      args = chainArgs();
+      reply = await state.chain.call('load', { source, ...args });
     } catch (err) {
       painted.free();
       throw err;
     }
     state.map.free();
     state.map = painted;
-    adopt(reply);
+    adopt(reply, args, source);
     clearError();
     say('Painted. Press Start to explain the painted map.');
   } catch (err) {
@@ -723,6 +1030,7 @@ function wire() {
     ui.file.value = '';
   });
   ui.paint.addEventListener('change', () => setPainting(ui.paint.checked));
+  ui.compare.addEventListener('change', () => setCompare(ui.compare.checked));
   ui.stopSettled.addEventListener('change', () => {
     if (state.stats) state.chain.call('stopWhenSettled', { on: ui.stopSettled.checked }).catch(showError);
   });
@@ -788,16 +1096,44 @@ function expose() {
   window.__ksmcmc = {
     /** The chain's exports and report, as promises (the chain is in a worker). */
     mapper: Object.fromEntries(['bestWorldJson', 'worldJson', 'labelsPgm', 'graphJson', 'reportJson', 'toPng'].map((name) => [name, (...args) => invoke(name, ...args)])),
+    /** The weak prior's chain beside it (when compared): its exports and numbers. */
+    weak: {
+      invoke: (name, ...args) => state.weak.chain.call('invoke', { name, args }),
+      snapshot: () => (state.weak ? { ...state.weak.stats, rooms: state.weak.rooms.rooms } : null),
+    },
+    /** The rooms the page shows (as read from the worker). */
+    get rooms() {
+      return state.rooms.rooms;
+    },
     /** The map on the page (a wasm Map). */
     get map() {
       return state.map;
+    },
+    /** What the page waits for (for tests that time out waiting for idle()). */
+    waits() {
+      const w = state.weak;
+      const r = (f) => ({ inFlight: f.inFlight, again: f.again, generation: f.generation, readAt: f.readAt });
+      return {
+        running: state.running,
+        dataRunning: document.documentElement.dataset.running,
+        inFlight: state.inFlight,
+        redrawPending: state.redrawPending,
+        picture: Boolean(state.picture),
+        busy: state.chain.busy,
+        generation: state.stats?.generation,
+        iteration: state.stats?.iteration,
+        rooms: r(state.rooms),
+        weak: w && { iteration: w.stats?.iteration, generation: w.stats?.generation, inFlight: w.inFlight, redrawPending: w.redrawPending, picture: Boolean(w.picture), busy: w.chain.busy, rooms: r(w.rooms) },
+      };
     },
     /** Resolves once the page has drawn the chain's latest state and waits for nothing. */
     idle() {
       return new Promise((resolve) => {
         const check = () => {
           const paused = !state.running && document.documentElement.dataset.running === 'false';
-          if (paused && !state.inFlight && !state.redrawPending && !state.picture && state.chain.busy === 0) resolve();
+          const w = state.weak;
+          const weakIdle = !w || (w.stats && w.stats.iteration === state.stats?.iteration && !w.inFlight && !w.redrawPending && !w.picture && w.chain.busy === 0 && w.rooms.current(w.stats));
+          if (paused && !state.inFlight && !state.redrawPending && !state.picture && state.chain.busy === 0 && state.rooms.current(state.stats) && weakIdle) resolve();
           else requestAnimationFrame(check);
         };
         requestAnimationFrame(check);
@@ -844,6 +1180,7 @@ async function main() {
   expose();
   if (!(await loadWasm(init))) return;
   state.chain = new RemoteChain(chainFailed, chainSettled);
+  state.rooms = new RoomsFeed(() => state.chain, showRooms);
   ui.version.textContent = version();
   setBrush(ui.brush.value);
   for (const el of [ui.file, ui.blankCreate, ui.worldFile]) el.disabled = false;
@@ -851,6 +1188,7 @@ async function main() {
   const params = new URLSearchParams(location.search);
   if (params.has('seed')) ui.seed.value = params.get('seed');
   if (params.has('ipf')) ui.ipf.value = params.get('ipf');
+  ui.compare.checked = false;
   try {
     const r = await fetch('samples/index.json');
     if (!r.ok) throw new Error(`${r.status} ${r.statusText}`);

@@ -4,7 +4,7 @@
 // file is wiring. The chain and the inference run in a Web Worker (lib/chain-worker.js), as on
 // the live mapper page, so that neither blocks a frame of the page.
 
-import init, { builtinIndoorRules, checkRules } from './pkg/ksmcmc.js';
+import init, { builtinIndoorRules, checkRules, handSetIndoorRules } from './pkg/ksmcmc.js';
 import { messages } from './lib/messages.js';
 import { RemoteChain } from './lib/remote-chain.js';
 import { rulesEditor } from './lib/rules-editor.js';
@@ -20,7 +20,66 @@ const ui = { kb: $('kb'), error: $('kb-error'), map: $('map'), evidence: $('evid
 const state = {
   editor: null, source: null, resolution: 0.05, chain: null, generation: -1, stats: null, busy: false,
   goodKb: '', kbUsed: '', error: null, runs: 0, lastInfer: 0, inferred: null, worldUnits: 0, inferError: null,
+  /** The reference world to learn from (world.json text) and its name; learnings done. */
+  reference: null, referenceName: '', learning: false, learned: 0,
 };
+
+const TYPES = new Set(['room', 'corridor', 'hall', 'other']);
+
+/**
+ * Puts `text` into the editor as an edit of the user's (so Ctrl+Z in the editor brings the old
+ * text back), and checks it.
+ */
+function replaceRules(text) {
+  const back = document.activeElement;
+  ui.kb.focus();
+  ui.kb.select();
+  // insertText keeps the browser's undo history; where it is missing, the text is set.
+  if (!document.execCommand?.('insertText', false, text) || ui.kb.value !== text) ui.kb.value = text;
+  state.editor.check();
+  ui.kb.setSelectionRange(0, 0);
+  ui.kb.scrollTop = 0;
+  if (back instanceof HTMLElement && back !== document.body) back.focus();
+}
+
+/** Takes `text` as the reference world to learn from, if it parses and has typed units. */
+function setReference(text, name) {
+  let world;
+  try {
+    world = JSON.parse(text);
+  } catch (e) {
+    throw new Error(`${name} is not JSON: ${e.message}`);
+  }
+  const units = Array.isArray(world?.units) ? world.units : null;
+  if (!units) throw new Error(`${name} is not a world.json: it has no units.`);
+  const typed = units.filter((u) => TYPES.has(u.type)).length;
+  if (typed === 0) throw new Error(`${name} has no typed units (room, corridor, hall or other) to learn from.`);
+  state.reference = text;
+  state.referenceName = name;
+  $('learn').disabled = false;
+  $('reference').textContent = `Reference world: ${name}, ${units.length} units, ${typed} of them typed.`;
+}
+
+/** Learns the editor's rules' weights from the reference world (in the worker) into the editor. */
+async function learn() {
+  if (!state.reference || state.learning) return;
+  const rules = ui.kb.value;
+  state.learning = true;
+  $('learn').disabled = true;
+  $('reference').textContent = `Learning from ${state.referenceName}…`;
+  try {
+    const learned = await state.chain.call('learn', { kb: rules, world: state.reference, resolution: state.resolution });
+    replaceRules(learned);
+    state.learned++;
+    $('reference').textContent = `Learned the weights from ${state.referenceName}: they are in the editor (Ctrl+Z there undoes). Re-run the chain to use them.`;
+  } catch (e) {
+    $('reference').textContent = `Learning from ${state.referenceName} failed.`;
+    showError(e);
+  } finally {
+    state.learning = false;
+    $('learn').disabled = !state.reference;
+  }
+}
 
 /** A good text becomes the knowledge base; a bad one is reported and the last good one stays. */
 function checked(text, err) {
@@ -143,9 +202,27 @@ async function main() {
     ui.kb.value = builtinIndoorRules();
     state.editor = rulesEditor(ui.kb, { check: checkRules, status: ui.error, okText: 'Knowledge base OK', gutterId: 'gutter', onCheck: checked });
     $('rerun').addEventListener('click', () => run());
-    $('builtin').addEventListener('click', () => {
-      ui.kb.value = builtinIndoorRules();
-      state.editor.check();
+    $('builtin').addEventListener('click', () => replaceRules(builtinIndoorRules()));
+    $('handset').addEventListener('click', () => replaceRules(handSetIndoorRules()));
+    $('learn').addEventListener('click', () => learn());
+    $('truth').addEventListener('click', async () => {
+      try {
+        const r = await fetch(`samples/${SAMPLE}/truth.json`);
+        if (!r.ok) throw new Error(`samples/${SAMPLE}/truth.json: ${r.status}`);
+        setReference(await r.text(), `${SAMPLE}/truth.json`);
+      } catch (e) {
+        showError(e);
+      }
+    });
+    $('world-file').addEventListener('change', async (e) => {
+      const file = e.target.files[0];
+      e.target.value = '';
+      if (!file) return;
+      try {
+        setReference(await file.text(), file.name);
+      } catch (err) {
+        showError(err);
+      }
     });
     run();
     window.__rules = {
@@ -162,6 +239,9 @@ async function main() {
         badGutterLine: Number(document.querySelector('#gutter .bad')?.textContent ?? 0),
         underlined: document.querySelector('.rules-marks .err')?.textContent ?? null,
         errorText: ui.error.textContent,
+        reference: state.referenceName,
+        learning: state.learning,
+        learned: state.learned,
       }),
     };
     document.documentElement.dataset.state = 'ready';

@@ -123,6 +123,15 @@ impl Mapper {
         }
     }
 
+    /// The world an export shows: the best world as `bestWorldJson` gives it (with the room
+    /// layer's unit types, as `ksmcmc floorplan` draws `overlay.png`), the others as drawn live.
+    fn exported_world_for(&mut self, show: Show) -> Option<World> {
+        match show {
+            Show::Best => Some(self.best_rooms().0.clone()),
+            _ => self.world_for(show),
+        }
+    }
+
     fn restart(&mut self, chain: Chain) {
         self.chain = chain;
         self.settled = Settled::for_map(self.map.count(Cell::Free));
@@ -137,10 +146,8 @@ impl Mapper {
         self.picture_of(options, false)
     }
 
-    /// [`Mapper::picture`]; with `rooms`, the best world is drawn with its room layer (a label
-    /// per room, as `overlay.png`), which costs a pass over the map once per improvement and
-    /// so is for exports, not for every frame.
-    fn picture_of(&mut self, options: &DrawOptions, rooms: bool) -> Result<Pixmap, JsError> {
+    /// The picture of `options`; `exported`: with the exported best world (`toPng`).
+    fn picture_of(&mut self, options: &DrawOptions, exported: bool) -> Result<Pixmap, JsError> {
         let (w, h) = (self.map.width(), self.map.height());
         let scale = options.scale;
         render::check_size(w, h, scale)?;
@@ -151,10 +158,7 @@ impl Mapper {
             self.base = Some((scale, base));
         }
         let mut pixmap = self.base.as_ref().expect("just drawn").1.clone();
-        let world = match options.show {
-            Show::Best if rooms => Some(self.best_rooms().0.clone()),
-            show => self.world_for(show),
-        };
+        let world = if exported { self.exported_world_for(options.show) } else { self.world_for(options.show) };
         if let Some(world) = world {
             render::draw_world(&mut pixmap, w, h, &world, scale, options.labels);
         }
@@ -545,9 +549,9 @@ impl Mapper {
         self.reference.is_some()
     }
 
-    /// The picture `drawMapper` shows, as PNG bytes, but with the best world's room layer
-    /// (one label per room). With the default options but `show: 'best'` it is the
-    /// `overlay.png` of `ksmcmc floorplan`.
+    /// The picture `drawMapper` shows, as PNG bytes, but the best world as `bestWorldJson`
+    /// gives it (its units typed by the room layer too). With the default options but
+    /// `show: 'best'` it is the `overlay.png` of `ksmcmc floorplan`.
     #[wasm_bindgen(js_name = toPng)]
     pub fn to_png(
         &mut self,

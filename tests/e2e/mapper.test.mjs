@@ -46,7 +46,15 @@ async function until(page, predicate, arg, timeout = 20_000) {
  * Waits until the page has drawn the chain's latest state (the chain runs in a worker, and
  * the page draws the pictures it sends, at most one per animation frame).
  */
-const settled = (page) => page.evaluate(() => window.__ksmcmc.idle());
+async function settled(page, timeout = 60_000) {
+  let timer;
+  const late = new Promise((resolve) => {
+    timer = setTimeout(() => resolve('late'), timeout);
+  });
+  const got = await Promise.race([page.evaluate(() => window.__ksmcmc.idle().then(() => 'idle')), late]);
+  clearTimeout(timer);
+  if (got !== 'idle') assert.fail(`the page was not idle after ${timeout} ms: it waits for ${JSON.stringify(await page.evaluate(() => window.__ksmcmc.waits()))}`);
+}
 
 /** Pixels of a canvas by kind: wall blue, cloud magenta, unit-node gray, and not white. */
 function pixels(page, selector) {
@@ -586,6 +594,148 @@ describe('mount() embed', () => {
     // destroy() removes the widget.
     await page.evaluate(() => window.__widget.destroy());
     assert.equal(await page.locator('#demo .ksmcmc-mapper').count(), 0);
+    await done(page);
+  });
+});
+
+describe('Live mapper: rooms and the weak prior beside the knowledge', () => {
+  /** The rooms table as the page shows it. */
+  const shownRooms = (page) =>
+    page.$$eval('#rooms tbody tr', (rows) => rows.map((r) => [...r.cells].map((c) => c.textContent)));
+
+  test('the Rooms panel lists the rooms of the exported world.json', async () => {
+    const out = join(tmp, 'rooms-3');
+    cli('floorplan', join(SAMPLE, 'map.yaml'), '--iterations', '2000', '--seed', '3', '--out', out);
+    const native = JSON.parse(readFileSync(join(out, 'world.json'), 'utf8')).rooms;
+    assert.ok(native.length >= 2, `the native world has rooms: ${native.length}`);
+    const page = await openMapper();
+    assert.equal(await page.textContent('#rooms-heading'), 'Rooms');
+    await page.fill('#seed', '3');
+    await page.fill('#ipf', '2000');
+    await page.click('#reset');
+    await until(page, (s, v) => s.seed === v, '3');
+    await page.click('#step');
+    await until(page, (s, v) => s.iteration === v, 2000);
+    await settled(page);
+    const rooms = JSON.parse(await page.evaluate(() => window.__ksmcmc.mapper.bestWorldJson())).rooms;
+    assert.deepEqual(rooms, native, 'the page exports the native rooms');
+    const rows = await shownRooms(page);
+    assert.equal(rows.length, rooms.length, 'one row per room');
+    rows.forEach((row, i) => {
+      const r = rooms[i];
+      assert.deepEqual(row.slice(0, 2), [String(r.id), r.type], `row ${i}: id and type`);
+      assert.equal(Number(row[2].replace(/,/g, '')), Number(r.area_m2.toFixed(1)), `row ${i}: area ${row[2]} for ${r.area_m2}`);
+      assert.match(row[2], /^[\d,]+\.\d$/, 'one decimal');
+      assert.equal(row[3], r.units.join(', '), `row ${i}: units`);
+      assert.equal(row[4], r.opens_to.length ? r.opens_to.join(', ') : '–', `row ${i}: opens to`);
+    });
+    assert.equal(await page.textContent('#stat-rooms'), String(rooms.length), 'the stats line counts the rooms');
+    assert.match(await page.textContent('#rooms-summary'), new RegExp(`best world's ${rooms.length} rooms?: `));
+    // The table scrolls by keyboard: its region takes the focus.
+    await page.focus('.table-scroll');
+    assert.equal(await page.evaluate(() => document.activeElement.getAttribute('aria-labelledby')), 'rooms-heading');
+
+    // Running on and pausing: the panel follows the best world.
+    await key(page, 'Space');
+    await until(page, (s, v) => s.iteration > v, 8000);
+    await key(page, 'Space');
+    await page.waitForFunction(() => document.documentElement.dataset.running === 'false');
+    await settled(page);
+    const later = JSON.parse(await page.evaluate(() => window.__ksmcmc.mapper.bestWorldJson())).rooms;
+    const laterRows = await shownRooms(page);
+    assert.deepEqual(laterRows.map((r) => [Number(r[0]), r[1]]), later.map((r) => [r.id, r.type]), 'after a pause: the best world\'s rooms');
+    await done(page);
+  });
+
+  test('compare with the weak prior: two chains, same iterations, the weak one is `--knowledge none`', async () => {
+    const out = join(tmp, 'weak-3');
+    cli('floorplan', join(SAMPLE, 'map.yaml'), '--knowledge', 'none', '--iterations', '2000', '--seed', '3', '--out', out);
+    const page = await openMapper();
+    assert.equal(await page.isChecked('#compare'), false, 'off by default');
+    assert.equal(await page.isVisible('#weak-map'), false);
+    await page.fill('#seed', '3');
+    await page.fill('#ipf', '2000');
+    await page.click('#reset');
+    await until(page, (s, v) => s.seed === v, '3');
+    await page.check('#compare');
+    await page.waitForFunction(() => window.__ksmcmc.weak.snapshot()?.seed === '3');
+    assert.equal(await page.isVisible('#weak-map'), true, 'a second canvas');
+    assert.match(await page.textContent('#weak-figure figcaption'), /^Weak prior/);
+    assert.match(await page.textContent('#main-caption'), /^Knowledge/);
+    await page.click('#step');
+    await until(page, (s, v) => s.iteration === v, 2000);
+    await settled(page);
+    const weak = await page.evaluate(() => window.__ksmcmc.weak.snapshot());
+    assert.equal(weak.iteration, 2000, 'the weak prior steps alongside');
+    const weakWorld = await page.evaluate(() => window.__ksmcmc.weak.invoke('bestWorldJson'));
+    assert.equal(weakWorld, readFileSync(join(out, 'world.json'), 'utf8'), 'the weak side is `ksmcmc floorplan --knowledge none`');
+    const main = await snap(page);
+    const weakRooms = JSON.parse(weakWorld).rooms;
+    assert.deepEqual(weak.rooms, weakRooms, 'the weak side read its rooms');
+    for (const [sel, s, rooms] of [['#main-side', main, await page.evaluate(() => window.__ksmcmc.rooms)], ['#weak-side', weak, weakRooms]]) {
+      const text = await page.textContent(sel);
+      assert.match(text, new RegExp(`^iteration 2,000 · K\\(W,M\\) [\\d.]+ · ${s.bestUnits} units · ${rooms.length} rooms`), `${sel}: ${text}`);
+    }
+    const w = await pixels(page, '#weak-map');
+    assert.equal(w.width, 400 * main.scale, 'drawn at the same scale');
+    assert.ok(w.blue > 1000, `the weak prior's world is drawn: ${w.blue} blue pixels`);
+    const [a, b] = await Promise.all(['#map', '#weak-map'].map((sel) => page.locator(sel).boundingBox()));
+    assert.ok(Math.abs(a.width - b.width) < 1 && Math.abs(a.y - b.y) < 1 && b.x >= a.x + a.width, 'side by side at 1280 px');
+
+    // Running: both advance, the page keeps drawing, and they end at the same iteration.
+    await page.fill('#ipf', 'auto');
+    await page.evaluate(() => {
+      window.__long = [];
+      new PerformanceObserver((list) => {
+        for (const e of list.getEntries()) window.__long.push(Math.round(e.duration));
+      }).observe({ type: 'longtask' });
+      window.__frames = 0;
+      const tick = () => {
+        window.__frames++;
+        if (window.__counting) requestAnimationFrame(tick);
+      };
+      window.__counting = true;
+      requestAnimationFrame(tick);
+    });
+    await key(page, 'Space');
+    await page.waitForTimeout(2000);
+    await key(page, 'Space');
+    const { frames, long } = await page.evaluate(() => {
+      window.__counting = false;
+      return { frames: window.__frames, long: window.__long };
+    });
+    await page.waitForFunction(() => document.documentElement.dataset.running === 'false');
+    await settled(page);
+    assert.deepEqual(long, [], 'no task of over 50 ms on the page while both chains ran');
+    const [m2, w2] = [await snap(page), await page.evaluate(() => window.__ksmcmc.weak.snapshot())];
+    assert.ok(m2.iteration > 2000, `the chain ran: ${m2.iteration}`);
+    assert.equal(w2.iteration, m2.iteration, 'the weak prior caught up');
+    console.log(`compare: ${frames} frames in 2 s while two chains ran (${m2.iteration} iterations)`);
+    assert.ok(frames >= 20, `the page kept drawing frames: ${frames} in two seconds`);
+
+    // Reset with another seed restarts both.
+    await page.fill('#seed', '4');
+    await page.click('#reset');
+    await page.waitForFunction(() => window.__ksmcmc.weak.snapshot()?.seed === '4');
+    assert.equal((await page.evaluate(() => window.__ksmcmc.weak.snapshot())).iteration, 0);
+    assert.equal((await snap(page)).iteration, 0);
+    // Off: one canvas again.
+    await page.uncheck('#compare');
+    assert.equal(await page.isVisible('#weak-map'), false);
+    assert.equal(await page.evaluate(() => window.__ksmcmc.weak.snapshot()), null);
+    await done(page);
+  });
+
+  test('compare at a phone width: the pictures are stacked and fit', async () => {
+    const page = await openPage(env, 'mapper.html', { width: 390, height: 844 });
+    await page.waitForFunction(() => window.__ksmcmc.snapshot().width > 0);
+    await page.check('#compare');
+    await page.waitForFunction(() => window.__ksmcmc.weak.snapshot()?.iteration === 0);
+    await settled(page);
+    const [a, b] = await Promise.all(['#map', '#weak-map'].map((sel) => page.locator(sel).boundingBox()));
+    assert.ok(b.y >= a.y + a.height, 'stacked');
+    assert.ok(a.x + a.width <= 390 && b.x + b.width <= 390, 'within the screen');
+    assert.ok(await page.evaluate(() => document.documentElement.scrollWidth) <= 390, 'no sideways scrolling');
     await done(page);
   });
 });

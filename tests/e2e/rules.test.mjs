@@ -46,22 +46,21 @@ test('marginals table, syntax errors at line and column, re-run with edited rule
 
   // A syntax error on a known line and column.
   const lines = builtin.split('\n');
-  // The built-in rules carry learned weights: find the rule, whatever its weight.
+  // The built-in rules are the learned ones: the weight is a number, with a `// was` comment.
   const i = lines.findIndex((l) => /^\S+ HaLi\(p\) => Hall\(p\)/.test(l));
   assert.ok(i >= 0, 'the built-in rules have HaLi(p) => Hall(p)');
-  lines[i] = lines[i].replace('HaLi(p) => Hall(p)', 'HaLi(p) => => Hall(p)');
-  // 1-based column of the second connective.
-  const column = lines[i].indexOf('=> =>') + 4;
+  lines[i] = lines[i].replace('=> Hall(p)', '=> => Hall(p)');
+  const col = lines[i].indexOf('=> Hall(p)') + 1;
   await page.fill('#kb', lines.join('\n'));
   await settled(page);
   s = await snap(page);
   assert.ok(s.error, 'the error is reported');
   assert.equal(s.error.line, i + 1);
-  assert.equal(s.error.column, column);
+  assert.equal(s.error.column, col);
   assert.equal(s.badGutterLine, i + 1, 'the gutter marks the line');
-  assert.match(s.errorText, new RegExp(`^line ${i + 1}, column ${column}: `));
+  assert.match(s.errorText, new RegExp(`^line ${i + 1}, column ${col}: `));
   assert.equal(s.underlined, '=>', 'the offending connective is underlined');
-  // The underline sits on the text it names: on line i + 1, column - 1 characters in.
+  // The underline sits on the text it names: on line i + 1, col - 1 characters in.
   const geo = await page.evaluate(() => {
     const ta = document.getElementById('kb');
     const mark = document.querySelector('.rules-marks .err');
@@ -77,7 +76,7 @@ test('marginals table, syntax errors at line and column, re-run with edited rule
     };
   });
   assert.ok(Math.abs(geo.top / geo.line - i) < 0.3, `underline at line ${geo.top / geo.line + 1}, expected ${i + 1}`);
-  assert.ok(Math.abs(geo.left / geo.char - (column - 1)) < 0.3, `underline at column ${geo.left / geo.char + 1}, expected ${column}`);
+  assert.ok(Math.abs(geo.left / geo.char - (col - 1)) < 0.3, `underline at column ${geo.left / geo.char + 1}, expected ${col}`);
   assert.equal(geo.decoration, 'wavy');
   assert.equal(s.goodKb, builtin, 'the last good rules stay');
   // Re-running with an error uses the last good rules.
@@ -100,6 +99,52 @@ test('marginals table, syntax errors at line and column, re-run with edited rule
   for (const [u, t] of Object.entries(s.inferred.types)) assert.ok(t.hall > 0.99, `${u}: ${JSON.stringify(t)}`);
   const kinds = await page.$$eval('#marginals tbody tr td:last-child', (tds) => tds.map((td) => td.textContent));
   assert.ok(kinds.length > 0 && kinds.every((k) => k === 'Hall'), `kinds ${kinds}`);
+  assert.deepEqual(page.problems, []);
+  await page.context().close();
+});
+
+test('learn the weights from the reference world, undo, hand-set weights, and the inference runs', async () => {
+  const page = await openPage(env, 'rules.html');
+  const builtin = await page.inputValue('#kb');
+  assert.equal(await page.isDisabled('#learn'), true, 'nothing to learn from yet');
+  await page.click('#truth');
+  await page.waitForFunction(() => !document.getElementById('learn').disabled);
+  assert.match(await page.textContent('#reference'), /office-small\/truth\.json, \d+ units, \d+ of them typed/);
+  await page.click('#learn');
+  await until(page, 's.learned === 1 && !s.learning');
+  const learned = await page.inputValue('#kb');
+  assert.match(learned, /\/\/ was /, 'the learned weights say what they were');
+  assert.match(learned, /Weights learned in the rules editor/, 'learned here, not the built-in text');
+  assert.notEqual(learned, builtin);
+  let s = await snap(page);
+  assert.equal(s.error, null, 'the learned rules parse');
+  assert.equal(s.goodKb, learned);
+  assert.match(await page.textContent('#reference'), /^Learned the weights from office-small\/truth\.json/);
+  // Ctrl+Z in the editor brings the rules from before back.
+  await page.focus('#kb');
+  await page.keyboard.press('Control+z');
+  await page.waitForFunction((b) => document.getElementById('kb').value === b, builtin);
+  // The hand-set weights of Tab. 3.5.
+  await page.click('#handset');
+  const handset = await page.evaluate(async () => (await import('./pkg/ksmcmc.js')).handSetIndoorRules());
+  assert.equal(await page.inputValue('#kb'), handset);
+  assert.notEqual(handset, builtin);
+  // Learn again (from the hand-set rules) and run the chain and the inference with them.
+  await page.click('#learn');
+  await until(page, 's.learned === 2 && !s.learning');
+  const relearned = await page.inputValue('#kb');
+  assert.match(relearned, /\/\/ was /);
+  assert.match(relearned, /Weights learned in the rules editor/);
+  await settled(page);
+  assert.equal((await snap(page)).error, null);
+  await page.click('#rerun');
+  s = await snap(page);
+  assert.equal(s.runs, 2);
+  assert.equal(s.kbUsed, relearned);
+  await until(page, 's.inferred && s.worldUnits >= 2 && s.rows === s.worldUnits && s.inferError === null');
+  s = await snap(page);
+  assert.ok(s.inferred.evidence.some((f) => f.predicate === 'RoLi'), 'the inference ran with the learned rules');
+  assert.equal(await page.isVisible('#message'), false, 'no error shown');
   assert.deepEqual(page.problems, []);
   await page.context().close();
 });

@@ -8,7 +8,7 @@
 // and of the scene graph as ImageBitmaps (transferred, not copied), the statistics and the new
 // trace points. Same map, seed and settings, same chain as on the main thread or natively.
 
-import init, { Map as OccMap, Mapper, inferWorld, renderMapperRgba, renderSceneGraphRgba } from '../pkg/ksmcmc.js';
+import init, { Map as OccMap, Mapper, inferWorld, learnRules, renderMapperRgba, renderSceneGraphRgba } from '../pkg/ksmcmc.js';
 
 /** Milliseconds of iterations between looking at the page's requests. */
 const SLICE_MS = 8;
@@ -17,8 +17,11 @@ const SLICE_MS = 8;
  * costs milliseconds, and the page would ask for one every frame.
  */
 const DRAW_SHARE = 0.3;
-/** The mapper's methods the page may call through `invoke` (exports and the report). */
-const INVOKABLE = new Set(['bestWorldJson', 'worldJson', 'labelsPgm', 'graphJson', 'reportJson', 'toPng']);
+/**
+ * The mapper's methods the page may call through `invoke` (exports, the report and the best
+ * world's rooms).
+ */
+const INVOKABLE = new Set(['bestWorldJson', 'worldJson', 'labelsPgm', 'graphJson', 'reportJson', 'toPng', 'roomsJson']);
 
 const ready = init();
 const state = {
@@ -225,6 +228,11 @@ const ops = {
   },
   pause() {
     state.running = false;
+    // A picture waiting for the next slice would wait for ever: it is drawn now (its reply
+    // follows this one's).
+    const waiting = state.frame;
+    state.frame = null;
+    if (waiting) frame(waiting.id, waiting.view).catch(fail);
     return stats();
   },
   step({ n }) {
@@ -243,6 +251,13 @@ const ops = {
     } catch (err) {
       return { generation: state.generation, world, inferred: null, error: err instanceof Error ? err.message : String(err) };
     }
+  },
+  /**
+   * The rules `kb` with weights learned from a labelled world (the rules page): `learnRules`'s
+   * text. Needs no chain.
+   */
+  learn({ kb, world, resolution, method }) {
+    return learnRules(kb, world, resolution, method);
   },
   invoke({ name, args = [] }) {
     if (!INVOKABLE.has(name)) throw new Error(`${name} is not a method the page may call`);
@@ -270,7 +285,7 @@ onmessage = async (e) => {
       }
       return;
     }
-    if (op !== 'load' && !state.mapper) throw new Error('no chain yet');
+    if (op !== 'load' && op !== 'learn' && !state.mapper) throw new Error('no chain yet');
     const result = ops[op](args ?? {});
     const transfer = result instanceof Uint8Array ? [result.buffer] : [];
     postMessage({ id, result }, transfer);

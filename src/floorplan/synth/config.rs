@@ -152,6 +152,13 @@ pub(super) struct Cells {
 impl SynthConfig {
     /// Parses a JSON config (missing fields take their defaults) and validates it.
     pub fn from_json(text: &str) -> Result<SynthConfig, SynthError> {
+        let max = crate::floorplan::chain::MAX_CONFIG_JSON_BYTES;
+        if text.len() > max {
+            return Err(SynthError(format!(
+                "synth config: the text is {} bytes, over the limit of {max} bytes (MAX_CONFIG_JSON_BYTES)",
+                text.len()
+            )));
+        }
         let c: SynthConfig = serde_json::from_str(text).map_err(|e| SynthError(format!("synth config: {e}")))?;
         c.validate()?;
         Ok(c)

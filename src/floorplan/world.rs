@@ -61,7 +61,7 @@
 //! | `rooms`, and the ids each room lists | [`MAX_ROOMS`] (100 000) |
 //! | `unexplained` areas | [`MAX_UNEXPLAINED`] (100 000) |
 //! | `runs` of one unexplained area | [`MAX_RUNS`] (2^20) |
-//! | cells of `frame.world_size` | [`MAX_WORLD_CELLS`] (2^26), and no larger than the map turned into the world frame needs |
+//! | cells of `frame.world_size` | [`MAX_WORLD_CELLS`] (2^26), and each side at most [`WORLD_FRAME_SLACK`] (4) times what the map turned into the world frame needs |
 //!
 //! The largest maps ([`DEFAULT_MAX_CELLS`](crate::grid::DEFAULT_MAX_CELLS), 2^25 cells) are
 //! explained with a few thousand units at most; the caps leave a wide margin while keeping a
@@ -91,6 +91,9 @@ pub const MAX_RUNS: usize = 1 << 20;
 /// ([`DEFAULT_MAX_CELLS`](crate::grid::DEFAULT_MAX_CELLS)), what a square map turned by 45
 /// degrees needs.
 pub const MAX_WORLD_CELLS: u64 = 1 << 26;
+/// How many times wider and higher than the map turned into the world frame needs (plus a
+/// cell of rounding a side) `frame.world_size` may be.
+pub const WORLD_FRAME_SLACK: f64 = 4.0;
 
 /// The semantic type of a unit (the query predicates of Tab. 3.3).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize, Default)]
@@ -508,14 +511,14 @@ impl World {
                  (MAX_WORLD_CELLS)"
             )));
         }
-        // The world frame holds the map turned by `angle`: its bounding box, and a cell of
-        // rounding on each side.
+        // The world frame holds the map turned by `angle` (its bounding box); a larger frame
+        // is allowed, but not more than WORLD_FRAME_SLACK times as wide or high.
         let [mw, mh] = f.map_size.map(f64::from);
         let (s, c) = (libm::fabs(libm::sin(f.angle)), libm::fabs(libm::cos(f.angle)));
-        let need = [libm::ceil(mw * c + mh * s) + 2.0, libm::ceil(mw * s + mh * c) + 2.0];
+        let need = [libm::ceil(mw * c + mh * s), libm::ceil(mw * s + mh * c)].map(|v| WORLD_FRAME_SLACK * (v + 2.0));
         if ww as f64 > need[0] || wh as f64 > need[1] {
             return Err(WorldError(format!(
-                "world.json: frame.world_size {ww}x{wh} is larger than the {}x{} map (frame.map_size) \
+                "world.json: frame.world_size {ww}x{wh} is far larger than the {}x{} map (frame.map_size) \
                  turned by frame.angle {} needs (at most {}x{}); the frame is damaged",
                 f.map_size[0], f.map_size[1], f.angle, need[0], need[1]
             )));

@@ -297,8 +297,8 @@ mod caps {
             while let Some(item) = seq.next_element()? {
                 if out.len() == self.max {
                     return Err(A::Error::custom(format!(
-                        "more than {max} {what}: a world may have at most {max} {what} (the {what} cap of \
-                         ksmcmc::floorplan::world); this file is damaged or not a ksmcmc world",
+                        "too many {what}: over the cap of {max} (ksmcmc::floorplan::world, Limits); the file is \
+                         damaged or not a ksmcmc world. Refused",
                         max = self.max,
                         what = self.what
                     )));

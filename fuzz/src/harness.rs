@@ -82,9 +82,10 @@ pub fn mln(data: &[u8]) {
 /// An evidence database (`.db`) against the built-in indoor knowledge base, then grounded.
 pub fn db(data: &[u8]) {
     let Some(t) = text(data) else { return };
-    let mln = Mln::parse(knowledge::BUILTIN_INDOOR).expect("the built-in knowledge base parses");
-    if let Ok(db) = Database::parse(t, &mln) {
-        let _ = Network::ground(&mln, &db, &GroundConfig { query: vec!["Room".into()], ..small_ground() });
+    static MLN: std::sync::OnceLock<Mln> = std::sync::OnceLock::new();
+    let mln = MLN.get_or_init(|| Mln::parse(knowledge::BUILTIN_INDOOR).expect("the built-in knowledge base parses"));
+    if let Ok(db) = Database::parse(t, mln) {
+        let _ = Network::ground(mln, &db, &GroundConfig { query: vec!["Room".into()], ..small_ground() });
     }
 }
 

@@ -2,7 +2,9 @@
 #
 #   make demo    build the WebAssembly package and serve the demo on http://127.0.0.1:8080
 #   make test    every check CI runs: fmt, clippy, native tests, wasm tests in headless
-#                Chromium, and the browser end-to-end tests
+#                Chromium, the browser end-to-end tests, and 20 s of each fuzz target when a
+#                nightly toolchain is installed
+#   make fuzz    each fuzz target for FUZZ_SECONDS (default 600) in turn, one process
 #
 # Both install what is missing first (wasm32 target, the wasm-bindgen CLI at the version
 # Cargo.toml pins, Debian's chromium and chromium-driver, the e2e test's npm packages), so they
@@ -37,7 +39,8 @@ WASM_OPT_FLAGS := -O3 --enable-bulk-memory --enable-nontrapping-float-to-int --e
 	--enable-mutable-globals --enable-reference-types --enable-multivalue
 
 .PHONY: help demo serve pkg www-pkg www-samples test lint fmt fmt-check clippy test-native test-wasm \
-	test-e2e cli release-cli bench-wasm tools rust-tools wasm-tools wasm-opt-tool browser-tools e2e-deps clean-pkg
+	test-e2e cli release-cli bench-wasm tools rust-tools wasm-tools wasm-opt-tool browser-tools e2e-deps clean-pkg \
+	fuzz fuzz-ci fuzz-tools
 
 help:
 	@echo "make demo      build pkg/ and serve www/ on http://$(HOST):$(PORT)"
@@ -47,6 +50,7 @@ help:
 	@echo "make lint      cargo fmt --check and clippy (native and wasm32)"
 	@echo "make test-native | test-wasm | test-e2e    one part of make test"
 	@echo "make tools     install what the build and tests need"
+	@echo "make fuzz      run each fuzz target FUZZ_SECONDS (default 600) s, one at a time (needs nightly)"
 
 # ---------------------------------------------------------------- tools
 
@@ -148,7 +152,7 @@ clippy: rust-tools wasm-tools
 
 test: tools
 	@start=$$(date +%s); \
-	$(MAKE) --no-print-directory lint test-native test-wasm test-e2e; \
+	$(MAKE) --no-print-directory lint test-native test-wasm test-e2e fuzz-ci; \
 	echo "make test: all checks passed in $$(( $$(date +%s) - start )) s"
 
 test-native:
@@ -171,3 +175,47 @@ test-e2e: www-pkg cli browser-tools e2e-deps
 # `./target/release/ksmcmc bench` (make release-cli), run while the machine is otherwise idle.
 bench-wasm: www-pkg browser-tools e2e-deps
 	CHROMIUM=$(CHROMIUM) node scripts/bench-wasm.mjs $(BENCH_ARGS)
+
+# ---------------------------------------------------------------- fuzzing
+
+# cargo-fuzz (libFuzzer) targets in fuzz/, one per reader; see the FUZZING section of README.md.
+# One fuzzer process at a time (no -jobs): the machines are shared. New corpus entries go to
+# fuzz/corpus/TARGET (not committed), crashes to fuzz/artifacts/TARGET; the committed seeds
+# are fuzz/seeds/TARGET, and fixed crashes are kept in fuzz/regressions/TARGET, which
+# `cargo test` replays on stable (tests/it/hostile.rs).
+FUZZ_TARGETS := pgm png ros_yaml mln db world_json world_arbitrary scene_json chain_config synth_config
+FUZZ_SECONDS ?= 600
+FUZZ_CI_SECONDS ?= 20
+CARGO_FUZZ_VERSION := 0.13.2
+FUZZ_FLAGS = -rss_limit_mb=2048 -timeout=10 -print_final_stats=1
+HAVE_NIGHTLY = $(shell rustup toolchain list 2>/dev/null | grep -q '^nightly' && echo yes)
+
+fuzz-tools:
+	@test "$(HAVE_NIGHTLY)" = yes || { echo "make fuzz needs a nightly toolchain: rustup toolchain install nightly" >&2; exit 1; }
+	@if [ "$$(cargo-fuzz --version 2>/dev/null)" != "cargo-fuzz $(CARGO_FUZZ_VERSION)" ]; then \
+	  echo "installing cargo-fuzz $(CARGO_FUZZ_VERSION) (a few minutes, once)"; \
+	  $(CARGO) install cargo-fuzz --version $(CARGO_FUZZ_VERSION) --locked; \
+	fi
+
+# Runs every target for $(1) seconds; fails on the first crash, leak or timeout.
+define run-fuzz
+	cd fuzz && $(CARGO) +nightly fuzz build -O
+	@cd fuzz && for t in $(FUZZ_TARGETS); do \
+	  mkdir -p corpus/$$t; \
+	  echo "fuzz $$t: $(1) s"; \
+	  $(CARGO) +nightly fuzz run -O $$t corpus/$$t seeds/$$t -- -max_total_time=$(1) $(FUZZ_FLAGS) \
+	    2>&1 | grep -E '^#[0-9]+[[:space:]]+DONE|^stat::(number_of_executed_units|peak_rss_mb)|ERROR|panicked|SUMMARY|Test unit written' \
+	    || { echo "fuzz $$t failed: the crashing input is in fuzz/artifacts/$$t" >&2; exit 1; }; \
+	done
+endef
+
+fuzz: fuzz-tools
+	$(call run-fuzz,$(FUZZ_SECONDS))
+
+# The short run make test includes: skipped, with a message, without nightly.
+fuzz-ci:
+	@if [ "$(HAVE_NIGHTLY)" != yes ]; then \
+	  echo "fuzz: skipped (no nightly toolchain; rustup toolchain install nightly to run the fuzz targets)"; \
+	else \
+	  $(MAKE) --no-print-directory fuzz FUZZ_SECONDS=$(FUZZ_CI_SECONDS); \
+	fi

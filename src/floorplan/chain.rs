@@ -105,6 +105,9 @@ impl Default for OutputConfig {
     }
 }
 
+/// Longest chain or synth configuration text read, bytes (1 MiB).
+pub const MAX_CONFIG_JSON_BYTES: usize = 1 << 20;
+
 impl ChainConfig {
     /// Checks every number, naming the field at fault.
     pub fn validate(&self) -> Result<(), ChainError> {
@@ -160,6 +163,13 @@ impl ChainConfig {
     /// assert!(e.to_string().contains("unknown field `posterior.temprature`; the fields here are"));
     /// ```
     pub fn from_json(text: &str) -> Result<ChainConfig, ChainError> {
+        if text.len() > MAX_CONFIG_JSON_BYTES {
+            return Err(ChainError::Json(format!(
+                "the configuration is {} bytes, over the limit of {MAX_CONFIG_JSON_BYTES} bytes \
+                 (MAX_CONFIG_JSON_BYTES); a chain configuration is a few dozen fields",
+                text.len()
+            )));
+        }
         if text.trim().is_empty() {
             return Ok(ChainConfig::default());
         }

@@ -118,7 +118,10 @@ pub fn same_length_log_factor(d: f64, sigma: f64, p_same: f64) -> f64 {
 /// One ground evidence atom: predicate, arguments, truth value.
 pub type Fact = (&'static str, Vec<String>, bool);
 
-/// The evidence a world gives (Tab. 3.3), with the world's units named by [`constant`].
+/// The evidence a world gives (Tab. 3.3), with the world's units named by [`constant`]:
+/// the five unit predicates of every unit, true or false, and the true `Adj` atoms only (the
+/// others are false by the closed world), so that it grows linearly with the units and their
+/// adjacencies, not with their pairs.
 pub fn evidence(world: &World, resolution: f64, classifier: &GeometryClassifier) -> Vec<Fact> {
     let t = world.wall_thickness;
     let mut facts = Vec::new();
@@ -132,10 +135,13 @@ pub fn evidence(world: &World, resolution: f64, classifier: &GeometryClassifier)
         let doors = world.doors.iter().filter(|d| d.units.contains(&u.id)).count();
         facts.push(("MulDoor", vec![c], doors >= 2));
     }
+    // Only the true Adj atoms: Adj is closed world (Knowledge::infer), so the false ones add
+    // nothing, and listing them made the evidence quadratic in units (two strings per ordered
+    // pair, which a large world turned into gigabytes in wasm).
     for a in &world.units {
         for b in &world.units {
-            if a.id != b.id {
-                facts.push(("Adj", vec![constant(a.id), constant(b.id)], adjacent(a, b, t)));
+            if a.id != b.id && adjacent(a, b, t) {
+                facts.push(("Adj", vec![constant(a.id), constant(b.id)], true));
             }
         }
     }
@@ -293,12 +299,66 @@ mod tests {
         let facts = evidence(&w, 0.05, &GeometryClassifier::default());
         let has = |p: &str, a: &[&str], v: bool| facts.iter().any(|f| f.0 == p && f.1 == a && f.2 == v);
         assert!(has("Adj", &["U1", "U2"], true) && has("Adj", &["U2", "U1"], true));
-        assert!(has("Adj", &["U1", "U3"], false));
+        // Adj is closed world: only its true atoms are listed.
+        assert!(!facts.iter().any(|f| f.0 == "Adj" && (f.1 == ["U1", "U3"] || !f.2)));
         assert!(has("RoLi", &["U1"], true) && has("MulDoor", &["U1"], false));
         assert_eq!(defects(&w), Some(0.5));
         assert_eq!(defect_pairs(&w), (1, 2));
         w.units[2].kind = UnitType::Corridor;
         assert_eq!(defects(&w), Some(0.0));
+    }
+
+    /// Marginals of every query atom, inferred from `facts` as [`Knowledge::infer`] grounds them.
+    fn marginals_of(world: &World, facts: &[Fact]) -> Vec<(String, f64)> {
+        use crate::mln::{Database, Evidence, GroundConfig, InferenceConfig, Mln, Network};
+        let mln = Mln::parse(BUILTIN_INDOOR).unwrap();
+        let mut db = Database::new();
+        for (pred, args, value) in facts {
+            let args: Vec<&str> = args.iter().map(String::as_str).collect();
+            db.insert(&mln, pred, &args, if *value { Evidence::True } else { Evidence::False }).unwrap();
+        }
+        let queries = ["Room", "Corr", "Hall", "Other", "SaLe"];
+        let mut ground = GroundConfig::query(&queries);
+        ground.closed_world = ["RoLi", "CoLi", "HaLi", "MulDoor", "Adj", "Small"].map(String::from).to_vec();
+        let ty = mln.argument_types(mln.predicate("Room").unwrap())[0].to_string();
+        ground.domains.push((ty, world.units.iter().map(|u| constant(u.id)).collect()));
+        let net = Network::ground(&mln, &db, &ground).unwrap();
+        let m = net.infer_marginals(&InferenceConfig::default()).unwrap();
+        let mut out = Vec::new();
+        for a in &world.units {
+            for q in &queries[..4] {
+                out.push((format!("{q}(U{})", a.id), m.get(q, &[constant(a.id).as_str()]).unwrap()));
+            }
+            for b in world.units.iter().filter(|b| b.id != a.id) {
+                let p = m.get("SaLe", &[constant(a.id).as_str(), constant(b.id).as_str()]).unwrap();
+                out.push((format!("SaLe(U{},U{})", a.id, b.id), p));
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn evidence_without_false_adj_atoms_infers_the_same_marginals() {
+        let mut w = World::empty(300, 200);
+        w.units = vec![
+            unit(1, 0, 0, 60, 80, UnitType::Unknown),
+            unit(2, 59, 0, 60, 80, UnitType::Unknown),
+            unit(3, 118, 0, 160, 40, UnitType::Unknown),
+            unit(4, 0, 79, 278, 21, UnitType::Unknown),
+            unit(5, 200, 150, 30, 30, UnitType::Unknown),
+        ];
+        w.doors.push(crate::floorplan::Door { id: 1, units: [1, 4], x0: 10, y0: 79, x1: 14, y1: 79 });
+        w.doors.push(crate::floorplan::Door { id: 2, units: [2, 4], x0: 70, y0: 79, x1: 74, y1: 79 });
+        let facts = evidence(&w, 0.05, &GeometryClassifier::default());
+        // The evidence as it was before: every ordered pair's Adj atom, true or false.
+        let mut all_pairs = facts.clone();
+        for a in &w.units {
+            for b in w.units.iter().filter(|b| b.id != a.id && !adjacent(a, b, 1)) {
+                all_pairs.push(("Adj", vec![constant(a.id), constant(b.id)], false));
+            }
+        }
+        assert!(all_pairs.len() > facts.len() + 10, "the world has non-adjacent pairs");
+        assert_eq!(marginals_of(&w, &facts), marginals_of(&w, &all_pairs));
     }
 
     #[test]

@@ -6,42 +6,34 @@ use crate::grid::{Cell, Grid};
 /// The class a world predicts for every cell of the map (eq. 3.8), in the map's frame: wall
 /// rings (`world.wall_thickness` deep) occupied, unit interiors and doors free, everything
 /// else unknown.
+///
+/// Only the part of the world frame the map covers is rasterised (one byte a cell), so the
+/// memory this takes is bounded by the map, not by the world's `frame.world_size`, which a
+/// hostile `world.json` chooses; a window whose size overflows predicts nothing (all unknown).
 pub fn predicted_map(map_width: usize, map_height: usize, world: &World) -> Grid<Cell> {
-    let [ww, wh] = world.frame.world_size;
-    let (ww, wh) = (ww as usize, wh as usize);
-    // Predicted classes in the world frame, from counters as in Explanation.
-    let mut cover = vec![0u8; ww * wh];
-    let mut wall = vec![0u8; ww * wh];
+    let mut out = Grid::new(map_width, map_height, Cell::Unknown);
+    let Some(win) = map_window(map_width, map_height, world) else { return out };
+    const COVER: u8 = 1;
+    const WALL: u8 = 2;
+    let mut flags = vec![0u8; win.w * win.h];
+    let index = |x: i32, y: i32| (y - win.y) as usize * win.w + (x - win.x) as usize;
+    let (right, bottom) = (win.x + win.w as i32, win.y + win.h as i32);
     for u in &world.units {
         let r = u.rect();
-        for y in r.y.max(0)..r.bottom().min(wh as i32) {
-            for x in r.x.max(0)..r.right().min(ww as i32) {
-                let i = y as usize * ww + x as usize;
-                cover[i] = cover[i].saturating_add(1);
-                if r.in_ring(x, y, world.wall_thickness) {
-                    wall[i] = wall[i].saturating_add(1);
-                }
+        for y in r.y.max(win.y)..r.bottom().min(bottom) {
+            for x in r.x.max(win.x)..r.right().min(right) {
+                let wall = if r.in_ring(x, y, world.wall_thickness) { WALL } else { 0 };
+                flags[index(x, y)] |= COVER | wall;
             }
         }
     }
     for d in &world.doors {
         for (x, y) in d.cells() {
-            if x >= 0 && y >= 0 && (x as usize) < ww && (y as usize) < wh {
-                wall[y as usize * ww + x as usize] = 0;
-                cover[y as usize * ww + x as usize] = cover[y as usize * ww + x as usize].max(1);
+            if x >= win.x && y >= win.y && x < right && y < bottom {
+                flags[index(x, y)] = COVER;
             }
         }
     }
-    let class = |i: usize| {
-        if wall[i] > 0 {
-            Cell::Occupied
-        } else if cover[i] > 0 {
-            Cell::Free
-        } else {
-            Cell::Unknown
-        }
-    };
-    let mut out = Grid::new(map_width, map_height, Cell::Unknown);
     for my in 0..map_height {
         for mx in 0..map_width {
             let (wx, wy) = if world.frame.is_identity() {
@@ -49,12 +41,52 @@ pub fn predicted_map(map_width: usize, map_height: usize, world: &World) -> Grid
             } else {
                 world.frame.to_world(mx as f64 + 0.5, my as f64 + 0.5)
             };
-            if wx >= 0.0 && wy >= 0.0 && (wx as usize) < ww && (wy as usize) < wh {
-                *out.at_mut(mx, my) = class(wy as usize * ww + wx as usize);
+            let (x, y) = (libm::floor(wx), libm::floor(wy));
+            if x >= win.x as f64 && y >= win.y as f64 && x < right as f64 && y < bottom as f64 {
+                let f = flags[index(x as i32, y as i32)];
+                *out.at_mut(mx, my) = if f & WALL != 0 {
+                    Cell::Occupied
+                } else if f & COVER != 0 {
+                    Cell::Free
+                } else {
+                    Cell::Unknown
+                };
             }
         }
     }
     out
+}
+
+/// A rectangle of world cells, with its size as `usize`s.
+struct Window {
+    x: i32,
+    y: i32,
+    w: usize,
+    h: usize,
+}
+
+/// The world cells under the map's cells: the bounding box of the map turned into the world
+/// frame, clipped to the world. `None` when it is empty or its size does not fit `usize`.
+fn map_window(map_width: usize, map_height: usize, world: &World) -> Option<Window> {
+    // Units lie at i32 coordinates: no world cell past i32::MAX can be covered.
+    let [ww, wh] = world.frame.world_size.map(|v| f64::from(v).min(i32::MAX as f64));
+    let (mw, mh) = (map_width as f64, map_height as f64);
+    let (x0, y0, x1, y1) = if world.frame.is_identity() {
+        (0.0, 0.0, mw.min(ww), mh.min(wh))
+    } else {
+        let corners = [(0.0, 0.0), (mw, 0.0), (0.0, mh), (mw, mh)].map(|(x, y)| world.frame.to_world(x, y));
+        let min = |f: fn(&(f64, f64)) -> f64| corners.iter().map(f).fold(f64::INFINITY, f64::min);
+        let max = |f: fn(&(f64, f64)) -> f64| corners.iter().map(f).fold(f64::NEG_INFINITY, f64::max);
+        let (x0, x1) = (libm::floor(min(|c| c.0)).max(0.0), libm::ceil(max(|c| c.0)).min(ww));
+        let (y0, y1) = (libm::floor(min(|c| c.1)).max(0.0), libm::ceil(max(|c| c.1)).min(wh));
+        (x0, y0, x1, y1)
+    };
+    if !(x1 > x0 && y1 > y0) {
+        return None;
+    }
+    let (w, h) = ((x1 - x0) as usize, (y1 - y0) as usize);
+    w.checked_mul(h)?;
+    Some(Window { x: x0 as i32, y: y0 as i32, w, h })
 }
 
 /// The cell prediction rate `K(W, M)` of eq. 3.39 on the map's own cells.

@@ -43,12 +43,57 @@
 //!   `(x1, y1)` inclusive, and its cells as row runs `[y, x_first, x_last]`, top to bottom.
 //!   The chain lists components of at least
 //!   [`MIN_UNEXPLAINED_CELLS`](super::unexplained::MIN_UNEXPLAINED_CELLS) cells.
+//!
+//! # Limits
+//!
+//! A `world.json` may come from anyone (the pages read uploaded files), so reading one is
+//! bounded before anything is allocated for it: the text is at most [`MAX_WORLD_JSON_BYTES`],
+//! and each list is refused as soon as it grows past its cap while being parsed, with an error
+//! naming the list and the cap. [`World::validate`] checks the same caps for worlds built in
+//! code.
+//!
+//! | what | cap |
+//! |---|---|
+//! | text of `world.json` | [`MAX_WORLD_JSON_BYTES`] (64 MiB) |
+//! | `units` | [`MAX_UNITS`] (10 000) |
+//! | `doors` | [`MAX_DOORS`] (40 000) |
+//! | `object_cells` | [`MAX_OBJECT_CELLS`] (2^20) |
+//! | `rooms`, and the ids each room lists | [`MAX_ROOMS`] (100 000) |
+//! | `unexplained` areas | [`MAX_UNEXPLAINED`] (100 000) |
+//! | `runs` of one unexplained area | [`MAX_RUNS`] (2^20) |
+//! | cells of `frame.world_size` | [`MAX_WORLD_CELLS`] (2^26), and each side at most [`WORLD_FRAME_SLACK`] (4) times what the map turned into the world frame needs |
+//!
+//! The largest maps ([`DEFAULT_MAX_CELLS`](crate::grid::DEFAULT_MAX_CELLS), 2^25 cells) are
+//! explained with a few thousand units at most; the caps leave a wide margin while keeping a
+//! hostile file from asking for gigabytes (or, in wasm32, from overflowing sizes).
 
 pub use crate::geometry::{Frame, Rect};
-use serde::{Deserialize, Serialize};
+use serde::{Deserialize, Deserializer, Serialize};
 
 /// The format tag written into every `world.json`.
 pub const WORLD_FORMAT: &str = "ksmcmc-world/1";
+
+/// Longest `world.json` text read, bytes (64 MiB). The largest sample is under 300 KB.
+pub const MAX_WORLD_JSON_BYTES: usize = 64 << 20;
+/// Most units in a world.
+pub const MAX_UNITS: usize = 10_000;
+/// Most doors in a world.
+pub const MAX_DOORS: usize = 40_000;
+/// Most object cells in a world.
+pub const MAX_OBJECT_CELLS: usize = 1 << 20;
+/// Most rooms in a world's room layer, and most ids one room may list.
+pub const MAX_ROOMS: usize = 100_000;
+/// Most unexplained areas in a world.
+pub const MAX_UNEXPLAINED: usize = 100_000;
+/// Most row runs in one unexplained area.
+pub const MAX_RUNS: usize = 1 << 20;
+/// Most cells in the world frame (`frame.world_size`): twice the largest map
+/// ([`DEFAULT_MAX_CELLS`](crate::grid::DEFAULT_MAX_CELLS)), what a square map turned by 45
+/// degrees needs.
+pub const MAX_WORLD_CELLS: u64 = 1 << 26;
+/// How many times wider and higher than the map turned into the world frame needs (plus a
+/// cell of rounding a side) `frame.world_size` may be.
+pub const WORLD_FRAME_SLACK: f64 = 4.0;
 
 /// The semantic type of a unit (the query predicates of Tab. 3.3).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize, Default)]
@@ -166,18 +211,19 @@ pub struct World {
     #[serde(default = "one", skip_serializing_if = "is_one")]
     pub wall_thickness: i32,
     /// The units.
+    #[serde(deserialize_with = "caps::units")]
     pub units: Vec<Unit>,
     /// The doors.
-    #[serde(default)]
+    #[serde(default, deserialize_with = "caps::doors")]
     pub doors: Vec<Door>,
     /// Unknown map cells inside units (furniture and clutter), world frame.
-    #[serde(default)]
+    #[serde(default, deserialize_with = "caps::object_cells")]
     pub object_cells: Vec<[i32; 2]>,
     /// The room layer: units grouped into the spaces a person would draw (optional).
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    #[serde(default, skip_serializing_if = "Vec::is_empty", deserialize_with = "caps::rooms")]
     pub rooms: Vec<Room>,
     /// Free areas no unit explains (the papers' "N"), world frame.
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    #[serde(default, skip_serializing_if = "Vec::is_empty", deserialize_with = "caps::unexplained")]
     pub unexplained: Vec<UnexplainedArea>,
 }
 
@@ -193,12 +239,15 @@ pub struct Room {
     #[serde(rename = "type", default)]
     pub kind: UnitType,
     /// Ids of its units (may be empty: free space the chain left unexplained can be a room).
+    #[serde(deserialize_with = "caps::ids")]
     pub units: Vec<u32>,
     /// Free floor area, square metres.
     pub area_m2: f64,
     /// Ids of the doors on its boundary or inside it.
+    #[serde(deserialize_with = "caps::ids")]
     pub doors: Vec<u32>,
     /// Ids of the rooms it connects to, through a door or an open boundary.
+    #[serde(deserialize_with = "caps::ids")]
     pub opens_to: Vec<u32>,
 }
 
@@ -220,7 +269,81 @@ pub struct UnexplainedArea {
     /// Bounding box: last row (inclusive).
     pub y1: i32,
     /// The cells as row runs `[y, x_first, x_last]` (inclusive), top to bottom, left to right.
+    #[serde(deserialize_with = "caps::runs")]
     pub runs: Vec<[i32; 3]>,
+}
+
+/// Lists that stop growing at their cap while `world.json` is parsed (see the module's
+/// Limits), so that a hostile file is refused before it is held in memory.
+mod caps {
+    use super::*;
+    use serde::de::{Error, SeqAccess, Visitor};
+
+    struct Capped<T> {
+        max: usize,
+        what: &'static str,
+        _item: std::marker::PhantomData<T>,
+    }
+
+    impl<'de, T: Deserialize<'de>> Visitor<'de> for Capped<T> {
+        type Value = Vec<T>;
+
+        fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+            write!(f, "a list of at most {} {}", self.max, self.what)
+        }
+
+        fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Vec<T>, A::Error> {
+            let mut out = Vec::with_capacity(seq.size_hint().unwrap_or(0).min(1024));
+            while let Some(item) = seq.next_element()? {
+                if out.len() == self.max {
+                    return Err(A::Error::custom(format!(
+                        "too many {what}: over the cap of {max} (ksmcmc::floorplan::world, Limits); the file is \
+                         damaged or not a ksmcmc world. Refused",
+                        max = self.max,
+                        what = self.what
+                    )));
+                }
+                out.push(item);
+            }
+            Ok(out)
+        }
+    }
+
+    fn capped<'de, D: Deserializer<'de>, T: Deserialize<'de>>(
+        d: D,
+        max: usize,
+        what: &'static str,
+    ) -> Result<Vec<T>, D::Error> {
+        d.deserialize_seq(Capped { max, what, _item: std::marker::PhantomData })
+    }
+
+    pub fn units<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<Unit>, D::Error> {
+        capped(d, MAX_UNITS, "units")
+    }
+
+    pub fn doors<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<Door>, D::Error> {
+        capped(d, MAX_DOORS, "doors")
+    }
+
+    pub fn object_cells<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<[i32; 2]>, D::Error> {
+        capped(d, MAX_OBJECT_CELLS, "object cells")
+    }
+
+    pub fn rooms<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<Room>, D::Error> {
+        capped(d, MAX_ROOMS, "rooms")
+    }
+
+    pub fn ids<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<u32>, D::Error> {
+        capped(d, MAX_ROOMS, "ids in one room's list")
+    }
+
+    pub fn unexplained<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<UnexplainedArea>, D::Error> {
+        capped(d, MAX_UNEXPLAINED, "unexplained areas")
+    }
+
+    pub fn runs<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<[i32; 3]>, D::Error> {
+        capped(d, MAX_RUNS, "runs in one unexplained area")
+    }
 }
 
 fn one() -> i32 {
@@ -279,6 +402,13 @@ impl World {
     /// assert!(World::from_json("{").is_err());
     /// ```
     pub fn from_json(text: &str) -> Result<World, WorldError> {
+        if text.len() > MAX_WORLD_JSON_BYTES {
+            return Err(WorldError(format!(
+                "world.json: the text is {} bytes, over the limit of {MAX_WORLD_JSON_BYTES} bytes \
+                 (MAX_WORLD_JSON_BYTES); a world of this size is damaged or not a ksmcmc world",
+                text.len()
+            )));
+        }
         let w: World = serde_json::from_str(text).map_err(|e| WorldError(format!("world.json: {e}")))?;
         w.validate()?;
         Ok(w)
@@ -343,6 +473,7 @@ impl World {
         if !(1..=20).contains(&self.wall_thickness) {
             return bad(format!("world.json: wall_thickness {} is not between 1 and 20", self.wall_thickness));
         }
+        self.validate_sizes()?;
         let [ww, wh] = [f.world_size[0] as i64, f.world_size[1] as i64];
         let mut ids = std::collections::HashSet::new();
         for u in &self.units {
@@ -401,6 +532,52 @@ impl World {
             }
         }
         Ok(())
+    }
+
+    /// The caps of the module's Limits, and a world frame no larger than the map needs.
+    fn validate_sizes(&self) -> Result<(), WorldError> {
+        let counts = [
+            (self.units.len(), MAX_UNITS, "units"),
+            (self.doors.len(), MAX_DOORS, "doors"),
+            (self.object_cells.len(), MAX_OBJECT_CELLS, "object cells"),
+            (self.rooms.len(), MAX_ROOMS, "rooms"),
+            (self.unexplained.len(), MAX_UNEXPLAINED, "unexplained areas"),
+        ];
+        for (n, max, what) in counts {
+            if n > max {
+                return Err(WorldError(format!("world.json: {n} {what}, over the limit of {max} {what}")));
+            }
+        }
+        let f = &self.frame;
+        let [ww, wh] = f.world_size;
+        let cells = ww as u64 * wh as u64;
+        if cells > MAX_WORLD_CELLS {
+            return Err(WorldError(format!(
+                "world.json: frame.world_size {ww}x{wh} is {cells} cells, over the limit of {MAX_WORLD_CELLS} \
+                 (MAX_WORLD_CELLS)"
+            )));
+        }
+        // The world frame holds the map turned by `angle` (its bounding box); a larger frame
+        // is allowed, but not more than WORLD_FRAME_SLACK times as wide or high.
+        let [mw, mh] = f.map_size.map(f64::from);
+        let (s, c) = (libm::fabs(libm::sin(f.angle)), libm::fabs(libm::cos(f.angle)));
+        let need = [libm::ceil(mw * c + mh * s), libm::ceil(mw * s + mh * c)].map(|v| WORLD_FRAME_SLACK * (v + 2.0));
+        if ww as f64 > need[0] || wh as f64 > need[1] {
+            return Err(WorldError(format!(
+                "world.json: frame.world_size {ww}x{wh} is far larger than the {}x{} map (frame.map_size) \
+                 turned by frame.angle {} needs (at most {}x{}); the frame is damaged",
+                f.map_size[0], f.map_size[1], f.angle, need[0], need[1]
+            )));
+        }
+        for r in &self.rooms {
+            if r.units.len().max(r.doors.len()).max(r.opens_to.len()) > MAX_ROOMS {
+                return Err(WorldError(format!("world.json: room {} lists over {MAX_ROOMS} ids", r.id)));
+            }
+        }
+        match self.unexplained.iter().find(|a| a.runs.len() > MAX_RUNS) {
+            Some(a) => Err(WorldError(format!("world.json: unexplained area {} has over {MAX_RUNS} runs", a.id))),
+            None => Ok(()),
+        }
     }
 
     /// Room ids unique and non-zero; the units, doors and rooms each room names exist.

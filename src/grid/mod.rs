@@ -33,7 +33,7 @@ mod ros;
 pub use classify::{Cell, Classifier};
 pub use error::MapError;
 pub use raster::{Grid, Raster};
-pub use ros::{MapYaml, Mode};
+pub use ros::{MapYaml, Mode, MAX_YAML_BYTES};
 
 use error::describe_start;
 

@@ -18,6 +18,9 @@
 
 use super::error::MapError;
 
+/// Longest `map.yaml` text read, bytes (64 KiB; map_server's files are a few hundred bytes).
+pub const MAX_YAML_BYTES: usize = 64 << 10;
+
 /// How map_server turns pixel values into occupancy (`mode:` in the YAML).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
@@ -75,6 +78,16 @@ impl MapYaml {
     /// assert!(MapYaml::parse("image: m.pgm\n").unwrap_err().to_string().contains("resolution"));
     /// ```
     pub fn parse(text: &str) -> Result<Self, MapError> {
+        if text.len() > MAX_YAML_BYTES {
+            return Err(MapError::Yaml {
+                line: 0,
+                message: format!(
+                    "the file is {} bytes, over the limit of {MAX_YAML_BYTES} (MAX_YAML_BYTES); a map.yaml is a \
+                     few short `key: value` lines",
+                    text.len()
+                ),
+            });
+        }
         let mut image = None;
         let mut resolution = None;
         let mut origin = None;

@@ -106,6 +106,9 @@ impl Mln {
     /// Parses a knowledge base in the Alchemy / ProbCog text format (see the [module
     /// docs](super) for the grammar).
     pub fn parse(text: &str) -> Result<Mln, MlnError> {
+        if text.len() > super::MAX_KB_BYTES {
+            return Err(super::text_too_long("knowledge base", text.len(), super::MAX_KB_BYTES, "MAX_KB_BYTES"));
+        }
         Self::parse_text(text).map_err(|e| e.in_text(Source::KnowledgeBase))
     }
 
@@ -394,6 +397,10 @@ impl Database {
 
     /// Parses evidence, one atom per line: `Pred(A,B)`, `!Pred(A,B)` or `0.8 Pred(A)`.
     pub fn parse(text: &str, mln: &Mln) -> Result<Database, MlnError> {
+        if text.len() > super::MAX_EVIDENCE_BYTES {
+            let (len, max) = (text.len(), super::MAX_EVIDENCE_BYTES);
+            return Err(super::text_too_long("evidence", len, max, "MAX_EVIDENCE_BYTES"));
+        }
         Self::parse_text(text, mln).map_err(|e| e.in_text(Source::Evidence))
     }
 

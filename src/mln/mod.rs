@@ -144,6 +144,20 @@ mod logic;
 mod syntax;
 
 pub use error::{ErrorKind, MlnError, Position, RuleError, Source};
+
+/// Longest knowledge base text [`Mln::parse`] reads, bytes (16 MiB; the samples are a few KB).
+pub const MAX_KB_BYTES: usize = 16 << 20;
+/// Longest evidence text [`Database::parse`] reads, bytes (64 MiB: training databases of many
+/// worlds are the largest).
+pub const MAX_EVIDENCE_BYTES: usize = 64 << 20;
+
+/// The error for text over `limit` bytes.
+pub(crate) fn text_too_long(what: &str, len: usize, limit: usize, name: &str) -> MlnError {
+    MlnError::config(format!(
+        "the {what} is {len} bytes, over the limit of {limit} bytes ({name}); split it or check that \
+         this is the file you meant"
+    ))
+}
 pub use ground::{GroundConfig, Network};
 pub use infer::{InferenceConfig, MapConfig, MapMethod, MapWorld, Marginals, Method, SliceMoves, AUTO_EXACT_ATOMS};
 pub use kb::{Database, Evidence, Formula, GroundAtom, Mln, Predicate, Weight};

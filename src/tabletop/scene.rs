@@ -63,7 +63,7 @@
 //!   been seen. An object that only dips into the table is accepted; the analysis reads it as
 //!   intersecting the table (evidence of a false estimate);
 //! * ids must be unique, non-empty and not `"table"`, which names the table in the graph;
-//! * at most [`MAX_OBJECTS`] objects.
+//! * at most [`MAX_OBJECTS`] objects, in at most [`MAX_SCENE_JSON_BYTES`] of text.
 //!
 //! ```
 //! use ksmcmc::tabletop::scene::{Scene, SceneError};
@@ -98,6 +98,9 @@ pub const QUATERNION_TOLERANCE: f64 = 0.01;
 /// The largest magnitude of any number in a scene (metres, pixels): beyond it, squares and
 /// products of coordinates would lose all precision.
 pub const MAX_MAGNITUDE: f64 = 1e6;
+
+/// Longest `scene.json` text read, bytes (1 MiB; [`MAX_OBJECTS`] objects take a few tens of KB).
+pub const MAX_SCENE_JSON_BYTES: usize = 1 << 20;
 
 /// The default table thickness, metres.
 pub const DEFAULT_TABLE_THICKNESS: f64 = 0.05;
@@ -509,6 +512,17 @@ fn check_pose(pose: &mut Pose, field: &dyn Fn() -> String) -> Result<(), SceneEr
 impl Scene {
     /// Parses and validates a scene (see the module documentation).
     pub fn from_json(text: &str) -> Result<Scene, SceneError> {
+        if text.len() > MAX_SCENE_JSON_BYTES {
+            return Err(SceneError::Json {
+                message: format!(
+                    "the text is {} bytes, over the limit of {MAX_SCENE_JSON_BYTES} bytes for a scene \
+                     (at most {MAX_OBJECTS} objects)",
+                    text.len()
+                ),
+                line: 0,
+                column: 0,
+            });
+        }
         let mut scene: Scene = serde_json::from_str(text).map_err(|e| SceneError::Json {
             message: e.to_string(),
             line: e.line(),

@@ -10,6 +10,7 @@ mod cli_render;
 mod cli_synth;
 mod common;
 mod grid;
+mod hostile;
 mod knowledge;
 mod mln;
 mod mln_cli;

@@ -153,6 +153,13 @@ impl SynthConfig {
     /// Parses a JSON config (missing fields take their defaults; blank text is the defaults)
     /// and validates it: what `ksmcmc synth --config` and the wasm `synth` read.
     pub fn from_json(text: &str) -> Result<SynthConfig, SynthError> {
+        let max = crate::floorplan::chain::MAX_CONFIG_JSON_BYTES;
+        if text.len() > max {
+            return Err(SynthError(format!(
+                "synth config: the text is {} bytes, over the limit of {max} bytes (MAX_CONFIG_JSON_BYTES)",
+                text.len()
+            )));
+        }
         let c = SynthConfig::parse_json(text)?;
         c.validate()?;
         Ok(c)

@@ -8,9 +8,9 @@
 //! door a thin dashed gray one. The edges are those of
 //! [`crate::floorplan::graph::scene_graph`], so the picture and `graph.json` always agree.
 
-use super::{font, RenderError, MAX_PIXELS};
+use super::{font, unit_type_rgb, RenderError, MAX_PIXELS};
 use crate::floorplan::graph::{scene_graph, Link};
-use crate::floorplan::{UnitType, World};
+use crate::floorplan::World;
 use tiny_skia::{Color, FillRule, Paint, PathBuilder, Pixmap, Stroke, StrokeDash, Transform};
 
 /// The picture's background: white.
@@ -21,19 +21,6 @@ pub const GRAPH_DOOR_RGBA: [u8; 4] = [40, 40, 40, 255];
 pub const GRAPH_ADJACENT_RGBA: [u8; 4] = [120, 120, 120, 255];
 /// The outline of the map's extent, so that the layout has a frame of reference.
 pub const GRAPH_FRAME_RGBA: [u8; 4] = [225, 225, 225, 255];
-
-/// The colour of a unit type in the scene graph (the Okabe-Ito palette, which stays
-/// distinguishable with the common colour-vision deficiencies): room orange, corridor sky blue,
-/// hall bluish green, other reddish purple, unknown (not yet typed) gray.
-pub fn unit_type_rgb(kind: UnitType) -> [u8; 3] {
-    match kind {
-        UnitType::Room => [230, 159, 0],
-        UnitType::Corridor => [86, 180, 233],
-        UnitType::Hall => [0, 158, 115],
-        UnitType::Other => [204, 121, 167],
-        UnitType::Unknown => [175, 175, 175],
-    }
-}
 
 /// The radius of a node, in pixels, on a `width` x `height` picture.
 pub fn graph_node_radius(width: u32, height: u32) -> f32 {
@@ -175,7 +162,7 @@ fn stroke(pixmap: &mut Pixmap, path: &tiny_skia::Path, rgba: [u8; 4], width: f32
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::floorplan::{Door, Unit};
+    use crate::floorplan::{Door, Unit, UnitType};
 
     fn world() -> World {
         let mut w = World::empty(90, 30);

@@ -148,14 +148,20 @@ impl Mapper {
             )));
         }
         if self.base.as_ref().is_none_or(|(s, _)| *s != scale) {
-            let opts = RenderOptions { scale, labels: false };
+            let opts = RenderOptions { scale, labels: false, legend: false };
             let base =
                 render::try_render(self.map.classified(), None, &opts).map_err(|e| JsError::new(&e.to_string()))?;
             self.base = Some((scale, base));
         }
         let mut pixmap = self.base.as_ref().expect("just drawn").1.clone();
         if let Some(world) = self.world_for(options.show) {
-            render::draw_world(&mut pixmap, w, h, &world, scale, options.labels);
+            render::draw_world(
+                &mut pixmap,
+                w,
+                h,
+                &world,
+                &RenderOptions { scale, labels: options.labels, legend: true },
+            );
         }
         if options.cloud {
             let samples: Vec<&[Rect]> = self.chain.samples().map(|s| s.as_slice()).collect();

@@ -62,8 +62,8 @@ mod world;
 
 pub use cloud::{cloud_alpha, draw_cloud, CLOUD_RGB};
 pub use graph::{
-    draw_scene_graph, graph_node_radius, render_scene_graph, scene_graph_layout, GraphLayout, GRAPH_ADJACENT_RGBA,
-    GRAPH_BACKGROUND_RGBA, GRAPH_DOOR_RGBA, GRAPH_FRAME_RGBA,
+    draw_scene_graph, graph_node_radius, render_scene_graph, scene_graph_layout, separate_nodes, GraphLayout,
+    GRAPH_ADJACENT_RGBA, GRAPH_BACKGROUND_RGBA, GRAPH_DOOR_RGBA, GRAPH_FRAME_RGBA,
 };
 pub use labels::{label_texts, place_labels, tag_size, world_label_candidates, LabelBox, LabelCandidate};
 pub use legend::{draw_legend, legend_box, legend_entries, LEGEND_BACKGROUND_RGBA, LEGEND_TEXT_RGBA};

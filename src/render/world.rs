@@ -137,7 +137,8 @@ pub fn draw_world(
 
     let factor = label_text_scale(scale);
     let entries = if options.legend { legend_entries(world) } else { Vec::new() };
-    let legend = legend_box(pixmap, &entries, factor);
+    // One step smaller than the labels: the legend is read once, the plan is what matters.
+    let legend = legend_box(pixmap, &entries, factor.saturating_sub(1).max(1));
     let mut placed = Vec::new();
     if options.labels {
         let blocked: Vec<LabelBox> = legend.iter().map(|(b, _)| b.clone()).collect();

@@ -15,8 +15,15 @@
 //! * doors in cyan ([`DOOR_RGBA`]) and object cells (unknown cells inside units, furniture) in
 //!   semi-transparent green ([`OBJECT_RGBA`]); unexplained free areas, the papers' "N", in
 //!   semi-transparent orange ([`UNEXPLAINED_RGBA`]);
-//! * optionally each unit's type and id at its centre ("room 3"), in a small built-in bitmap
-//!   font ([`font`]) on a light box, because tiny-skia draws no text;
+//! * each unit's interior lightly tinted by its type ([`room_fill_rgb`], from the one palette
+//!   [`unit_type_rgb`] that the scene graph uses too), multiplied into the map so that occupied
+//!   cells stay black and the tint never hides the data;
+//! * optionally each room's (or, without a room layer, each unit's) type and id ("room 3"), in
+//!   a small built-in bitmap font ([`font`]) on a light box, because tiny-skia draws no text;
+//!   [`place_labels`] puts each inside its room, shortens it ("corridor 12", "corr 12", "12")
+//!   or leaves it out rather than let labels cover each other;
+//! * optionally a legend of the colours drawn, in the corner that hides least
+//!   ([`legend_entries`], [`legend_box`]), so that a saved picture explains itself;
 //! * for a running chain, the posterior cloud: the last accepted worlds as thin
 //!   semi-transparent magenta outlines ([`draw_cloud`]), as the papers overlay 1000 samples.
 //!

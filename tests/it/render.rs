@@ -612,7 +612,7 @@ fn the_legend_lists_the_colours_drawn_in_the_emptiest_corner() {
     let map = Grid::new(120, 80, Cell::Free);
     let mut world = World::empty(120, 80);
     world.units.push(Unit { id: 1, x: 2, y: 2, w: 40, h: 30, kind: UnitType::Room });
-    world.units.push(Unit { id: 2, x: 41, y: 2, w: 40, h: 30, kind: UnitType::Corridor });
+    world.units.push(Unit { id: 2, x: 41, y: 2, w: 77, h: 30, kind: UnitType::Corridor });
     world.units.push(Unit { id: 3, x: 2, y: 45, w: 38, h: 33, kind: UnitType::Hall });
     world.doors.push(Door { id: 1, units: [1, 2], x0: 41, y0: 10, x1: 41, y1: 14 });
     let entries = render::legend_entries(&world);

@@ -30,7 +30,7 @@ function kinds(page) {
     for (let i = 0; i < d.length; i += 4) {
       const [r, g, b] = [d[i], d[i + 1], d[i + 2]];
       if (r === 0 && g === 0 && b === 255) n.wall++;
-      if (r === 246 && g === 221 && b === 166) n.tint++; // room_fill_rgb(Room)
+      if (r === 247 && g === 222 && b === 166) n.tint++; // room_fill_rgb(Room)
       if (r === 150 && g === 0 && b === 0) n.text++; // LABEL_TEXT_RGBA
     }
     return n;

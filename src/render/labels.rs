@@ -232,11 +232,11 @@ mod tests {
         assert!(place_labels(&[tiny], 100, 100, 2, &[]).is_empty());
         let big = candidate(50.0, 50.0, 100.0, 100.0, UnitType::Hall, 5);
         let legend = LabelBox { text: String::new(), left: 0, top: 0, width: 100, height: 100 };
-        assert!(place_labels(&[big.clone()], 100, 100, 2, &[legend]).is_empty());
+        assert!(place_labels(std::slice::from_ref(&big), 100, 100, 2, &[legend]).is_empty());
         assert_eq!(place_labels(&[big], 100, 100, 2, &[])[0].text, "hall 5");
         // A rotated narrow rectangle does not take a wide label.
         let mut rotated = candidate(50.0, 50.0, 90.0, 20.0, UnitType::Room, 7);
-        assert_eq!(place_labels(&[rotated.clone()], 100, 100, 2, &[])[0].text, "room 7");
+        assert_eq!(place_labels(std::slice::from_ref(&rotated), 100, 100, 2, &[])[0].text, "room 7");
         rotated.angle = std::f64::consts::FRAC_PI_2;
         assert_eq!(place_labels(&[rotated], 100, 100, 2, &[])[0].text, "7");
     }

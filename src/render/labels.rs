@@ -90,15 +90,17 @@ pub fn label_texts(kind: UnitType, id: u32) -> Vec<String> {
 /// ```
 /// use ksmcmc::render::{place_labels, LabelCandidate};
 ///
-/// let room = |x: f64, texts: &[&str]| LabelCandidate {
+/// let room = |x: f64, w: f64, texts: &[&str]| LabelCandidate {
 ///     texts: texts.iter().map(|t| t.to_string()).collect(),
 ///     centre: (x, 20.0),
-///     half: (20.0, 20.0),
+///     half: (w / 2.0, 20.0),
 ///     angle: 0.0,
 ///     priority: 1,
 /// };
-/// // Two 40-pixel rooms side by side: "corridor 12" is too wide, "12" fits in each.
-/// let placed = place_labels(&[room(20.0, &["corridor 12", "corr 12", "12"]), room(60.0, &["room 3", "3"])], 80, 40, 2, &[]);
+/// // A 40-pixel corridor beside an 80-pixel room: "corridor 12" and "corr 12" are too wide
+/// // for the corridor, "12" fits; "room 3" fits the room.
+/// let corridor = room(20.0, 40.0, &["corridor 12", "corr 12", "12"]);
+/// let placed = place_labels(&[corridor, room(80.0, 80.0, &["room 3", "3"])], 120, 40, 2, &[]);
 /// assert_eq!(placed.iter().map(|b| b.text.as_str()).collect::<Vec<_>>(), ["12", "room 3"]);
 /// assert!(!placed[0].intersects(&placed[1]));
 /// ```

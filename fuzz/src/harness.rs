@@ -115,7 +115,7 @@ fn exercise_world(mut world: World) {
             .expect("sized above");
     let k = metrics::prediction_rate(&map, &world);
     assert!((0.0..=1.0).contains(&k), "K(W, M) = {k}");
-    let options = ksmcmc::render::RenderOptions { scale: 2, labels: true };
+    let options = ksmcmc::render::RenderOptions { scale: 2, labels: true, legend: true };
     let _ = ksmcmc::render::try_render(&map, Some(&world), &options);
     let _ = ksmcmc::floorplan::graph::world_json(&world);
     let _ = knowledge::evidence(&world, 0.05, &Default::default());

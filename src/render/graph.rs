@@ -5,12 +5,14 @@
 //! the world's [`crate::floorplan::Frame`]), scaled to fit the picture, so the graph drawn
 //! beside the map reads like a skeleton of it. Nodes are discs in their unit type's colour
 //! ([`unit_type_rgb`]) with the unit's id; a door is a solid dark edge, a shared wall without a
-//! door a thin dashed gray one. The edges are those of
+//! door a thin dashed gray one. Units whose centres come close (a small unit inside a large
+//! one, two narrow offices side by side) would hide each other's discs, so overlapping nodes
+//! are nudged apart, as little as needed ([`separate_nodes`]). The edges are those of
 //! [`crate::floorplan::graph::scene_graph`], so the picture and `graph.json` always agree.
 
-use super::{font, RenderError, MAX_PIXELS};
+use super::{font, unit_type_rgb, RenderError, MAX_PIXELS};
 use crate::floorplan::graph::{scene_graph, Link};
-use crate::floorplan::{UnitType, World};
+use crate::floorplan::World;
 use tiny_skia::{Color, FillRule, Paint, PathBuilder, Pixmap, Stroke, StrokeDash, Transform};
 
 /// The picture's background: white.
@@ -21,19 +23,6 @@ pub const GRAPH_DOOR_RGBA: [u8; 4] = [40, 40, 40, 255];
 pub const GRAPH_ADJACENT_RGBA: [u8; 4] = [120, 120, 120, 255];
 /// The outline of the map's extent, so that the layout has a frame of reference.
 pub const GRAPH_FRAME_RGBA: [u8; 4] = [225, 225, 225, 255];
-
-/// The colour of a unit type in the scene graph (the Okabe-Ito palette, which stays
-/// distinguishable with the common colour-vision deficiencies): room orange, corridor sky blue,
-/// hall bluish green, other reddish purple, unknown (not yet typed) gray.
-pub fn unit_type_rgb(kind: UnitType) -> [u8; 3] {
-    match kind {
-        UnitType::Room => [230, 159, 0],
-        UnitType::Corridor => [86, 180, 233],
-        UnitType::Hall => [0, 158, 115],
-        UnitType::Other => [204, 121, 167],
-        UnitType::Unknown => [175, 175, 175],
-    }
-}
 
 /// The radius of a node, in pixels, on a `width` x `height` picture.
 pub fn graph_node_radius(width: u32, height: u32) -> f32 {
@@ -87,7 +76,7 @@ pub fn scene_graph_layout(world: &World, width: u32, height: u32) -> Option<Grap
         return None;
     }
     let (ox, oy) = ((pw - k * mw) / 2.0, (ph - k * mh) / 2.0);
-    let centres = world
+    let mut centres: Vec<(f32, f32)> = world
         .units
         .iter()
         .map(|u| {
@@ -96,7 +85,48 @@ pub fn scene_graph_layout(world: &World, width: u32, height: u32) -> Option<Grap
             (ox + k * mx as f32, oy + k * my as f32)
         })
         .collect();
+    separate_nodes(&mut centres, 2.0 * radius + 2.0, (radius, radius, pw - radius, ph - radius));
     Some(GraphLayout { centres, radius, map_box: [ox, oy, k * mw, k * mh] })
+}
+
+/// Nudges points apart until no two are closer than `gap` (or a fixed number of rounds has
+/// passed), keeping them inside `bounds` (left, top, right, bottom). Each round pushes every
+/// too-close pair apart by half the shortfall each, along the line joining them (coincident
+/// points along a direction fixed by their indices), so the result is deterministic and
+/// points that were already apart do not move.
+pub fn separate_nodes(points: &mut [(f32, f32)], gap: f32, bounds: (f32, f32, f32, f32)) {
+    if !(gap.is_finite() && gap > 0.0) || points.iter().any(|p| !(p.0.is_finite() && p.1.is_finite())) {
+        return;
+    }
+    let (x0, y0, x1, y1) = bounds;
+    for _ in 0..100 {
+        let mut moved = false;
+        for i in 0..points.len() {
+            for j in i + 1..points.len() {
+                let (dx, dy) = (points[j].0 - points[i].0, points[j].1 - points[i].1);
+                let d = (dx * dx + dy * dy).sqrt();
+                if d >= gap - 0.01 {
+                    continue;
+                }
+                let (ux, uy) = if d > 1e-3 {
+                    (dx / d, dy / d)
+                } else {
+                    let a = j as f32 * 2.399_963; // the golden angle: coincident points fan out
+                    (a.cos(), a.sin())
+                };
+                let push = (gap - d) / 2.0 + 0.01;
+                points[i] = (points[i].0 - ux * push, points[i].1 - uy * push);
+                points[j] = (points[j].0 + ux * push, points[j].1 + uy * push);
+                moved = true;
+            }
+        }
+        for p in points.iter_mut() {
+            *p = (p.0.clamp(x0, x1.max(x0)), p.1.clamp(y0, y1.max(y0)));
+        }
+        if !moved {
+            return;
+        }
+    }
 }
 
 /// The geometry of a drawn scene graph, from [`scene_graph_layout`].
@@ -175,7 +205,7 @@ fn stroke(pixmap: &mut Pixmap, path: &tiny_skia::Path, rgba: [u8; 4], width: f32
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::floorplan::{Door, Unit};
+    use crate::floorplan::{Door, Unit, UnitType};
 
     fn world() -> World {
         let mut w = World::empty(90, 30);
@@ -211,6 +241,31 @@ mod tests {
             .map(|x| p.pixel(x, y).unwrap().green() < 200)
             .collect();
         assert!(along.iter().any(|&d| d) && along.iter().any(|&d| !d), "dashed: {along:?}");
+    }
+
+    #[test]
+    fn nodes_sit_at_their_units_and_overlapping_ones_are_nudged_apart() {
+        let mut w = world();
+        // A small unit inside the room, with almost the same centre, and a twin of the hall.
+        w.units.push(Unit { id: 4, x: 13, y: 13, w: 5, h: 5, kind: UnitType::Other });
+        w.units.push(Unit { id: 5, x: 59, y: 0, w: 31, h: 30, kind: UnitType::Room });
+        let layout = scene_graph_layout(&w, 560, 200).unwrap();
+        let c = &layout.centres;
+        let r = layout.radius;
+        for (i, a) in c.iter().enumerate() {
+            for b in &c[i + 1..] {
+                let d = ((a.0 - b.0).powi(2) + (a.1 - b.1).powi(2)).sqrt();
+                assert!(d >= 2.0 * r + 1.9, "{a:?} and {b:?} overlap (radius {r})");
+            }
+            assert!(a.0 >= r && a.0 <= 560.0 - r && a.1 >= r && a.1 <= 200.0 - r, "{a:?} inside");
+        }
+        // The corridor, which overlapped nothing, stays at its unit's centre on the map.
+        let [ox, oy, bw, _] = layout.map_box;
+        let k = bw / 90.0;
+        assert!((c[1].0 - (ox + k * 44.5)).abs() < 0.01 && (c[1].1 - (oy + k * 15.0)).abs() < 0.01, "{:?}", c[1]);
+        // The nudged pair stays near where its units are.
+        assert!((c[0].0 - c[3].0).abs() < 4.0 * r && c[0].0 < c[1].0);
+        assert_eq!(layout, scene_graph_layout(&w, 560, 200).unwrap(), "deterministic");
     }
 
     #[test]

@@ -15,8 +15,15 @@
 //! * doors in cyan ([`DOOR_RGBA`]) and object cells (unknown cells inside units, furniture) in
 //!   semi-transparent green ([`OBJECT_RGBA`]); unexplained free areas, the papers' "N", in
 //!   semi-transparent orange ([`UNEXPLAINED_RGBA`]);
-//! * optionally each unit's type and id at its centre ("room 3"), in a small built-in bitmap
-//!   font ([`font`]) on a light box, because tiny-skia draws no text;
+//! * each unit's interior lightly tinted by its type ([`room_fill_rgb`], from the one palette
+//!   [`unit_type_rgb`] that the scene graph uses too), multiplied into the map so that occupied
+//!   cells stay black and the tint never hides the data;
+//! * optionally each room's (or, without a room layer, each unit's) type and id ("room 3"), in
+//!   a small built-in bitmap font ([`font`]) on a light box, because tiny-skia draws no text;
+//!   [`place_labels`] puts each inside its room, shortens it ("corridor 12", "corr 12", "12")
+//!   or leaves it out rather than let labels cover each other;
+//! * optionally a legend of the colours drawn, in the corner that hides least
+//!   ([`legend_entries`], [`legend_box`]), so that a saved picture explains itself;
 //! * for a running chain, the posterior cloud: the last accepted worlds as thin
 //!   semi-transparent magenta outlines ([`draw_cloud`]), as the papers overlay 1000 samples.
 //!
@@ -45,7 +52,7 @@
 //! let mut world = World::empty(20, 10);
 //! world.units.push(Unit { id: 1, x: 2, y: 1, w: 8, h: 6, kind: UnitType::Room });
 //!
-//! let pixmap = render(&map, Some(&world), &RenderOptions { scale: 2, labels: false });
+//! let pixmap = render(&map, Some(&world), &RenderOptions { scale: 2, labels: false, legend: false });
 //! assert_eq!((pixmap.width(), pixmap.height()), (40, 20));
 //! // Cell (2, 1) is the unit's top-left wall cell: pixels (4..6, 2..4) are blue.
 //! let p = pixmap.pixel(5, 3).unwrap();
@@ -55,17 +62,22 @@
 mod cloud;
 pub mod font;
 mod graph;
+mod labels;
+mod legend;
 pub mod tabletop;
 mod world;
 
 pub use cloud::{cloud_alpha, draw_cloud, CLOUD_RGB};
 pub use graph::{
-    draw_scene_graph, graph_node_radius, render_scene_graph, scene_graph_layout, unit_type_rgb, GraphLayout,
+    draw_scene_graph, graph_node_radius, render_scene_graph, scene_graph_layout, separate_nodes, GraphLayout,
     GRAPH_ADJACENT_RGBA, GRAPH_BACKGROUND_RGBA, GRAPH_DOOR_RGBA, GRAPH_FRAME_RGBA,
 };
+pub use labels::{label_texts, place_labels, tag_size, world_label_candidates, LabelBox, LabelCandidate};
+pub use legend::{draw_legend, legend_box, legend_entries, LEGEND_BACKGROUND_RGBA, LEGEND_TEXT_RGBA};
 pub use world::{
-    draw_tag, draw_world, label_text_scale, unit_label, DOOR_RGBA, LABEL_BACKGROUND_RGBA, LABEL_OUTLINE_RGBA,
-    LABEL_TEXT_RGBA, OBJECT_RGBA, UNEXPLAINED_RGBA, WALL_RGBA,
+    draw_tag, draw_tag_box, draw_world, label_text_scale, room_fill_rgb, unit_label, unit_type_rgb, DOOR_RGBA,
+    LABEL_BACKGROUND_RGBA, LABEL_OUTLINE_RGBA, LABEL_TEXT_RGBA, OBJECT_RGBA, ROOM_FILL_STRENGTH, UNEXPLAINED_RGBA,
+    WALL_RGBA,
 };
 
 use crate::floorplan::World;
@@ -164,7 +176,7 @@ pub fn max_scale(width: usize, height: usize) -> u32 {
 /// that cannot be drawn (no cells, or more than [`MAX_PIXELS`] cells) gives a 1x1 transparent
 /// pixmap, as with [`render`]. Use [`try_render`] to be told instead.
 pub fn draw_map(classified: &Grid<Cell>) -> Pixmap {
-    render(classified, None, &RenderOptions { scale: 1, labels: false })
+    render(classified, None, &RenderOptions { scale: 1, labels: false, legend: false })
 }
 
 /// The pixmap as straight (not premultiplied) RGBA bytes, as a canvas `ImageData` wants.
@@ -182,14 +194,17 @@ pub fn to_rgba(pixmap: &Pixmap) -> Vec<u8> {
 pub struct RenderOptions {
     /// Output pixels per map cell (1 = one pixel per cell).
     pub scale: u32,
-    /// Draw each unit's type and id at its centre.
+    /// Draw each room's (or unit's) type and id inside it, where it fits ([`place_labels`]).
     pub labels: bool,
+    /// Draw a legend of the world's colours in a corner ([`legend_entries`]); only when a
+    /// world is drawn.
+    pub legend: bool,
 }
 
 impl Default for RenderOptions {
-    /// One pixel per cell, with labels.
+    /// One pixel per cell, with labels and legend.
     fn default() -> Self {
-        RenderOptions { scale: 1, labels: true }
+        RenderOptions { scale: 1, labels: true, legend: true }
     }
 }
 
@@ -216,7 +231,7 @@ impl Default for RenderOptions {
 /// world.units.push(Unit { id: 2, x: 14, y: 1, w: 15, h: 10, kind: UnitType::Corridor });
 /// world.doors.push(Door { id: 1, units: [1, 2], x0: 14, y0: 4, x1: 14, y1: 6 });
 ///
-/// let pixmap = render(&map, Some(&world), &RenderOptions { scale: 4, labels: false });
+/// let pixmap = render(&map, Some(&world), &RenderOptions { scale: 4, labels: false, legend: false });
 /// assert_eq!((pixmap.width(), pixmap.height()), (120, 48));
 /// let door = pixmap.pixel(14 * 4 + 1, 5 * 4 + 1).unwrap();
 /// assert_eq!([door.red(), door.green(), door.blue()], [DOOR_RGBA[0], DOOR_RGBA[1], DOOR_RGBA[2]]);
@@ -228,7 +243,7 @@ impl Default for RenderOptions {
 pub fn render(classified: &Grid<Cell>, world: Option<&World>, options: &RenderOptions) -> Pixmap {
     let fitted = max_scale(classified.width(), classified.height());
     let scale = options.scale.clamp(1, fitted.max(1));
-    let options = RenderOptions { scale, labels: options.labels };
+    let options = RenderOptions { scale, ..options.clone() };
     match try_render(classified, world, &options) {
         Ok(pixmap) => pixmap,
         // Only maps with no cells or more than MAX_PIXELS cells get here; 1x1 always allocates.
@@ -272,7 +287,7 @@ pub fn check_size(width: usize, height: usize, scale: u32) -> Result<(u32, u32),
 /// use ksmcmc::render::{try_render, RenderError, RenderOptions};
 ///
 /// let map = Grid::new(5000, 5000, Cell::Free);
-/// let err = try_render(&map, None, &RenderOptions { scale: 4, labels: false }).unwrap_err();
+/// let err = try_render(&map, None, &RenderOptions { scale: 4, labels: false, legend: false }).unwrap_err();
 /// assert!(matches!(err, RenderError::TooLarge { max_scale: 1, .. }));
 /// assert!(err.to_string().contains("at most 1"));
 /// ```
@@ -288,7 +303,7 @@ pub fn try_render(
     let mut pixmap = Pixmap::new(out_w, out_h).ok_or_else(too_large)?;
     paint_cells(&mut pixmap, classified, scale as usize);
     if let Some(world) = world {
-        draw_world(&mut pixmap, width, height, world, scale, options.labels);
+        draw_world(&mut pixmap, width, height, world, options);
     }
     Ok(pixmap)
 }

@@ -185,18 +185,34 @@ pub fn probability_lines(g: &SceneGraph) -> Vec<String> {
         .collect()
 }
 
+/// How wide (in pixels) the page shows the graph picture at its default size: the narrow
+/// column of the table-top page on a laptop screen. Pictures wider than this are shrunk to it.
+pub const GRAPH_DISPLAY_WIDTH: f32 = 430.0;
+
+/// The text factor of the probability lines under a graph picture `width` pixels wide: large
+/// enough that, with the picture shrunk to [`GRAPH_DISPLAY_WIDTH`], capitals are still about
+/// 11 pixels tall (at least 2, so they are 14 pixels in the picture itself).
+pub fn probability_text_factor(width: f32) -> u32 {
+    let wanted = 11.0 * width / GRAPH_DISPLAY_WIDTH / font::CAP_HEIGHT as f32;
+    (wanted.ceil() as u32).clamp(2, 8)
+}
+
 /// Draws a scene graph: the table on top, objects below their supporters, support arrows,
 /// contact lines, red false estimates, cyan objects with hidden objects under them, and the
-/// query probabilities underneath.
+/// query probabilities underneath, in text that scales with the picture
+/// ([`probability_text_factor`]) so it stays readable when the page shrinks the picture.
 pub fn draw_graph(g: &SceneGraph) -> Pixmap {
-    let (pos, width, graph_h) = layout(g);
+    let (pos, nodes_w, graph_h) = layout(g);
     let lines = probability_lines(g);
-    let text_w = lines.iter().map(|l| font::text_size(l, 1).0).max().unwrap_or(0) as f32;
-    let width = width.max(text_w + 2.0 * MARGIN);
+    let text_w = |f: u32| lines.iter().map(|l| font::text_size(l, f).0).max().unwrap_or(0) as f32;
+    // The factor for the nodes' width; if the text then widens the picture, the factor for
+    // that width is no larger (the text alone is narrower than the display width per factor).
+    let factor = probability_text_factor(nodes_w);
+    let width = nodes_w.max(text_w(factor) + 2.0 * MARGIN);
     // Re-centre the nodes if the text made the picture wider.
-    let shift = (width - layout(g).1) / 2.0;
+    let shift = (width - nodes_w) / 2.0;
     let pos: Vec<(f32, f32)> = pos.iter().map(|p| (p.0 + shift, p.1)).collect();
-    let line_h = (font::GLYPH_HEIGHT + 4) as f32;
+    let line_h = ((font::GLYPH_HEIGHT + 3) * factor) as f32;
     let height = graph_h + lines.len() as f32 * line_h + if lines.is_empty() { 0.0 } else { MARGIN / 2.0 };
     let (w, h) = (width.ceil().clamp(1.0, 8192.0) as u32, height.ceil().clamp(1.0, 8192.0) as u32);
     let Some(mut pixmap) = Pixmap::new(w, h) else {
@@ -275,7 +291,7 @@ pub fn draw_graph(g: &SceneGraph) -> Pixmap {
 
     for (k, l) in lines.iter().enumerate() {
         let y = graph_h + MARGIN / 4.0 + k as f32 * line_h;
-        font::draw_text(&mut pixmap, MARGIN as i32, y as i32, l, 1, INK_RGBA);
+        font::draw_text(&mut pixmap, MARGIN as i32, y as i32, l, factor, INK_RGBA);
     }
     pixmap
 }
@@ -424,5 +440,20 @@ pub fn draw_view(scene: &Scene, poses: &[Pose], marks: &[Mark], options: &ViewOp
 fn dot(pixmap: &mut Pixmap, at: (f32, f32), rgba: [u8; 4]) {
     if let Some(rect) = tiny_skia::Rect::from_xywh(at.0.round() - 1.0, at.1.round() - 1.0, 3.0, 3.0) {
         pixmap.fill_rect(rect, &paint(rgba), Transform::identity(), None);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn probabilities_stay_readable_when_the_page_shrinks_the_picture() {
+        for width in [100.0, 300.0, 430.0, 700.0, 1200.0, 2000.0] {
+            let f = probability_text_factor(width);
+            let shown = (font::CAP_HEIGHT * f) as f32 * (GRAPH_DISPLAY_WIDTH / width).min(1.0);
+            assert!(shown >= 10.9, "capitals {shown} px tall on a {width} px picture");
+        }
+        assert_eq!(probability_text_factor(300.0), 2);
     }
 }

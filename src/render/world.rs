@@ -13,9 +13,11 @@
 //! quadrilaterals; anti-aliasing stays off there too, so every pixel is either untouched or the
 //! pure colour, as in the papers' figures.
 
-use super::font;
-use crate::floorplan::{Frame, World};
-use tiny_skia::{Color, FillRule, Paint, PathBuilder, Pixmap, Rect, Transform};
+use super::labels::{place_labels, tag_size, world_label_candidates, LabelBox};
+use super::legend::{draw_legend, legend_box, legend_entries};
+use super::{font, RenderOptions};
+use crate::floorplan::{Frame, UnitType, World};
+use tiny_skia::{BlendMode, Color, FillRule, Paint, PathBuilder, Pixmap, Rect, Transform};
 
 /// Wall cells (each unit's outer ring), drawn opaque: the papers' blue.
 pub const WALL_RGBA: [u8; 4] = [0, 0, 255, 255];
@@ -32,6 +34,31 @@ pub const LABEL_BACKGROUND_RGBA: [u8; 4] = [255, 255, 255, 215];
 /// Label box outline: dark gray, one pixel wide.
 pub const LABEL_OUTLINE_RGBA: [u8; 4] = [40, 40, 40, 255];
 
+/// The colour of a unit type, the one palette of every picture (the map's room tints, the
+/// scene graph's nodes, the legend): the Okabe-Ito colours, which stay distinguishable with
+/// the common colour-vision deficiencies: room orange, corridor sky blue, hall bluish green,
+/// other reddish purple, unknown (not yet typed) gray.
+pub fn unit_type_rgb(kind: UnitType) -> [u8; 3] {
+    match kind {
+        UnitType::Room => [230, 159, 0],
+        UnitType::Corridor => [86, 180, 233],
+        UnitType::Hall => [0, 158, 115],
+        UnitType::Other => [204, 121, 167],
+        UnitType::Unknown => [175, 175, 175],
+    }
+}
+
+/// The light tint a unit's interior gets on the map: its type colour ([`unit_type_rgb`]) at
+/// [`ROOM_FILL_STRENGTH`] over white. It is multiplied into the map, so a free (white) cell
+/// shows exactly this colour and an occupied (black) cell stays black.
+pub fn room_fill_rgb(kind: UnitType) -> [u8; 3] {
+    unit_type_rgb(kind).map(|c| 255 - ((255 - c as u32) * ROOM_FILL_STRENGTH / 100) as u8)
+}
+
+/// How strongly interiors are tinted, percent: light, so that labels, object cells and the
+/// stronger orange of unexplained space stand out against it.
+pub const ROOM_FILL_STRENGTH: u32 = 35;
+
 /// Output pixels per font pixel for labels on a map drawn at `scale` pixels per cell.
 ///
 /// At least 2, so that capitals are 14 pixels high even at one pixel per cell; it grows slowly
@@ -45,30 +72,42 @@ pub fn unit_label(unit: &crate::floorplan::Unit) -> String {
     format!("{} {}", unit.kind.name(), unit.id)
 }
 
-/// The label of a room: its type name and id (its value in `labels.pgm`), e.g. `"corridor 2"`.
-pub fn room_label(room: &crate::floorplan::Room) -> String {
-    format!("{} {}", room.kind.name(), room.id)
-}
-
-/// Where a room's label goes, world frame: the centre of its largest unit (`None` for a room
-/// without units).
-fn room_anchor(world: &World, room: &crate::floorplan::Room) -> Option<(f64, f64)> {
-    let largest = room.units.iter().filter_map(|&id| world.unit(id)).max_by_key(|u| u.rect().area())?;
-    Some(largest.rect().center())
-}
-
 /// Draws `world` over a pixmap that holds a map of `map_width` x `map_height` cells drawn at
-/// `scale` pixels per cell (as [`super::render`] does); `labels` adds a type-and-id tag per
-/// room when the world has a room layer (one tag where a room spans several units), else per
-/// unit.
+/// `options.scale` pixels per cell (as [`super::render`] does), and returns the labels it
+/// placed.
+///
+/// Bottom to top: each unit's interior tinted by its type ([`room_fill_rgb`], multiplied into
+/// the map so occupied cells stay black), object cells, unexplained areas, walls, doors, then
+/// with `options.labels` a tag per room when the world has a room layer (at its largest unit),
+/// else per unit, placed by [`super::place_labels`] (shortened or left out where it does not
+/// fit), and with `options.legend` a legend of the colours drawn ([`super::legend_entries`]).
 ///
 /// The world is drawn as it is, without [`World::validate`]: units and doors are clipped to
 /// the map, units with a size below 1x1 and doors that are neither horizontal nor vertical are
 /// skipped, and a frame with a non-finite angle draws nothing. It never panics.
-pub fn draw_world(pixmap: &mut Pixmap, map_width: usize, map_height: usize, world: &World, scale: u32, labels: bool) {
+pub fn draw_world(
+    pixmap: &mut Pixmap,
+    map_width: usize,
+    map_height: usize,
+    world: &World,
+    options: &RenderOptions,
+) -> Vec<LabelBox> {
+    let scale = options.scale;
     let Some(place) = Placement::new(&world.frame, map_width, map_height, scale) else {
-        return;
+        return Vec::new();
     };
+    let t = world.wall_thickness.max(1) as i64;
+    for kind in UnitType::ALL {
+        let interiors = world
+            .units
+            .iter()
+            .filter(|u| u.kind == kind && u.w >= 1 && u.h >= 1)
+            .filter_map(|u| CellRect::new(u.x as i64, u.y as i64, u.w as i64, u.h as i64).inset(t));
+        let [r, g, b] = room_fill_rgb(kind);
+        let mut paint = solid([r, g, b, 255]);
+        paint.blend_mode = BlendMode::Multiply;
+        place.fill_with(pixmap, interiors, &paint);
+    }
 
     // Object cells first, so that walls and doors stay their pure colours where they meet.
     // Merged into rectangles: a furnished building has thousands, and one quad per cell made
@@ -82,9 +121,11 @@ pub fn draw_world(pixmap: &mut Pixmap, map_width: usize, map_height: usize, worl
         .map(|&[y, x0, x1]| CellRect { x0: x0 as i64, y0: y as i64, x1: x1 as i64 + 1, y1: y as i64 + 1 });
     place.fill(pixmap, unexplained, UNEXPLAINED_RGBA);
 
-    let walls = world.units.iter().filter(|u| u.w >= 1 && u.h >= 1).flat_map(|u| {
-        CellRect::new(u.x as i64, u.y as i64, u.w as i64, u.h as i64).ring(world.wall_thickness.max(1) as i64)
-    });
+    let walls = world
+        .units
+        .iter()
+        .filter(|u| u.w >= 1 && u.h >= 1)
+        .flat_map(|u| CellRect::new(u.x as i64, u.y as i64, u.w as i64, u.h as i64).ring(t));
     place.fill(pixmap, walls, WALL_RGBA);
 
     let doors = world.doors.iter().map(|d| {
@@ -94,22 +135,23 @@ pub fn draw_world(pixmap: &mut Pixmap, map_width: usize, map_height: usize, worl
     });
     place.fill(pixmap, doors, DOOR_RGBA);
 
-    if labels && !world.rooms.is_empty() {
-        let factor = label_text_scale(scale);
-        for room in &world.rooms {
-            if let Some((cx, cy)) = room_anchor(world, room) {
-                let (px, py) = place.to_pixel(cx, cy);
-                draw_tag(pixmap, px, py, &room_label(room), factor);
-            }
-        }
-    } else if labels {
-        let factor = label_text_scale(scale);
-        for unit in world.units.iter().filter(|u| u.w >= 1 && u.h >= 1) {
-            let (cx, cy) = unit.rect().center();
-            let (px, py) = place.to_pixel(cx, cy);
-            draw_tag(pixmap, px, py, &unit_label(unit), factor);
+    let factor = label_text_scale(scale);
+    let entries = if options.legend { legend_entries(world) } else { Vec::new() };
+    // One step smaller than the labels: the legend is read once, the plan is what matters.
+    let legend = legend_box(pixmap, &entries, factor.saturating_sub(1).max(1));
+    let mut placed = Vec::new();
+    if options.labels {
+        let blocked: Vec<LabelBox> = legend.iter().map(|(b, _)| b.clone()).collect();
+        let candidates = world_label_candidates(world, scale);
+        placed = place_labels(&candidates, pixmap.width(), pixmap.height(), factor, &blocked);
+        for b in &placed {
+            draw_tag_box(pixmap, b, factor);
         }
     }
+    if let Some((at, legend_factor)) = legend {
+        draw_legend(pixmap, &at, &entries, legend_factor);
+    }
+    placed
 }
 
 /// Draws `text` centred on pixel position `(cx, cy)` on a light box with a dark outline, with
@@ -118,10 +160,7 @@ pub fn draw_tag(pixmap: &mut Pixmap, cx: f64, cy: f64, text: &str, factor: u32) 
     if !cx.is_finite() || !cy.is_finite() || factor == 0 {
         return;
     }
-    let (text_w, text_h) = font::text_size(text, factor);
-    let pad = factor as i64;
-    let box_w = text_w as i64 + 2 * pad;
-    let box_h = text_h as i64 + 2 * pad;
+    let (box_w, box_h) = tag_size(text, factor);
     // Centre the box; positions are whole pixels so the glyphs stay crisp.
     let left = (cx - box_w as f64 / 2.0).round();
     let top = (cy - box_h as f64 / 2.0).round();
@@ -129,8 +168,16 @@ pub fn draw_tag(pixmap: &mut Pixmap, cx: f64, cy: f64, text: &str, factor: u32) 
     if left >= width || top >= height || left + (box_w as f64) <= 0.0 || top + (box_h as f64) <= 0.0 {
         return;
     }
-    // On the pixmap, so both fit in i32 comfortably (pixmap sides are below 2^29).
-    let (left, top) = (left as i64, top as i64);
+    // On the pixmap, so both fit in i64 comfortably (pixmap sides are below 2^29).
+    let label = LabelBox { text: text.to_string(), left: left as i64, top: top as i64, width: box_w, height: box_h };
+    draw_tag_box(pixmap, &label, factor);
+}
+
+/// Draws a tag whose box [`super::place_labels`] placed: a light box with a dark outline and
+/// the text inside, each font pixel `factor` output pixels wide.
+pub fn draw_tag_box(pixmap: &mut Pixmap, label: &LabelBox, factor: u32) {
+    let LabelBox { left, top, width: box_w, height: box_h, .. } = *label;
+    let pad = factor as i64;
     fill_box(pixmap, left, top, box_w, box_h, LABEL_BACKGROUND_RGBA);
     for (x, y, w, h) in [
         (left, top, box_w, 1),
@@ -142,7 +189,7 @@ pub fn draw_tag(pixmap: &mut Pixmap, cx: f64, cy: f64, text: &str, factor: u32) 
     }
     let (tx, ty) = (left + pad, top + pad);
     if let (Ok(tx), Ok(ty)) = (i32::try_from(tx), i32::try_from(ty)) {
-        font::draw_text(pixmap, tx, ty, text, factor, LABEL_TEXT_RGBA);
+        font::draw_text(pixmap, tx, ty, &label.text, factor, LABEL_TEXT_RGBA);
     }
 }
 
@@ -219,6 +266,12 @@ impl CellRect {
         ]
     }
 
+    /// The rectangle `t` cells in from each side, if anything is left.
+    fn inset(self, t: i64) -> Option<CellRect> {
+        let r = CellRect { x0: self.x0 + t, y0: self.y0 + t, x1: self.x1 - t, y1: self.y1 - t };
+        (r.x0 < r.x1 && r.y0 < r.y1).then_some(r)
+    }
+
     /// The overlap with `other`, if not empty.
     fn clip(self, other: &CellRect) -> Option<CellRect> {
         let r = CellRect {
@@ -278,6 +331,11 @@ impl Placement {
 
     /// Fills the union of `rects` with one colour in one pass.
     fn fill(&self, pixmap: &mut Pixmap, rects: impl Iterator<Item = CellRect>, rgba: [u8; 4]) {
+        self.fill_with(pixmap, rects, &solid(rgba));
+    }
+
+    /// Fills the union of `rects` with `paint` in one pass.
+    fn fill_with(&self, pixmap: &mut Pixmap, rects: impl Iterator<Item = CellRect>, paint: &Paint) {
         let mut pb = PathBuilder::new();
         for r in rects.filter_map(|r| r.clip(&self.visible)) {
             let corners = [(r.x0, r.y0), (r.x1, r.y0), (r.x1, r.y1), (r.x0, r.y1)];
@@ -290,7 +348,7 @@ impl Placement {
         }
         // `finish` is `None` for an empty path (nothing to draw).
         if let Some(path) = pb.finish() {
-            pixmap.fill_path(&path, &solid(rgba), FillRule::Winding, Transform::identity(), None);
+            pixmap.fill_path(&path, paint, FillRule::Winding, Transform::identity(), None);
         }
     }
 }

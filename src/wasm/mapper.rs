@@ -152,7 +152,7 @@ impl Mapper {
         let scale = options.scale;
         render::check_size(w, h, scale)?;
         if self.base.as_ref().is_none_or(|(s, _)| *s != scale) {
-            let opts = RenderOptions { scale, labels: false };
+            let opts = RenderOptions { scale, labels: false, legend: false };
             let base =
                 render::try_render(self.map.classified(), None, &opts).map_err(|e| JsError::new(&e.to_string()))?;
             self.base = Some((scale, base));
@@ -160,7 +160,13 @@ impl Mapper {
         let mut pixmap = self.base.as_ref().expect("just drawn").1.clone();
         let world = if exported { self.exported_world_for(options.show) } else { self.world_for(options.show) };
         if let Some(world) = world {
-            render::draw_world(&mut pixmap, w, h, &world, scale, options.labels);
+            render::draw_world(
+                &mut pixmap,
+                w,
+                h,
+                &world,
+                &RenderOptions { scale, labels: options.labels, legend: true },
+            );
         }
         if options.cloud {
             let samples: Vec<&[Rect]> = self.chain.samples().map(|s| s.as_slice()).collect();

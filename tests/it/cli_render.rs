@@ -154,15 +154,18 @@ fn renders_a_world_at_a_scale() {
     let blue = pixmap.pixels().iter().filter(|p| [p.red(), p.green(), p.blue()] == [0, 0, 255]).count();
     assert!(blue > 2000, "only {blue} wall pixels");
 
-    // --no-labels gives a different picture, and the same arguments give the same bytes.
+    // --no-labels and --no-legend each give a different picture, and the same arguments give
+    // the same bytes.
     let plain = dir.join("plain.png");
+    let bare = dir.join("bare.png");
     let again = dir.join("again.png");
-    for (path, extra) in [(&plain, Some("--no-labels")), (&again, None)] {
+    for (path, extra) in [(&plain, Some("--no-labels")), (&bare, Some("--no-legend")), (&again, None)] {
         let mut args = vec!["render", cartesium(), "--world", s(&world), "--out", s(path), "--scale", "2"];
         args.extend(extra);
         assert!(ksmcmc(&args).status.success());
     }
     assert_ne!(std::fs::read(&plain).expect("plain"), png);
+    assert_ne!(std::fs::read(&bare).expect("bare"), png);
     assert_eq!(std::fs::read(&again).expect("again"), png);
 }
 

@@ -4,8 +4,9 @@
 use ksmcmc::floorplan::{Door, Frame, UnexplainedArea, Unit, UnitType, World};
 use ksmcmc::grid::{Cell, Grid, OccupancyMap};
 use ksmcmc::render::{
-    self, cell_rgb, draw_labels, draw_map, encode_png, font, label_rgb, label_text_scale, render, to_rgba, try_render,
-    RenderError, RenderOptions, DOOR_RGBA, LABEL_TEXT_RGBA, MAX_PIXELS, UNEXPLAINED_RGBA, WALL_RGBA,
+    self, cell_rgb, draw_labels, draw_map, encode_png, font, label_rgb, label_text_scale, render, room_fill_rgb,
+    to_rgba, try_render, RenderError, RenderOptions, DOOR_RGBA, LABEL_TEXT_RGBA, MAX_PIXELS, UNEXPLAINED_RGBA,
+    WALL_RGBA,
 };
 use tiny_skia::Pixmap;
 
@@ -21,7 +22,7 @@ fn rgb(pixmap: &Pixmap, x: u32, y: u32) -> [u8; 3] {
 }
 
 fn no_labels(scale: u32) -> RenderOptions {
-    RenderOptions { scale, labels: false }
+    RenderOptions { scale, labels: false, legend: false }
 }
 
 /// A 16x12 map: free everywhere except an occupied cell at (12, 2), unknown cells at (13, 2),
@@ -78,11 +79,22 @@ fn map_and_world_have_the_papers_colours() {
     assert_eq!(objects[0], objects[1], "two unknown object cells look alike");
     assert!(objects[2][1] < objects[0][1], "occupied under green is darker than unknown");
     assert!(objects[0][1] < objects[3][1], "unknown under green is darker than free");
+    // Interiors are tinted by type: a free cell shows the tint exactly, an occupied one stays
+    // black, an unknown one is the gray times the tint (darker than the tint, still a tint).
+    let room = room_fill_rgb(UnitType::Room);
+    let corridor = room_fill_rgb(UnitType::Corridor);
+    assert_ne!(room, corridor);
+    assert_eq!(rgb(&pixmap, 4, 4), room, "free inside the room");
+    assert_eq!(rgb(&pixmap, 2, 6), room, "free inside the room, by its wall");
+    assert_eq!(rgb(&pixmap, 11, 4), corridor, "free inside the corridor");
+    assert_eq!(rgb(&pixmap, 12, 2), BLACK, "occupied inside the corridor stays black");
+    let unknown = rgb(&pixmap, 13, 2);
+    for k in 0..3 {
+        let expected = cell_rgb(Cell::Unknown)[k] as i32 * corridor[k] as i32 / 255;
+        assert!((unknown[k] as i32 - expected).abs() <= 1, "unknown under the tint is {unknown:?}");
+    }
     // The map where no world is drawn.
-    assert_eq!(rgb(&pixmap, 4, 4), WHITE, "free inside a unit");
     assert_eq!(rgb(&pixmap, 0, 0), WHITE, "free outside every unit");
-    assert_eq!(rgb(&pixmap, 12, 2), BLACK, "occupied");
-    assert_eq!(rgb(&pixmap, 13, 2), cell_rgb(Cell::Unknown), "unknown");
     assert_eq!(rgb(&pixmap, 15, 11), WHITE, "far corner");
     assert!(pixmap.pixels().iter().all(|p| p.alpha() == 255), "the picture is opaque");
 }
@@ -147,7 +159,10 @@ fn scale_repeats_every_cell_as_a_block() {
 #[derive(Debug, PartialEq)]
 enum Side {
     Wall,
-    NotWall,
+    /// Clearly inside the ring: the tinted interior.
+    Inside,
+    /// Clearly outside the unit.
+    Outside,
     Edge,
 }
 
@@ -160,8 +175,10 @@ fn ring_side(u: &Unit, x: f64, y: f64, m: f64) -> Side {
     let in_inner = |g| inside(x0 + 1.0, y0 + 1.0, x1 - 1.0, y1 - 1.0, g);
     if in_outer(-m) && !in_inner(m) {
         Side::Wall
-    } else if !in_outer(m) || in_inner(-m) {
-        Side::NotWall
+    } else if !in_outer(m) {
+        Side::Outside
+    } else if in_inner(-m) {
+        Side::Inside
     } else {
         Side::Edge
     }
@@ -178,9 +195,10 @@ fn rotated_frame_draws_walls_where_the_frame_puts_them() {
     world.validate().expect("valid world");
     let pixmap = render(&map, Some(&world), &no_labels(scale));
 
-    // Every pixel whose centre lies clearly on the rotated ring is blue, every pixel clearly off
-    // it is untouched white.
+    // Every pixel whose centre lies clearly on the rotated ring is blue, every pixel clearly
+    // inside it has the room tint, every pixel clearly outside the unit is untouched white.
     let (mut walls, mut others) = (0, 0);
+    let tint = room_fill_rgb(UnitType::Room);
     for py in 0..pixmap.height() {
         for px in 0..pixmap.width() {
             let (mx, my) = ((px as f64 + 0.5) / scale as f64, (py as f64 + 0.5) / scale as f64);
@@ -190,9 +208,13 @@ fn rotated_frame_draws_walls_where_the_frame_puts_them() {
                     walls += 1;
                     assert_eq!(rgb(&pixmap, px, py), BLUE, "pixel ({px}, {py}) is on the wall")
                 }
-                Side::NotWall => {
+                Side::Inside => {
                     others += 1;
-                    assert_eq!(rgb(&pixmap, px, py), WHITE, "pixel ({px}, {py}) is off the wall")
+                    assert_eq!(rgb(&pixmap, px, py), tint, "pixel ({px}, {py}) is inside the unit")
+                }
+                Side::Outside => {
+                    others += 1;
+                    assert_eq!(rgb(&pixmap, px, py), WHITE, "pixel ({px}, {py}) is outside the unit")
                 }
                 Side::Edge => {}
             }
@@ -205,8 +227,9 @@ fn rotated_frame_draws_walls_where_the_frame_puts_them() {
     assert_eq!(rgb(&pixmap, (mx * 4.0) as u32, (my * 4.0) as u32), BLUE);
     // ...the identity position of the unit's top-left corner is not (the frame moved it)...
     let (wx, wy) = world.frame.to_world(22.5, 20.5);
-    assert_eq!(ring_side(&unit, wx, wy, 0.3), Side::NotWall);
-    assert_eq!(rgb(&pixmap, 22 * 4 + 2, 20 * 4 + 2), WHITE);
+    // (it lies inside the moved unit, so it has the room tint)...
+    assert_eq!(ring_side(&unit, wx, wy, 0.3), Side::Inside);
+    assert_eq!(rgb(&pixmap, 22 * 4 + 2, 20 * 4 + 2), tint);
     // ...and a far corner is untouched.
     assert_eq!(rgb(&pixmap, 1, 1), WHITE);
     assert_eq!(rgb(&pixmap, pixmap.width() - 1, pixmap.height() - 1), WHITE);
@@ -230,7 +253,8 @@ fn rotated_doors_and_objects_follow_the_frame() {
     assert_eq!(at(19.5, 17.5), CYAN);
     assert_eq!(at(19.5, 12.5), BLUE);
     assert!(is_green_tinted(at(10.5, 25.5)));
-    assert_eq!(at(12.5, 25.5), WHITE);
+    assert_eq!(at(12.5, 25.5), room_fill_rgb(UnitType::Room), "free inside unit 1: the room tint");
+    assert_eq!(rgb(&pixmap, 0, 0), WHITE, "outside every unit");
 }
 
 #[test]
@@ -239,7 +263,7 @@ fn labels_draw_at_the_unit_centre_and_only_when_asked() {
     let mut world = World::empty(80, 40);
     world.units.push(Unit { id: 3, x: 10, y: 5, w: 40, h: 30, kind: UnitType::Room });
     let plain = render(&map, Some(&world), &no_labels(2));
-    let labelled = render(&map, Some(&world), &RenderOptions { scale: 2, labels: true });
+    let labelled = render(&map, Some(&world), &RenderOptions { scale: 2, labels: true, legend: false });
     assert_eq!(render(&map, Some(&world), &no_labels(2)).data(), plain.data());
 
     // The unit's centre is cell (30, 20), pixel (60, 40); "room 3" is 6 characters.
@@ -377,7 +401,7 @@ fn png_round_trips() {
 
 #[test]
 fn same_inputs_give_identical_bytes() {
-    let options = RenderOptions { scale: 3, labels: true };
+    let options = RenderOptions { scale: 3, labels: true, legend: true };
     let mut world = small_world();
     world.frame.angle = 0.2;
     let a = render(&small_map(), Some(&world), &options);
@@ -464,7 +488,7 @@ fn unchecked_worlds_do_not_panic() {
     world.doors.push(Door { id: 2, units: [1, 99], x0: 0, y0: 0, x1: 5, y1: 5 });
     world.doors.push(Door { id: 3, units: [1, 2], x0: i32::MIN, y0: 3, x1: i32::MAX, y1: 3 });
     world.object_cells.extend([[i32::MIN, i32::MAX], [-1, -1], [16, 12]]);
-    let options = RenderOptions { scale: 2, labels: true };
+    let options = RenderOptions { scale: 2, labels: true, legend: true };
     for frame in [
         world.frame,
         Frame { angle: 0.4, ..world.frame },
@@ -561,4 +585,104 @@ fn check_dataset_map(path: &std::path::Path) {
         path.display()
     );
     assert!(counts[0] > 0 && counts[2] > 0, "{}: a real map has free and occupied cells", path.display());
+}
+
+#[test]
+fn walls_doors_and_labels_draw_over_the_fill() {
+    let map = Grid::new(16, 12, Cell::Free);
+    let pixmap = render(&map, Some(&small_world()), &no_labels(2));
+    // The shared wall at column 8 is blue on both sides' tints, the door cyan over it.
+    assert_eq!(rgb(&pixmap, 2 * 8, 2 * 2), BLUE);
+    assert_eq!(rgb(&pixmap, 2 * 8 + 1, 2 * 4), CYAN);
+    assert_eq!(rgb(&pixmap, 2 * 7, 2 * 4), room_fill_rgb(UnitType::Room));
+    assert_eq!(rgb(&pixmap, 2 * 9, 2 * 4), room_fill_rgb(UnitType::Corridor));
+    // Each type keeps its own tint, and the tints differ from each other and from white.
+    let tints: Vec<[u8; 3]> = UnitType::ALL.iter().map(|&k| room_fill_rgb(k)).collect();
+    for (i, a) in tints.iter().enumerate() {
+        assert_ne!(*a, WHITE);
+        for b in &tints[i + 1..] {
+            let d: i32 = a.iter().zip(b).map(|(x, y)| (*x as i32 - *y as i32).abs()).sum();
+            assert!(d >= 30, "tints {a:?} and {b:?} look alike");
+        }
+    }
+}
+
+#[test]
+fn the_legend_lists_the_colours_drawn_in_the_emptiest_corner() {
+    let map = Grid::new(120, 80, Cell::Free);
+    let mut world = World::empty(120, 80);
+    world.units.push(Unit { id: 1, x: 2, y: 2, w: 40, h: 30, kind: UnitType::Room });
+    world.units.push(Unit { id: 2, x: 41, y: 2, w: 77, h: 30, kind: UnitType::Corridor });
+    world.units.push(Unit { id: 3, x: 2, y: 45, w: 38, h: 33, kind: UnitType::Hall });
+    world.doors.push(Door { id: 1, units: [1, 2], x0: 41, y0: 10, x1: 41, y1: 14 });
+    let entries = render::legend_entries(&world);
+    let names: Vec<&str> = entries.iter().map(|e| e.0).collect();
+    assert_eq!(names, ["room", "corridor", "hall", "wall", "door"]);
+    let with = render(&map, Some(&world), &RenderOptions { scale: 2, labels: false, legend: true });
+    let without = render(&map, Some(&world), &no_labels(2));
+    // Everything that changed lies in one box in the bottom right (the other corners are
+    // taken by units).
+    let changed: Vec<(u32, u32)> = (0..with.height())
+        .flat_map(|y| (0..with.width()).map(move |x| (x, y)))
+        .filter(|&(x, y)| rgb(&with, x, y) != rgb(&without, x, y))
+        .collect();
+    assert!(changed.len() > 500, "the legend draws: {} pixels", changed.len());
+    let xs = changed.iter().map(|c| c.0);
+    let ys = changed.iter().map(|c| c.1);
+    let (min_x, max_x) = (xs.clone().min().unwrap(), xs.max().unwrap());
+    let (min_y, max_y) = (ys.clone().min().unwrap(), ys.max().unwrap());
+    assert!(min_x > with.width() / 3 && min_y > with.height() / 3, "bottom right: from ({min_x}, {min_y})");
+    assert!(max_x + 8 >= with.width() && max_y + 8 >= with.height(), "in the corner: to ({max_x}, {max_y})");
+    // Its swatches show the tints and the wall colour.
+    let shows = |c: [u8; 3]| changed.iter().any(|&(x, y)| rgb(&with, x, y) == c);
+    assert!(shows(room_fill_rgb(UnitType::Room)) && shows(room_fill_rgb(UnitType::Corridor)) && shows(BLUE));
+    assert!(shows(CYAN));
+    // A picture too small for it goes without.
+    let tiny = render(&Grid::new(20, 12, Cell::Free), Some(&small_world()), &RenderOptions::default());
+    let bare = render(&Grid::new(20, 12, Cell::Free), Some(&small_world()), &no_labels(1));
+    assert_eq!(tiny.data(), bare.data());
+}
+
+/// Labels on real, crowded maps: a chain run briefly on the Cartesium and two Bormann maps,
+/// rendered with rooms and with units only, places no two labels on top of each other, every
+/// label inside the picture, and none under the legend.
+#[test]
+fn labels_on_real_maps_never_overlap() {
+    let Some(datasets) = crate::common::datasets("labels_on_real_maps_never_overlap") else { return };
+    let maps = ["radish/ubremen-cartesium.png", "bormann2016/office_e.png", "bormann2016/lab_a_scan.png"];
+    std::thread::scope(|s| {
+        for name in maps {
+            let path = datasets.join(name);
+            s.spawn(move || check_labels_on(&path));
+        }
+    });
+}
+
+fn check_labels_on(path: &std::path::Path) {
+    use ksmcmc::floorplan::{rooms::RoomConfig, Chain, ChainConfig};
+    let map = OccupancyMap::load(path, &Default::default()).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let mut chain = Chain::new(&map, ChainConfig::default(), 7).expect("chain");
+    chain.step(3000);
+    let (with_rooms, _) = chain.best_world_with_rooms(&RoomConfig::default());
+    let units_only = World { rooms: Vec::new(), ..with_rooms.clone() };
+    assert!(with_rooms.units.len() >= 5, "{}: {} units", path.display(), with_rooms.units.len());
+    for (world, what) in [(&with_rooms, "rooms"), (&units_only, "units")] {
+        for scale in [1, 2, 4] {
+            let options = RenderOptions { scale, labels: true, legend: true };
+            let mut pixmap = render(map.classified(), None, &options);
+            let placed = render::draw_world(&mut pixmap, map.width(), map.height(), world, &options);
+            let at = format!("{} ({what}, scale {scale})", path.display());
+            assert!(!placed.is_empty(), "{at}: some label fits");
+            for (i, a) in placed.iter().enumerate() {
+                assert!(a.left >= 0 && a.top >= 0, "{at}: {a:?}");
+                assert!(a.left + a.width <= pixmap.width() as i64 && a.top + a.height <= pixmap.height() as i64);
+                for b in &placed[i + 1..] {
+                    assert!(!a.intersects(b), "{at}: {a:?} overlaps {b:?}");
+                }
+            }
+            // Same world, same pixels.
+            let again = render(map.classified(), Some(world), &options);
+            assert_eq!(again.data(), pixmap.data(), "{at}: deterministic");
+        }
+    }
 }

@@ -11,11 +11,12 @@ use std::path::Path;
 const MAX_SCALE: u32 = 16;
 
 const HELP: &str = "\
-Usage: ksmcmc render MAP [--world world.json] --out out.png [--scale N] [--no-labels]
+Usage: ksmcmc render MAP [--world world.json] --out out.png [--scale N] [--no-labels] [--no-legend]
 
 Draws the classified map (occupied black, unknown gray, free white) and, with --world, a
 semantic world over it in the papers' colours: walls blue, doors cyan, object cells green,
-each unit's type and id at its centre.
+unit interiors tinted by type, each room's (or unit's) type and id inside it where it fits,
+and a legend of the colours in a corner.
 
 MAP is a PGM (P2/P5), a PNG, or a ROS map.yaml.
 
@@ -24,6 +25,7 @@ Options:
   --out FILE      where to write the PNG (required)
   --scale N       output pixels per map cell, 1 to 16 (default 1)
   --no-labels     leave out the unit labels
+  --no-legend     leave out the legend
   -h, --help      this text
 ";
 
@@ -41,6 +43,7 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
             Long("out") | Short('o') => out = Some(args::path(parser.value()?)),
             Long("scale") => options.scale = scale(parser.value()?)?,
             Long("no-labels") => options.labels = false,
+            Long("no-legend") => options.legend = false,
             Long("help") | Short('h') => {
                 print!("{HELP}");
                 return Ok(());

@@ -67,7 +67,7 @@ impl RoomKnowledge {
             }
             Ok(())
         };
-        for (pred, _) in TYPES.iter().chain(&[("Open", UnitType::Unknown), ("Flush", UnitType::Unknown)]) {
+        for pred in TYPES.iter().map(|t| t.0).chain(["Open", "Flush"]) {
             if self.mln.predicate(pred).is_some() {
                 closed.push(pred.to_string());
             }

@@ -109,6 +109,18 @@ fn occupied(map: &Grid<Cell>, r: Rect) -> (i64, i64) {
     (occ, total)
 }
 
+/// Whether the stretch `s..=e` along which `lo` and `hi` face each other (across `axis`, walls
+/// `t` deep) spans at least [`FLUSH_SHARE`] of both units' facing sides ([`OpenPair::flush`]).
+fn is_flush(lo: Rect, hi: Rect, axis: Axis, (s, e): (i32, i32), t: i32) -> bool {
+    let side = |r: Rect| match axis {
+        Axis::Horizontal => r.h,
+        Axis::Vertical => r.w,
+    };
+    let span = (e - s + 1) as f64;
+    let share = |r: Rect| span / (side(r) - 2 * t).max(1) as f64;
+    share(lo).min(share(hi)) >= FLUSH_SHARE
+}
+
 /// Whether units `a` and `b` (rectangles, walls `t` deep) have an open boundary, and whether
 /// it is flush: `None` if there is none.
 fn open_boundary(a: Rect, b: Rect, t: i32, world_map: &Grid<Cell>, c: &RoomConfig) -> Option<bool> {
@@ -119,16 +131,13 @@ fn open_boundary(a: Rect, b: Rect, t: i32, world_map: &Grid<Cell>, c: &RoomConfi
             if e - s + 1 < c.min_open_len {
                 continue;
             }
-            let (band, side): (Rect, fn(Rect) -> i32) = match axis {
-                Axis::Horizontal => (Rect::new(lo.right() - t, s, hi.x - lo.right() + 2 * t, e - s + 1), |r| r.h),
-                Axis::Vertical => (Rect::new(s, lo.bottom() - t, e - s + 1, hi.y - lo.bottom() + 2 * t), |r| r.w),
+            let band = match axis {
+                Axis::Horizontal => Rect::new(lo.right() - t, s, hi.x - lo.right() + 2 * t, e - s + 1),
+                Axis::Vertical => Rect::new(s, lo.bottom() - t, e - s + 1, hi.y - lo.bottom() + 2 * t),
             };
             let (occ, total) = occupied(world_map, band);
             if total > 0 && (occ as f64) <= c.max_wall_share * total as f64 {
-                let span = (e - s + 1) as f64;
-                let share = |r: Rect| span / (side(r) - 2 * t).max(1) as f64;
-                let flush = share(lo).min(share(hi)) >= FLUSH_SHARE;
-                found = Some(found.unwrap_or(false) || flush);
+                found = Some(found.unwrap_or(false) || is_flush(lo, hi, axis, (s, e), t));
             }
         }
     }
@@ -156,13 +165,8 @@ fn wide_door(world: &World, a: usize, b: usize, c: &RoomConfig) -> Option<bool> 
         for axis in [Axis::Horizontal, Axis::Vertical] {
             // Facing across a door: walls up to two wall depths apart (as doors allow).
             let Some((s, e)) = facing(lo, hi, axis, 2 * t, t) else { continue };
-            let span = (e - s + 1) as f64;
-            if (door as f64) >= c.wide_door_share * span {
-                let side = |r: Rect| match axis {
-                    Axis::Horizontal => (r.h - 2 * t).max(1),
-                    Axis::Vertical => (r.w - 2 * t).max(1),
-                } as f64;
-                return Some((span / side(lo)).min(span / side(hi)) >= FLUSH_SHARE);
+            if (door as f64) >= c.wide_door_share * (e - s + 1) as f64 {
+                return Some(is_flush(lo, hi, axis, (s, e), t));
             }
         }
     }
@@ -387,26 +391,16 @@ pub fn merge_small_segments(labels: &mut Grid<u16>, min_cells: usize) {
     if min_cells == 0 {
         return;
     }
-    let (w, h) = (labels.width(), labels.height());
     let n = labels.cells().iter().copied().max().unwrap_or(0) as usize;
     let mut size = vec![0usize; n + 1];
     for &l in labels.cells() {
         size[l as usize] += 1;
     }
+    // Contacts both ways round, so that a label's neighbours are one range of the map.
     let mut contact: BTreeMap<(u16, u16), usize> = BTreeMap::new();
-    for y in 0..h {
-        for x in 0..w {
-            let a = *labels.at(x, y);
-            for (nx, ny) in [(x + 1, y), (x, y + 1)] {
-                if nx < w && ny < h {
-                    let b = *labels.at(nx, ny);
-                    if a != 0 && b != 0 && a != b {
-                        *contact.entry((a, b)).or_default() += 1;
-                        *contact.entry((b, a)).or_default() += 1;
-                    }
-                }
-            }
-        }
+    for ((a, b), k) in super::topology::contacts(&labels.map(|&l| l as u32)) {
+        contact.insert((a as u16, b as u16), k);
+        contact.insert((b as u16, a as u16), k);
     }
     // Where each label went (union by redirection), smallest segments first.
     let mut to: Vec<u16> = (0..=n as u16).collect();

@@ -16,6 +16,7 @@ pub mod graph;
 pub(crate) mod kernels;
 pub mod knowledge;
 pub mod metrics;
+pub mod outline;
 pub mod posterior;
 pub mod report;
 pub mod room_layer;

@@ -23,6 +23,7 @@ pub mod room_layer;
 pub mod rooms;
 mod schedule;
 pub mod settled;
+pub mod shapes;
 pub(crate) mod state;
 pub mod synth;
 pub mod topology;

@@ -76,6 +76,48 @@ fn map_polygon(p: &Polygon, xs: &[i64], ys: &[i64]) -> Polygon {
     Polygon { exterior: ring(&p.exterior), holes: p.holes.iter().map(ring).collect() }
 }
 
+/// The marked cell deepest inside the region of [`trace_grid`]'s grid: the largest chessboard
+/// distance, counted in grid cells, to an unmarked cell or the grid's edge (1 for a cell on the
+/// boundary); ties go to the larger cell, then to the one nearest the middle of those left (the first
+/// row by row of equals). A place for a label.
+pub fn deepest(xs: &[i64], ys: &[i64], filled: impl Fn([i64; 4]) -> bool) -> Option<([i64; 4], u32)> {
+    let (nx, ny) = (xs.len().saturating_sub(1), ys.len().saturating_sub(1));
+    let rect = |i: usize, j: usize| [xs[i], ys[j], xs[i + 1], ys[j + 1]];
+    let mut d: Vec<u32> = (0..nx * ny).map(|k| if filled(rect(k % nx, k / nx)) { u32::MAX } else { 0 }).collect();
+    let at = |d: &[u32], i: i64, j: i64| {
+        if i < 0 || j < 0 || i >= nx as i64 || j >= ny as i64 {
+            0
+        } else {
+            d[j as usize * nx + i as usize]
+        }
+    };
+    for pass in [1i64, -1] {
+        for k in 0..nx * ny {
+            let k = if pass == 1 { k } else { nx * ny - 1 - k };
+            let (i, j) = ((k % nx) as i64, (k / nx) as i64);
+            if d[k] == 0 {
+                continue;
+            }
+            let back = [(-1, 0), (-1, -1), (0, -1), (1, -1)].map(|(di, dj)| at(&d, i + pass * di, j + pass * dj));
+            d[k] = d[k].min(back.iter().min().copied().unwrap_or(0).saturating_add(1));
+        }
+    }
+    let area = |r: [i64; 4]| (r[2] - r[0]) * (r[3] - r[1]);
+    let key = |k: usize| (d[k], area(rect(k % nx, k / nx)));
+    let top = (0..d.len()).filter(|&k| d[k] > 0).map(key).max()?;
+    let tied: Vec<[i64; 4]> = (0..d.len()).filter(|&k| key(k) == top).map(|k| rect(k % nx, k / nx)).collect();
+    // The one nearest the middle of the tied cells (first of equals).
+    let centre = |r: &[i64; 4]| ((r[0] + r[2]) as f64 / 2.0, (r[1] + r[3]) as f64 / 2.0);
+    let n = tied.len() as f64;
+    let (mx, my) = tied.iter().map(centre).fold((0.0, 0.0), |a, c| (a.0 + c.0 / n, a.1 + c.1 / n));
+    let dist = |r: &[i64; 4]| {
+        let (x, y) = centre(r);
+        (x - mx) * (x - mx) + (y - my) * (y - my)
+    };
+    let best = tied.iter().copied().reduce(|a, b| if dist(&b) < dist(&a) { b } else { a })?;
+    Some((best, top.0))
+}
+
 /// Directions: east, south, west, north (screen terms, y down).
 const STEP: [(i64, i64); 4] = [(1, 0), (0, 1), (-1, 0), (0, -1)];
 
@@ -316,6 +358,16 @@ mod tests {
         assert_eq!(island.exterior, vec![(2, 2), (2, 5), (5, 5), (5, 2)]);
         assert_eq!(island.holes, vec![vec![(3, 3), (4, 3), (4, 4), (3, 4)]]);
         assert_eq!(area(outer) + area(island), 2 * (49 - 25 + 9 - 1));
+    }
+
+    #[test]
+    fn the_deepest_cell_is_the_middle_of_a_blob() {
+        let xs: Vec<i64> = (0..=9).collect();
+        // A 9x5 block: the middle row's middle cell is 3 cells from the edge.
+        assert_eq!(deepest(&xs, &xs[..6], |_| true), Some(([4, 2, 5, 3], 3)));
+        // Cells of a compressed grid: the larger one wins a tie in depth.
+        assert_eq!(deepest(&[0, 2, 10], &[0, 4], |_| true), Some(([2, 0, 10, 4], 1)));
+        assert_eq!(deepest(&xs, &xs, |_| false), None);
     }
 
     #[test]

@@ -188,7 +188,7 @@ fn world_cell(world: &World, mx: usize, my: usize) -> Option<(i32, i32)> {
 }
 
 /// The map cell under world cell `(x, y)` (its centre), if inside the map.
-fn map_cell(world: &World, x: i32, y: i32, w: usize, h: usize) -> Option<(usize, usize)> {
+pub(crate) fn map_cell(world: &World, x: i32, y: i32, w: usize, h: usize) -> Option<(usize, usize)> {
     let (mx, my) = if world.frame.is_identity() {
         (x as f64 + 0.5, y as f64 + 0.5)
     } else {

@@ -12,6 +12,8 @@
 pub mod chain;
 pub(crate) mod explain;
 pub mod export;
+pub mod geojson;
+pub mod georef;
 pub mod graph;
 pub(crate) mod kernels;
 pub mod knowledge;

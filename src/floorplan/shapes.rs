@@ -68,6 +68,8 @@ pub struct RoomShape {
     pub id: u32,
     /// The room's type.
     pub kind: UnitType,
+    /// Its free floor area (`area_m2` of `world.json`), square metres.
+    pub area_m2: f64,
     /// Its polygons (none if the room has neither floor nor label cells).
     pub polygons: Vec<MapPolygon>,
     /// A point inside the room for its label: the middle of its largest floor, or of its
@@ -300,6 +302,7 @@ impl<'a> Plan<'a> {
         RoomShape {
             id: room.id,
             kind: room.kind,
+            area_m2: room.area_m2,
             polygons,
             anchor: to_map(self.world, anchor.0, anchor.1),
             label_room,

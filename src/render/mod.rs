@@ -64,6 +64,7 @@ pub mod font;
 mod graph;
 mod labels;
 mod legend;
+pub mod svg;
 pub mod tabletop;
 mod world;
 

@@ -49,7 +49,9 @@ const ui = {
   exports: {
     world: $('export-world'), labels: $('export-labels'), png: $('export-png'), graph: $('export-graph'),
     report: $('export-report'),
+    geojson: $('export-geojson'), svg: $('export-svg'),
   },
+  georef: $('georef'),
 };
 
 const { showError, clearError, say, attempt, loadWasm } = messages(ui);
@@ -1079,6 +1081,8 @@ function wire() {
   ex.png.addEventListener('click', exporter('overlay.png', 'image/png', 'toPng', () => [{ show: state.show, cloud: state.cloud, labels: state.labels }]));
   ex.graph.addEventListener('click', exporter('graph.json', 'application/json', 'graphJson'));
   ex.report.addEventListener('click', exporter('report.json', 'application/json', 'reportJson'));
+  ex.geojson.addEventListener('click', exporter('world.geojson', 'application/geo+json', 'geojson', () => (ui.georef.value.trim() ? [ui.georef.value.trim()] : [])));
+  ex.svg.addEventListener('click', exporter('world.svg', 'image/svg+xml', 'svg'));
 
   ui.canvas.addEventListener('pointerdown', onPointerDown);
   ui.canvas.addEventListener('pointermove', onPointerMove);
@@ -1095,7 +1099,7 @@ function wire() {
 function expose() {
   window.__ksmcmc = {
     /** The chain's exports and report, as promises (the chain is in a worker). */
-    mapper: Object.fromEntries(['bestWorldJson', 'worldJson', 'labelsPgm', 'graphJson', 'reportJson', 'toPng'].map((name) => [name, (...args) => invoke(name, ...args)])),
+    mapper: Object.fromEntries(['bestWorldJson', 'worldJson', 'labelsPgm', 'graphJson', 'reportJson', 'toPng', 'geojson', 'svg'].map((name) => [name, (...args) => invoke(name, ...args)])),
     /** The weak prior's chain beside it (when compared): its exports and numbers. */
     weak: {
       invoke: (name, ...args) => state.weak.chain.call('invoke', { name, args }),

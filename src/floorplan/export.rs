@@ -1,6 +1,7 @@
 //! The files of a floor-plan run, written the same way by `ksmcmc floorplan` and by the
-//! browser's `Mapper`: `world.json`, `overlay.png`, `graph.json`, `trace.csv`, `labels.pgm`
-//! and `report.json`.
+//! browser's `Mapper`: `world.json`, `overlay.png`, `graph.json`, `trace.csv`, `labels.pgm`,
+//! `report.json`, and the floor plan for other tools, `world.geojson` ([`super::geojson`])
+//! and `world.svg` ([`crate::render::svg`]).
 //!
 //! The room labels need only the best world and two grids of the chain, not its tables: a
 //! [`RoomInput`] takes those from a [`Chain`], so that a caller short of memory drops the
@@ -20,14 +21,19 @@
 //! drop(chain);
 //! let (world, labels) = input.explain(&RoomConfig::default());
 //! report::add_rooms(&mut summary, &world, &labels);
-//! let out = Outputs::new(&s.map, &world, &labels, &summary, trace).unwrap();
+//! let out = Outputs::new(&s.map, &world, &labels, &summary, trace, None).unwrap();
 //! let names: Vec<&str> = out.files().iter().map(|(name, _)| *name).collect();
-//! assert_eq!(names, ["world.json", "overlay.png", "graph.json", "trace.csv", "labels.pgm", "report.json"]);
+//! assert_eq!(
+//!     names,
+//!     ["world.json", "overlay.png", "graph.json", "trace.csv", "labels.pgm", "report.json", "world.geojson", "world.svg"]
+//! );
 //! assert!(out.trace_csv.starts_with("iteration,log_posterior,acceptance,units\n"));
 //! ```
 
+use super::georef::{Georef, MapOrigin};
+use super::shapes::{floor_shapes, ShapeError};
 use super::world::World;
-use super::{graph, room_layer, rooms::RoomConfig, Chain, Trace};
+use super::{geojson, graph, room_layer, rooms::RoomConfig, Chain, Trace};
 use crate::grid::{Cell, Grid, OccupancyMap};
 use crate::render::{self, RenderError};
 use std::fmt::Write as _;
@@ -69,7 +75,28 @@ impl RoomInput {
     }
 }
 
-/// The six files of a run, as bytes and text.
+/// Why the files of a run could not be made.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ExportError {
+    /// `overlay.png` cannot be drawn (a map over [`render::MAX_PIXELS`] cells).
+    Overlay(RenderError),
+    /// The room shapes of `world.geojson` and `world.svg` cannot be made (an invalid world, or
+    /// labels of another size).
+    Shapes(ShapeError),
+}
+
+impl std::fmt::Display for ExportError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            ExportError::Overlay(e) => write!(f, "overlay.png: {e}"),
+            ExportError::Shapes(e) => write!(f, "world.geojson and world.svg: {e}"),
+        }
+    }
+}
+
+impl std::error::Error for ExportError {}
+
+/// The eight files of a run, as bytes and text.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Outputs {
     /// `world.json`: the best world found (units, doors, object cells, rooms).
@@ -84,31 +111,40 @@ pub struct Outputs {
     pub labels_pgm: Vec<u8>,
     /// `report.json`: the run's summary ([`report_json`]).
     pub report_json: String,
+    /// `world.geojson`: the rooms and doors in IMDF shape ([`geojson`]).
+    pub world_geojson: String,
+    /// `world.svg`: the floor plan as a vector drawing ([`render::svg`]).
+    pub world_svg: String,
 }
 
 impl Outputs {
-    /// All six files of the world `world` (with its rooms) on `map`, its room `labels`, the
-    /// `report` ([`super::report`]) and the `trace_csv`. Fails only if the overlay cannot be
-    /// drawn (a map over [`render::MAX_PIXELS`] cells).
+    /// All eight files of the world `world` (with its rooms) on `map`, its room `labels`, the
+    /// `report` ([`super::report`]) and the `trace_csv`; `world.geojson` in longitude and
+    /// latitude with a `georef`, else in metres of the map frame. Fails if the overlay cannot
+    /// be drawn (a map over [`render::MAX_PIXELS`] cells) or the world or labels are not valid.
     pub fn new(
         map: &OccupancyMap,
         world: &World,
         labels: &Grid<u16>,
         report: &serde_json::Value,
         trace_csv: String,
-    ) -> Result<Outputs, RenderError> {
+        georef: Option<&Georef>,
+    ) -> Result<Outputs, ExportError> {
+        let shapes = floor_shapes(world, labels).map_err(ExportError::Shapes)?;
         Ok(Outputs {
             world_json: world.to_json(),
-            overlay_png: overlay_png(map.classified(), world)?,
+            overlay_png: overlay_png(map.classified(), world).map_err(ExportError::Overlay)?,
             graph_json: graph_json(world),
             trace_csv,
             labels_pgm: labels_pgm(labels),
             report_json: report_json(report),
+            world_geojson: geojson::geojson(&shapes, &MapOrigin::of(map), georef),
+            world_svg: render::svg::svg(&shapes, world, map.yaml().resolution),
         })
     }
 
     /// The files by name, in the order `ksmcmc floorplan` writes them.
-    pub fn files(&self) -> [(&'static str, &[u8]); 6] {
+    pub fn files(&self) -> [(&'static str, &[u8]); 8] {
         [
             ("world.json", self.world_json.as_bytes()),
             ("overlay.png", &self.overlay_png),
@@ -116,6 +152,8 @@ impl Outputs {
             ("trace.csv", self.trace_csv.as_bytes()),
             ("labels.pgm", &self.labels_pgm),
             ("report.json", self.report_json.as_bytes()),
+            ("world.geojson", self.world_geojson.as_bytes()),
+            ("world.svg", self.world_svg.as_bytes()),
         ]
     }
 }

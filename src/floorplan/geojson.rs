@@ -125,24 +125,23 @@ pub fn geojson(shapes: &FloorShapes, origin: &MapOrigin, georef: Option<&Georef>
         ));
         *seq += 1;
     }
-    let lines: Vec<String> =
-        features.iter().map(|f| serde_json::to_string(f).expect("JSON values serialise")).collect();
-    format!("{{\"type\":\"FeatureCollection\",\"features\":[\n{}\n]}}\n", lines.join(",\n"))
+    format!("{{\"type\":\"FeatureCollection\",\"features\":[\n{}\n]}}\n", features.join(",\n"))
 }
 
-/// A feature with its members in the usual order.
-fn feature(id: String, feature_type: &str, geometry: Value, properties: Value) -> Value {
-    let mut m = serde_json::Map::new();
-    m.insert("type".into(), "Feature".into());
-    m.insert("id".into(), id.into());
-    m.insert("feature_type".into(), feature_type.into());
-    m.insert("geometry".into(), geometry);
-    m.insert("properties".into(), properties);
-    Value::Object(m)
+/// A feature with its members in the usual order: type, id, feature_type, geometry, properties.
+fn feature(id: String, feature_type: &str, geometry: Value, properties: Value) -> String {
+    let text = |v: &Value| serde_json::to_string(v).expect("JSON values serialise");
+    format!(
+        "{{\"type\":\"Feature\",\"id\":{},\"feature_type\":{},\"geometry\":{},\"properties\":{}}}",
+        text(&id.into()),
+        text(&feature_type.into()),
+        text(&geometry),
+        text(&properties)
+    )
 }
 
 /// The level: the map's extent, widened to anything drawn beyond it.
-fn level(shapes: &FloorShapes, out: &Projection, id: &str) -> Value {
+fn level(shapes: &FloorShapes, out: &Projection, id: &str) -> String {
     let [w, h] = shapes.map_size.map(f64::from);
     let mut b = [0.0, 0.0, w, h];
     let points = shapes.rooms.iter().flat_map(|r| r.polygons.iter()).flat_map(|p| p.exterior.iter());

@@ -220,11 +220,11 @@ impl<'a> Plan<'a> {
 
     fn room(&self, k: usize, room: &Room) -> RoomShape {
         let own: Vec<Half> = self.floors.iter().filter(|f| f.1 == k).map(|f| f.0).collect();
-        self.from_floors(k, room, &own).unwrap_or_else(|| self.from_labels(room))
+        self.floor_shape(k, room, &own).unwrap_or_else(|| self.label_shape(room))
     }
 
     /// The union of the room's floors less earlier rooms' floors and label-outlined rooms.
-    fn from_floors(&self, k: usize, room: &Room, own: &[Half]) -> Option<RoomShape> {
+    fn floor_shape(&self, k: usize, room: &Room, own: &[Half]) -> Option<RoomShape> {
         let bbox =
             own.iter().copied().reduce(|a, b| [a[0].min(b[0]), a[1].min(b[1]), a[2].max(b[2]), a[3].max(b[3])])?;
         let clip = |r: &Half| -> Option<Half> {
@@ -264,7 +264,7 @@ impl<'a> Plan<'a> {
     }
 
     /// The room's cells in the label image, taken in the world frame.
-    fn from_labels(&self, room: &Room) -> RoomShape {
+    fn label_shape(&self, room: &Room) -> RoomShape {
         let b = u16::try_from(room.id).ok().and_then(|l| self.boxes[l as usize]);
         let Some(b) = b else {
             return self.shape(room, Vec::new(), (0.0, 0.0), (0.0, 0.0), ShapeSource::Labels);

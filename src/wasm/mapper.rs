@@ -20,6 +20,8 @@ use super::{js_message, put_rgba, seed_from_js, Map, Rendered};
 use crate::floorplan::report::report as ksmcmc_report;
 use crate::floorplan::rooms::RoomConfig;
 use crate::floorplan::settled::Settled;
+use crate::floorplan::geojson::world_geojson;
+use crate::floorplan::georef::Georef;
 use crate::floorplan::{export, metrics, Chain, ChainConfig, Rect, World};
 use crate::grid::{Cell, Grid, OccupancyMap};
 use crate::render::{self, RenderOptions};
@@ -498,6 +500,33 @@ impl Mapper {
     #[wasm_bindgen(js_name = labelsPgm)]
     pub fn labels_pgm(&mut self) -> Vec<u8> {
         export::labels_pgm(self.best_rooms().1)
+    }
+
+    /// The best world's rooms and doors as `world.geojson` text (an RFC 7946 FeatureCollection
+    /// in IMDF shape: a `level`, a `unit` per room, an `opening` per door), what `ksmcmc
+    /// floorplan` writes after as many iterations with the same seed. Coordinates are metres in
+    /// the map's frame, or longitude/latitude with `georef`, `"LAT,LON,BEARING"` in degrees as
+    /// the CLI's `--georef` (throws if it is not).
+    pub fn geojson(
+        &mut self,
+        #[wasm_bindgen(unchecked_optional_param_type = "string")] georef: Option<String>,
+    ) -> Result<String, JsError> {
+        let georef = match georef.as_deref() {
+            Some(text) => Some(text.parse::<Georef>().map_err(|e| JsError::new(&format!("georef: {e}")))?),
+            None => None,
+        };
+        let map = self.map.clone();
+        let (world, labels) = self.best_rooms();
+        Ok(world_geojson(world, labels, &map, georef.as_ref())?)
+    }
+
+    /// The best world as `world.svg` text: the floor plan as a vector drawing in map cells,
+    /// with layers `rooms` (one path per room with `data-room` and `data-type`), `walls`,
+    /// `doors` and `labels`; what `ksmcmc floorplan` writes.
+    pub fn svg(&mut self) -> Result<String, JsError> {
+        let resolution = self.map.yaml().resolution;
+        let (world, labels) = self.best_rooms();
+        Ok(render::svg::world_svg(world, labels, resolution)?)
     }
 
     /// The scene graph of the best world (or the current one, `which = 'current'`) as

@@ -21,7 +21,7 @@ const DRAW_SHARE = 0.3;
  * The mapper's methods the page may call through `invoke` (exports, the report and the best
  * world's rooms).
  */
-const INVOKABLE = new Set(['bestWorldJson', 'worldJson', 'labelsPgm', 'graphJson', 'reportJson', 'toPng', 'roomsJson']);
+const INVOKABLE = new Set(['bestWorldJson', 'worldJson', 'labelsPgm', 'graphJson', 'reportJson', 'toPng', 'roomsJson', 'geojson', 'svg']);
 
 const ready = init();
 const state = {

@@ -3,6 +3,7 @@
 use crate::args::{self, CliError};
 use ksmcmc::floorplan::rooms::RoomConfig;
 use ksmcmc::floorplan::settled::{self, Settled};
+use ksmcmc::floorplan::georef::Georef;
 use ksmcmc::floorplan::{export, metrics, Chain, ChainConfig};
 use ksmcmc::grid::Cell;
 use std::ffi::OsString;
@@ -20,6 +21,11 @@ data-driven MCMC, and writes:
   DIR/trace.csv     log posterior, acceptance rate and unit count over the run
   DIR/labels.pgm    16-bit room segmentation (room id per free cell, 0 elsewhere)
   DIR/report.json   iterations, time, K(W,M), counts, log posterior, seed
+  DIR/world.geojson the rooms (IMDF `unit`s: room, walkway, lobby or unspecified), doors
+                    (`opening`s) and the floor (`level`) as GeoJSON, in metres of the map
+                    frame (the map.yaml origin applied), or longitude/latitude with --georef
+  DIR/world.svg     the floor plan as a vector drawing in layers (rooms by type, walls,
+                    doors, labels), in map cells
 
 Options:
   --iterations N     iterations to run (default 20000)
@@ -37,6 +43,11 @@ Options:
                      world with the built-in rules)
   --region FILE      an image the size of the map whose non-black cells are a region of
                      interest: report.json then also gives K(W,M) inside it
+  --georef LAT,LON,BEARING
+                     where the map lies on the Earth, for world.geojson: latitude and
+                     longitude (degrees, WGS 84) of the map frame's origin and the compass
+                     bearing of its y axis (0: the map's up is north); coordinates are then
+                     longitude/latitude on the local tangent plane
   --classify RULE    how plain images become cells: auto (default; background grays found
                      from the histogram, anti-aliased walls occupied) or fixed (eq. 3.7
                      thresholds only); a map.yaml always uses its own thresholds
@@ -55,6 +66,7 @@ struct Opts {
     region: Option<PathBuf>,
     knowledge: Option<String>,
     until_settled: bool,
+    georef: Option<Georef>,
 }
 
 pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
@@ -92,8 +104,8 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     }
     report["cell_prediction_rate_region"] =
         region.as_ref().map(|r| metrics::prediction_rate_in(map.classified(), &world, Some(r))).into();
-    let outputs =
-        export::Outputs::new(&map, &world, &labels, &report, trace).map_err(|e| args::failed("overlay.png", e))?;
+    let outputs = export::Outputs::new(&map, &world, &labels, &report, trace, o.georef.as_ref())
+        .map_err(|e| args::failed(o.out.display(), e))?;
     for (name, bytes) in outputs.files() {
         args::write(&o.out.join(name), bytes)?;
     }
@@ -122,6 +134,7 @@ fn parse(argv: Vec<OsString>) -> Result<Option<Opts>, CliError> {
     let mut region_path: Option<PathBuf> = None;
     let mut knowledge: Option<String> = None;
     let mut until_settled = false;
+    let mut georef = None;
     while let Some(arg) = parser.next()? {
         match arg {
             Value(v) if map.is_none() => map = Some(args::path(v)),
@@ -135,6 +148,7 @@ fn parse(argv: Vec<OsString>) -> Result<Option<Opts>, CliError> {
             Long("region") => region_path = Some(args::path(parser.value()?)),
             Long("knowledge") => knowledge = Some(args::value("--knowledge", parser.value()?)?),
             Long("until-settled") => until_settled = true,
+            Long("georef") => georef = Some(args::value::<Georef>("--georef", parser.value()?)?),
             Long("help") | Short('h') => {
                 print!("{HELP}");
                 return Ok(None);
@@ -166,6 +180,7 @@ fn parse(argv: Vec<OsString>) -> Result<Option<Opts>, CliError> {
         region: region_path,
         knowledge,
         until_settled,
+        georef,
     }))
 }
 

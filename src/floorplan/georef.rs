@@ -94,7 +94,7 @@ impl std::fmt::Display for GeorefError {
                            the map frame's origin and the compass bearing of the map's y axis, e.g. \
                            53.1059,8.8521,0";
         match self {
-            GeorefError::Format(text) => write!(f, "{text:?} is not {HOW}"),
+            GeorefError::Format(text) => write!(f, "{text:?} is not three numbers separated by commas; {HOW}"),
             GeorefError::Latitude(v) => {
                 write!(f, "latitude {v} is not between -89 and 89 degrees (the local plane fails at the poles); {HOW}")
             }

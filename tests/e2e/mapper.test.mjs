@@ -8,6 +8,7 @@ import assert from 'node:assert/strict';
 import { existsSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
+import { check as checkGeoJson } from '@placemarkio/check-geojson';
 import { DATASETS, REPO, cli, download, openPage, pgm, startBrowser } from './harness.mjs';
 
 let env;
@@ -199,6 +200,8 @@ describe('Live mapper', () => {
       'labels.pgm': '#export-labels',
       'overlay.png': '#export-png',
       'graph.json': '#export-graph',
+      'world.geojson': '#export-geojson',
+      'world.svg': '#export-svg',
     };
     for (const [name, button] of Object.entries(files)) {
       const got = await download(page, button);
@@ -412,6 +415,74 @@ describe('Live mapper', () => {
     await key(page, 'c');
     await key(page, 't');
     assert.equal((await snap(page)).show, 'reference');
+    await done(page);
+  });
+
+  test('GeoJSON and SVG exports: a GeoJSON library and an <img> read back one unit and one shape per room', async () => {
+    const page = await openMapper('?sample=furnished&seed=2&ipf=1500');
+    await until(page, (s, v) => s.sample === v, 'furnished');
+    for (let i = 0; i < 2; i++) await key(page, 's');
+    await until(page, (s, v) => s.iteration === v, 3000);
+    const world = JSON.parse(await page.evaluate(() => window.__ksmcmc.mapper.bestWorldJson()));
+    const { rooms } = world;
+    const doors = world.doors.length;
+    assert.ok(rooms.length >= 2, `${rooms.length} rooms`);
+
+    // GeoJSON, read by @placemarkio/check-geojson (RFC 7946 checks), in metres of the map frame.
+    const area2 = (ring) => ring.slice(1).reduce((a, p, i) => a + ring[i][0] * p[1] - p[0] * ring[i][1], 0);
+    const read = async () => {
+      const got = await download(page, '#export-geojson');
+      assert.equal(got.name, 'world.geojson');
+      const fc = checkGeoJson(got.bytes.toString('utf8'));
+      assert.equal(fc.type, 'FeatureCollection');
+      const of = (t) => fc.features.filter((f) => f.feature_type === t);
+      assert.equal(of('level').length, 1);
+      assert.equal(of('unit').length, rooms.length, 'a unit per room');
+      assert.equal(of('opening').length, doors, 'an opening per door');
+      assert.equal(new Set(fc.features.map((f) => f.id)).size, fc.features.length, 'unique ids');
+      assert.deepEqual(of('unit').map((f) => f.properties.name.en.split(' ').pop()), rooms.map((r) => String(r.id)));
+      for (const u of of('unit')) {
+        const polygons = u.geometry.type === 'Polygon' ? [u.geometry.coordinates] : u.geometry.coordinates;
+        for (const p of polygons) p.forEach((ring, k) => assert.ok(k === 0 ? area2(ring) > 0 : area2(ring) < 0, 'right-hand rule'));
+      }
+      return of('unit');
+    };
+    const metres = await read();
+    assert.ok(metres.every((u) => Math.abs(u.properties.display_point.coordinates[0]) < 100), 'metres');
+    await page.fill('#georef', '53.1059, 8.8521, 10');
+    const degrees = await read();
+    for (const u of degrees) {
+      const [lon, lat] = u.properties.display_point.coordinates;
+      assert.ok(Math.abs(lon - 8.8521) < 0.01 && Math.abs(lat - 53.1059) < 0.01, `${lon}, ${lat}`);
+    }
+    await page.fill('#georef', 'somewhere');
+    await page.click('#export-geojson');
+    await expectAlert(page, /georef: "somewhere" is not three numbers/);
+    await dismiss(page);
+
+    // SVG: an <img> shows it at the map's size, and it holds a [data-room] shape per room.
+    const svg = await download(page, '#export-svg');
+    assert.equal(svg.name, 'world.svg');
+    const s = await snap(page);
+    const shown = await page.evaluate(async (text) => {
+      const doc = new DOMParser().parseFromString(text, 'image/svg+xml');
+      const img = new Image();
+      const url = URL.createObjectURL(new Blob([text], { type: 'image/svg+xml' }));
+      img.src = url;
+      await img.decode();
+      URL.revokeObjectURL(url);
+      return {
+        error: doc.querySelector('parsererror')?.textContent ?? null,
+        rooms: [...doc.querySelectorAll('[data-room]')].map((e) => Number(e.getAttribute('data-room'))),
+        layers: [...doc.documentElement.children].filter((e) => e.tagName === 'g').map((e) => e.id),
+        width: img.naturalWidth,
+        height: img.naturalHeight,
+      };
+    }, svg.bytes.toString('utf8'));
+    assert.equal(shown.error, null);
+    assert.deepEqual(shown.rooms, rooms.map((r) => r.id), 'a [data-room] shape per room');
+    assert.deepEqual(shown.layers, ['rooms', 'walls', 'doors', 'labels']);
+    assert.deepEqual([shown.width, shown.height], [s.width, s.height]);
     await done(page);
   });
 

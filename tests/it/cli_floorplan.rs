@@ -76,6 +76,14 @@ fn floorplan_writes_every_output_and_scores_its_labels() {
     let graph: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(d.join("graph.json")).unwrap()).unwrap();
     assert_eq!(graph["nodes"].as_array().unwrap().len(), world.units.len());
+    // The vector exports: a unit feature per room, an opening per door, a shape per room.
+    let geojson: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(d.join("world.geojson")).unwrap()).unwrap();
+    let count = |t: &str| geojson["features"].as_array().unwrap().iter().filter(|f| f["feature_type"] == t).count();
+    assert_eq!((count("level"), count("unit"), count("opening")), (1, world.rooms.len(), world.doors.len()));
+    let svg = std::fs::read_to_string(d.join("world.svg")).unwrap();
+    assert!(svg.starts_with("<?xml") && svg.ends_with("</svg>\n"));
+    assert_eq!(svg.matches("<path data-room=").count(), world.rooms.len());
     // Scored against the generator's truth, the segmentation is good.
     let truth = sample("office-small/truth_labels.pgm");
     let out =
@@ -156,6 +164,16 @@ fn bad_input_is_a_clear_error() {
             vec!["floorplan".into(), m.into(), "--out".into(), o.into(), "--classify".into(), "magic".into()],
             2,
             "classify",
+        ),
+        (
+            vec!["floorplan".into(), m.into(), "--out".into(), o.into(), "--georef".into(), "53.1,8.8".into()],
+            2,
+            "is not three numbers separated by commas; a georeference is LAT,LON,BEARING",
+        ),
+        (
+            vec!["floorplan".into(), m.into(), "--out".into(), o.into(), "--georef".into(), "53.1,188,0".into()],
+            2,
+            "longitude 188 is not between -180 and 180",
         ),
         (vec!["score".into(), p("one.pgm")], 2, "TRUTH"),
         (

@@ -153,11 +153,12 @@ fn georeferenced_geojson_lies_around_the_georeference_and_keeps_the_shapes() {
     let degrees = check(&out.world_geojson, &world);
     let plain = check(&metres.world_geojson, &world);
     // A degree of latitude here is 111 288.26 m and of longitude 66 972.84 m (WGS 84): the
-    // local plane is linear, so areas convert back to the metres' within the rounding.
+    // local plane is linear, so areas convert back to the metres' within the rounding (10^-8
+    // degrees, about a millimetre, moves the area of a 40 m² room by up to some 0.02 m²).
     let (m_per_deg_lat, m_per_deg_lon) = (111_288.26, 66_972.84);
     for (id, a) in &degrees {
         let back = a * m_per_deg_lat * m_per_deg_lon;
-        assert!((back / plain[id] - 1.0).abs() < 1e-4, "room {id}: {back} m² vs {} m²", plain[id]);
+        assert!((back / plain[id] - 1.0).abs() < 1e-3, "room {id}: {back} m² vs {} m²", plain[id]);
     }
     let fc: serde_json::Value = serde_json::from_str(&out.world_geojson).unwrap();
     let p = &fc["features"][1]["properties"]["display_point"]["coordinates"];

@@ -87,7 +87,8 @@ browser-tools:
 	  DEBIAN_FRONTEND=noninteractive $$sudo apt-get install -y -q chromium chromium-driver; \
 	fi
 
-# playwright-core only: it drives the Debian Chromium and never downloads a browser.
+# playwright-core (it drives the Debian Chromium and never downloads a browser) and
+# @placemarkio/check-geojson (the GeoJSON export is read back with it), from package-lock.json.
 e2e-deps: tests/e2e/node_modules/.package-lock.json
 
 tests/e2e/node_modules/.package-lock.json: tests/e2e/package.json tests/e2e/package-lock.json

@@ -17,11 +17,11 @@
 //! ```
 
 use super::{js_message, put_rgba, seed_from_js, Map, Rendered};
+use crate::floorplan::geojson::world_geojson;
+use crate::floorplan::georef::Georef;
 use crate::floorplan::report::report as ksmcmc_report;
 use crate::floorplan::rooms::RoomConfig;
 use crate::floorplan::settled::Settled;
-use crate::floorplan::geojson::world_geojson;
-use crate::floorplan::georef::Georef;
 use crate::floorplan::{export, metrics, Chain, ChainConfig, Rect, World};
 use crate::grid::{Cell, Grid, OccupancyMap};
 use crate::render::{self, RenderOptions};

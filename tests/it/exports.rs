@@ -112,7 +112,12 @@ fn check_areas(areas: &BTreeMap<u32, f64>, world: &World, what: &str) {
     let (mut poly, mut free) = (0.0, 0.0);
     for r in &world.rooms {
         let a = areas[&r.id];
-        assert!(a >= 0.75 * r.area_m2 && a <= 1.6 * r.area_m2, "{what}: room {} polygon {a} m², area_m2 {}", r.id, r.area_m2);
+        assert!(
+            a >= 0.75 * r.area_m2 && a <= 1.6 * r.area_m2,
+            "{what}: room {} polygon {a} m², area_m2 {}",
+            r.id,
+            r.area_m2
+        );
         poly += a;
         free += r.area_m2;
     }

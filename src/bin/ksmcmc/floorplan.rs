@@ -1,9 +1,9 @@
 //! `ksmcmc floorplan MAP --out DIR`: explain a map with a semantic floor plan.
 
 use crate::args::{self, CliError};
+use ksmcmc::floorplan::georef::Georef;
 use ksmcmc::floorplan::rooms::RoomConfig;
 use ksmcmc::floorplan::settled::{self, Settled};
-use ksmcmc::floorplan::georef::Georef;
 use ksmcmc::floorplan::{export, metrics, Chain, ChainConfig};
 use ksmcmc::grid::Cell;
 use std::ffi::OsString;

@@ -83,8 +83,9 @@ fn map_polygon(p: &Polygon, xs: &[i64], ys: &[i64]) -> Polygon {
 pub fn deepest(xs: &[i64], ys: &[i64], filled: impl Fn([i64; 4]) -> bool) -> Option<([i64; 4], u32)> {
     let (nx, ny) = (xs.len().saturating_sub(1), ys.len().saturating_sub(1));
     let rect = |i: usize, j: usize| [xs[i], ys[j], xs[i + 1], ys[j + 1]];
-    let mut d: Vec<u32> = (0..nx * ny).map(|k| if filled(rect(k % nx, k / nx)) { u32::MAX } else { 0 }).collect();
-    let at = |d: &[u32], i: i64, j: i64| {
+    // Depths saturate at 65535 cells: two bytes a cell, as deep as any label needs.
+    let mut d: Vec<u16> = (0..nx * ny).map(|k| if filled(rect(k % nx, k / nx)) { u16::MAX } else { 0 }).collect();
+    let at = |d: &[u16], i: i64, j: i64| {
         if i < 0 || j < 0 || i >= nx as i64 || j >= ny as i64 {
             0
         } else {
@@ -115,7 +116,7 @@ pub fn deepest(xs: &[i64], ys: &[i64], filled: impl Fn([i64; 4]) -> bool) -> Opt
         (x - mx) * (x - mx) + (y - my) * (y - my)
     };
     let best = tied.iter().copied().reduce(|a, b| if dist(&b) < dist(&a) { b } else { a })?;
-    Some((best, top.0))
+    Some((best, top.0 as u32))
 }
 
 /// Directions: east, south, west, north (screen terms, y down).

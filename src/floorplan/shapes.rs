@@ -504,11 +504,11 @@ mod tests {
 
     #[test]
     fn a_room_with_neither_floor_nor_label_cells_has_no_polygons() {
-        // Unit 1 is no deeper than its walls (3 cells, walls 2 deep): no floor, and no cell
-        // of the label image is room 1's.
+        // Unit 1 is no wider than its walls are deep (2 cells, walls 2 deep): no floor, and no
+        // cell of the label image is room 1's.
         let mut world = World::empty(20, 10);
         world.wall_thickness = 2;
-        world.units = vec![unit(1, 2, 2, 3, 3)];
+        world.units = vec![unit(1, 2, 2, 2, 2)];
         world.rooms = vec![room(1, &[1])];
         let s = floor_shapes(&world, &Grid::new(20, 10, 0)).unwrap();
         assert_eq!((s.rooms.len(), s.rooms[0].polygons.len(), s.rooms[0].source), (1, 0, ShapeSource::Labels));

@@ -635,8 +635,11 @@ fn parts_of(labels: &Grid<u16>, l: u16) -> Vec<Vec<usize>> {
             let (x, y) = (part[k] % w, part[k] / w);
             k += 1;
             for (nx, ny) in [(x.wrapping_sub(1), y), (x + 1, y), (x, y.wrapping_sub(1)), (x, y + 1)] {
+                if nx >= w || ny >= h {
+                    continue;
+                }
                 let j = ny * w + nx;
-                if nx < w && ny < h && !seen[j] && labels.cells()[j] == l {
+                if !seen[j] && labels.cells()[j] == l {
                     seen[j] = true;
                     part.push(j);
                 }

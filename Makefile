@@ -193,7 +193,7 @@ soak: www-pkg browser-tools e2e-deps
 # fuzz/corpus/TARGET (not committed), crashes to fuzz/artifacts/TARGET; the committed seeds
 # are fuzz/seeds/TARGET, and fixed crashes are kept in fuzz/regressions/TARGET, which
 # `cargo test` replays on stable (tests/it/hostile.rs).
-FUZZ_TARGETS := pgm png ros_yaml mln db world_json world_arbitrary scene_json chain_config synth_config
+FUZZ_TARGETS := pgm png ros_yaml mln db world_json world_arbitrary scene_json chain_config synth_config edits
 FUZZ_SECONDS ?= 600
 FUZZ_CI_SECONDS ?= 20
 CARGO_FUZZ_VERSION := 0.13.2

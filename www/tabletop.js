@@ -3,7 +3,7 @@
 // (pkg/ksmcmc.js); this file is wiring: a requestAnimationFrame loop that gives the chain a
 // time budget per frame and redraws the view, the graph and the probability table.
 
-import init, { Tabletop, tabletopSynth, tabletopRulesDefault, tabletopCheckRules, version } from './pkg/ksmcmc.js';
+import init, { Tabletop, tabletopSynth, tabletopRulesDefault, tabletopCheckRules, version, wasmHeapBytes } from './pkg/ksmcmc.js';
 import { messages } from './lib/messages.js';
 import { download } from './lib/download.js';
 import { rulesEditor } from './lib/rules-editor.js';
@@ -234,6 +234,8 @@ function expose() {
       rulesInUse: state.rules,
     }),
     synthText: () => tabletopSynth(9),
+    /** Bytes of the page's wasm heap (the soak test watches it). */
+    heap: () => wasmHeapBytes(),
     /** The scene.json text the chain analyses. */
     sceneText: () => state.sceneJson,
     /** Milliseconds of a whole analysis: synth, construct, `iterations` steps, analysis JSON. */

@@ -5,7 +5,7 @@
 //! | feature | `feature_type` | geometry | properties |
 //! |---|---|---|---|
 //! | the floor | `level` | Polygon: the map's extent (with anything drawn beyond it) | `category` `unspecified`, `ordinal` 0, `outdoor` false, `name` {"en": "Level 0"}, `short_name` {"en": "0"} |
-//! | one per room | `unit` | Polygon, or MultiPolygon if its parts do not touch ([`super::shapes`]) | `category`, `level_id`, `name` {"en": "room 3"}, `display_point` (a Point inside it), `area` (its `area_m2`, free floor m²) |
+//! | one per room | `unit` | Polygon, or MultiPolygon if its parts do not touch ([`super::shapes`]) | `category`, `level_id`, `name` (the room's name, `rooms[].name`, else its type and id: {"en": "room 3"}; `alt_name` is then the latter), `display_point` (a Point inside it), `area` (its `area_m2`, free floor m²) |
 //! | one per door | `opening` | LineString across the doorway | `category` `pedestrian`, `level_id` |
 //!
 //! Room types become IMDF unit categories: `room` → `room`, `corridor` → `walkway`, `hall` →
@@ -43,7 +43,7 @@ use serde_json::{json, Value};
 /// let map = OccupancyMap::from_classified(Grid::new(21, 11, Cell::Free));
 /// let mut world = World::empty(21, 11);
 /// world.units.push(Unit { id: 1, x: 0, y: 0, w: 21, h: 11, kind: UnitType::Corridor });
-/// world.rooms.push(Room { id: 1, kind: UnitType::Corridor, units: vec![1], area_m2: 0.4, doors: vec![], opens_to: vec![] });
+/// world.rooms.push(Room { id: 1, kind: UnitType::Corridor, units: vec![1], area_m2: 0.4, doors: vec![], opens_to: vec![], name: None });
 /// let text = world_geojson(&world, &Grid::new(21, 11, 1), &map, None)?;
 /// let fc: serde_json::Value = serde_json::from_str(&text).unwrap();
 /// let unit = &fc["features"][1];
@@ -87,7 +87,12 @@ pub fn geojson(shapes: &FloorShapes, origin: &MapOrigin, georef: Option<&Georef>
     let mut features = vec![level(shapes, &out, &level_id)];
     for room in &shapes.rooms {
         let geometry = out.geometry(&room.polygons);
-        let name = crate::render::label_texts(room.kind, room.id).swap_remove(0);
+        // A person's name for the room, with the generated one as its alternative.
+        let label = crate::render::label_texts(room.kind, room.id).swap_remove(0);
+        let (name, alt_name) = match &room.name {
+            Some(n) => (json!({"en": n}), json!({"en": label})),
+            None => (json!({"en": label}), Value::Null),
+        };
         features.push(feature(
             feature_id(1, 0, room.id),
             "unit",
@@ -96,8 +101,8 @@ pub fn geojson(shapes: &FloorShapes, origin: &MapOrigin, georef: Option<&Georef>
                 "category": unit_category(room.kind),
                 "restriction": null,
                 "accessibility": null,
-                "name": {"en": name},
-                "alt_name": null,
+                "name": name,
+                "alt_name": alt_name,
                 "display_point": {"type": "Point", "coordinates": out.point(room.anchor)},
                 "level_id": level_id,
                 "area": round(room.area_m2, 3),

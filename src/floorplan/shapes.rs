@@ -68,6 +68,8 @@ pub struct RoomShape {
     pub id: u32,
     /// The room's type.
     pub kind: UnitType,
+    /// The room's name, if a person gave it one (`rooms[].name`).
+    pub name: Option<String>,
     /// Its free floor area (`area_m2` of `world.json`), square metres.
     pub area_m2: f64,
     /// Its polygons (none if the room has neither floor nor label cells).
@@ -146,7 +148,7 @@ impl std::error::Error for ShapeError {}
 /// let mut world = World::empty(21, 8);
 /// for (id, x) in [(1, 0), (2, 10)] {
 ///     world.units.push(Unit { id, x, y: 0, w: 11, h: 8, kind: UnitType::Room });
-///     world.rooms.push(Room { id, kind: UnitType::Room, units: vec![id], area_m2: 1.0, doors: vec![], opens_to: vec![] });
+///     world.rooms.push(Room { id, kind: UnitType::Room, units: vec![id], area_m2: 1.0, doors: vec![], opens_to: vec![], name: None });
 /// }
 /// let shapes = floor_shapes(&world, &Grid::new(21, 8, 0)).unwrap();
 /// // Floors end on the shared wall's centre line, x = 10.5.
@@ -302,6 +304,7 @@ impl<'a> Plan<'a> {
         RoomShape {
             id: room.id,
             kind: room.kind,
+            name: room.name.clone(),
             area_m2: room.area_m2,
             polygons,
             anchor: to_map(self.world, anchor.0, anchor.1),
@@ -397,7 +400,15 @@ mod tests {
     }
 
     fn room(id: u32, units: &[u32]) -> Room {
-        Room { id, kind: UnitType::Room, units: units.to_vec(), area_m2: 0.0, doors: vec![], opens_to: vec![] }
+        Room {
+            id,
+            kind: UnitType::Room,
+            units: units.to_vec(),
+            area_m2: 0.0,
+            doors: vec![],
+            opens_to: vec![],
+            name: None,
+        }
     }
 
     fn exteriors(s: &RoomShape) -> Vec<Vec<MapPoint>> {

@@ -11,8 +11,8 @@
 //!   [`crate::floorplan::shapes`] (walls' centre lines, holes and separate parts included);
 //! * `walls`: every unit's wall ring, in the PNG's wall blue;
 //! * `doors`: one `<path>` per door with `data-door`, the door's cells, in the PNG's door cyan;
-//! * `labels`: one `<text>` per room with `data-label` (the room's id; "room 3", shortened to
-//!   "3" where it does not fit) at the room's anchor, turned with the world frame so that it
+//! * `labels`: one `<text>` per room with `data-label` (the room's id; its name if it has one,
+//!   else "room 3", shortened to "3" where it does not fit) at the room's anchor, turned with the world frame so that it
 //!   runs along the room.
 //!
 //! Only the room shapes carry `data-room`, so that `[data-room]` selects one element per room.
@@ -34,7 +34,7 @@ use std::fmt::Write as _;
 ///
 /// let mut world = World::empty(30, 20);
 /// world.units.push(Unit { id: 1, x: 0, y: 0, w: 30, h: 20, kind: UnitType::Hall });
-/// world.rooms.push(Room { id: 1, kind: UnitType::Hall, units: vec![1], area_m2: 1.3, doors: vec![], opens_to: vec![] });
+/// world.rooms.push(Room { id: 1, kind: UnitType::Hall, units: vec![1], area_m2: 1.3, doors: vec![], opens_to: vec![], name: None });
 /// let svg = world_svg(&world, &Grid::new(30, 20, 1), 0.05)?;
 /// assert!(svg.contains(r#"viewBox="0 0 30 20""#));
 /// assert!(svg.contains(r##"<path data-room="1" data-type="hall" fill="#a6dece" d="M0.5 0.5L0.5 19.5L29.5 19.5L29.5 0.5Z"/>"##));
@@ -140,6 +140,7 @@ fn room_labels(s: &mut String, shapes: &FloorShapes) {
         let (text, size) = label_fit(r);
         let (x, y) = (num(r.anchor.0), num(r.anchor.1));
         let turn = if deg == 0.0 { String::new() } else { format!(r#" transform="rotate({} {x} {y})""#, num(deg)) };
+        let text = escape(&text);
         let _ =
             writeln!(s, r#"<text data-label="{}" x="{x}" y="{y}" font-size="{}"{turn}>{text}</text>"#, r.id, num(size));
     }
@@ -155,7 +156,10 @@ const MIN_FONT: f64 = 8.0;
 /// [`MIN_FONT`] or more, else its shortest.
 fn label_fit(r: &RoomShape) -> (String, f64) {
     let (w, h) = r.label_room;
-    let texts = label_texts(r.kind, r.id);
+    let mut texts = label_texts(r.kind, r.id);
+    if let Some(name) = &r.name {
+        texts.insert(0, name.clone());
+    }
     // A sans-serif character is about 0.6 em wide; keep a margin inside the room.
     let size = |t: &str| (0.9 * w / (0.6 * t.chars().count().max(1) as f64)).min(0.5 * h).min(MAX_FONT);
     let fits = texts.iter().find(|t| size(t) >= MIN_FONT).or(texts.last()).cloned().unwrap_or_default();
@@ -177,6 +181,23 @@ fn path_ring(d: &mut String, ring: &[MapPoint]) {
 fn path_rect(d: &mut String, world: &World, (x0, y0, x1, y1): (f64, f64, f64, f64)) {
     let corners = [(x0, y0), (x0, y1), (x1, y1), (x1, y0)].map(|(x, y)| to_map(world, x, y));
     path_ring(d, &corners);
+}
+
+/// `text` with XML's special characters as entities (room names come from people).
+fn escape(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    for c in text.chars() {
+        match c {
+            '&' => out.push_str("&amp;"),
+            '<' => out.push_str("&lt;"),
+            '>' => out.push_str("&gt;"),
+            '"' => out.push_str("&quot;"),
+            '\'' => out.push_str("&apos;"),
+            c if (c as u32) < 0x20 => out.push(' '),
+            c => out.push(c),
+        }
+    }
+    out
 }
 
 /// `#rrggbb` of an RGBA colour.
@@ -214,8 +235,24 @@ mod tests {
         ];
         world.doors = vec![Door { id: 9, units: [1, 2], x0: 20, y0: 5, x1: 20, y1: 10 }];
         world.rooms = vec![
-            Room { id: 1, kind: UnitType::Room, units: vec![1], area_m2: 1.0, doors: vec![9], opens_to: vec![2] },
-            Room { id: 2, kind: UnitType::Corridor, units: vec![2], area_m2: 1.0, doors: vec![9], opens_to: vec![1] },
+            Room {
+                id: 1,
+                kind: UnitType::Room,
+                units: vec![1],
+                area_m2: 1.0,
+                doors: vec![9],
+                opens_to: vec![2],
+                name: None,
+            },
+            Room {
+                id: 2,
+                kind: UnitType::Corridor,
+                units: vec![2],
+                area_m2: 1.0,
+                doors: vec![9],
+                opens_to: vec![1],
+                name: None,
+            },
         ];
         let svg = world_svg(&world, &Grid::new(40, 20, 0), 0.05).unwrap();
         let order: Vec<usize> = ["id=\"rooms\"", "id=\"walls\"", "id=\"doors\"", "id=\"labels\""]
@@ -236,5 +273,23 @@ mod tests {
         assert!(svg.contains(r#"<text data-label="1" x="10.5" y="10" font-size="9.5">1</text>"#), "{svg}");
         assert_eq!(svg.matches("<text ").count(), 2);
         assert!(svg.ends_with("</svg>\n"));
+    }
+
+    #[test]
+    fn a_named_room_is_labelled_with_its_name_escaped() {
+        let mut world = World::empty(100, 40);
+        world.units = vec![Unit { id: 1, x: 0, y: 0, w: 100, h: 40, kind: UnitType::Hall }];
+        world.rooms = vec![Room {
+            id: 1,
+            kind: UnitType::Hall,
+            units: vec![1],
+            area_m2: 1.0,
+            doors: vec![],
+            opens_to: vec![],
+            name: Some("Lab <&>".into()),
+        }];
+        let svg = world_svg(&world, &Grid::new(100, 40, 0), 0.05).unwrap();
+        // 99 x 39 cells: the 7 characters fit at min(0.9 * 99 / 4.2, 39 / 2) = 19.5.
+        assert!(svg.contains(r#"font-size="19.5">Lab &lt;&amp;&gt;</text>"#), "{svg}");
     }
 }

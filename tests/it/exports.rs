@@ -185,7 +185,15 @@ fn hand_made() -> (OccupancyMap, World, Grid<u16>) {
         unit(3, 10, 10, 21, 20, UnitType::Room),
     ];
     world.doors = vec![ksmcmc::floorplan::Door { id: 1, units: [1, 3], x0: 15, y0: 10, x1: 19, y1: 10 }];
-    let room = |id, kind, units: Vec<u32>, area_m2| Room { id, kind, units, area_m2, doors: vec![1], opens_to: vec![] };
+    let room = |id, kind, units: Vec<u32>, area_m2| Room {
+        id,
+        kind,
+        units,
+        area_m2,
+        doors: vec![1],
+        opens_to: vec![],
+        name: None,
+    };
     world.rooms = vec![room(1, UnitType::Corridor, vec![1, 2], 4.0), room(2, UnitType::Room, vec![3], 3.0)];
     let labels = Grid::new(40, 30, 0u16);
     assert_eq!(map.classified().cells()[0], Cell::Free);
@@ -214,7 +222,15 @@ fn a_hand_made_floor_gives_exact_rings_in_metres() {
     assert_eq!(fc["features"][1]["geometry"]["coordinates"], corridor);
     assert_eq!(fc["features"][3]["geometry"]["coordinates"], serde_json::json!([[0.5, -0.05], [1.0, -0.05]]));
     assert_eq!(fc["features"][3]["id"], "6b736d63-6d63-8002-8000-000000000001");
-    assert_eq!(fc["features"][2]["properties"]["name"]["en"], "room 2");
+    assert_eq!(fc["features"][1]["properties"]["name"]["en"], "corridor 1");
+    assert_eq!(fc["features"][1]["properties"]["alt_name"], serde_json::Value::Null);
+    // A room a person named carries the name, and its generated one as the alternative.
+    let mut named = world.clone();
+    named.rooms[1].name = Some("Office \"A\" & Co".into());
+    let text = ksmcmc::floorplan::geojson::world_geojson(&named, &labels, &map, None).unwrap();
+    let fc: serde_json::Value = serde_json::from_str(&text).unwrap();
+    assert_eq!(fc["features"][2]["properties"]["name"]["en"], "Office \"A\" & Co");
+    assert_eq!(fc["features"][2]["properties"]["alt_name"]["en"], "room 2");
     // The level is the map's extent, 4 m x 3 m.
     assert_eq!(
         fc["features"][0]["geometry"]["coordinates"],

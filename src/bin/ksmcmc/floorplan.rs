@@ -48,6 +48,10 @@ Options:
                      longitude (degrees, WGS 84) of the map frame's origin and the compass
                      bearing of its y axis (0: the map's up is north); coordinates are then
                      longitude/latitude on the local tangent plane
+  --edits FILE       a person's corrections as hard evidence: a JSON list of merges
+                     (the rooms at two points are one), splits (a wall runs along a line),
+                     types and names of the room at a point, in map cells (column, row);
+                     see the README's \"Correcting a floor plan\"
   --classify RULE    how plain images become cells: auto (default; background grays found
                      from the histogram, anti-aliased walls occupied) or fixed (eq. 3.7
                      thresholds only); a map.yaml always uses its own thresholds
@@ -67,6 +71,7 @@ struct Opts {
     knowledge: Option<String>,
     until_settled: bool,
     georef: Option<Georef>,
+    edits: Option<PathBuf>,
 }
 
 pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
@@ -76,6 +81,9 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     let region = load_region(&o, &map)?;
     let t0 = Instant::now();
     let mut chain = Chain::new(&map, config, o.seed).map_err(|e| args::failed(o.map.display(), e))?;
+    if let Some(path) = &o.edits {
+        chain.set_edits(load_edits(path)?).map_err(|e| args::failed(path.display(), e))?;
+    }
     let deadline = o.time_limit.map(|t| t0 + std::time::Duration::from_secs_f64(t));
     let mut settled = Settled::for_map(map.count(Cell::Free));
     let chunk = if o.until_settled { settled::STRIDE } else { 500 };
@@ -135,6 +143,7 @@ fn parse(argv: Vec<OsString>) -> Result<Option<Opts>, CliError> {
     let mut knowledge: Option<String> = None;
     let mut until_settled = false;
     let mut georef = None;
+    let mut edits: Option<PathBuf> = None;
     while let Some(arg) = parser.next()? {
         match arg {
             Value(v) if map.is_none() => map = Some(args::path(v)),
@@ -149,6 +158,7 @@ fn parse(argv: Vec<OsString>) -> Result<Option<Opts>, CliError> {
             Long("knowledge") => knowledge = Some(args::value("--knowledge", parser.value()?)?),
             Long("until-settled") => until_settled = true,
             Long("georef") => georef = Some(args::value::<Georef>("--georef", parser.value()?)?),
+            Long("edits") => edits = Some(args::path(parser.value()?)),
             Long("help") | Short('h') => {
                 print!("{HELP}");
                 return Ok(None);
@@ -181,7 +191,19 @@ fn parse(argv: Vec<OsString>) -> Result<Option<Opts>, CliError> {
         knowledge,
         until_settled,
         georef,
+        edits,
     }))
+}
+
+/// The edits of `--edits`, size-checked before reading.
+fn load_edits(path: &std::path::Path) -> Result<ksmcmc::floorplan::edits::Edits, CliError> {
+    use ksmcmc::floorplan::edits::{Edits, MAX_EDITS_TEXT};
+    let len = std::fs::metadata(path).map_err(|e| args::failed(path.display(), e))?.len();
+    if len > MAX_EDITS_TEXT as u64 {
+        return Err(args::failed(path.display(), format!("{len} bytes, over the cap of {MAX_EDITS_TEXT} for edits")));
+    }
+    let text = std::fs::read_to_string(path).map_err(|e| args::failed(path.display(), e))?;
+    Edits::parse(&text).map_err(|e| args::failed(path.display(), e))
 }
 
 /// The chain configuration: `--config`, then `--rotation` and `--knowledge` over it.

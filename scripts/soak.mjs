@@ -78,6 +78,13 @@ function watch(page, label, problems) {
   });
 }
 
+/** Dismisses the alert if it is still up (the page may have cleared it meanwhile). */
+function dismiss(page) {
+  return page.evaluate(() => {
+    if (!document.getElementById('message').hidden) document.getElementById('message-close').click();
+  });
+}
+
 async function shownError(page) {
   return page.evaluate(() => (document.getElementById('message').hidden ? '' : document.getElementById('message-text').textContent));
 }
@@ -118,7 +125,7 @@ async function mapperAction(page, rand, maps, step) {
       if (await page.isEnabled('#run')) await page.click('#run');
   }
   const msg = await shownError(page);
-  if (msg) await page.click('#message-close');
+  if (msg) await dismiss(page);
   // Mostly running: start the chain again unless it is.
   const s = await page.evaluate(() => window.__ksmcmc.snapshot());
   if (!s.running && pick !== 'pause' && (await page.isEnabled('#run'))) await page.click('#run');
@@ -150,7 +157,7 @@ async function tabletopAction(page, rand, step) {
       if (await page.isEnabled('#run')) await page.click('#run');
   }
   const msg = await shownError(page);
-  if (msg) await page.click('#message-close');
+  if (msg) await dismiss(page);
   const s = await page.evaluate(() => window.__ksmcmc.snapshot());
   if (!s.running && (await page.isEnabled('#run'))) await page.click('#run');
   return { pick, msg };

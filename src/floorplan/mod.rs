@@ -20,6 +20,7 @@ pub mod posterior;
 pub mod report;
 pub mod room_layer;
 pub mod rooms;
+pub mod route;
 mod schedule;
 pub mod settled;
 pub(crate) mod state;

@@ -60,7 +60,7 @@ struct Opts {
 pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     let Some(o) = parse(argv)? else { return Ok(()) };
     let config = chain_config(&o)?;
-    let map = load_map(&o)?;
+    let map = args::load_classified(&o.map, &o.classify)?;
     let region = load_region(&o, &map)?;
     let t0 = Instant::now();
     let mut chain = Chain::new(&map, config, o.seed).map_err(|e| args::failed(o.map.display(), e))?;
@@ -198,20 +198,6 @@ fn chain_config(o: &Opts) -> Result<ChainConfig, CliError> {
         None => {}
     }
     Ok(config)
-}
-
-/// The map, classified as `--classify` asks (a map.yaml keeps its own thresholds).
-fn load_map(o: &Opts) -> Result<ksmcmc::grid::OccupancyMap, CliError> {
-    let mut map = args::load_map(&o.map)?;
-    let is_yaml = matches!(o.map.extension().and_then(|e| e.to_str()), Some("yaml" | "yml"));
-    match o.classify.as_str() {
-        "auto" if !is_yaml => {
-            map.set_classifier(ksmcmc::grid::Classifier::auto()).map_err(|e| args::failed("--classify", e))?
-        }
-        "auto" | "fixed" => {}
-        other => return Err(CliError::Usage(format!("--classify must be auto or fixed, not {other:?}"))),
-    }
-    Ok(map)
 }
 
 /// The `--region` mask (non-black cells), which must be the map's size.

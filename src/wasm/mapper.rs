@@ -19,6 +19,7 @@
 use super::{js_message, put_rgba, seed_from_js, Map, Rendered};
 use crate::floorplan::report::report as ksmcmc_report;
 use crate::floorplan::rooms::RoomConfig;
+use crate::floorplan::route::RoutePlanner;
 use crate::floorplan::settled::Settled;
 use crate::floorplan::{export, metrics, Chain, ChainConfig, Rect, World};
 use crate::grid::{Cell, Grid, OccupancyMap};
@@ -69,6 +70,9 @@ pub struct Mapper {
     /// The best world with its room layer and room labels, keyed as `best`: computed only
     /// when an export or the room list asks (a pass over the map and a small inference).
     rooms: Option<((u64, u64), World, Grid<u16>)>,
+    /// The route planner of the best world, keyed as `best`: its room graph and the
+    /// distances inside rooms are reused by the next route.
+    planner: Option<((u64, u64), RoutePlanner)>,
     reference: Option<World>,
     /// Whether the best world has stopped improving (the library's rule).
     settled: Settled,
@@ -105,6 +109,18 @@ impl Mapper {
         (world, labels)
     }
 
+    /// The route planner of the best world (cached between improvements).
+    fn planner(&mut self) -> Result<&mut RoutePlanner, JsError> {
+        let key = (self.chain.best_iteration(), self.chain.best_log_posterior().to_bits());
+        if self.planner.as_ref().is_none_or(|(k, _)| *k != key) {
+            let (world, labels) = self.best_rooms();
+            let (world, labels) = (world.clone(), labels.clone());
+            let planner = RoutePlanner::new(self.map.classified().clone(), labels, &world, self.chain.resolution())?;
+            self.planner = Some((key, planner));
+        }
+        Ok(&mut self.planner.as_mut().expect("just filled").1)
+    }
+
     /// The current world (cached until the chain moves).
     fn current(&mut self) -> &World {
         let it = self.chain.iteration();
@@ -137,6 +153,7 @@ impl Mapper {
         self.settled = Settled::for_map(self.map.count(Cell::Free));
         self.best = None;
         self.rooms = None;
+        self.planner = None;
         self.current = None;
         self.busy_ms = 0.0;
     }
@@ -225,6 +242,7 @@ impl Mapper {
             best: None,
             current: None,
             rooms: None,
+            planner: None,
             reference: None,
             settled: Settled::for_map(inner.count(Cell::Free)),
             setup_ms,
@@ -435,6 +453,22 @@ impl Mapper {
     #[wasm_bindgen(js_name = roomsJson)]
     pub fn rooms_json(&mut self) -> Result<String, JsError> {
         Ok(export::rooms_json(self.best_rooms().0))
+    }
+
+    /// The route from cell (`fromX`, `fromY`) to (`toX`, `toY`) (column, row) through the
+    /// rooms and doors of the best world, as JSON text: `{"rooms": [...], "doors": [...],
+    /// "path": [[x, y], ...], "length_m": ...}`, what `ksmcmc route` prints for the
+    /// `world.json` and `labels.pgm` of `bestWorldJson` and `labelsPgm`. Throws, with the
+    /// reason, for ends off the map or not free, or a goal no free path reaches.
+    pub fn route(
+        &mut self,
+        #[wasm_bindgen(js_name = fromX)] from_x: f64,
+        #[wasm_bindgen(js_name = fromY)] from_y: f64,
+        #[wasm_bindgen(js_name = toX)] to_x: f64,
+        #[wasm_bindgen(js_name = toY)] to_y: f64,
+    ) -> Result<String, JsError> {
+        let (from, to) = super::route::ends(from_x, from_y, to_x, to_y)?;
+        Ok(self.planner()?.route(from, to)?.to_json())
     }
 
     /// The recorded trace from point `from` on (default 0): one point every

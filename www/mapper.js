@@ -11,6 +11,7 @@ import { drawPlot, formatNumber, parseIterationsPerFrame } from './lib/plot.js';
 import { messages } from './lib/messages.js';
 import { download } from './lib/download.js';
 import { RemoteChain } from './lib/remote-chain.js';
+import { RouteView } from './lib/route-view.js';
 
 /** Step runs this many iterations when the speed is `auto`. */
 const AUTO_STEP = 500;
@@ -41,6 +42,10 @@ const ui = {
   rooms: $('rooms').tBodies[0], roomsSummary: $('rooms-summary'),
   plotLp: $('plot-lp'), plotAcc: $('plot-acc'), plotLpValue: $('plot-lp-value'), plotAccValue: $('plot-acc-value'),
   stats: $('stats'),
+  route: {
+    toggle: $('route-mode'), form: $('route-form'), from: $('route-from'), to: $('route-to'), plan: $('route-plan'),
+    layer: $('route-layer'), summary: $('route-summary'), rooms: $('route-rooms'), doors: $('route-doors'),
+  },
   stat: {
     iteration: $('stat-iteration'), rate: $('stat-rate'), lp: $('stat-lp'), best: $('stat-best'), acc: $('stat-acc'),
     units: $('stat-units'), doors: $('stat-doors'), rooms: $('stat-rooms'), k: $('stat-k'), rotation: $('stat-rotation'), setup: $('stat-setup'),
@@ -62,6 +67,8 @@ const state = {
   source: null,
   /** The best world's rooms, read from the worker (a RoomsFeed, made in main()). */
   rooms: null,
+  /** Route mode: the ends picked and the route planned (a RouteView, made in main()). */
+  route: null,
   /** The weak prior's chain beside this one (Compare with the weak prior), or null. */
   weak: null,
   /** What the chain was started with (chainArgs()). */
@@ -266,6 +273,8 @@ function showRooms(rooms) {
       ? 'The best world has no rooms yet.'
       : `The best world's ${rooms.length} room${rooms.length === 1 ? '' : 's'}: ${roomsByType(rooms)} (units merged where no wall parts them, as in world.json).`;
   updateSides();
+  // A route follows the best world: planned again through its new rooms and doors.
+  if (rooms) state.route?.refresh();
 }
 
 /**
@@ -285,7 +294,10 @@ function takeStats(stats) {
 function adopt({ stats, referenceDropped }, args, source) {
   stopped();
   takeStats(stats);
-  if (source) state.source = source;
+  if (source) {
+    state.source = source;
+    state.route?.clear();
+  }
   state.args = args;
   state.rooms.restart(stats.generation, stats.iteration);
   startWeak();
@@ -300,7 +312,7 @@ function adopt({ stats, referenceDropped }, args, source) {
   state.picture?.picture.close();
   state.picture = null;
   updateReferenceControls();
-  for (const b of [ui.run, ui.step, ui.reset, ...Object.values(ui.exports)]) b.disabled = false;
+  for (const b of [ui.run, ui.step, ui.reset, ui.route.toggle, ui.route.plan, ...Object.values(ui.exports)]) b.disabled = false;
   fit();
   requestRedraw();
 }
@@ -740,6 +752,7 @@ function fit() {
   ui.canvas.classList.toggle('smooth', state.scale >= s * dpr);
   ui.weakCanvas.classList.toggle('smooth', state.scale >= s * dpr);
   if (state.weak) state.weak.redrawPending = true;
+  state.route?.resize(state.scale);
   requestRedraw();
 }
 
@@ -835,6 +848,7 @@ async function blankMap() {
 // ---------------------------------------------------------------- painting
 
 function setPainting(on) {
+  if (on) setRouting(false);
   state.painting = on;
   ui.paint.checked = on;
   ui.canvas.classList.toggle('painting', on);
@@ -842,6 +856,17 @@ function setPainting(on) {
     pause();
     say('Painting: drag on the map. Each stroke starts the chain over on the painted map.');
   }
+}
+
+// ---------------------------------------------------------------- routes
+
+/** Turns route mode on or off: clicks on the map then pick the route's start and goal. */
+function setRouting(on) {
+  if (!state.route || on === state.route.active) return;
+  if (on && state.painting) setPainting(false);
+  state.route.setActive(on);
+  state.route.show();
+  say(on ? 'Route mode: click the start, then the goal on the map. Esc leaves it.' : 'Left route mode.');
 }
 
 function cellFromEvent(e) {
@@ -872,6 +897,11 @@ function schedulePaint() {
 }
 
 function onPointerDown(e) {
+  if (state.route?.active && state.map && (e.pointerType !== 'mouse' || e.button === 0)) {
+    e.preventDefault();
+    state.route.pick(e);
+    return;
+  }
   if (!state.painting || !state.map || (e.pointerType === 'mouse' && e.button !== 0)) return;
   e.preventDefault();
   ui.canvas.setPointerCapture?.(e.pointerId);
@@ -982,6 +1012,11 @@ function save(name, data, type) {
 
 function onKey(e) {
   if (e.ctrlKey || e.metaKey || e.altKey || e.defaultPrevented) return;
+  if (e.key === 'Escape' && state.route?.active) {
+    e.preventDefault();
+    setRouting(false);
+    return;
+  }
   const t = e.target;
   if (t.closest?.('input, textarea, select, [contenteditable]')) return;
   const key = e.key.toLowerCase();
@@ -997,6 +1032,7 @@ function onKey(e) {
     u: () => setCloud(!state.cloud),
     l: () => setLabels(!state.labels),
     p: () => setPainting(!state.painting),
+    g: () => setRouting(!state.route.active),
   };
   const action = actions[key];
   if (!action || !state.ready) return;
@@ -1080,6 +1116,11 @@ function wire() {
   ex.graph.addEventListener('click', exporter('graph.json', 'application/json', 'graphJson'));
   ex.report.addEventListener('click', exporter('report.json', 'application/json', 'reportJson'));
 
+  ui.route.toggle.addEventListener('click', () => setRouting(!state.route.active));
+  ui.route.form.addEventListener('submit', (e) => {
+    e.preventDefault();
+    attempt(() => state.route.submit());
+  });
   ui.canvas.addEventListener('pointerdown', onPointerDown);
   ui.canvas.addEventListener('pointermove', onPointerMove);
   ui.canvas.addEventListener('pointerup', onPointerUp);
@@ -1101,6 +1142,8 @@ function expose() {
       invoke: (name, ...args) => state.weak.chain.call('invoke', { name, args }),
       snapshot: () => (state.weak ? { ...state.weak.stats, rooms: state.weak.rooms.rooms } : null),
     },
+    /** Route mode: the ends, the route planned and its error, if any. */
+    route: () => state.route.snapshot(),
     /** The rooms the page shows (as read from the worker). */
     get rooms() {
       return state.rooms.rooms;
@@ -1181,6 +1224,11 @@ async function main() {
   if (!(await loadWasm(init))) return;
   state.chain = new RemoteChain(chainFailed, chainSettled);
   state.rooms = new RoomsFeed(() => state.chain, showRooms);
+  state.route = new RouteView({ ...ui.route, canvas: ui.canvas }, {
+    plan: (from, to) => invoke('route', from[0], from[1], to[0], to[1]),
+    rooms: () => state.rooms.rooms,
+    size: () => ({ width: state.map.width, height: state.map.height }),
+  });
   ui.version.textContent = version();
   setBrush(ui.brush.value);
   for (const el of [ui.file, ui.blankCreate, ui.worldFile]) el.disabled = false;

@@ -276,3 +276,26 @@ fn routes_on_explained_floors_stay_close_to_the_shortest_path() {
         println!("explained, seed {seed}: ratio mean {mean:.4} max {max:.4}");
     }
 }
+
+/// A saved world's labels are found again only when its rooms are those its units and doors
+/// give: an edited room layer is refused, with a pointer to labels.pgm.
+#[test]
+fn saved_labels_are_found_again_only_for_the_worlds_own_rooms() {
+    use ksmcmc::floorplan::route::saved_labels;
+    use ksmcmc::floorplan::{Chain, ChainConfig};
+    let s = generate(&SynthConfig::default(), 4).unwrap();
+    let mut chain = Chain::new(&s.map, ChainConfig::default(), 4).unwrap();
+    chain.step(3000);
+    let (mut world, labels) = chain.best_world_with_rooms(&RoomConfig::default());
+    assert!(saved_labels(&world, &s.map).unwrap() == labels);
+    // Without knowledge supervision the rooms are found by the rule without it: found too.
+    let mut config = ChainConfig::default();
+    config.knowledge.enabled = false;
+    let mut weak = Chain::new(&s.map, config, 4).unwrap();
+    weak.step(3000);
+    let (weak_world, weak_labels) = weak.best_world_with_rooms(&RoomConfig::default());
+    assert!(saved_labels(&weak_world, &s.map).unwrap() == weak_labels);
+    world.rooms[0].opens_to.push(9999);
+    let e = saved_labels(&world, &s.map).unwrap_err();
+    assert!(e.to_string().contains("pass the labels.pgm written with it"), "{e}");
+}

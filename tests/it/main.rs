@@ -15,6 +15,7 @@ mod hostile;
 mod knowledge;
 mod mln;
 mod mln_cli;
+mod model3d;
 mod pinned;
 mod render;
 mod route;

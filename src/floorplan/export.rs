@@ -1,6 +1,6 @@
 //! The files of a floor-plan run, written the same way by `ksmcmc floorplan` and by the
-//! browser's `Mapper`: `world.json`, `overlay.png`, `graph.json`, `trace.csv`, `labels.pgm`
-//! and `report.json`.
+//! browser's `Mapper`: `world.json`, `overlay.png`, `graph.json`, `trace.csv`, `labels.pgm`,
+//! `report.json` and `world.glb` (the 3D world, [`crate::render::model3d`]).
 //!
 //! The room labels need only the best world and two grids of the chain, not its tables: a
 //! [`RoomInput`] takes those from a [`Chain`], so that a caller short of memory drops the
@@ -20,15 +20,16 @@
 //! drop(chain);
 //! let (world, labels) = input.explain(&RoomConfig::default());
 //! report::add_rooms(&mut summary, &world, &labels);
-//! let out = Outputs::new(&s.map, &world, &labels, &summary, trace).unwrap();
+//! let out = Outputs::new(&s.map, &world, &labels, &summary, trace, &Default::default()).unwrap();
 //! let names: Vec<&str> = out.files().iter().map(|(name, _)| *name).collect();
-//! assert_eq!(names, ["world.json", "overlay.png", "graph.json", "trace.csv", "labels.pgm", "report.json"]);
+//! assert_eq!(names, ["world.json", "overlay.png", "graph.json", "trace.csv", "labels.pgm", "report.json", "world.glb"]);
 //! assert!(out.trace_csv.starts_with("iteration,log_posterior,acceptance,units\n"));
 //! ```
 
 use super::world::World;
 use super::{graph, room_layer, rooms::RoomConfig, Chain, Trace};
 use crate::grid::{Cell, Grid, OccupancyMap};
+use crate::render::model3d::{world_glb, Model3dError, Model3dOptions};
 use crate::render::{self, RenderError};
 use std::fmt::Write as _;
 
@@ -69,7 +70,27 @@ impl RoomInput {
     }
 }
 
-/// The six files of a run, as bytes and text.
+/// Why the files of a run could not be made.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ExportError {
+    /// The overlay cannot be drawn (a map over [`render::MAX_PIXELS`] cells).
+    Overlay(RenderError),
+    /// The 3D world cannot be made (heights out of range).
+    Model3d(Model3dError),
+}
+
+impl std::fmt::Display for ExportError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            ExportError::Overlay(e) => write!(f, "overlay.png: {e}"),
+            ExportError::Model3d(e) => write!(f, "world.glb: {e}"),
+        }
+    }
+}
+
+impl std::error::Error for ExportError {}
+
+/// The seven files of a run, as bytes and text.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Outputs {
     /// `world.json`: the best world found (units, doors, object cells, rooms).
@@ -84,22 +105,27 @@ pub struct Outputs {
     pub labels_pgm: Vec<u8>,
     /// `report.json`: the run's summary ([`report_json`]).
     pub report_json: String,
+    /// `world.glb`: the 3D world, glTF 2.0 binary ([`world_glb`]).
+    pub world_glb: Vec<u8>,
 }
 
 impl Outputs {
-    /// All six files of the world `world` (with its rooms) on `map`, its room `labels`, the
-    /// `report` ([`super::report`]) and the `trace_csv`. Fails only if the overlay cannot be
-    /// drawn (a map over [`render::MAX_PIXELS`] cells).
+    /// All seven files of the world `world` (with its rooms) on `map`, its room `labels`, the
+    /// `report` ([`super::report`]) and the `trace_csv`, the 3D world with the heights of
+    /// `model`. Fails only if the overlay cannot be drawn (a map over [`render::MAX_PIXELS`]
+    /// cells) or the heights are out of range.
     pub fn new(
         map: &OccupancyMap,
         world: &World,
         labels: &Grid<u16>,
         report: &serde_json::Value,
         trace_csv: String,
-    ) -> Result<Outputs, RenderError> {
+        model: &Model3dOptions,
+    ) -> Result<Outputs, ExportError> {
         Ok(Outputs {
+            world_glb: world_glb(world, map.yaml().resolution, model).map_err(ExportError::Model3d)?,
             world_json: world.to_json(),
-            overlay_png: overlay_png(map.classified(), world)?,
+            overlay_png: overlay_png(map.classified(), world).map_err(ExportError::Overlay)?,
             graph_json: graph_json(world),
             trace_csv,
             labels_pgm: labels_pgm(labels),
@@ -108,7 +134,7 @@ impl Outputs {
     }
 
     /// The files by name, in the order `ksmcmc floorplan` writes them.
-    pub fn files(&self) -> [(&'static str, &[u8]); 6] {
+    pub fn files(&self) -> [(&'static str, &[u8]); 7] {
         [
             ("world.json", self.world_json.as_bytes()),
             ("overlay.png", &self.overlay_png),
@@ -116,6 +142,7 @@ impl Outputs {
             ("trace.csv", self.trace_csv.as_bytes()),
             ("labels.pgm", &self.labels_pgm),
             ("report.json", self.report_json.as_bytes()),
+            ("world.glb", &self.world_glb),
         ]
     }
 }

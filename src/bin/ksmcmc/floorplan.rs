@@ -5,6 +5,7 @@ use ksmcmc::floorplan::rooms::RoomConfig;
 use ksmcmc::floorplan::settled::{self, Settled};
 use ksmcmc::floorplan::{export, metrics, Chain, ChainConfig};
 use ksmcmc::grid::Cell;
+use ksmcmc::render::model3d::Model3dOptions;
 use std::ffi::OsString;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -20,6 +21,8 @@ data-driven MCMC, and writes:
   DIR/trace.csv     log posterior, acceptance rate and unit count over the run
   DIR/labels.pgm    16-bit room segmentation (room id per free cell, 0 elsewhere)
   DIR/report.json   iterations, time, K(W,M), counts, log posterior, seed
+  DIR/world.glb     the 3D world (glTF 2.0 binary, metres, Y up): walls with openings at the
+                    doors, a floor slab per room in its type's colour
 
 Options:
   --iterations N     iterations to run (default 20000)
@@ -37,6 +40,9 @@ Options:
                      world with the built-in rules)
   --region FILE      an image the size of the map whose non-black cells are a region of
                      interest: report.json then also gives K(W,M) inside it
+  --wall-height M    height of the walls in world.glb, metres (default 2.5)
+  --door-height M    height of the door openings in world.glb, metres (default 2.0; at most
+                     the wall height)
   --classify RULE    how plain images become cells: auto (default; background grays found
                      from the histogram, anti-aliased walls occupied) or fixed (eq. 3.7
                      thresholds only); a map.yaml always uses its own thresholds
@@ -55,6 +61,7 @@ struct Opts {
     region: Option<PathBuf>,
     knowledge: Option<String>,
     until_settled: bool,
+    model: Model3dOptions,
 }
 
 pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
@@ -92,8 +99,8 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     }
     report["cell_prediction_rate_region"] =
         region.as_ref().map(|r| metrics::prediction_rate_in(map.classified(), &world, Some(r))).into();
-    let outputs =
-        export::Outputs::new(&map, &world, &labels, &report, trace).map_err(|e| args::failed("overlay.png", e))?;
+    let outputs = export::Outputs::new(&map, &world, &labels, &report, trace, &o.model)
+        .map_err(|e| args::failed(o.out.display(), e))?;
     for (name, bytes) in outputs.files() {
         args::write(&o.out.join(name), bytes)?;
     }
@@ -122,6 +129,7 @@ fn parse(argv: Vec<OsString>) -> Result<Option<Opts>, CliError> {
     let mut region_path: Option<PathBuf> = None;
     let mut knowledge: Option<String> = None;
     let mut until_settled = false;
+    let mut model = Model3dOptions::default();
     while let Some(arg) = parser.next()? {
         match arg {
             Value(v) if map.is_none() => map = Some(args::path(v)),
@@ -135,6 +143,8 @@ fn parse(argv: Vec<OsString>) -> Result<Option<Opts>, CliError> {
             Long("region") => region_path = Some(args::path(parser.value()?)),
             Long("knowledge") => knowledge = Some(args::value("--knowledge", parser.value()?)?),
             Long("until-settled") => until_settled = true,
+            Long("wall-height") => model.wall_height = args::value("--wall-height", parser.value()?)?,
+            Long("door-height") => model.door_height = args::value("--door-height", parser.value()?)?,
             Long("help") | Short('h') => {
                 print!("{HELP}");
                 return Ok(None);
@@ -149,6 +159,7 @@ fn parse(argv: Vec<OsString>) -> Result<Option<Opts>, CliError> {
             return Err(CliError::Usage(format!("--time-limit must be a positive number of seconds, not {t}")));
         }
     }
+    model.validate().map_err(|e| CliError::Usage(format!("--wall-height/--door-height: {e}")))?;
     if let Some(r) = rotation {
         if !r.is_finite() {
             return Err(CliError::Usage(format!("--rotation must be a number of degrees, not {r}")));
@@ -166,6 +177,7 @@ fn parse(argv: Vec<OsString>) -> Result<Option<Opts>, CliError> {
         region: region_path,
         knowledge,
         until_settled,
+        model,
     }))
 }
 

@@ -375,6 +375,29 @@ fn routes_match_the_library() {
 }
 
 #[wasm_bindgen_test]
+fn world_glb_matches_the_library() {
+    // The best world in 3D: the bytes `ksmcmc floorplan` writes to world.glb for that world,
+    // from the Mapper and from the saved world.json alike.
+    let mut m = Mapper::new(&two_rooms(), None, None).unwrap();
+    m.step(1500.0).unwrap();
+    let world = World::from_json(&m.best_world_json()).unwrap();
+    let options = ksmcmc::render::model3d::Model3dOptions { wall_height: 3.0, door_height: 2.2 };
+    let native = ksmcmc::render::model3d::world_glb(&world, 0.05, &options).unwrap();
+    let heights = js_sys::JSON::parse(r#"{"wallHeight": 3, "doorHeight": 2.2}"#).unwrap();
+    assert_eq!(m.world_glb(Some(heights.clone())).unwrap(), native);
+    assert_eq!(wasm::world_glb(&m.best_world_json(), 0.05, Some(heights)).unwrap(), native);
+    let defaults = ksmcmc::render::model3d::world_glb(&world, 0.05, &Default::default()).unwrap();
+    assert_eq!(m.world_glb(None).unwrap(), defaults);
+    assert!(defaults.starts_with(b"glTF"));
+    let bad = |json: &str| js_sys::JSON::parse(json).unwrap();
+    err_contains(m.world_glb(Some(bad(r#"{"wallHeight": 2, "doorHeight": 3}"#))), "door height 3 m");
+    err_contains(m.world_glb(Some(bad(r#"{"wallheight": 2}"#))), "wallHeight and doorHeight");
+    err_contains(m.world_glb(Some(JsValue::from(3))), "expected an object");
+    err_contains(wasm::world_glb("{", 0.05, None), "world.json");
+    err_contains(wasm::world_glb(&m.best_world_json(), f64::NAN, None), "resolution NaN");
+}
+
+#[wasm_bindgen_test]
 fn mapper_exports_trace_samples_labels_graph_and_report() {
     let mut m = Mapper::new(&two_rooms(), Some(r#"{"output": {"trace_every": 50}}"#.into()), None).unwrap();
     m.step(2000.0).unwrap();

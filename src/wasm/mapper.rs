@@ -534,6 +534,22 @@ impl Mapper {
         export::labels_pgm(self.best_rooms().1)
     }
 
+    /// The best world in 3D, as the `world.glb` (glTF 2.0 binary) `ksmcmc floorplan` writes:
+    /// walls with openings at the doors, a floor slab per room in its type's colour, metres,
+    /// Y up. `options`: `{ wallHeight?: number = 2.5, doorHeight?: number = 2.0 }` in metres
+    /// (`ksmcmc floorplan --wall-height --door-height`); out-of-range heights are errors.
+    #[wasm_bindgen(js_name = worldGlb)]
+    pub fn world_glb(
+        &mut self,
+        #[wasm_bindgen(unchecked_optional_param_type = "{ wallHeight?: number; doorHeight?: number }")] options: Option<
+            JsValue,
+        >,
+    ) -> Result<Vec<u8>, JsError> {
+        let options = super::model3d::options(options.as_ref())?;
+        let resolution = self.chain.resolution();
+        Ok(crate::render::model3d::world_glb(self.best_rooms().0, resolution, &options)?)
+    }
+
     /// The scene graph of the best world (or the current one, `which = 'current'`) as
     /// `graph.json` text: `{"nodes": [{"id", "type"}], "edges": [{"from", "to", "kind", "door"?}],
     /// "rooms": [...]}` (the rooms of `world.json`; the current world has none).
@@ -768,7 +784,7 @@ pub fn chain_config(json: Option<&str>) -> Result<ChainConfig, JsError> {
 /// Reads an options object through its JSON text, so that unknown fields are refused
 /// (serde-wasm-bindgen looks up only the fields it knows) and NaN, which JSON writes as
 /// `null`, is no number.
-fn from_object<T: serde::de::DeserializeOwned>(v: &JsValue) -> Result<T, String> {
+pub(crate) fn from_object<T: serde::de::DeserializeOwned>(v: &JsValue) -> Result<T, String> {
     let text = js_sys::JSON::stringify(v).map_err(|e| js_message(&e))?;
     let text = text.as_string().unwrap_or_default();
     serde_json::from_str(&text).map_err(|e| e.to_string())

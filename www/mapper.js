@@ -42,6 +42,10 @@ const ui = {
   rooms: $('rooms').tBodies[0], roomsSummary: $('rooms-summary'),
   plotLp: $('plot-lp'), plotAcc: $('plot-acc'), plotLpValue: $('plot-lp-value'), plotAccValue: $('plot-acc-value'),
   stats: $('stats'),
+  view3d: {
+    toggle: $('view-3d'), panel: $('view3d-panel'), form: $('view3d-form'), canvas: $('view3d'),
+    wall: $('wall-height'), door: $('door-height'), reset: $('view3d-reset'), status: $('view3d-status'),
+  },
   route: {
     toggle: $('route-mode'), form: $('route-form'), from: $('route-from'), to: $('route-to'), plan: $('route-plan'),
     layer: $('route-layer'), summary: $('route-summary'), rooms: $('route-rooms'), doors: $('route-doors'),
@@ -53,7 +57,7 @@ const ui = {
   },
   exports: {
     world: $('export-world'), labels: $('export-labels'), png: $('export-png'), graph: $('export-graph'),
-    report: $('export-report'),
+    report: $('export-report'), glb: $('export-glb'),
   },
 };
 
@@ -69,6 +73,11 @@ const state = {
   rooms: null,
   /** Route mode: the ends picked and the route planned (a RouteView, made in main()). */
   route: null,
+  /**
+   * The 3D view: whether it is open, the View3d (made when first opened, when three.js
+   * loads), the request on its way (a reply to an older one is dropped), its last error.
+   */
+  view3d: { open: false, view: null, token: 0, shown: 0, error: null },
   /** The weak prior's chain beside this one (Compare with the weak prior), or null. */
   weak: null,
   /** What the chain was started with (chainArgs()). */
@@ -273,8 +282,11 @@ function showRooms(rooms) {
       ? 'The best world has no rooms yet.'
       : `The best world's ${rooms.length} room${rooms.length === 1 ? '' : 's'}: ${roomsByType(rooms)} (units merged where no wall parts them, as in world.json).`;
   updateSides();
-  // A route follows the best world: planned again through its new rooms and doors.
-  if (rooms) state.route?.refresh();
+  // A route and the 3D view follow the best world.
+  if (rooms) {
+    state.route?.refresh();
+    refresh3d();
+  }
 }
 
 /**
@@ -312,7 +324,7 @@ function adopt({ stats, referenceDropped }, args, source) {
   state.picture?.picture.close();
   state.picture = null;
   updateReferenceControls();
-  for (const b of [ui.run, ui.step, ui.reset, ui.route.toggle, ui.route.plan, ...Object.values(ui.exports)]) b.disabled = false;
+  for (const b of [ui.run, ui.step, ui.reset, ui.route.toggle, ui.route.plan, ui.view3d.toggle, ...Object.values(ui.exports)]) b.disabled = false;
   fit();
   requestRedraw();
 }
@@ -858,6 +870,59 @@ function setPainting(on) {
   }
 }
 
+// ---------------------------------------------------------------- 3D view
+
+/** The heights in the 3D view's form, for `worldGlb`. */
+function heights() {
+  return { wallHeight: Number(ui.view3d.wall.value), doorHeight: Number(ui.view3d.door.value) };
+}
+
+/** Opens or closes the 3D view; opening it the first time loads three.js. */
+async function setView3d(on) {
+  const v = state.view3d;
+  if (on === v.open) return;
+  v.open = on;
+  ui.view3d.toggle.setAttribute('aria-pressed', String(on));
+  ui.view3d.panel.hidden = !on;
+  if (!on) return;
+  if (!v.view) {
+    ui.view3d.status.textContent = 'Loading the 3D viewer…';
+    try {
+      const { View3d } = await import('./lib/view3d.js');
+      v.view = new View3d(ui.view3d.canvas);
+      new ResizeObserver(() => v.view.resize()).observe(ui.view3d.canvas);
+    } catch (err) {
+      v.error = `The 3D viewer did not load (${err.message}): \`make demo\` copies three.js into www/vendor.`;
+      ui.view3d.status.textContent = v.error;
+      return;
+    }
+  }
+  v.view.resize();
+  ui.view3d.panel.scrollIntoView({ block: 'nearest' });
+  await refresh3d();
+}
+
+/** Shows the best world's world.glb in the 3D view, if it is open. */
+async function refresh3d() {
+  const v = state.view3d;
+  if (!v.open || !v.view || !state.stats) return;
+  const token = ++v.token;
+  const iteration = state.stats.iteration;
+  try {
+    const bytes = await invoke('worldGlb', heights());
+    if (token !== v.token) return;
+    await v.view.show(bytes);
+    v.error = null;
+    v.shown = token;
+    ui.view3d.status.textContent = `The best world at iteration ${formatNumber(iteration)}: ${formatNumber(bytes.length)} bytes of world.glb.`;
+    ui.view3d.panel.dataset.state = 'ready';
+  } catch (err) {
+    if (token !== v.token) return;
+    v.error = err instanceof Error ? err.message : String(err);
+    ui.view3d.status.textContent = `No 3D world: ${v.error}`;
+  }
+}
+
 // ---------------------------------------------------------------- routes
 
 /** Turns route mode on or off: clicks on the map then pick the route's start and goal. */
@@ -1033,6 +1098,7 @@ function onKey(e) {
     l: () => setLabels(!state.labels),
     p: () => setPainting(!state.painting),
     g: () => setRouting(!state.route.active),
+    3: () => setView3d(!state.view3d.open),
   };
   const action = actions[key];
   if (!action || !state.ready) return;
@@ -1115,8 +1181,18 @@ function wire() {
   ex.png.addEventListener('click', exporter('overlay.png', 'image/png', 'toPng', () => [{ show: state.show, cloud: state.cloud, labels: state.labels }]));
   ex.graph.addEventListener('click', exporter('graph.json', 'application/json', 'graphJson'));
   ex.report.addEventListener('click', exporter('report.json', 'application/json', 'reportJson'));
+  ex.glb.addEventListener('click', exporter('world.glb', 'model/gltf-binary', 'worldGlb', () => [heights()]));
 
   ui.route.toggle.addEventListener('click', () => setRouting(!state.route.active));
+  ui.view3d.toggle.addEventListener('click', () => setView3d(!state.view3d.open));
+  ui.view3d.form.addEventListener('submit', (e) => {
+    e.preventDefault();
+    refresh3d();
+  });
+  ui.view3d.reset.addEventListener('click', () => {
+    state.view3d.view?.frame();
+    state.view3d.view?.render();
+  });
   ui.route.form.addEventListener('submit', (e) => {
     e.preventDefault();
     attempt(() => state.route.submit());
@@ -1136,11 +1212,16 @@ function wire() {
 function expose() {
   window.__ksmcmc = {
     /** The chain's exports and report, as promises (the chain is in a worker). */
-    mapper: Object.fromEntries(['bestWorldJson', 'worldJson', 'labelsPgm', 'graphJson', 'reportJson', 'toPng'].map((name) => [name, (...args) => invoke(name, ...args)])),
+    mapper: Object.fromEntries(['bestWorldJson', 'worldJson', 'labelsPgm', 'graphJson', 'reportJson', 'toPng', 'worldGlb'].map((name) => [name, (...args) => invoke(name, ...args)])),
     /** The weak prior's chain beside it (when compared): its exports and numbers. */
     weak: {
       invoke: (name, ...args) => state.weak.chain.call('invoke', { name, args }),
       snapshot: () => (state.weak ? { ...state.weak.stats, rooms: state.weak.rooms.rooms } : null),
+    },
+    /** The 3D view: open, which request it shows, its error and the model's node names. */
+    view3d: () => {
+      const v = state.view3d;
+      return { open: v.open, loaded: Boolean(v.view), shown: v.shown, token: v.token, error: v.error, nodes: v.view?.nodeNames() ?? [] };
     },
     /** Route mode: the ends, the route planned and its error, if any. */
     route: () => state.route.snapshot(),

@@ -19,9 +19,9 @@ const SLICE_MS = 8;
 const DRAW_SHARE = 0.3;
 /**
  * The mapper's methods the page may call through `invoke` (exports, the report, the best
- * world's rooms and routes through them).
+ * world's rooms, routes through them and its 3D model).
  */
-const INVOKABLE = new Set(['bestWorldJson', 'worldJson', 'labelsPgm', 'graphJson', 'reportJson', 'toPng', 'roomsJson', 'route']);
+const INVOKABLE = new Set(['bestWorldJson', 'worldJson', 'labelsPgm', 'graphJson', 'reportJson', 'toPng', 'roomsJson', 'route', 'worldGlb']);
 
 const ready = init();
 const state = {

@@ -116,16 +116,24 @@ export class RouteView {
     this.draw();
   }
 
-  /** Sizes the layer as the map canvas: `scale` pixels per cell, the same size on screen. */
+  /**
+   * Sizes the layer as the map canvas: `scale` pixels per cell, the same size on screen. Costs
+   * nothing when nothing changed (the page calls it whenever it lays the map out).
+   */
   resize(scale) {
     const { width, height } = this.host.size();
     const layer = this.ui.layer;
+    const changed = this.scale !== scale || layer.width !== width * scale || layer.height !== height * scale;
     this.scale = scale;
-    layer.width = width * scale;
-    layer.height = height * scale;
-    layer.style.width = this.ui.canvas.style.width;
-    layer.style.height = this.ui.canvas.style.height;
-    this.draw();
+    if (changed) {
+      layer.width = width * scale;
+      layer.height = height * scale;
+    }
+    const { width: cssW, height: cssH } = this.ui.canvas.style;
+    const restyled = layer.style.width !== cssW || layer.style.height !== cssH;
+    if (restyled) Object.assign(layer.style, { width: cssW, height: cssH });
+    // Line widths follow the size on screen: redraw a route when either size changed.
+    if ((changed || restyled) && (this.from || this.result)) this.draw();
   }
 
   /** Draws the path and the ends on the layer. */

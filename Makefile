@@ -38,8 +38,8 @@ WASM_OPT := target/$(WASM_TARGET)/wasm-release/ksmcmc.opt.wasm
 WASM_OPT_FLAGS := -O3 --enable-bulk-memory --enable-nontrapping-float-to-int --enable-sign-ext \
 	--enable-mutable-globals --enable-reference-types --enable-multivalue
 
-.PHONY: help demo serve pkg www-pkg www-samples test lint fmt fmt-check clippy test-native test-wasm \
-	test-e2e cli release-cli bench-wasm tools rust-tools wasm-tools wasm-opt-tool browser-tools e2e-deps clean-pkg \
+.PHONY: help demo serve pkg www-pkg www-samples www-vendor test lint fmt fmt-check clippy test-native test-wasm \
+	test-e2e cli release-cli bench-wasm tools rust-tools wasm-tools wasm-opt-tool browser-tools e2e-deps vendor-deps clean-pkg \
 	fuzz fuzz-ci fuzz-tools fuzz-cpu soak
 
 help:
@@ -56,7 +56,7 @@ help:
 
 # ---------------------------------------------------------------- tools
 
-tools: rust-tools wasm-tools wasm-opt-tool browser-tools e2e-deps
+tools: rust-tools wasm-tools wasm-opt-tool browser-tools e2e-deps vendor-deps
 
 rust-tools:
 	@command -v rustup >/dev/null || { echo "rustup is needed: https://rustup.rs" >&2; exit 1; }
@@ -97,6 +97,13 @@ tests/e2e/node_modules/.package-lock.json: tests/e2e/package.json tests/e2e/pack
 	cd tests/e2e && PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD=1 npm ci --no-audit --no-fund --loglevel=error
 	@touch $@
 
+# three.js for the live mapper's 3D view, at the version vendor/package-lock.json pins.
+vendor-deps: vendor/node_modules/.package-lock.json
+
+vendor/node_modules/.package-lock.json: vendor/package.json vendor/package-lock.json
+	cd vendor && npm ci --no-audit --no-fund --loglevel=error
+	@touch $@
+
 # ---------------------------------------------------------------- build
 
 # The npm package: release wasm, wasm-bindgen's ES module and .d.ts, the hand-written modules
@@ -109,9 +116,9 @@ pkg: wasm-tools wasm-opt-tool
 	node scripts/pkg-json.mjs Cargo.toml npm > pkg/package.json
 	@echo "pkg/: $$(wc -c < pkg/ksmcmc_bg.wasm) bytes of wasm ($$(gzip -9 -c pkg/ksmcmc_bg.wasm | wc -c) gzipped), version $$(node -p 'require("./pkg/package.json").version')"
 
-# The pages load the package from www/pkg and the live mapper its samples from www/samples
-# (copies, not committed).
-www-pkg: pkg www-samples
+# The pages load the package from www/pkg, the live mapper its samples from www/samples and
+# three.js from www/vendor (copies, not committed).
+www-pkg: pkg www-samples www-vendor
 	rm -rf www/pkg
 	mkdir -p www/pkg
 	cp pkg/ksmcmc.js pkg/ksmcmc_bg.wasm pkg/ksmcmc.d.ts pkg/package.json www/pkg/
@@ -120,6 +127,21 @@ www-pkg: pkg www-samples
 www-samples:
 	node scripts/www-samples.mjs samples www/samples
 
+# three.js (its ES modules and the glTF loader and orbit controls from its addons, with its
+# licence) into www/vendor/three, where the live mapper's import map finds them; the page loads
+# them only when its 3D view opens. No CDN: the demo works offline.
+THREE := vendor/node_modules/three
+www-vendor: vendor-deps
+	rm -rf www/vendor
+	mkdir -p www/vendor/three/build www/vendor/three/addons/loaders www/vendor/three/addons/utils \
+	  www/vendor/three/addons/controls
+	cp $(THREE)/LICENSE www/vendor/three/
+	cp $(THREE)/build/three.module.js $(THREE)/build/three.core.js www/vendor/three/build/
+	cp $(THREE)/examples/jsm/loaders/GLTFLoader.js www/vendor/three/addons/loaders/
+	cp $(THREE)/examples/jsm/utils/BufferGeometryUtils.js $(THREE)/examples/jsm/utils/SkeletonUtils.js \
+	  www/vendor/three/addons/utils/
+	cp $(THREE)/examples/jsm/controls/OrbitControls.js www/vendor/three/addons/controls/
+
 cli:
 	$(CARGO) build --bin ksmcmc
 
@@ -127,7 +149,7 @@ release-cli:
 	$(CARGO) build --release --bin ksmcmc
 
 clean-pkg:
-	rm -rf www/pkg www/samples
+	rm -rf www/pkg www/samples www/vendor
 	find pkg -mindepth 1 ! -name README.md -delete 2>/dev/null || true
 
 # ---------------------------------------------------------------- demo
@@ -135,7 +157,7 @@ clean-pkg:
 demo: www-pkg serve
 
 # Python's http.server, sending .wasm as application/wasm and nothing cached.
-serve: www-samples
+serve: www-samples www-vendor
 	@test -f www/pkg/ksmcmc_bg.wasm || { echo "www/pkg is missing: run make demo" >&2; exit 1; }
 	python3 scripts/serve.py www $(HOST) $(PORT)
 

@@ -41,7 +41,8 @@
 //!   synthetic generator.
 //! * [`mln`] is the Markov logic engine, usable on its own; the chains query it as a service.
 //! * [`tabletop`] turns noisy 6D box poses into a support/contact scene graph (chapter 4).
-//! * [`render`] draws maps, worlds and scene graphs with tiny-skia, natively and in the browser.
+//! * [`render`] draws maps, worlds and scene graphs with tiny-skia, natively and in the browser,
+//!   and makes the 3D world as glTF 2.0 binary ([`render::model3d`]).
 //! * `wasm` (only on `wasm32`) is a thin wasm-bindgen layer with no logic of its own.
 //!
 //! ```

@@ -271,6 +271,7 @@ fn bad_seeds_and_configs_are_errors() {
 
 // ---------------------------------------------------------------- the live mapper
 
+use ksmcmc::floorplan::route::RoutePlanner;
 use ksmcmc::floorplan::{Chain, ChainConfig, World};
 use ksmcmc::wasm::Mapper;
 
@@ -348,6 +349,63 @@ fn mapper_matches_the_library_on_a_sample() {
     assert_eq!(m.best_world_json(), world.to_json());
     assert_eq!(m.labels_pgm(), ksmcmc::grid::pgm::encode_u16(labels.width(), labels.height(), labels.cells()));
     assert!(m.best_units() >= 3, "{} units", m.best_units());
+}
+
+#[wasm_bindgen_test]
+fn routes_match_the_library() {
+    // The best world's route, as the library plans it on the same world and labels, and as
+    // planRoute plans it from the world's JSON (with the labels, and finding them again).
+    let map = Map::from_yaml(
+        include_str!("../samples/office-small/map.yaml"),
+        include_bytes!("../samples/office-small/map.pgm"),
+    )
+    .unwrap();
+    let mut m = Mapper::new(&map, None, Some(JsValue::from(3))).unwrap();
+    m.step(2000.0).unwrap();
+    let mut chain = Chain::new(map.inner(), ChainConfig::default(), 3).unwrap();
+    chain.step(2000);
+    let (world, labels) = chain.best_world_with_rooms(&Default::default());
+    let mut planner = RoutePlanner::new(map.inner().classified().clone(), labels, &world, 0.05).unwrap();
+    let (from, to) = ((200.0, 100.0), (60.0, 250.0));
+    let native = planner.route((200, 100), (60, 250)).unwrap().to_json();
+    let json = m.route(from.0, from.1, to.0, to.1).unwrap();
+    assert_eq!(json, native);
+    let r: serde_json::Value = serde_json::from_str(&json).unwrap();
+    assert_eq!(r["path"][0], serde_json::json!([200, 100]));
+    let world_json = m.best_world_json();
+    let free = wasm::plan_route(&map, &world_json, from.0, from.1, to.0, to.1, Some(m.labels_pgm())).unwrap();
+    assert_eq!(free, native);
+    assert_eq!(wasm::plan_route(&map, &world_json, from.0, from.1, to.0, to.1, None).unwrap(), native);
+    // Bad ends are thrown errors that say why.
+    err_contains(m.route(0.0, 0.0, to.0, to.1), "the start (0, 0) is an unknown cell");
+    err_contains(m.route(f64::NAN, 0.0, to.0, to.1), "fromX: NaN is not a cell coordinate");
+    err_contains(m.route(1.5, 0.0, to.0, to.1), "fromX: 1.5 is not a cell coordinate");
+    err_contains(m.route(from.0, from.1, 9999.0, to.1), "the goal (9999, 250) lies outside the 400x300 map");
+    err_contains(wasm::plan_route(&map, "{}", from.0, from.1, to.0, to.1, None), "world.json");
+    err_contains(wasm::plan_route(&map, &world_json, from.0, from.1, to.0, to.1, Some(vec![1, 2, 3])), "labelsPgm");
+}
+
+#[wasm_bindgen_test]
+fn world_glb_matches_the_library() {
+    // The best world in 3D: the bytes `ksmcmc floorplan` writes to world.glb for that world,
+    // from the Mapper and from the saved world.json alike.
+    let mut m = Mapper::new(&two_rooms(), None, None).unwrap();
+    m.step(1500.0).unwrap();
+    let world = World::from_json(&m.best_world_json()).unwrap();
+    let options = ksmcmc::render::model3d::Model3dOptions { wall_height: 3.0, door_height: 2.2 };
+    let native = ksmcmc::render::model3d::world_glb(&world, 0.05, &options).unwrap();
+    let heights = js_sys::JSON::parse(r#"{"wallHeight": 3, "doorHeight": 2.2}"#).unwrap();
+    assert_eq!(m.world_glb(Some(heights.clone())).unwrap(), native);
+    assert_eq!(wasm::world_glb(&m.best_world_json(), 0.05, Some(heights)).unwrap(), native);
+    let defaults = ksmcmc::render::model3d::world_glb(&world, 0.05, &Default::default()).unwrap();
+    assert_eq!(m.world_glb(None).unwrap(), defaults);
+    assert!(defaults.starts_with(b"glTF"));
+    let bad = |json: &str| js_sys::JSON::parse(json).unwrap();
+    err_contains(m.world_glb(Some(bad(r#"{"wallHeight": 2, "doorHeight": 3}"#))), "door height 3 m");
+    err_contains(m.world_glb(Some(bad(r#"{"wallheight": 2}"#))), "wallHeight and doorHeight");
+    err_contains(m.world_glb(Some(JsValue::from(3))), "expected an object");
+    err_contains(wasm::world_glb("{", 0.05, None), "world.json");
+    err_contains(wasm::world_glb(&m.best_world_json(), f64::NAN, None), "resolution NaN");
 }
 
 #[wasm_bindgen_test]

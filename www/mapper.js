@@ -11,6 +11,7 @@ import { drawPlot, formatNumber, parseIterationsPerFrame } from './lib/plot.js';
 import { messages } from './lib/messages.js';
 import { download } from './lib/download.js';
 import { RemoteChain } from './lib/remote-chain.js';
+import { RouteView } from './lib/route-view.js';
 
 /** Step runs this many iterations when the speed is `auto`. */
 const AUTO_STEP = 500;
@@ -41,6 +42,14 @@ const ui = {
   rooms: $('rooms').tBodies[0], roomsSummary: $('rooms-summary'),
   plotLp: $('plot-lp'), plotAcc: $('plot-acc'), plotLpValue: $('plot-lp-value'), plotAccValue: $('plot-acc-value'),
   stats: $('stats'),
+  view3d: {
+    toggle: $('view-3d'), panel: $('view3d-panel'), form: $('view3d-form'), canvas: $('view3d'),
+    wall: $('wall-height'), door: $('door-height'), reset: $('view3d-reset'), status: $('view3d-status'),
+  },
+  route: {
+    toggle: $('route-mode'), form: $('route-form'), from: $('route-from'), to: $('route-to'), plan: $('route-plan'),
+    layer: $('route-layer'), summary: $('route-summary'), rooms: $('route-rooms'), doors: $('route-doors'),
+  },
   stat: {
     iteration: $('stat-iteration'), rate: $('stat-rate'), lp: $('stat-lp'), best: $('stat-best'), acc: $('stat-acc'),
     units: $('stat-units'), doors: $('stat-doors'), rooms: $('stat-rooms'), k: $('stat-k'), rotation: $('stat-rotation'), setup: $('stat-setup'),
@@ -48,7 +57,7 @@ const ui = {
   },
   exports: {
     world: $('export-world'), labels: $('export-labels'), png: $('export-png'), graph: $('export-graph'),
-    report: $('export-report'),
+    report: $('export-report'), glb: $('export-glb'),
     geojson: $('export-geojson'), svg: $('export-svg'),
   },
   georef: $('georef'),
@@ -64,6 +73,13 @@ const state = {
   source: null,
   /** The best world's rooms, read from the worker (a RoomsFeed, made in main()). */
   rooms: null,
+  /** Route mode: the ends picked and the route planned (a RouteView, made in main()). */
+  route: null,
+  /**
+   * The 3D view: whether it is open, the View3d (made when first opened, when three.js
+   * loads), the request on its way (a reply to an older one is dropped), its last error.
+   */
+  view3d: { open: false, view: null, token: 0, shown: 0, error: null },
   /** The weak prior's chain beside this one (Compare with the weak prior), or null. */
   weak: null,
   /** What the chain was started with (chainArgs()). */
@@ -268,6 +284,11 @@ function showRooms(rooms) {
       ? 'The best world has no rooms yet.'
       : `The best world's ${rooms.length} room${rooms.length === 1 ? '' : 's'}: ${roomsByType(rooms)} (units merged where no wall parts them, as in world.json).`;
   updateSides();
+  // A route and the 3D view follow the best world.
+  if (rooms) {
+    state.route?.refresh();
+    refresh3d();
+  }
 }
 
 /**
@@ -287,7 +308,10 @@ function takeStats(stats) {
 function adopt({ stats, referenceDropped }, args, source) {
   stopped();
   takeStats(stats);
-  if (source) state.source = source;
+  if (source) {
+    state.source = source;
+    state.route?.clear();
+  }
   state.args = args;
   state.rooms.restart(stats.generation, stats.iteration);
   startWeak();
@@ -302,7 +326,7 @@ function adopt({ stats, referenceDropped }, args, source) {
   state.picture?.picture.close();
   state.picture = null;
   updateReferenceControls();
-  for (const b of [ui.run, ui.step, ui.reset, ...Object.values(ui.exports)]) b.disabled = false;
+  for (const b of [ui.run, ui.step, ui.reset, ui.route.toggle, ui.route.plan, ui.view3d.toggle, ...Object.values(ui.exports)]) b.disabled = false;
   fit();
   requestRedraw();
 }
@@ -742,6 +766,7 @@ function fit() {
   ui.canvas.classList.toggle('smooth', state.scale >= s * dpr);
   ui.weakCanvas.classList.toggle('smooth', state.scale >= s * dpr);
   if (state.weak) state.weak.redrawPending = true;
+  state.route?.resize(state.scale);
   requestRedraw();
 }
 
@@ -837,6 +862,7 @@ async function blankMap() {
 // ---------------------------------------------------------------- painting
 
 function setPainting(on) {
+  if (on) setRouting(false);
   state.painting = on;
   ui.paint.checked = on;
   ui.canvas.classList.toggle('painting', on);
@@ -844,6 +870,70 @@ function setPainting(on) {
     pause();
     say('Painting: drag on the map. Each stroke starts the chain over on the painted map.');
   }
+}
+
+// ---------------------------------------------------------------- 3D view
+
+/** The heights in the 3D view's form, for `worldGlb`. */
+function heights() {
+  return { wallHeight: Number(ui.view3d.wall.value), doorHeight: Number(ui.view3d.door.value) };
+}
+
+/** Opens or closes the 3D view; opening it the first time loads three.js. */
+async function setView3d(on) {
+  const v = state.view3d;
+  if (on === v.open) return;
+  v.open = on;
+  ui.view3d.toggle.setAttribute('aria-pressed', String(on));
+  ui.view3d.panel.hidden = !on;
+  if (!on) return;
+  if (!v.view) {
+    ui.view3d.status.textContent = 'Loading the 3D viewer…';
+    try {
+      const { View3d } = await import('./lib/view3d.js');
+      v.view = new View3d(ui.view3d.canvas);
+      new ResizeObserver(() => v.view.resize()).observe(ui.view3d.canvas);
+    } catch (err) {
+      v.error = `The 3D viewer did not load (${err.message}): \`make demo\` copies three.js into www/vendor.`;
+      ui.view3d.status.textContent = v.error;
+      return;
+    }
+  }
+  v.view.resize();
+  ui.view3d.panel.scrollIntoView({ block: 'nearest' });
+  await refresh3d();
+}
+
+/** Shows the best world's world.glb in the 3D view, if it is open. */
+async function refresh3d() {
+  const v = state.view3d;
+  if (!v.open || !v.view || !state.stats) return;
+  const token = ++v.token;
+  const iteration = state.stats.iteration;
+  try {
+    const bytes = await invoke('worldGlb', heights());
+    if (token !== v.token) return;
+    await v.view.show(bytes);
+    v.error = null;
+    v.shown = token;
+    ui.view3d.status.textContent = `The best world at iteration ${formatNumber(iteration)}: ${formatNumber(bytes.length)} bytes of world.glb.`;
+    ui.view3d.panel.dataset.state = 'ready';
+  } catch (err) {
+    if (token !== v.token) return;
+    v.error = err instanceof Error ? err.message : String(err);
+    ui.view3d.status.textContent = `No 3D world: ${v.error}`;
+  }
+}
+
+// ---------------------------------------------------------------- routes
+
+/** Turns route mode on or off: clicks on the map then pick the route's start and goal. */
+function setRouting(on) {
+  if (!state.route || on === state.route.active) return;
+  if (on && state.painting) setPainting(false);
+  state.route.setActive(on);
+  state.route.show();
+  say(on ? 'Route mode: click the start, then the goal on the map. Esc leaves it.' : 'Left route mode.');
 }
 
 function cellFromEvent(e) {
@@ -874,6 +964,11 @@ function schedulePaint() {
 }
 
 function onPointerDown(e) {
+  if (state.route?.active && state.map && (e.pointerType !== 'mouse' || e.button === 0)) {
+    e.preventDefault();
+    state.route.pick(e);
+    return;
+  }
   if (!state.painting || !state.map || (e.pointerType === 'mouse' && e.button !== 0)) return;
   e.preventDefault();
   ui.canvas.setPointerCapture?.(e.pointerId);
@@ -984,6 +1079,11 @@ function save(name, data, type) {
 
 function onKey(e) {
   if (e.ctrlKey || e.metaKey || e.altKey || e.defaultPrevented) return;
+  if (e.key === 'Escape' && state.route?.active) {
+    e.preventDefault();
+    setRouting(false);
+    return;
+  }
   const t = e.target;
   if (t.closest?.('input, textarea, select, [contenteditable]')) return;
   const key = e.key.toLowerCase();
@@ -999,6 +1099,8 @@ function onKey(e) {
     u: () => setCloud(!state.cloud),
     l: () => setLabels(!state.labels),
     p: () => setPainting(!state.painting),
+    g: () => setRouting(!state.route.active),
+    3: () => setView3d(!state.view3d.open),
   };
   const action = actions[key];
   if (!action || !state.ready) return;
@@ -1083,7 +1185,22 @@ function wire() {
   ex.report.addEventListener('click', exporter('report.json', 'application/json', 'reportJson'));
   ex.geojson.addEventListener('click', exporter('world.geojson', 'application/geo+json', 'geojson', () => (ui.georef.value.trim() ? [ui.georef.value.trim()] : [])));
   ex.svg.addEventListener('click', exporter('world.svg', 'image/svg+xml', 'svg'));
+  ex.glb.addEventListener('click', exporter('world.glb', 'model/gltf-binary', 'worldGlb', () => [heights()]));
 
+  ui.route.toggle.addEventListener('click', () => setRouting(!state.route.active));
+  ui.view3d.toggle.addEventListener('click', () => setView3d(!state.view3d.open));
+  ui.view3d.form.addEventListener('submit', (e) => {
+    e.preventDefault();
+    refresh3d();
+  });
+  ui.view3d.reset.addEventListener('click', () => {
+    state.view3d.view?.frame();
+    state.view3d.view?.render();
+  });
+  ui.route.form.addEventListener('submit', (e) => {
+    e.preventDefault();
+    attempt(() => state.route.submit());
+  });
   ui.canvas.addEventListener('pointerdown', onPointerDown);
   ui.canvas.addEventListener('pointermove', onPointerMove);
   ui.canvas.addEventListener('pointerup', onPointerUp);
@@ -1099,7 +1216,7 @@ function wire() {
 function expose() {
   window.__ksmcmc = {
     /** The chain's exports and report, as promises (the chain is in a worker). */
-    mapper: Object.fromEntries(['bestWorldJson', 'worldJson', 'labelsPgm', 'graphJson', 'reportJson', 'toPng', 'geojson', 'svg'].map((name) => [name, (...args) => invoke(name, ...args)])),
+    mapper: Object.fromEntries(['bestWorldJson', 'worldJson', 'labelsPgm', 'graphJson', 'reportJson', 'toPng', 'geojson', 'svg', 'worldGlb'].map((name) => [name, (...args) => invoke(name, ...args)])),
     /** The weak prior's chain beside it (when compared): its exports and numbers. */
     weak: {
       invoke: (name, ...args) => state.weak.chain.call('invoke', { name, args }),
@@ -1109,6 +1226,13 @@ function expose() {
     async heap() {
       return { chain: await state.chain.call('heap'), weak: state.weak ? await state.weak.chain.call('heap') : null };
     },
+    /** The 3D view: open, which request it shows, its error and the model's node names. */
+    view3d: () => {
+      const v = state.view3d;
+      return { open: v.open, loaded: Boolean(v.view), shown: v.shown, token: v.token, error: v.error, nodes: v.view?.nodeNames() ?? [] };
+    },
+    /** Route mode: the ends, the route planned and its error, if any. */
+    route: () => state.route.snapshot(),
     /** The rooms the page shows (as read from the worker). */
     get rooms() {
       return state.rooms.rooms;
@@ -1189,6 +1313,11 @@ async function main() {
   if (!(await loadWasm(init))) return;
   state.chain = new RemoteChain(chainFailed, chainSettled);
   state.rooms = new RoomsFeed(() => state.chain, showRooms);
+  state.route = new RouteView({ ...ui.route, canvas: ui.canvas }, {
+    plan: (from, to) => invoke('route', from[0], from[1], to[0], to[1]),
+    rooms: () => state.rooms.rooms,
+    size: () => ({ width: state.map.width, height: state.map.height }),
+  });
   ui.version.textContent = version();
   setBrush(ui.brush.value);
   for (const el of [ui.file, ui.blankCreate, ui.worldFile]) el.disabled = false;

@@ -1,7 +1,7 @@
 //! The files of a floor-plan run, written the same way by `ksmcmc floorplan` and by the
 //! browser's `Mapper`: `world.json`, `overlay.png`, `graph.json`, `trace.csv`, `labels.pgm`,
-//! `report.json`, and the floor plan for other tools, `world.geojson` ([`super::geojson`])
-//! and `world.svg` ([`crate::render::svg`]).
+//! `report.json`, the floor plan for other tools, `world.geojson` ([`super::geojson`]) and
+//! `world.svg` ([`crate::render::svg`]), and `world.glb` (the 3D world, [`crate::render::model3d`]).
 //!
 //! The room labels need only the best world and two grids of the chain, not its tables: a
 //! [`RoomInput`] takes those from a [`Chain`], so that a caller short of memory drops the
@@ -21,11 +21,11 @@
 //! drop(chain);
 //! let (world, labels) = input.explain(&RoomConfig::default());
 //! report::add_rooms(&mut summary, &world, &labels);
-//! let out = Outputs::new(&s.map, &world, &labels, &summary, trace, None).unwrap();
+//! let out = Outputs::new(&s.map, &world, &labels, &summary, trace, None, &Default::default()).unwrap();
 //! let names: Vec<&str> = out.files().iter().map(|(name, _)| *name).collect();
 //! assert_eq!(
 //!     names,
-//!     ["world.json", "overlay.png", "graph.json", "trace.csv", "labels.pgm", "report.json", "world.geojson", "world.svg"]
+//!     ["world.json", "overlay.png", "graph.json", "trace.csv", "labels.pgm", "report.json", "world.geojson", "world.svg", "world.glb"]
 //! );
 //! assert!(out.trace_csv.starts_with("iteration,log_posterior,acceptance,units\n"));
 //! ```
@@ -35,6 +35,7 @@ use super::shapes::{floor_shapes, ShapeError};
 use super::world::World;
 use super::{geojson, graph, room_layer, rooms::RoomConfig, Chain, Trace};
 use crate::grid::{Cell, Grid, OccupancyMap};
+use crate::render::model3d::{world_glb, Model3dError, Model3dOptions};
 use crate::render::{self, RenderError};
 use std::fmt::Write as _;
 
@@ -86,6 +87,8 @@ pub enum ExportError {
     /// The room shapes of `world.geojson` and `world.svg` cannot be made (an invalid world, or
     /// labels of another size).
     Shapes(ShapeError),
+    /// The 3D world cannot be made (heights out of range).
+    Model3d(Model3dError),
 }
 
 impl std::fmt::Display for ExportError {
@@ -93,13 +96,14 @@ impl std::fmt::Display for ExportError {
         match self {
             ExportError::Overlay(e) => write!(f, "overlay.png: {e}"),
             ExportError::Shapes(e) => write!(f, "world.geojson and world.svg: {e}"),
+            ExportError::Model3d(e) => write!(f, "world.glb: {e}"),
         }
     }
 }
 
 impl std::error::Error for ExportError {}
 
-/// The eight files of a run, as bytes and text.
+/// The nine files of a run, as bytes and text.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Outputs {
     /// `world.json`: the best world found (units, doors, object cells, rooms).
@@ -118,13 +122,16 @@ pub struct Outputs {
     pub world_geojson: String,
     /// `world.svg`: the floor plan as a vector drawing ([`render::svg`]).
     pub world_svg: String,
+    /// `world.glb`: the 3D world, glTF 2.0 binary ([`world_glb`]).
+    pub world_glb: Vec<u8>,
 }
 
 impl Outputs {
-    /// All eight files of the world `world` (with its rooms) on `map`, its room `labels`, the
+    /// All nine files of the world `world` (with its rooms) on `map`, its room `labels`, the
     /// `report` ([`super::report`]) and the `trace_csv`; `world.geojson` in longitude and
-    /// latitude with a `georef`, else in metres of the map frame. Fails if the overlay cannot
-    /// be drawn (a map over [`render::MAX_PIXELS`] cells) or the world or labels are not valid.
+    /// latitude with a `georef`, else in metres of the map frame; the 3D world with the heights
+    /// of `model`. Fails if the overlay cannot be drawn (a map over [`render::MAX_PIXELS`]
+    /// cells), the world or labels are not valid, or the heights are out of range.
     pub fn new(
         map: &OccupancyMap,
         world: &World,
@@ -132,9 +139,11 @@ impl Outputs {
         report: &serde_json::Value,
         trace_csv: String,
         georef: Option<&Georef>,
+        model: &Model3dOptions,
     ) -> Result<Outputs, ExportError> {
         let shapes = floor_shapes(world, labels).map_err(ExportError::Shapes)?;
         Ok(Outputs {
+            world_glb: world_glb(world, map.yaml().resolution, model).map_err(ExportError::Model3d)?,
             world_json: world.to_json(),
             overlay_png: overlay_png(map.classified(), world).map_err(ExportError::Overlay)?,
             graph_json: graph_json(world),
@@ -147,7 +156,7 @@ impl Outputs {
     }
 
     /// The files by name, in the order `ksmcmc floorplan` writes them.
-    pub fn files(&self) -> [(&'static str, &[u8]); 8] {
+    pub fn files(&self) -> [(&'static str, &[u8]); 9] {
         [
             ("world.json", self.world_json.as_bytes()),
             ("overlay.png", &self.overlay_png),
@@ -157,6 +166,7 @@ impl Outputs {
             ("report.json", self.report_json.as_bytes()),
             ("world.geojson", self.world_geojson.as_bytes()),
             ("world.svg", self.world_svg.as_bytes()),
+            ("world.glb", &self.world_glb),
         ]
     }
 }

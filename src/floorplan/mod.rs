@@ -1,6 +1,6 @@
 //! Semantic floor plans: the world `W = {U, T, R}`, the chain that finds it (its kernels and
-//! their schedule, the posterior, knowledge supervision), what is measured of it, and the
-//! synthetic generator.
+//! their schedule, the posterior, knowledge supervision), what is measured of it, routes
+//! through its rooms and doors ([`route`]), and the synthetic generator.
 //!
 //! A [`World`] is what the chain samples and what every exporter writes; `world.json` is its
 //! serialised form (schema in [`world`]). The chain's working state (units and doors over an
@@ -24,6 +24,7 @@ pub mod posterior;
 pub mod report;
 pub mod room_layer;
 pub mod rooms;
+pub mod route;
 mod schedule;
 pub mod settled;
 pub mod shapes;

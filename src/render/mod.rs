@@ -27,6 +27,9 @@
 //! * for a running chain, the posterior cloud: the last accepted worlds as thin
 //!   semi-transparent magenta outlines ([`draw_cloud`]), as the papers overlay 1000 samples.
 //!
+//! [`model3d`] makes the 3D world (walls with door openings, floor slabs by room type) as
+//! glTF 2.0 binary, through a small writer of its own ([`glb`]).
+//!
 //! [`render_scene_graph`] draws a world's scene graph (units as nodes in their type's colour,
 //! doors as solid edges, shared walls as dashed ones) for display beside the map.
 //!
@@ -61,9 +64,11 @@
 
 mod cloud;
 pub mod font;
+pub mod glb;
 mod graph;
 mod labels;
 mod legend;
+pub mod model3d;
 pub mod svg;
 pub mod tabletop;
 mod world;

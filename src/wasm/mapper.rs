@@ -21,6 +21,7 @@ use crate::floorplan::geojson::world_geojson;
 use crate::floorplan::georef::Georef;
 use crate::floorplan::report::report as ksmcmc_report;
 use crate::floorplan::rooms::RoomConfig;
+use crate::floorplan::route::RoutePlanner;
 use crate::floorplan::settled::Settled;
 use crate::floorplan::{edits, export, metrics, Chain, ChainConfig, Rect, World};
 use crate::grid::{Cell, Grid, OccupancyMap};
@@ -74,6 +75,9 @@ pub struct Mapper {
     /// The last room labels handed out while edits are in force: room ids carry over from
     /// them ([`edits::carry_ids`]).
     shown_labels: Option<Grid<u16>>,
+    /// The route planner of the best world, keyed as `best`: its room graph and the
+    /// distances inside rooms are reused by the next route.
+    planner: Option<((u64, u64), RoutePlanner)>,
     reference: Option<World>,
     /// Whether the best world has stopped improving (the library's rule).
     settled: Settled,
@@ -116,6 +120,18 @@ impl Mapper {
         (world, labels)
     }
 
+    /// The route planner of the best world (cached between improvements).
+    fn planner(&mut self) -> Result<&mut RoutePlanner, JsError> {
+        let key = (self.chain.best_iteration(), self.chain.best_log_posterior().to_bits());
+        if self.planner.as_ref().is_none_or(|(k, _)| *k != key) {
+            let (world, labels) = self.best_rooms();
+            let (world, labels) = (world.clone(), labels.clone());
+            let planner = RoutePlanner::new(self.map.classified().clone(), labels, &world, self.chain.resolution())?;
+            self.planner = Some((key, planner));
+        }
+        Ok(&mut self.planner.as_mut().expect("just filled").1)
+    }
+
     /// The current world (cached until the chain moves).
     fn current(&mut self) -> &World {
         let it = self.chain.iteration();
@@ -148,6 +164,7 @@ impl Mapper {
         self.settled = Settled::for_map(self.map.count(Cell::Free));
         self.best = None;
         self.rooms = None;
+        self.planner = None;
         self.current = None;
         self.busy_ms = 0.0;
     }
@@ -237,6 +254,7 @@ impl Mapper {
             current: None,
             rooms: None,
             shown_labels: None,
+            planner: None,
             reference: None,
             settled: Settled::for_map(inner.count(Cell::Free)),
             setup_ms,
@@ -303,6 +321,7 @@ impl Mapper {
         }
         self.best = None;
         self.rooms = None;
+        self.planner = None;
         self.current = None;
         Ok(())
     }
@@ -478,6 +497,22 @@ impl Mapper {
         Ok(export::rooms_json(self.best_rooms().0))
     }
 
+    /// The route from cell (`fromX`, `fromY`) to (`toX`, `toY`) (column, row) through the
+    /// rooms and doors of the best world, as JSON text: `{"rooms": [...], "doors": [...],
+    /// "path": [[x, y], ...], "length_m": ...}`, what `ksmcmc route` prints for the
+    /// `world.json` and `labels.pgm` of `bestWorldJson` and `labelsPgm`. Throws, with the
+    /// reason, for ends off the map or not free, or a goal no free path reaches.
+    pub fn route(
+        &mut self,
+        #[wasm_bindgen(js_name = fromX)] from_x: f64,
+        #[wasm_bindgen(js_name = fromY)] from_y: f64,
+        #[wasm_bindgen(js_name = toX)] to_x: f64,
+        #[wasm_bindgen(js_name = toY)] to_y: f64,
+    ) -> Result<String, JsError> {
+        let (from, to) = super::route::ends(from_x, from_y, to_x, to_y)?;
+        Ok(self.planner()?.route(from, to)?.to_json())
+    }
+
     /// The recorded trace from point `from` on (default 0): one point every
     /// `output.trace_every` iterations (100 by default) with the iteration, the current log
     /// posterior, the acceptance rate and the unit count. Pass the number of points already
@@ -566,6 +601,22 @@ impl Mapper {
         let resolution = self.map.yaml().resolution;
         let (world, labels) = self.best_rooms();
         Ok(render::svg::world_svg(world, labels, resolution)?)
+    }
+
+    /// The best world in 3D, as the `world.glb` (glTF 2.0 binary) `ksmcmc floorplan` writes:
+    /// walls with openings at the doors, a floor slab per room in its type's colour, metres,
+    /// Y up. `options`: `{ wallHeight?: number = 2.5, doorHeight?: number = 2.0 }` in metres
+    /// (`ksmcmc floorplan --wall-height --door-height`); out-of-range heights are errors.
+    #[wasm_bindgen(js_name = worldGlb)]
+    pub fn world_glb(
+        &mut self,
+        #[wasm_bindgen(unchecked_optional_param_type = "{ wallHeight?: number; doorHeight?: number }")] options: Option<
+            JsValue,
+        >,
+    ) -> Result<Vec<u8>, JsError> {
+        let options = super::model3d::options(options.as_ref())?;
+        let resolution = self.chain.resolution();
+        Ok(crate::render::model3d::world_glb(self.best_rooms().0, resolution, &options)?)
     }
 
     /// The scene graph of the best world (or the current one, `which = 'current'`) as
@@ -802,7 +853,7 @@ pub fn chain_config(json: Option<&str>) -> Result<ChainConfig, JsError> {
 /// Reads an options object through its JSON text, so that unknown fields are refused
 /// (serde-wasm-bindgen looks up only the fields it knows) and NaN, which JSON writes as
 /// `null`, is no number.
-fn from_object<T: serde::de::DeserializeOwned>(v: &JsValue) -> Result<T, String> {
+pub(crate) fn from_object<T: serde::de::DeserializeOwned>(v: &JsValue) -> Result<T, String> {
     let text = js_sys::JSON::stringify(v).map_err(|e| js_message(&e))?;
     let text = text.as_string().unwrap_or_default();
     serde_json::from_str(&text).map_err(|e| e.to_string())

@@ -21,12 +21,16 @@
 
 pub mod knowledge;
 mod mapper;
+mod model3d;
+mod route;
 pub mod tabletop;
 
 pub use mapper::{
     chain_config, chain_config_defaults, draw_mapper, draw_scene_graph, now_ms, render_mapper_rgba,
     render_scene_graph_rgba, DrawOptions, GraphOptions, Mapper, Show, MAX_BUDGET_MS, MAX_MAPPER_CELLS, MAX_STEP,
 };
+pub use model3d::world_glb;
+pub use route::plan_route;
 
 use crate::floorplan::synth::{self, SynthConfig};
 use crate::floorplan::World;

@@ -18,6 +18,9 @@ export const CHROMIUM = process.env.CHROMIUM ?? '/usr/bin/chromium';
 const CHROMIUM_ARGS = [
   '--no-sandbox',
   '--disable-gpu',
+  // WebGL (the mapper's 3D view) on the CPU: SwiftShader, which newer Chromium uses only when
+  // asked.
+  '--enable-unsafe-swiftshader',
   '--disable-dev-shm-usage',
   '--disable-background-networking',
   '--disable-component-update',

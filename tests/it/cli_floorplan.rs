@@ -343,3 +343,34 @@ fn edits_name_and_type_a_room_and_bad_edits_say_which() {
     let err = String::from_utf8_lossy(&run(&["floorplan", m_s, "--out", d_s, "--edits", e_s]).stderr).to_string();
     assert!(err.contains("expected a list"), "{err}");
 }
+
+#[test]
+fn floorplan_writes_the_3d_world_with_the_heights_asked_for() {
+    let d = tmp("glb");
+    let map = sample("office-small/map.yaml");
+    let (m, o) = (map.to_str().unwrap(), d.to_str().unwrap());
+    let out = run(&["floorplan", m, "--out", o, "--iterations", "2000", "--wall-height", "3", "--door-height", "2.1"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let glb = std::fs::read(d.join("world.glb")).unwrap();
+    assert_eq!(&glb[..4], b"glTF");
+    let json_len = u32::from_le_bytes(glb[12..16].try_into().unwrap()) as usize;
+    let json: serde_json::Value = serde_json::from_slice(&glb[20..20 + json_len]).unwrap();
+    let walls = json["nodes"].as_array().unwrap().iter().find(|n| n["name"] == "walls").unwrap();
+    assert_eq!(
+        (walls["extras"]["wall_height_m"].as_f64(), walls["extras"]["door_height_m"].as_f64()),
+        (Some(3.0), Some(2.1))
+    );
+    // One slab node per room of world.json.
+    let world = World::from_json(&std::fs::read_to_string(d.join("world.json")).unwrap()).unwrap();
+    let slabs =
+        json["nodes"].as_array().unwrap().iter().filter(|n| n["name"].as_str().unwrap().starts_with("room ")).count();
+    assert_eq!(slabs, world.rooms.iter().filter(|r| !r.units.is_empty()).count());
+    // Doors taller than walls are a usage error.
+    let bad = run(&["floorplan", m, "--out", o, "--wall-height", "2", "--door-height", "2.5"]);
+    assert_eq!(bad.status.code(), Some(2));
+    assert!(
+        String::from_utf8_lossy(&bad.stderr).contains("door height 2.5 m"),
+        "{}",
+        String::from_utf8_lossy(&bad.stderr)
+    );
+}

@@ -22,7 +22,7 @@ fn run(map: &OccupancyMap, iterations: u64, georef: Option<&Georef>) -> (World, 
     drop(chain);
     let (world, labels) = input.explain(&RoomConfig::default());
     report::add_rooms(&mut summary, &world, &labels);
-    let out = Outputs::new(map, &world, &labels, &summary, trace, georef).unwrap();
+    let out = Outputs::new(map, &world, &labels, &summary, trace, georef, &Default::default()).unwrap();
     (world, out)
 }
 

@@ -18,10 +18,10 @@ const SLICE_MS = 8;
  */
 const DRAW_SHARE = 0.3;
 /**
- * The mapper's methods the page may call through `invoke` (exports, the report and the best
- * world's rooms).
+ * The mapper's methods the page may call through `invoke` (exports, the report, the best
+ * world's rooms, routes through them and its 3D model).
  */
-const INVOKABLE = new Set(['bestWorldJson', 'worldJson', 'labelsPgm', 'graphJson', 'reportJson', 'toPng', 'roomsJson', 'geojson', 'svg']);
+const INVOKABLE = new Set(['bestWorldJson', 'worldJson', 'labelsPgm', 'graphJson', 'reportJson', 'toPng', 'roomsJson', 'geojson', 'svg', 'route', 'worldGlb']);
 
 const ready = init();
 const state = {

@@ -55,3 +55,29 @@ pub fn required<T>(v: Option<T>, name: &str, command: &str) -> Result<T, CliErro
 pub fn path(v: OsString) -> PathBuf {
     PathBuf::from(v)
 }
+
+/// Loads a map and classifies a plain image as `--classify` asks: `auto` (background grays
+/// from the histogram) or `fixed` (eq. 3.7's thresholds); a map.yaml keeps its own thresholds.
+pub fn load_classified(path: &Path, classify: &str) -> Result<ksmcmc::grid::OccupancyMap, CliError> {
+    let mut map = load_map(path)?;
+    let is_yaml = matches!(path.extension().and_then(|e| e.to_str()), Some("yaml" | "yml"));
+    match classify {
+        "auto" if !is_yaml => {
+            map.set_classifier(ksmcmc::grid::Classifier::auto()).map_err(|e| failed("--classify", e))?
+        }
+        "auto" | "fixed" => {}
+        other => return Err(CliError::Usage(format!("--classify must be auto or fixed, not {other:?}"))),
+    }
+    Ok(map)
+}
+
+/// Reads a world.json and checks that it belongs to `map`.
+pub fn load_world(path: &Path, map: &ksmcmc::grid::OccupancyMap) -> Result<ksmcmc::floorplan::World, CliError> {
+    let bytes = std::fs::read(path).map_err(|e| failed(path.display(), e))?;
+    let text = std::str::from_utf8(&bytes).map_err(|e| {
+        failed(path.display(), format!("not UTF-8 text (bad byte at offset {}); save it as UTF-8", e.valid_up_to()))
+    })?;
+    let world = ksmcmc::floorplan::World::from_json(text).map_err(|e| failed(path.display(), e))?;
+    world.fits(map.width(), map.height()).map_err(|e| failed(path.display(), e))?;
+    Ok(world)
+}

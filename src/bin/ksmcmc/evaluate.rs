@@ -28,6 +28,9 @@ Prints the quality tables of BENCHMARKS.md:
   rooms      the room layer against synthetic truth, both modes: rooms per truth unit and
              type accuracy (the room covering most of each truth unit has the unit's type),
              on hall, two-corridor, cluttered, rotated and many-storage floors
+  routes     route length over the shortest free path (floorplan::route::study) between
+             200 pairs of free cells in different rooms per floor, on the explained floors
+             of the rooms set's kinds
 bormann also scores door topology: a truth link is a drawn doorway line on free map cells
 between two truth rooms; a predicted link is two segments, standing for the truth rooms they
 overlap most, touching along at least 10 free cells (see floorplan::topology).
@@ -35,7 +38,8 @@ DIR defaults to ../shared/datasets, N to 20000 iterations, K to 6. --only runs o
 ";
 
 /// The sets `--only` can name.
-const SETS: [&str; 7] = ["cartesium", "synthetic", "bormann", "knowledge", "paired", "paired-bormann", "rooms"];
+const SETS: [&str; 8] =
+    ["cartesium", "synthetic", "bormann", "knowledge", "paired", "paired-bormann", "rooms", "routes"];
 
 struct Opts {
     iterations: u64,
@@ -411,6 +415,48 @@ fn rooms(o: &Opts) -> Result<(), CliError> {
     Ok(())
 }
 
+/// Route stretch on explained synthetic floors: per kind, the mean and largest ratio of route
+/// length over shortest free path, with how many routes the room graph had none for.
+fn routes(o: &Opts) -> Result<(), CliError> {
+    use ksmcmc::floorplan::route::{study::stretch, RoutePlanner};
+    const PAIRS: usize = 200;
+    println!(
+        "\n### Routes on explained synthetic floors ({} iterations, {} seeds per kind from 300, {PAIRS} pairs each)\n",
+        o.iterations, o.seeds
+    );
+    println!("| kind | routes | mean ratio | max ratio | worst floor (seed) | planned on cells | unreachable pairs | ms per route |");
+    println!("|---|---|---|---|---|---|---|---|");
+    for (name, synth) in room_kinds() {
+        let (mut pairs, mut sum, mut max, mut worst, mut on_cells, mut unreachable) = (0, 0.0, 0.0f64, 0, 0, 0);
+        let mut seconds = 0.0;
+        for seed in 0..o.seeds {
+            let s = generate(&synth, 300 + seed).map_err(|e| args::failed(name, e))?;
+            let mut chain = explain(&s.map, o, seed + 1)?;
+            let (world, labels) = chain.best_world_with_rooms(&RoomConfig::default());
+            let map = s.map.classified().clone();
+            let mut planner =
+                RoutePlanner::new(map, labels, &world, s.map.yaml().resolution).map_err(|e| args::failed(name, e))?;
+            // The time includes a shortest free path per pair (the reference), as a route does.
+            let t0 = std::time::Instant::now();
+            let st = stretch(&mut planner, PAIRS, seed + 1);
+            seconds += t0.elapsed().as_secs_f64();
+            pairs += st.pairs;
+            sum += st.mean * st.pairs as f64;
+            if st.max > max {
+                (max, worst) = (st.max, 300 + seed);
+            }
+            on_cells += st.on_cells;
+            unreachable += st.unreachable;
+        }
+        println!(
+            "| {name} | {pairs} | {:.4} | {max:.4} | {worst} | {on_cells} | {unreachable} | {:.1} |",
+            sum / pairs.max(1) as f64,
+            1000.0 * seconds / (pairs + unreachable).max(1) as f64
+        );
+    }
+    Ok(())
+}
+
 fn cartesium(dir: &Path, o: &Opts) -> Result<(), CliError> {
     let path = dir.join("radish/ubremen-cartesium.png");
     let mut map = args::load_map(&path)?;
@@ -479,6 +525,9 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     }
     if want("rooms") {
         rooms(&o)?;
+    }
+    if want("routes") {
+        routes(&o)?;
     }
 
     Ok(())

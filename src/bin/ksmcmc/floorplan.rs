@@ -6,6 +6,7 @@ use ksmcmc::floorplan::rooms::RoomConfig;
 use ksmcmc::floorplan::settled::{self, Settled};
 use ksmcmc::floorplan::{export, metrics, Chain, ChainConfig};
 use ksmcmc::grid::Cell;
+use ksmcmc::render::model3d::Model3dOptions;
 use std::ffi::OsString;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -26,6 +27,8 @@ data-driven MCMC, and writes:
                     frame (the map.yaml origin applied), or longitude/latitude with --georef
   DIR/world.svg     the floor plan as a vector drawing in layers (rooms by type, walls,
                     doors, labels), in map cells
+  DIR/world.glb     the 3D world (glTF 2.0 binary, metres, Y up): walls with openings at the
+                    doors, a floor slab per room in its type's colour
 
 Options:
   --iterations N     iterations to run (default 20000)
@@ -52,6 +55,9 @@ Options:
                      (the rooms at two points are one), splits (a wall runs along a line),
                      types and names of the room at a point, in map cells (column, row);
                      see the README's \"Correcting a floor plan\"
+  --wall-height M    height of the walls in world.glb, metres (default 2.5)
+  --door-height M    height of the door openings in world.glb, metres (default 2.0; at most
+                     the wall height)
   --classify RULE    how plain images become cells: auto (default; background grays found
                      from the histogram, anti-aliased walls occupied) or fixed (eq. 3.7
                      thresholds only); a map.yaml always uses its own thresholds
@@ -72,12 +78,13 @@ struct Opts {
     until_settled: bool,
     georef: Option<Georef>,
     edits: Option<PathBuf>,
+    model: Model3dOptions,
 }
 
 pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     let Some(o) = parse(argv)? else { return Ok(()) };
     let config = chain_config(&o)?;
-    let map = load_map(&o)?;
+    let map = args::load_classified(&o.map, &o.classify)?;
     let region = load_region(&o, &map)?;
     let t0 = Instant::now();
     let mut chain = Chain::new(&map, config, o.seed).map_err(|e| args::failed(o.map.display(), e))?;
@@ -112,7 +119,7 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     }
     report["cell_prediction_rate_region"] =
         region.as_ref().map(|r| metrics::prediction_rate_in(map.classified(), &world, Some(r))).into();
-    let outputs = export::Outputs::new(&map, &world, &labels, &report, trace, o.georef.as_ref())
+    let outputs = export::Outputs::new(&map, &world, &labels, &report, trace, o.georef.as_ref(), &o.model)
         .map_err(|e| args::failed(o.out.display(), e))?;
     for (name, bytes) in outputs.files() {
         args::write(&o.out.join(name), bytes)?;
@@ -144,6 +151,7 @@ fn parse(argv: Vec<OsString>) -> Result<Option<Opts>, CliError> {
     let mut until_settled = false;
     let mut georef = None;
     let mut edits: Option<PathBuf> = None;
+    let mut model = Model3dOptions::default();
     while let Some(arg) = parser.next()? {
         match arg {
             Value(v) if map.is_none() => map = Some(args::path(v)),
@@ -159,6 +167,8 @@ fn parse(argv: Vec<OsString>) -> Result<Option<Opts>, CliError> {
             Long("until-settled") => until_settled = true,
             Long("georef") => georef = Some(args::value::<Georef>("--georef", parser.value()?)?),
             Long("edits") => edits = Some(args::path(parser.value()?)),
+            Long("wall-height") => model.wall_height = args::value("--wall-height", parser.value()?)?,
+            Long("door-height") => model.door_height = args::value("--door-height", parser.value()?)?,
             Long("help") | Short('h') => {
                 print!("{HELP}");
                 return Ok(None);
@@ -173,6 +183,7 @@ fn parse(argv: Vec<OsString>) -> Result<Option<Opts>, CliError> {
             return Err(CliError::Usage(format!("--time-limit must be a positive number of seconds, not {t}")));
         }
     }
+    model.validate().map_err(|e| CliError::Usage(format!("--wall-height/--door-height: {e}")))?;
     if let Some(r) = rotation {
         if !r.is_finite() {
             return Err(CliError::Usage(format!("--rotation must be a number of degrees, not {r}")));
@@ -192,6 +203,7 @@ fn parse(argv: Vec<OsString>) -> Result<Option<Opts>, CliError> {
         until_settled,
         georef,
         edits,
+        model,
     }))
 }
 
@@ -235,20 +247,6 @@ fn chain_config(o: &Opts) -> Result<ChainConfig, CliError> {
         None => {}
     }
     Ok(config)
-}
-
-/// The map, classified as `--classify` asks (a map.yaml keeps its own thresholds).
-fn load_map(o: &Opts) -> Result<ksmcmc::grid::OccupancyMap, CliError> {
-    let mut map = args::load_map(&o.map)?;
-    let is_yaml = matches!(o.map.extension().and_then(|e| e.to_str()), Some("yaml" | "yml"));
-    match o.classify.as_str() {
-        "auto" if !is_yaml => {
-            map.set_classifier(ksmcmc::grid::Classifier::auto()).map_err(|e| args::failed("--classify", e))?
-        }
-        "auto" | "fixed" => {}
-        other => return Err(CliError::Usage(format!("--classify must be auto or fixed, not {other:?}"))),
-    }
-    Ok(map)
 }
 
 /// The `--region` mask (non-black cells), which must be the map's size.

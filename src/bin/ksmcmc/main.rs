@@ -10,6 +10,7 @@ mod floorplan;
 mod info;
 mod mln;
 mod render;
+mod route;
 mod score;
 mod synth;
 mod tabletop;
@@ -24,10 +25,12 @@ Usage:
   ksmcmc info MAP                          size and cell classes of a map
   ksmcmc render MAP [--world world.json] --out out.png
                                            draw a classified map, optionally with a world over it
-    ksmcmc floorplan MAP --out DIR [--iterations N] [--seed S] [--time-limit SEC]
+  ksmcmc floorplan MAP --out DIR [--iterations N] [--seed S] [--time-limit SEC]
                                            explain a map with a semantic floor plan
-    ksmcmc score LABELS TRUTH                segmentation precision and recall
-    ksmcmc bench                             speed of the engine (for BENCHMARKS.md)
+  ksmcmc route MAP WORLD.json --from X,Y --to X,Y
+                                           a route through the world's rooms and doors (JSON)
+  ksmcmc score LABELS TRUTH                segmentation precision and recall
+  ksmcmc bench                             speed of the engine (for BENCHMARKS.md)
   ksmcmc evaluate                          quality on real and synthetic maps (BENCHMARKS.md)
   ksmcmc synth --seed N --out DIR [options]
                                            generate a synthetic floor plan with ground truth
@@ -65,6 +68,7 @@ fn main() -> ExitCode {
         Some("render") => render::run(rest),
         Some("floorplan") => floorplan::run(rest),
         Some("score") => score::run(rest),
+        Some("route") => route::run(rest),
         Some("bench") => bench::run(rest),
         Some("evaluate") => evaluate::run(rest),
         Some("synth") => synth::run(rest),

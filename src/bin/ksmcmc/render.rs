@@ -1,11 +1,8 @@
 //! `ksmcmc render MAP [--world world.json] --out out.png`: draw a map, optionally with a world.
 
 use crate::args::{self, CliError};
-use ksmcmc::floorplan::World;
-use ksmcmc::grid::OccupancyMap;
 use ksmcmc::render::{self, RenderOptions};
 use std::ffi::OsString;
-use std::path::Path;
 
 /// The largest `--scale`.
 const MAX_SCALE: u32 = 16;
@@ -56,7 +53,7 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
 
     let map = args::load_map(&map_path)?;
     let world = match &world {
-        Some(path) => Some(load_world(path, &map)?),
+        Some(path) => Some(args::load_world(path, &map)?),
         None => None,
     };
     let pixmap = render::try_render(map.classified(), world.as_ref(), &options)
@@ -79,18 +76,4 @@ fn scale(v: OsString) -> Result<u32, CliError> {
         )));
     }
     Ok(s)
-}
-
-/// Reads a world.json and checks that it belongs to `map`.
-fn load_world(path: &Path, map: &OccupancyMap) -> Result<World, CliError> {
-    let bytes = std::fs::read(path).map_err(|e| args::failed(path.display(), e))?;
-    let text = std::str::from_utf8(&bytes).map_err(|e| {
-        args::failed(
-            path.display(),
-            format!("not UTF-8 text (bad byte at offset {}); save it as UTF-8", e.valid_up_to()),
-        )
-    })?;
-    let world = World::from_json(text).map_err(|e| args::failed(path.display(), e))?;
-    world.fits(map.width(), map.height()).map_err(|e| args::failed(path.display(), e))?;
-    Ok(world)
 }

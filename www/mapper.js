@@ -1112,7 +1112,7 @@ function setEditMode(mode) {
   state.splitDrag = false;
   drawSplitLine(null, null);
   ui.canvas.classList.toggle('editing', Boolean(mode));
-  if (mode === 'merge') say('Merge: click the room to merge with on the map (Esc cancels).');
+  if (mode === 'merge') say('Merge: click the room to merge with on the map or in the Rooms table (Esc cancels).');
   if (mode === 'split') say('Split: drag a line across the room on the map, or click its two ends (Esc cancels).');
   updateEditControls();
 }
@@ -1181,6 +1181,18 @@ function finishSplit(to) {
   addEdit({ op: 'split', line: [from, to] });
 }
 
+/** Merge… finished from the keyboard: the selected room with Rooms row `id` (a cell inside it). */
+async function mergeWithRoom(id) {
+  const { x, y } = state.selected;
+  setEditMode(null);
+  try {
+    const other = await state.chain.call('roomAt', { id });
+    if (other) await addEdit({ op: 'merge', at: [[x, y], [other.x, other.y]] });
+  } catch (err) {
+    showError(err);
+  }
+}
+
 async function importEdits(file) {
   const list = parseEdits(await file.text());
   if (list instanceof Error) {
@@ -1215,7 +1227,9 @@ function wireEdits() {
     if (!tr || !state.stats) return;
     if (e.type === 'keydown' && e.key !== 'Enter' && e.key !== ' ') return;
     e.preventDefault();
-    select({ id: Number(tr.dataset.room) });
+    const id = Number(tr.dataset.room);
+    if (state.editMode === 'merge' && state.selected) mergeWithRoom(id);
+    else select({ id });
   };
   ui.rooms.addEventListener('click', pick);
   ui.rooms.addEventListener('keydown', pick);

@@ -139,7 +139,26 @@ test('edit rooms: retype, name, merge, undo, export/import, Reset, bad imports',
   assert.equal(at(w, pa), at(w, pb), 'both points lie in one room');
   assert.ok(at(w, pa) > 0);
 
+  // Merge from the keyboard: Enter on a Rooms row selects it, Merge with…, Enter on another row.
+  const c = w.rooms.find((r) => r.opens_to.length > 0);
+  assert.ok(c, 'a room with a neighbour after the merge');
+  await page.focus(`#rooms tr[data-room="${c.id}"]`);
+  await page.keyboard.press('Enter');
+  await selected(page, c.id);
+  await page.focus('#edit-merge');
+  await page.keyboard.press('Enter');
+  await page.focus(`#rooms tr[data-room="${c.opens_to[0]}"]`);
+  await page.keyboard.press('Enter');
+  await page.waitForFunction(() => window.__ksmcmc.edits.length === 4);
+  const four = await editsJson(page);
+  assert.equal(four[3].op, 'merge');
+  assert.equal(at(w, four[3].at[0]), c.id);
+  assert.equal(at(w, four[3].at[1]), c.opens_to[0]);
+
   // Undo (button, then Ctrl+Z) takes off the last edit each time.
+  await page.click('#edit-undo');
+  await page.waitForFunction(() => window.__ksmcmc.edits.length === 3);
+  assert.deepEqual(await editsJson(page), three);
   await page.click('#edit-undo');
   await page.waitForFunction(() => window.__ksmcmc.edits.length === 2);
   assert.deepEqual(await editsJson(page), two);

@@ -761,6 +761,7 @@ function fit() {
   ui.canvas.classList.toggle('smooth', state.scale >= s * dpr);
   ui.weakCanvas.classList.toggle('smooth', state.scale >= s * dpr);
   if (state.weak) state.weak.redrawPending = true;
+  drawOverlay();
   requestRedraw();
 }
 
@@ -1101,6 +1102,7 @@ function showSelection() {
   ui.edit.selection.dataset.room = s?.room ? String(s.room) : '';
   if (room && EDIT_TYPE_SET.has(room.type)) ui.edit.type.value = room.type;
   for (const tr of ui.rooms.rows) tr.setAttribute('aria-selected', String(s?.room === Number(tr.dataset.room)));
+  drawOverlay();
   updateEditControls();
 }
 
@@ -1110,17 +1112,21 @@ function setEditMode(mode) {
   state.editMode = mode;
   state.splitFrom = null;
   state.splitDrag = false;
-  drawSplitLine(null, null);
+  drawOverlay();
   ui.canvas.classList.toggle('editing', Boolean(mode));
   if (mode === 'merge') say('Merge: click the room to merge with on the map or in the Rooms table (Esc cancels).');
   if (mode === 'split') say('Split: drag a line across the room on the map, or click its two ends (Esc cancels).');
   updateEditControls();
 }
 
-/** The split's line over the map (an SVG in map cells), or none. */
-function drawSplitLine(from, to) {
+/**
+ * What the edits draw over the map (an SVG in map cells): a ring at the selected room's cell,
+ * and a split's line while it is drawn (from `state.splitFrom` to `to`).
+ */
+function drawOverlay(to = null) {
   let svg = ui.canvas.parentElement.querySelector('.edit-line');
-  if (!from) {
+  const sel = state.selected?.room ? state.selected : null;
+  if (!state.map || (!sel && !state.splitFrom)) {
     svg?.remove();
     return;
   }
@@ -1130,17 +1136,25 @@ function drawSplitLine(from, to) {
     svg.setAttribute('class', 'edit-line');
     svg.setAttribute('aria-hidden', 'true');
     svg.setAttribute('preserveAspectRatio', 'none');
-    svg.innerHTML = '<circle r="1.5" vector-effect="non-scaling-stroke"/><line vector-effect="non-scaling-stroke"/>';
+    svg.innerHTML = '<circle class="selected" vector-effect="non-scaling-stroke"/><circle class="from" vector-effect="non-scaling-stroke"/><line vector-effect="non-scaling-stroke"/>';
     ui.canvas.parentElement.append(svg);
   }
   svg.setAttribute('viewBox', `0 0 ${width} ${height}`);
   const cv = ui.canvas;
   Object.assign(svg.style, { left: `${cv.offsetLeft}px`, top: `${cv.offsetTop}px`, width: `${cv.clientWidth}px`, height: `${cv.clientHeight}px` });
-  const [c, l] = svg.children;
-  c.setAttribute('cx', from[0] + 0.5);
-  c.setAttribute('cy', from[1] + 0.5);
-  const end = to ?? from;
-  for (const [k, v] of [['x1', from[0]], ['y1', from[1]], ['x2', end[0]], ['y2', end[1]]]) l.setAttribute(k, v + 0.5);
+  const [ring, from, line] = svg.children;
+  const r = Math.max(2, Math.min(width, height) / 40);
+  const put = (el, attrs) => {
+    el.toggleAttribute('hidden', !attrs);
+    el.style.display = attrs ? '' : 'none';
+    for (const [k, v] of Object.entries(attrs ?? {})) el.setAttribute(k, v);
+  };
+  put(ring, sel && { cx: sel.x + 0.5, cy: sel.y + 0.5, r });
+  const f = state.splitFrom;
+  const end = to ?? f;
+  put(from, f && { cx: f[0] + 0.5, cy: f[1] + 0.5, r: r / 2 });
+  put(line, f && { x1: f[0] + 0.5, y1: f[1] + 0.5, x2: end[0] + 0.5, y2: end[1] + 0.5 });
+  svg.dataset.split = f ? 'drawing' : '';
 }
 
 function editPointerDown(e) {
@@ -1158,14 +1172,14 @@ function editPointerDown(e) {
     ui.canvas.setPointerCapture?.(e.pointerId);
     state.splitFrom = cell;
     state.splitDrag = true;
-    drawSplitLine(cell, null);
+    drawOverlay();
   } else {
     select({ x: cell[0], y: cell[1] });
   }
 }
 
 function editPointerMove(e) {
-  drawSplitLine(state.splitFrom, cellFromEvent(e));
+  drawOverlay(cellFromEvent(e));
 }
 
 /** A drag ends the line where it is let go; a click leaves the first point for a second click. */

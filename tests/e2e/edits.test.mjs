@@ -93,6 +93,8 @@ test('edit rooms: retype, name, merge, undo, export/import, Reset, bad imports',
   const p = inside(w, target.id);
   await clickCell(page, p);
   await selected(page, target.id);
+  const ring = await page.evaluate(() => ['cx', 'cy'].map((k) => Number(document.querySelector('.edit-line circle.selected').getAttribute(k))));
+  assert.deepEqual(ring, [p[0] + 0.5, p[1] + 0.5], 'the selected cell is marked on the map');
   await page.selectOption('#edit-type', 'hall');
   await page.click('#edit-type-apply');
   await page.waitForFunction(() => window.__ksmcmc.edits.length === 1);
@@ -176,11 +178,13 @@ test('edit rooms: retype, name, merge, undo, export/import, Reset, bad imports',
   await page.mouse.move(...px(from));
   await page.mouse.down();
   await page.mouse.move(...px(to), { steps: 4 });
-  assert.equal(await page.locator('.edit-line line').count(), 1, 'the line is drawn while dragging');
+  assert.equal(await page.getAttribute('.edit-line', 'data-split'), 'drawing', 'the line is drawn while dragging');
+  const drawn = await page.evaluate(() => ['x1', 'y1', 'x2', 'y2'].map((k) => Number(document.querySelector('.edit-line line').getAttribute(k))));
+  assert.deepEqual(drawn, [from[0] + 0.5, from[1] + 0.5, to[0] + 0.5, to[1] + 0.5]);
   await page.mouse.up();
   await page.waitForFunction(() => window.__ksmcmc.edits.length === 2);
   assert.deepEqual(await editsJson(page), [two[0], { op: 'split', line: [from, to] }]);
-  assert.equal(await page.locator('.edit-line').count(), 0);
+  assert.equal(await page.getAttribute('.edit-line', 'data-split'), '', 'the line goes once the split is made');
 
   // Export, clear, import: the same list.
   const exported = await download(page, '#edit-export');

@@ -6,6 +6,7 @@ import { brushOffsets, cellAt, line, stamp, strokeTo, TOOLS } from '../../www/li
 import { matchImage, parseSeed, pickYamlImage, planOpen, stem, yamlImageName } from '../../www/lib/files.js';
 import { errorSpan, errorText } from '../../www/lib/rules-editor.js';
 import { naturalCompare } from '../../www/lib/natural.js';
+import { describeEdit, parseEdits } from '../../www/lib/edits.js';
 
 test('unit names sort by their numbers', () => {
   assert.deepEqual(['U10', 'U2', 'U1', 'U21', 'U3'].sort(naturalCompare), ['U1', 'U2', 'U3', 'U10', 'U21']);
@@ -191,4 +192,17 @@ test('the rules editor underlines the token at the parser\'s line and column', (
   assert.equal(errorText({ line: 2, column: 25, message: 'expected a formula' }), 'line 2, column 25: expected a formula');
   assert.equal(errorText({ line: 0, column: 0, message: 'too big' }), 'too big');
   assert.equal(errorText(null), '');
+});
+
+test('edits are worded and imported files checked for a list', () => {
+  assert.equal(describeEdit({ op: 'merge', at: [[1, 2], [3, 4]] }), 'merge (1, 2) with (3, 4)');
+  assert.equal(describeEdit({ op: 'split', line: [[0, 5], [9, 5]] }), 'split along (0, 5)–(9, 5)');
+  assert.equal(describeEdit({ op: 'type', at: [7, 8], type: 'hall' }), '(7, 8) is a hall');
+  assert.equal(describeEdit({ op: 'name', at: [7, 8], name: 'Kitchen' }), '(7, 8) is named “Kitchen”');
+  assert.equal(describeEdit({ op: 'paint' }), '{"op":"paint"}');
+  const list = [{ op: 'type', at: [1, 1], type: 'room' }];
+  assert.deepEqual(parseEdits(JSON.stringify(list)), list);
+  assert.deepEqual(parseEdits('[]'), []);
+  assert.match(parseEdits('not json').message, /not JSON/);
+  assert.match(parseEdits('{"op": "merge"}').message, /JSON list/);
 });

@@ -21,7 +21,7 @@ const DRAW_SHARE = 0.3;
  * The mapper's methods the page may call through `invoke` (exports, the report, the best
  * world's rooms, routes through them and its 3D model).
  */
-const INVOKABLE = new Set(['bestWorldJson', 'worldJson', 'labelsPgm', 'graphJson', 'reportJson', 'toPng', 'roomsJson', 'geojson', 'svg', 'route', 'worldGlb']);
+const INVOKABLE = new Set(['bestWorldJson', 'worldJson', 'labelsPgm', 'graphJson', 'reportJson', 'toPng', 'roomsJson', 'geojson', 'svg', 'route', 'worldGlb', 'setEdits', 'editsJson']);
 
 const ready = init();
 const state = {
@@ -112,7 +112,17 @@ function buildMap(source) {
  * the error is the reply. A reference world that does not fit the new map is dropped.
  */
 function start(map, { config, seed, reference }) {
+  // A person's edits stay through Reset (the same map); a new map starts without them.
+  const edits = !map && state.mapper ? state.mapper.editsJson() : '[]';
   const mapper = new Mapper(map ?? state.map, config, seed);
+  if (edits !== '[]') {
+    try {
+      mapper.setEdits(edits);
+    } catch (err) {
+      mapper.free();
+      throw err;
+    }
+  }
   let referenceDropped = false;
   if (reference != null) {
     try {
@@ -199,6 +209,42 @@ function loop() {
   if (state.ipf === 'auto') schedule();
 }
 
+/** The room ids of a 16-bit binary PGM (`labelsPgm`: "P5\\nW H\\n65535\\n", big-endian samples). */
+function labels(pgm) {
+  const head = new TextDecoder().decode(pgm.subarray(0, 64)).match(/^P5\s+(\d+)\s+(\d+)\s+(\d+)\s/);
+  if (!head) throw new Error('the labels are not a binary PGM');
+  const [whole, w, h] = head;
+  const width = Number(w);
+  const height = Number(h);
+  const data = new DataView(pgm.buffer, pgm.byteOffset + whole.length);
+  const ids = new Uint16Array(width * height);
+  for (let i = 0; i < ids.length; i++) ids[i] = data.getUint16(2 * i);
+  return { width, height, ids };
+}
+
+/** The cell of room `id` nearest the mean of its cells (inside it, away from its walls), or null. */
+function innerCell(ids, width, id) {
+  let n = 0;
+  let sx = 0;
+  let sy = 0;
+  for (let i = 0; i < ids.length; i++) {
+    if (ids[i] !== id) continue;
+    n++;
+    sx += i % width;
+    sy += Math.floor(i / width);
+  }
+  if (n === 0) return null;
+  const [mx, my] = [sx / n, sy / n];
+  let best = null;
+  let bestD = Infinity;
+  for (let i = 0; i < ids.length; i++) {
+    if (ids[i] !== id) continue;
+    const d = (i % width - mx) ** 2 + (Math.floor(i / width) - my) ** 2;
+    if (d < bestD) [best, bestD] = [[i % width, Math.floor(i / width)], d];
+  }
+  return best;
+}
+
 const ops = {
   load({ source, ...args }) {
     const map = buildMap(source);
@@ -262,6 +308,19 @@ const ops = {
   /** Bytes of the worker's wasm heap (the soak test watches it). Needs no chain. */
   heap() {
     return wasmHeapBytes();
+  },
+  /**
+   * The best world's room at map cell (x, y) (its id in `labelsPgm`, 0 for none) and, with
+   * `id`, a cell of that room: for the page's room selection.
+   */
+  roomAt({ x, y, id }) {
+    const { width, height, ids } = labels(state.mapper.labelsPgm());
+    if (id !== undefined) {
+      const c = innerCell(ids, width, id);
+      return c && { x: c[0], y: c[1], room: id };
+    }
+    if (!(x >= 0 && y >= 0 && x < width && y < height)) return null;
+    return { x, y, room: ids[y * width + x] };
   },
   invoke({ name, args = [] }) {
     if (!INVOKABLE.has(name)) throw new Error(`${name} is not a method the page may call`);

@@ -72,6 +72,16 @@ fn decode_pixels(bytes: &[u8], limits: &Limits, sink: &mut impl Pixels) -> Resul
     let mut reader = decoder.read_info().map_err(png_error)?;
     let (width, height) = {
         let info = reader.info();
+        // png 0.17 indexes the palette three bytes at a time when it expands it: a PLTE chunk
+        // whose length is not a multiple of 3 panics there (found by `fuzz/` target png).
+        if let Some(p) = info.palette.as_ref().filter(|p| p.is_empty() || p.len() % 3 != 0) {
+            return Err(MapError::Png {
+                message: format!(
+                    "its palette (PLTE chunk) is {} bytes long, not a whole number of RGB entries",
+                    p.len()
+                ),
+            });
+        }
         (info.width as u64, info.height as u64)
     };
     let (w, h) = limits.check(width, height)?;

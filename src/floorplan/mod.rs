@@ -19,6 +19,7 @@ pub mod metrics;
 pub mod posterior;
 pub mod report;
 pub mod room_layer;
+pub mod room_types;
 pub mod rooms;
 mod schedule;
 pub mod settled;

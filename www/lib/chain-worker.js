@@ -21,7 +21,7 @@ const DRAW_SHARE = 0.3;
  * The mapper's methods the page may call through `invoke` (exports, the report and the best
  * world's rooms).
  */
-const INVOKABLE = new Set(['bestWorldJson', 'worldJson', 'labelsPgm', 'graphJson', 'reportJson', 'toPng', 'roomsJson']);
+const INVOKABLE = new Set(['bestWorldJson', 'worldJson', 'labelsPgm', 'graphJson', 'reportJson', 'toPng', 'roomsJson', 'roomTypesJson']);
 
 const ready = init();
 const state = {
@@ -259,6 +259,17 @@ const ops = {
   learn({ kb, world, resolution, method }) {
     return learnRules(kb, world, resolution, method);
   },
+  /**
+   * The best world's rooms (`roomsJson` text), unless they are `known` (then `{ same: true }`);
+   * with `details`, also their type marginals (`roomTypesJson` text) and the room id of every
+   * cell (`roomLabels`, transferred).
+   */
+  rooms({ details, known }) {
+    const m = state.mapper;
+    const text = m.roomsJson();
+    if (text === known) return { same: true };
+    return { text, types: details ? m.roomTypesJson() : null, labels: details ? m.roomLabels() : null };
+  },
   invoke({ name, args = [] }) {
     if (!INVOKABLE.has(name)) throw new Error(`${name} is not a method the page may call`);
     return state.mapper[name](...args);
@@ -287,7 +298,7 @@ onmessage = async (e) => {
     }
     if (op !== 'load' && op !== 'learn' && !state.mapper) throw new Error('no chain yet');
     const result = ops[op](args ?? {});
-    const transfer = result instanceof Uint8Array ? [result.buffer] : [];
+    const transfer = result instanceof Uint8Array ? [result.buffer] : result?.labels instanceof Uint16Array ? [result.labels.buffer] : [];
     postMessage({ id, result }, transfer);
   } catch (err) {
     postMessage({ id, error: err instanceof Error ? err.message : String(err) });

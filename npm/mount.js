@@ -293,8 +293,9 @@ export async function mount(element, options = {}) {
     try {
       const s = scale();
       const v = viewport.view;
-      // Zoomed in: more pixels per cell (this runs on the page's thread: at most 4 million).
-      const detail = v.isReset ? s : Math.max(s, detailScale(s, v.zoom, mapper.width * mapper.height, { maxScale: 6, maxPixels: 4_000_000 }));
+      // Zoomed in: more pixels per cell, but this draws on the page's thread in every frame:
+      // at most 2 million pixels (a few milliseconds).
+      const detail = v.isReset ? s : Math.max(s, detailScale(s, v.zoom, mapper.width * mapper.height, { maxScale: 6, maxPixels: 2_000_000 }));
       drawMapper(picture, mapper, { show, cloud, labels, scale: detail });
       drawnScale = detail;
       paint(s);

@@ -114,6 +114,9 @@ const state = {
   /** The best world's rooms for pointing at (a RoomIndex), and the room shown: hovered, focused or pinned. */
   roomIndex: null,
   hover: { id: 0, pinned: false, anchor: null, mask: null },
+  /** Where the mouse is over the map (client position), or null; whether the Rooms table is in use. */
+  pointer: null,
+  tableInUse: false,
   /** Painting: cell codes as loaded and as painted, the stroke's last cell. */
   painting: false,
   tool: 'occupied',
@@ -169,18 +172,22 @@ class RoomsFeed {
   /**
    * @param {() => RemoteChain} chain  the chain's worker
    * @param {(rooms: object[] | null, details: object | null) => void} show  called with the
-   *   rooms (null: none read yet) and, if asked for, their details
-   * @param {{ details?: boolean }} [options]  details: also read the rooms' type marginals and
-   *   the room id of every cell (for pointing at rooms on the map)
+   *   rooms (null: none read yet) and their details, if wanted and read for these rooms
    */
-  constructor(chain, show, { details = false } = {}) {
+  constructor(chain, show) {
     this.chain = chain;
     this.show = show;
-    this.details = details;
+    /**
+     * Whether the rooms' details are wanted: their type marginals and the room of every cell
+     * (for pointing at rooms). Read only while wanted: the labels are two bytes per cell, and
+     * reading them every 2 s on a large map makes garbage enough for a long collection.
+     */
+    this.details = false;
     this.generation = -1;
     this.rooms = null;
-    /** { types, labels } of the rooms, with `details`. */
+    /** { types, labels } of the rooms, and the rooms' text they were read with. */
     this.extra = null;
+    this.extraText = null;
     /** The rooms' JSON text as last read. */
     this.text = null;
     this.inFlight = false;
@@ -194,6 +201,7 @@ class RoomsFeed {
     this.generation = generation;
     this.rooms = null;
     this.extra = null;
+    this.extraText = null;
     this.text = null;
     this.readAt = iteration;
     this.show(null);
@@ -217,6 +225,17 @@ class RoomsFeed {
     }
   }
 
+  /** Details wanted or not; wanted and not read for the rooms shown, they are read now. */
+  want(on) {
+    this.details = on;
+    if (on && this.generation >= 0 && (this.extraText === null || this.extraText !== this.text)) this.request();
+  }
+
+  /** The details, if they are those of the rooms shown. */
+  get fresh() {
+    return this.extra && this.extraText === this.text ? this.extra : null;
+  }
+
   /** Whether the rooms shown are those of the chain at `stats`, with nothing on its way. */
   current(stats) {
     return !this.inFlight && !this.again && stats?.generation === this.generation && this.readAt === stats.iteration;
@@ -232,7 +251,7 @@ class RoomsFeed {
     this.at = performance.now();
     const generation = this.generation;
     this.chain()
-      .call('rooms', { details: this.details, known: this.rooms ? this.text : null })
+      .call('rooms', { details: this.details, known: this.rooms ? this.text : null, knownDetails: this.extra ? this.extraText : null })
       .then(
         (reply) => {
           if (generation !== this.generation) {
@@ -243,8 +262,11 @@ class RoomsFeed {
           if (reply.same) return;
           this.text = reply.text;
           this.rooms = JSON.parse(reply.text);
-          this.extra = this.details ? { types: JSON.parse(reply.types), labels: reply.labels } : null;
-          this.show(this.rooms, this.extra);
+          if (reply.types !== null) {
+            this.extra = { types: JSON.parse(reply.types), labels: reply.labels };
+            this.extraText = reply.text;
+          }
+          this.show(this.rooms, this.fresh);
         },
         (err) => showError(err),
       )
@@ -297,6 +319,11 @@ function showRooms(rooms, details) {
   );
   if (focused) ui.rooms.querySelector(`tr[data-room="${focused}"]`)?.focus({ preventScroll: true });
   refreshHover();
+  // The details came while the pointer or the focus waited for them.
+  if (!state.hover.id && state.roomIndex) {
+    if (ui.rooms.contains(document.activeElement)) pointRoom(document.activeElement.closest('tr'), true);
+    else if (state.pointer && !state.painting) setHover(roomAt(...state.viewport.contentAt(state.pointer, ui.canvas)), state.pointer);
+  }
   ui.roomsSummary.textContent = !rooms
     ? 'Reading the best world\'s rooms…'
     : rooms.length === 0
@@ -1115,10 +1142,28 @@ function roomAt(u, v) {
   return state.roomIndex ? state.roomIndex.atContent(u, v) : 0;
 }
 
+/**
+ * The rooms' details (type marginals, the room of every cell) are read from the worker only
+ * while someone points at rooms: the mouse on the map, the Rooms table in use, a room pinned.
+ */
+function wantRoomDetails() {
+  state.rooms?.want(Boolean(state.pointer || state.tableInUse || state.hover.pinned));
+}
+
 /** A mouse or pen over the map shows the room under it. */
 function onHover(e) {
-  if ((e.pointerType !== 'mouse' && e.pointerType !== 'pen') || e.buttons || state.painting || state.hover.pinned) return;
-  setHover(roomAt(...state.viewport.contentAt(e, ui.canvas)), { clientX: e.clientX, clientY: e.clientY });
+  if (e.pointerType !== 'mouse' && e.pointerType !== 'pen') return;
+  const wanted = !state.pointer;
+  state.pointer = { clientX: e.clientX, clientY: e.clientY };
+  if (wanted) wantRoomDetails();
+  if (e.buttons || state.painting || state.hover.pinned) return;
+  setHover(roomAt(...state.viewport.contentAt(e, ui.canvas)), state.pointer);
+}
+
+function onLeave() {
+  state.pointer = null;
+  if (!state.hover.pinned) setHover(0);
+  wantRoomDetails();
 }
 
 /** A click or tap that did not drag: pins the room there, or unpins. */
@@ -1127,6 +1172,7 @@ function onTap(e, u, v) {
   const id = roomAt(u, v);
   if (!id || (state.hover.pinned && state.hover.id === id)) setHover(0);
   else setHover(id, { clientX: e.clientX, clientY: e.clientY }, true);
+  wantRoomDetails();
 }
 
 /** A row of the Rooms table in focus (or under the mouse): its room on the map, in view. */
@@ -1307,13 +1353,32 @@ function wire() {
   ui.canvas.addEventListener('pointerup', onPointerUp);
   ui.canvas.addEventListener('pointercancel', onPointerUp);
   ui.canvas.addEventListener('pointermove', onHover);
-  ui.canvas.addEventListener('pointerleave', () => state.hover.pinned || setHover(0));
-  ui.rooms.addEventListener('focusin', (e) => pointRoom(e.target.closest('tr'), true));
-  ui.rooms.addEventListener('focusout', () => state.hover.pinned || setHover(0));
-  ui.rooms.addEventListener('mouseover', (e) => pointRoom(e.target.closest('tr'), false));
-  ui.rooms.addEventListener('mouseleave', () => state.hover.pinned || ui.rooms.contains(document.activeElement) || setHover(0));
+  ui.canvas.addEventListener('pointerleave', onLeave);
+  const tableUse = (on) => {
+    state.tableInUse = on || ui.rooms.contains(document.activeElement) || ui.rooms.matches(':hover');
+    wantRoomDetails();
+  };
+  ui.rooms.addEventListener('focusin', (e) => {
+    tableUse(true);
+    pointRoom(e.target.closest('tr'), true);
+  });
+  ui.rooms.addEventListener('focusout', (e) => {
+    if (!state.hover.pinned) setHover(0);
+    tableUse(ui.rooms.contains(e.relatedTarget));
+  });
+  ui.rooms.addEventListener('mouseover', (e) => {
+    tableUse(true);
+    pointRoom(e.target.closest('tr'), false);
+  });
+  ui.rooms.addEventListener('mouseleave', () => {
+    if (!state.hover.pinned && !ui.rooms.contains(document.activeElement)) setHover(0);
+    tableUse(false);
+  });
   document.addEventListener('keydown', (e) => {
-    if (e.key === 'Escape' && state.hover.id) setHover(0);
+    if (e.key === 'Escape' && state.hover.id) {
+      setHover(0);
+      wantRoomDetails();
+    }
   });
   document.addEventListener('keydown', onKey);
 
@@ -1338,7 +1403,7 @@ function expose() {
     },
     /** Their type marginals and room labels (roomTypesJson, roomLabels), as read. */
     get roomDetails() {
-      return state.rooms.extra;
+      return state.rooms.fresh;
     },
     /** The map on the page (a wasm Map). */
     get map() {
@@ -1419,7 +1484,7 @@ async function main() {
   expose();
   if (!(await loadWasm(init))) return;
   state.chain = new RemoteChain(chainFailed, chainSettled);
-  state.rooms = new RoomsFeed(() => state.chain, showRooms, { details: true });
+  state.rooms = new RoomsFeed(() => state.chain, showRooms);
   ui.version.textContent = version();
   setBrush(ui.brush.value);
   for (const el of [ui.file, ui.blankCreate, ui.worldFile]) el.disabled = false;

@@ -284,12 +284,22 @@ describe('Zoom and pan on the live mapper', () => {
   });
 });
 
-/** Rooms of the page's best world with their details (as read from the worker). */
-const roomDetails = (page) =>
-  page.evaluate(() => {
+/**
+ * Rooms of the page's best world with their details, as the page reads them from the worker
+ * while someone points at rooms (here: the mouse on the map, or `during`).
+ */
+async function roomDetails(page, during) {
+  if (during) await during();
+  else {
+    const box = await mapBox(page);
+    await page.mouse.move(box.x + 2, box.y + 2);
+  }
+  await page.waitForFunction(() => window.__ksmcmc.roomDetails !== null, null, { timeout: 10_000 });
+  return page.evaluate(() => {
     const d = window.__ksmcmc.roomDetails;
     return { rooms: window.__ksmcmc.rooms, types: d.types, labels: Array.from(d.labels) };
   });
+}
 
 /** A cell of room `id` whose 7 x 7 neighbourhood is all that room. */
 function innerCell(labels, W, H, id) {
@@ -372,10 +382,12 @@ describe('The room under the pointer', () => {
     }
     await mapOnly(page);
     const s = await snap(page);
-    const { rooms, labels } = await roomDetails(page);
+    const rooms = await page.evaluate(() => window.__ksmcmc.rooms);
+    assert.equal(await page.evaluate(() => window.__ksmcmc.roomDetails), null, 'no details read while nobody points at rooms');
     const room = rooms.reduce((a, b) => (b.area_m2 > a.area_m2 ? b : a));
     await keep(page);
-    await page.focus(`#rooms tbody tr[data-room="${room.id}"]`);
+    // The keyboard alone: the details are read when the row takes the focus.
+    const { labels } = await roomDetails(page, () => page.focus(`#rooms tbody tr[data-room="${room.id}"]`));
     await page.waitForSelector(`#room-info:not([hidden])[data-room="${room.id}"]`, { timeout: 5000 });
     assert.match(await page.getAttribute('#room-info', 'aria-label'), new RegExp(`^Room ${room.id}, ${room.type}, `));
     // The canvas changed only over the room's cells (at `scale` pixels per cell).

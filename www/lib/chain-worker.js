@@ -260,15 +260,17 @@ const ops = {
     return learnRules(kb, world, resolution, method);
   },
   /**
-   * The best world's rooms (`roomsJson` text), unless they are `known` (then `{ same: true }`);
-   * with `details`, also their type marginals (`roomTypesJson` text) and the room id of every
-   * cell (`roomLabels`, transferred).
+   * The best world's rooms (`roomsJson` text), and with `details` their type marginals
+   * (`roomTypesJson` text) and the room id of every cell (`roomLabels`, transferred), unless
+   * the page has them: rooms whose text is `known`, details read with rooms `knownDetails`
+   * (then `{ same: true }`, or the text alone).
    */
-  rooms({ details, known }) {
+  rooms({ details, known, knownDetails }) {
     const m = state.mapper;
     const text = m.roomsJson();
-    if (text === known) return { same: true };
-    return { text, types: details ? m.roomTypesJson() : null, labels: details ? m.roomLabels() : null };
+    const withDetails = Boolean(details) && text !== knownDetails;
+    if (text === known && !withDetails) return { same: true };
+    return { text, types: withDetails ? m.roomTypesJson() : null, labels: withDetails ? m.roomLabels() : null };
   },
   invoke({ name, args = [] }) {
     if (!INVOKABLE.has(name)) throw new Error(`${name} is not a method the page may call`);

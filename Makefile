@@ -40,7 +40,7 @@ WASM_OPT_FLAGS := -O3 --enable-bulk-memory --enable-nontrapping-float-to-int --e
 
 .PHONY: help demo serve pkg www-pkg www-samples test lint fmt fmt-check clippy test-native test-wasm \
 	test-e2e cli release-cli bench-wasm tools rust-tools wasm-tools wasm-opt-tool browser-tools e2e-deps clean-pkg \
-	fuzz fuzz-ci fuzz-tools
+	fuzz fuzz-ci fuzz-tools fuzz-cpu soak
 
 help:
 	@echo "make demo      build pkg/ and serve www/ on http://$(HOST):$(PORT)"
@@ -51,6 +51,8 @@ help:
 	@echo "make test-native | test-wasm | test-e2e    one part of make test"
 	@echo "make tools     install what the build and tests need"
 	@echo "make fuzz      run each fuzz target FUZZ_SECONDS (default 600) s, one at a time (needs nightly)"
+	@echo "make fuzz-cpu  run each fuzz target until it has used FUZZ_SECONDS of CPU time, at low priority"
+	@echo "make soak      drive the mapper and table-top pages SOAK_MINUTES (default 30) and watch their heaps"
 
 # ---------------------------------------------------------------- tools
 
@@ -178,6 +180,14 @@ test-e2e: www-pkg cli browser-tools e2e-deps
 bench-wasm: www-pkg browser-tools e2e-deps
 	CHROMIUM=$(CHROMIUM) node scripts/bench-wasm.mjs $(BENCH_ARGS)
 
+# The pages' soak test (not in CI): the mapper and the table-top page driven side by side with
+# random seeded actions for SOAK_MINUTES, recording the wasm and JS heaps every minute; fails on
+# any uncaught error or a wasm heap that grows over 10 % after the first five minutes. Results
+# in target/soak.json.
+SOAK_MINUTES ?= 30
+soak: www-pkg browser-tools e2e-deps
+	CHROMIUM=$(CHROMIUM) node scripts/soak.mjs --minutes $(SOAK_MINUTES) --out target/soak.json
+
 # ---------------------------------------------------------------- fuzzing
 
 # cargo-fuzz (libFuzzer) targets in fuzz/, one per reader; see the FUZZING section of README.md.
@@ -185,7 +195,7 @@ bench-wasm: www-pkg browser-tools e2e-deps
 # fuzz/corpus/TARGET (not committed), crashes to fuzz/artifacts/TARGET; the committed seeds
 # are fuzz/seeds/TARGET, and fixed crashes are kept in fuzz/regressions/TARGET, which
 # `cargo test` replays on stable (tests/it/hostile.rs).
-FUZZ_TARGETS := pgm png ros_yaml mln db world_json world_arbitrary scene_json chain_config synth_config
+FUZZ_TARGETS := pgm png ros_yaml mln db world_json world_arbitrary scene_json chain_config synth_config edits
 FUZZ_SECONDS ?= 600
 FUZZ_CI_SECONDS ?= 20
 CARGO_FUZZ_VERSION := 0.13.2
@@ -213,6 +223,10 @@ endef
 
 fuzz: fuzz-tools
 	$(call run-fuzz,$(FUZZ_SECONDS))
+
+# The same, counting CPU time rather than wall time (for a machine shared with other work).
+fuzz-cpu: fuzz-tools
+	scripts/fuzz-cpu.sh $(FUZZ_SECONDS)
 
 # The short run make test includes: skipped, with a message, without nightly.
 fuzz-ci:

@@ -48,6 +48,17 @@ fn version_is_the_crate_version() {
 }
 
 #[wasm_bindgen_test]
+fn the_heap_size_counts_whole_pages_and_covers_what_is_allocated() {
+    let before = wasm::wasm_heap_bytes();
+    let block = vec![1u8; 16 << 20];
+    let after = wasm::wasm_heap_bytes();
+    assert_eq!(after % 65536.0, 0.0, "whole 64 KiB pages");
+    assert!(after >= before, "memory never shrinks: {before} then {after}");
+    assert!(after >= (16 << 20) as f64, "a 16 MiB block lives in the heap, which is {after} bytes");
+    assert_eq!(block.iter().map(|&b| b as usize).sum::<usize>(), 16 << 20);
+}
+
+#[wasm_bindgen_test]
 fn loads_a_pgm() {
     // 3x2: black (occupied), ROS gray (unknown), white (free) / white, white, black.
     let map = Map::from_bytes(b"P2\n3 2\n255\n0 205 255\n255 254 0\n").unwrap();

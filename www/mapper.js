@@ -1397,6 +1397,10 @@ function expose() {
       invoke: (name, ...args) => state.weak.chain.call('invoke', { name, args }),
       snapshot: () => (state.weak ? { ...state.weak.stats, rooms: state.weak.rooms.rooms } : null),
     },
+    /** Bytes of the wasm heaps: the chain's worker and, when compared, the weak prior's. */
+    async heap() {
+      return { chain: await state.chain.call('heap'), weak: state.weak ? await state.weak.chain.call('heap') : null };
+    },
     /** The rooms the page shows (as read from the worker). */
     get rooms() {
       return state.rooms.rooms;

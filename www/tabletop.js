@@ -5,7 +5,7 @@
 // pictures zoom and pan (lib/viewport.js): the library draws them off screen, and they are
 // shown through their views.
 
-import init, { Tabletop, tabletopSynth, tabletopRulesDefault, tabletopCheckRules, version } from './pkg/ksmcmc.js';
+import init, { Tabletop, tabletopSynth, tabletopRulesDefault, tabletopCheckRules, version, wasmHeapBytes } from './pkg/ksmcmc.js';
 import { messages } from './lib/messages.js';
 import { download } from './lib/download.js';
 import { rulesEditor } from './lib/rules-editor.js';
@@ -282,6 +282,8 @@ function expose() {
       viewDetail: state.viewDetail,
     }),
     synthText: () => tabletopSynth(9),
+    /** Bytes of the page's wasm heap (the soak test watches it). */
+    heap: () => wasmHeapBytes(),
     /** The scene.json text the chain analyses. */
     sceneText: () => state.sceneJson,
     /** Milliseconds of a whole analysis: synth, construct, `iterations` steps, analysis JSON. */

@@ -27,6 +27,7 @@ pub const TARGETS: &[(&str, Target)] = &[
     ("scene_json", scene_json),
     ("chain_config", chain_config),
     ("synth_config", synth_config),
+    ("edits", edits),
 ];
 
 /// Maps the world targets score against stay small, so that one input runs in milliseconds.
@@ -122,7 +123,7 @@ fn exercise_world(mut world: World) {
     let world_map = ksmcmc::vision::orientation::to_world_frame(&map, world.frame.angle).0;
     if world_map.width() == ww as usize && world_map.height() == wh as usize {
         let c = rooms::RoomConfig::default();
-        let _ = room_layer::explain_world_rooms(&mut world, &map, &world_map, &c, 0.05, false);
+        let _ = room_layer::explain_world_rooms(&mut world, &map, &world_map, &c, 0.05, false, &Default::default());
     }
 }
 
@@ -212,4 +213,27 @@ pub fn synth_config(data: &[u8]) {
     if let Ok(c) = serde_json::from_str::<ksmcmc::tabletop::synth::SynthConfig>(t) {
         let _ = c.validate();
     }
+}
+
+/// `--edits` / `Mapper.setEdits`: parsed, checked against a small map, and applied to its
+/// labels and to a world with a rotated frame (the split walls in both frames).
+pub fn edits(data: &[u8]) {
+    let Some(t) = text(data) else { return };
+    let Ok(e) = ksmcmc::floorplan::edits::Edits::parse(t) else { return };
+    assert_eq!(ksmcmc::floorplan::edits::Edits::parse(&e.to_json()).as_ref(), Ok(&e), "edits round trip");
+    let (w, h) = (64usize, 48usize);
+    if e.check_map(w, h).is_err() {
+        return;
+    }
+    let map = Grid::from_vec(w, h, (0..w * h).map(|i| if i % 17 == 0 { Cell::Occupied } else { Cell::Free }).collect())
+        .expect("sized above");
+    let mut labels = Grid::from_vec(w, h, (0..w * h).map(|i| (i % w / 16 + 1) as u16).collect()).expect("sized above");
+    e.apply_to_labels(&mut labels, &map);
+    let mut world = World::empty(w as u32, h as u32);
+    world.frame = Frame { angle: 0.3, world_size: [w as u32 + 20, h as u32 + 20], map_size: [w as u32, h as u32] };
+    let _ = e.world_wall_cells(&map, &world.frame);
+    world.units.push(Unit { id: 1, x: 2, y: 2, w: 30, h: 20, kind: UnitType::Room });
+    let _ = e.type_facts(&world);
+    let _ = e.merged_units(&world);
+    let _ = e.respected_by(&world, &labels, &map);
 }

@@ -26,7 +26,7 @@ use super::explain::Explanation;
 use super::kernels::{Candidates, KernelConfig, Proposer};
 use super::posterior::{Posterior, PosteriorConfig};
 use super::schedule::{Kernel, Schedule};
-use super::state::{DoorLimits, DoorSpec, State};
+use super::state::{DoorLimits, DoorSpec, Move, State};
 use super::trace::Trace;
 use super::world::{Door, Frame, Rect, Unit, UnitType, World};
 use crate::grid::{Cell, Grid, OccupancyMap};
@@ -226,6 +226,8 @@ pub enum ChainError {
     Knowledge(String),
     /// The map cannot be explained (too small, no free space).
     Map(String),
+    /// A person's edits do not fit the map ([`Chain::set_edits`]).
+    Edits(String),
 }
 
 impl std::fmt::Display for ChainError {
@@ -235,6 +237,7 @@ impl std::fmt::Display for ChainError {
             ChainError::Json(m) => write!(f, "chain config: {m}"),
             ChainError::Knowledge(m) => write!(f, "knowledge base: {m}"),
             ChainError::Map(m) => write!(f, "cannot explain this map: {m}"),
+            ChainError::Edits(m) => write!(f, "{m}"),
         }
     }
 }
@@ -285,6 +288,8 @@ pub struct Chain {
     free_space_scratch: vision::freespace::Scratch,
     /// Types final worlds in the weak-prior mode (built-in rules), created on first use.
     typer: Option<super::knowledge::Knowledge>,
+    /// A person's edits, hard evidence ([`Chain::set_edits`]).
+    edits: super::edits::Edits,
 }
 
 impl Chain {
@@ -418,6 +423,7 @@ impl Chain {
             next_inference: 0,
             free_space_scratch: Default::default(),
             typer: None,
+            edits: Default::default(),
         })
     }
 
@@ -517,8 +523,9 @@ impl Chain {
     pub fn infer_knowledge(&mut self) -> Result<u64, ChainError> {
         let world = self.internal_world();
         let resolution = self.resolution;
+        let given = self.edits.type_facts(&world);
         let Some(k) = self.knowledge.as_mut() else { return Ok(0) };
-        let inferred = k.infer(&world, resolution).map_err(|e| ChainError::Knowledge(e.to_string()))?;
+        let inferred = k.infer_given(&world, resolution, &given).map_err(|e| ChainError::Knowledge(e.to_string()))?;
         let mut work = k.last_work;
         for u in &mut self.state.units {
             u.kind = inferred.types.get(&u.id).map_or(UnitType::Unknown, |t| t.0);
@@ -541,8 +548,10 @@ impl Chain {
         // inference on itself (cached by evidence, so free while it stays the best).
         if !self.best.units.is_empty() {
             let best = self.internal_best_world();
+            let given = self.edits.type_facts(&best);
             if let Some(k) = self.knowledge.as_mut() {
-                let typed = k.infer(&best, resolution).map_err(|e| ChainError::Knowledge(e.to_string()))?;
+                let typed =
+                    k.infer_given(&best, resolution, &given).map_err(|e| ChainError::Knowledge(e.to_string()))?;
                 work += k.last_work;
                 for u in &mut self.best.units {
                     u.kind = typed.types.get(&u.id).map_or(UnitType::Unknown, |t| t.0);
@@ -570,14 +579,70 @@ impl Chain {
         if self.knowledge.is_none() && self.typer.is_none() {
             self.typer = super::knowledge::Knowledge::new(&Default::default()).ok();
         }
+        let given = self.edits.type_facts(&world);
         let typer = if self.knowledge.is_some() { self.knowledge.as_mut() } else { self.typer.as_mut() };
-        let inferred = typer.and_then(|k| k.infer(&world, resolution).ok());
+        let inferred = typer.and_then(|k| k.infer_given(&world, resolution, &given).ok());
         if let Some(inferred) = &inferred {
             for u in &mut world.units {
                 u.kind = inferred.types.get(&u.id).map_or(u.kind, |t| t.0);
             }
         }
         (world, inferred)
+    }
+
+    /// Takes a person's edits as hard evidence ([`super::edits`]) and goes on from the current
+    /// world: units whose interior a split wall crosses are removed (with their doors) from the
+    /// current world, the best world is the current one if it had such units, and from now on
+    /// no move that breaks a split is proposed or accepted. Merges, types and names bind the
+    /// room layer ([`Chain::best_world_with_rooms`]) and the Markov logic inference. An empty
+    /// list lifts every edit. Refused, with nothing changed, if a point is off the map.
+    ///
+    /// ```
+    /// use ksmcmc::floorplan::{edits::Edits, synth, Chain, ChainConfig};
+    /// let s = synth::generate(&synth::SynthConfig { width: 200, height: 150, ..Default::default() }, 3).unwrap();
+    /// let mut chain = Chain::new(&s.map, ChainConfig::default(), 1).unwrap();
+    /// chain.step(2000);
+    /// chain.set_edits(Edits::parse(r#"[{"op": "split", "line": [[100, 0], [100, 149]]}]"#)?)?;
+    /// chain.step(2000);
+    /// // No unit spans the wall at x = 100 (the map is upright, so world = map cells).
+    /// let t = chain.wall_thickness();
+    /// assert!(chain.best_world().units.iter().all(|u| u.x + u.w - t <= 100 || u.x + t > 100));
+    /// assert!(chain.set_edits(Edits::parse(r#"[{"op": "name", "at": [900, 1], "name": "A"}]"#)?).is_err());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn set_edits(&mut self, edits: super::edits::Edits) -> Result<(), ChainError> {
+        edits.check_map(self.map.width(), self.map.height()).map_err(|e| ChainError::Edits(e.to_string()))?;
+        let walls = edits.world_wall_cells(&self.map, &self.frame);
+        self.edits = edits;
+        self.state.forbid(&walls);
+        while let Some(i) = self.state.units.iter().position(|u| self.state.breaks_forbidden(u.rect())) {
+            let id = self.state.units[i].id;
+            while let Some(k) = self.state.doors.iter().position(|d| d.lo == id || d.hi == id) {
+                self.state.apply(&Move::Delete(k));
+            }
+            self.state.apply(&Move::Remove(i));
+        }
+        let lp = self.full_log_posterior();
+        self.log_target = lp * self.posterior.inv_temperature();
+        if self.best.units.iter().any(|u| self.state.breaks_forbidden(u.rect())) || self.best.units.is_empty() {
+            self.best_log_posterior = lp;
+            self.best_iteration = self.iteration;
+            self.best.units.clone_from(&self.state.units);
+            self.best.doors.clone_from(&self.state.doors);
+        }
+        if self.knowledge.is_some() && !self.state.units.is_empty() {
+            // New type evidence changes the target at once, not at the next inference.
+            if let Err(e) = self.infer_knowledge() {
+                self.knowledge_error = Some(e.to_string());
+                self.knowledge = None;
+            }
+        }
+        Ok(())
+    }
+
+    /// The edits in force ([`Chain::set_edits`]).
+    pub fn edits(&self) -> &super::edits::Edits {
+        &self.edits
     }
 
     /// Why knowledge inference stopped, if it failed (the chain goes on without it).
@@ -880,6 +945,7 @@ impl Chain {
             rooms,
             self.resolution,
             knowledge,
+            &self.edits,
         );
         (world, labels)
     }

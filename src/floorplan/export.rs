@@ -41,6 +41,7 @@ pub struct RoomInput {
     world_map: Grid<Cell>,
     resolution: f64,
     knowledge: bool,
+    edits: super::edits::Edits,
 }
 
 impl RoomInput {
@@ -52,6 +53,7 @@ impl RoomInput {
             world_map: chain.world_map().clone(),
             resolution: chain.resolution(),
             knowledge: chain.config().knowledge.enabled,
+            edits: chain.edits().clone(),
         }
     }
 
@@ -63,8 +65,9 @@ impl RoomInput {
     /// The world with its room layer and the room labels, as
     /// [`Chain::best_world_with_rooms`] gives them ([`room_layer::explain_world_rooms`]).
     pub fn explain(self, rooms: &RoomConfig) -> (World, Grid<u16>) {
-        let RoomInput { mut world, map, world_map, resolution, knowledge } = self;
-        let labels = room_layer::explain_world_rooms(&mut world, &map, &world_map, rooms, resolution, knowledge);
+        let RoomInput { mut world, map, world_map, resolution, knowledge, edits } = self;
+        let labels =
+            room_layer::explain_world_rooms(&mut world, &map, &world_map, rooms, resolution, knowledge, &edits);
         (world, labels)
     }
 }

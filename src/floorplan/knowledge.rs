@@ -573,9 +573,21 @@ impl Knowledge {
 
     /// Types and same-length pairs for `world` (unit ids as constants `U<id>`).
     pub fn infer(&mut self, world: &World, resolution: f64) -> Result<Inferred, crate::mln::MlnError> {
+        self.infer_given(world, resolution, &[])
+    }
+
+    /// [`Knowledge::infer`] with further evidence: `given` fixes query atoms, such as the types
+    /// a person set ([`super::edits::Edits::type_facts`]).
+    pub fn infer_given(
+        &mut self,
+        world: &World,
+        resolution: f64,
+        given: &[Fact],
+    ) -> Result<Inferred, crate::mln::MlnError> {
         use crate::mln::{Database, Evidence, GroundConfig, InferenceConfig, Network};
         let facts: Vec<Fact> = evidence(world, resolution, &self.config.geometry)
             .into_iter()
+            .chain(given.iter().cloned())
             .filter(|f| self.mln.predicate(f.0).is_some())
             .collect();
         let mut key = String::new();

@@ -10,6 +10,7 @@
 //! browser.
 
 pub mod chain;
+pub mod edits;
 pub(crate) mod explain;
 pub mod export;
 pub mod graph;

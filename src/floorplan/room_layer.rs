@@ -17,6 +17,7 @@
 //! its doors are those whose cells it touches, and it opens to every room it touches along a
 //! passable stretch ([`MIN_CONTACT_CELLS`]) or through a door.
 
+use super::edits::Edits;
 use super::knowledge::constant;
 use super::rooms::{join, labels_of_groups, open_pairs, OpenPair, RoomConfig};
 use super::topology::{touching, MIN_CONTACT_CELLS};
@@ -56,6 +57,17 @@ impl RoomKnowledge {
 
     /// `P(SameRoom)` of every pair in `pairs` (unit indices into `world.units`), in order.
     pub fn same_room(&self, world: &World, pairs: &[OpenPair]) -> Result<Vec<f64>, MlnError> {
+        self.same_room_given(world, pairs, &[])
+    }
+
+    /// [`RoomKnowledge::same_room`] with `SameRoom` evidence: `given` lists unit index pairs
+    /// with their value (a person's merge or split, [`super::edits`]).
+    pub fn same_room_given(
+        &self,
+        world: &World,
+        pairs: &[OpenPair],
+        given: &[(usize, usize, bool)],
+    ) -> Result<Vec<f64>, MlnError> {
         if pairs.is_empty() {
             return Ok(Vec::new());
         }
@@ -87,6 +99,12 @@ impl RoomKnowledge {
                     fact(&mut db, "Flush", &[x, y])?;
                 }
             }
+        }
+        for &(a, b, value) in given {
+            let (a, b) = (constant(world.units[a].id), constant(world.units[b].id));
+            let v = if value { Evidence::True } else { Evidence::False };
+            db.insert(&self.mln, "SameRoom", &[&a, &b], v)?;
+            db.insert(&self.mln, "SameRoom", &[&b, &a], v)?;
         }
         let mut ground = GroundConfig::query(&["SameRoom"]);
         ground.closed_world = closed;
@@ -137,17 +155,40 @@ pub fn explain_rooms(
     resolution: f64,
     knowledge: Option<&RoomKnowledge>,
 ) -> Result<Grid<u16>, MlnError> {
-    let pairs = open_pairs(world, world_map, c);
-    let joined: Vec<(usize, usize)> = match knowledge {
+    explain_rooms_edited(world, map, world_map, c, resolution, knowledge, &Edits::default())
+}
+
+/// [`explain_rooms`] under a person's edits ([`super::edits`]): merged units are `SameRoom`
+/// evidence and always joined, units a split wall separates never are, then the edits apply
+/// to the labels ([`Edits::apply_to_labels`]) and the rooms.
+pub fn explain_rooms_edited(
+    world: &mut World,
+    map: &Grid<Cell>,
+    world_map: &Grid<Cell>,
+    c: &RoomConfig,
+    resolution: f64,
+    knowledge: Option<&RoomKnowledge>,
+    edits: &Edits,
+) -> Result<Grid<u16>, MlnError> {
+    let walls = edits.world_wall_cells(map, &world.frame);
+    let apart = |a: usize, b: usize| Edits::separates(&walls, world.units[a].rect(), world.units[b].rect());
+    let merged = edits.merged_units(world);
+    let mut given: Vec<(usize, usize, bool)> = merged.iter().map(|&(a, b)| (a, b, true)).collect();
+    let pairs: Vec<OpenPair> = open_pairs(world, world_map, c);
+    given.extend(pairs.iter().filter(|p| apart(p.a, p.b)).map(|p| (p.a, p.b, false)));
+    let mut joined: Vec<(usize, usize)> = match knowledge {
         Some(k) => {
-            let p = k.same_room(world, &pairs)?;
+            let p = k.same_room_given(world, &pairs, &given)?;
             pairs.iter().zip(p).filter(|(_, p)| *p > 0.5).map(|(q, _)| (q.a, q.b)).collect()
         }
-        None => pairs.iter().map(|p| (p.a, p.b)).collect(),
+        None => pairs.iter().filter(|p| !apart(p.a, p.b)).map(|p| (p.a, p.b)).collect(),
     };
+    joined.extend(merged);
     let groups = join(world, world_map, joined);
-    let labels = labels_of_groups(world, &groups, map, world_map, c);
+    let mut labels = labels_of_groups(world, &groups, map, world_map, c);
+    edits.apply_to_labels(&mut labels, map);
     world.rooms = rooms_of_labels(world, &labels, resolution);
+    edits.apply_to_rooms(&mut world.rooms, &labels);
     Ok(labels)
 }
 
@@ -161,10 +202,11 @@ pub fn explain_world_rooms(
     c: &RoomConfig,
     resolution: f64,
     knowledge: bool,
+    edits: &Edits,
 ) -> Grid<u16> {
     let kb = knowledge.then(RoomKnowledge::builtin);
-    explain_rooms(world, map, world_map, c, resolution, kb.as_ref())
-        .or_else(|_| explain_rooms(world, map, world_map, c, resolution, None))
+    explain_rooms_edited(world, map, world_map, c, resolution, kb.as_ref(), edits)
+        .or_else(|_| explain_rooms_edited(world, map, world_map, c, resolution, None, edits))
         .unwrap_or_else(|_| Grid::new(map.width(), map.height(), 0))
 }
 
@@ -277,6 +319,7 @@ pub fn rooms_of_labels(world: &World, labels: &Grid<u16>, resolution: f64) -> Ve
                         }
                     })
                     .collect(),
+                name: None,
             }
         })
         .collect()

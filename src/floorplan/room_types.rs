@@ -75,7 +75,7 @@ impl TypeMarginals {
 /// // Unit 1's interior is 58 x 38 cells, unit 2's 38 x 38.
 /// world.units.push(Unit { id: 1, x: 0, y: 0, w: 60, h: 40, kind: UnitType::Room });
 /// world.units.push(Unit { id: 2, x: 60, y: 0, w: 40, h: 40, kind: UnitType::Other });
-/// world.rooms.push(Room { id: 1, kind: UnitType::Room, units: vec![1, 2], area_m2: 10.0, doors: vec![], opens_to: vec![] });
+/// world.rooms.push(Room { id: 1, kind: UnitType::Room, units: vec![1, 2], area_m2: 10.0, doors: vec![], opens_to: vec![], name: None });
 /// let mut inferred = Inferred::default();
 /// inferred.types.insert(1, (UnitType::Room, [1.0, 0.0, 0.0, 0.0]));
 /// inferred.types.insert(2, (UnitType::Other, [0.0, 0.0, 0.0, 1.0]));
@@ -128,6 +128,7 @@ mod tests {
                 area_m2: 1.0,
                 doors: vec![],
                 opens_to: vec![],
+                name: None,
             });
         }
         let rooms = room_types(&world, &Inferred::default());
@@ -147,6 +148,7 @@ mod tests {
             area_m2: 1.0,
             doors: vec![],
             opens_to: vec![],
+            name: None,
         });
         let mut inferred = Inferred::default();
         inferred.types.insert(3, (UnitType::Corridor, [0.1, 0.8, 0.05, 0.2]));

@@ -192,6 +192,9 @@ pub struct State {
     pub wall: i32,
     width: i32,
     height: i32,
+    /// Summed-area table over `(width + 1) x (height + 1)` of the cells no unit interior may
+    /// hold (a person's split walls, [`State::forbid`]); empty when there are none.
+    forbidden: Vec<u32>,
 }
 
 impl State {
@@ -209,7 +212,50 @@ impl State {
             wall: wall.max(1),
             width: map.width() as i32,
             height: map.height() as i32,
+            forbidden: Vec::new(),
         }
+    }
+
+    /// From now on, no unit's interior (inside its wall ring) may hold any of `cells` (world
+    /// frame; those off the grid are ignored): every move that would make such a unit is
+    /// invalid ([`State::is_valid`]). An empty list lifts the constraint. Units that already
+    /// break it stay until [`State::breaks_forbidden`] finds them and they are removed.
+    pub fn forbid(&mut self, cells: &[(i32, i32)]) {
+        let (w, h) = (self.width as usize, self.height as usize);
+        let on_grid: Vec<&(i32, i32)> =
+            cells.iter().filter(|&&(x, y)| x >= 0 && y >= 0 && x < self.width && y < self.height).collect();
+        if on_grid.is_empty() {
+            self.forbidden = Vec::new();
+            return;
+        }
+        let mut sat = vec![0u32; (w + 1) * (h + 1)];
+        for &&(x, y) in &on_grid {
+            sat[(y as usize + 1) * (w + 1) + x as usize + 1] = 1;
+        }
+        for y in 1..=h {
+            for x in 1..=w {
+                let i = y * (w + 1) + x;
+                sat[i] += sat[i - 1] + sat[i - (w + 1)] - sat[i - (w + 1) - 1];
+            }
+        }
+        self.forbidden = sat;
+    }
+
+    /// Whether the interior of a unit with rectangle `r` holds a forbidden cell.
+    pub fn breaks_forbidden(&self, r: Rect) -> bool {
+        if self.forbidden.is_empty() {
+            return false;
+        }
+        let t = self.wall;
+        let clamp = |v: i32, hi: i32| v.clamp(0, hi) as usize;
+        let (x0, x1) = (clamp(r.x + t, self.width), clamp(r.right() - t, self.width));
+        let (y0, y1) = (clamp(r.y + t, self.height), clamp(r.bottom() - t, self.height));
+        if x0 >= x1 || y0 >= y1 {
+            return false;
+        }
+        let w1 = self.width as usize + 1;
+        let at = |x: usize, y: usize| self.forbidden[y * w1 + x] as i64;
+        at(x1, y1) - at(x0, y1) - at(x1, y0) + at(x0, y0) > 0
     }
 
     /// Grid width.
@@ -280,6 +326,7 @@ impl State {
             && r.y >= 0
             && r.right() <= self.width
             && r.bottom() <= self.height
+            && !self.breaks_forbidden(r)
     }
 
     fn duplicate(&self, r: Rect, except: &[usize]) -> bool {

@@ -249,6 +249,9 @@ pub struct Room {
     /// Ids of the rooms it connects to, through a door or an open boundary.
     #[serde(deserialize_with = "caps::ids")]
     pub opens_to: Vec<u32>,
+    /// The name a person gave it ([`super::edits`]), if any.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
 }
 
 /// A connected area of free cells that no unit or door covers (the papers' "N"): free space
@@ -600,6 +603,9 @@ impl World {
             }
             if let Some(o) = r.opens_to.iter().find(|o| !room_ids.contains(o)) {
                 return bad(format!("room {} opens to room {o}, which does not exist", r.id));
+            }
+            if r.name.as_ref().is_some_and(|n| n.chars().count() > super::edits::MAX_NAME_CHARS) {
+                return bad(format!("room {} has a name over {} characters", r.id, super::edits::MAX_NAME_CHARS));
             }
         }
         Ok(())

@@ -21,7 +21,7 @@ use crate::floorplan::report::report as ksmcmc_report;
 use crate::floorplan::room_types::room_types;
 use crate::floorplan::rooms::RoomConfig;
 use crate::floorplan::settled::Settled;
-use crate::floorplan::{export, metrics, Chain, ChainConfig, Rect, World};
+use crate::floorplan::{edits, export, metrics, Chain, ChainConfig, Rect, World};
 use crate::grid::{Cell, Grid, OccupancyMap};
 use crate::render::{self, RenderOptions};
 use serde::Deserialize;
@@ -70,6 +70,9 @@ pub struct Mapper {
     /// The best world with its room layer and room labels, keyed as `best`: computed only
     /// when an export or the room list asks (a pass over the map and a small inference).
     rooms: Option<((u64, u64), World, Grid<u16>)>,
+    /// The last room labels handed out while edits are in force: room ids carry over from
+    /// them ([`edits::carry_ids`]).
+    shown_labels: Option<Grid<u16>>,
     reference: Option<World>,
     /// Whether the best world has stopped improving (the library's rule).
     settled: Settled,
@@ -99,7 +102,13 @@ impl Mapper {
     fn best_rooms(&mut self) -> (&World, &Grid<u16>) {
         let key = (self.chain.best_iteration(), self.chain.best_log_posterior().to_bits());
         if self.rooms.as_ref().is_none_or(|(k, _, _)| *k != key) {
-            let (world, labels) = self.chain.best_world_with_rooms(&RoomConfig::default());
+            let (mut world, mut labels) = self.chain.best_world_with_rooms(&RoomConfig::default());
+            if !self.chain.edits().is_empty() {
+                if let Some(previous) = &self.shown_labels {
+                    edits::carry_ids(previous, &mut labels, &mut world.rooms);
+                }
+                self.shown_labels = Some(labels.clone());
+            }
             self.rooms = Some((key, world, labels));
         }
         let (_, world, labels) = self.rooms.as_ref().expect("just filled");
@@ -226,6 +235,7 @@ impl Mapper {
             best: None,
             current: None,
             rooms: None,
+            shown_labels: None,
             reference: None,
             settled: Settled::for_map(inner.count(Cell::Free)),
             setup_ms,
@@ -267,10 +277,39 @@ impl Mapper {
         // A new chain rather than a clone of the first one: `Chain::clone` does not keep the
         // capacity of the trace's acceptance window, which the trace reads as its size.
         let t0 = now_ms();
-        let chain = Chain::new(&self.map, self.config.clone(), seed).map_err(|e| JsError::new(&e.to_string()))?;
+        let mut chain = Chain::new(&self.map, self.config.clone(), seed).map_err(|e| JsError::new(&e.to_string()))?;
+        chain.set_edits(self.chain.edits().clone()).map_err(|e| JsError::new(&e.to_string()))?;
         self.setup_ms = now_ms() - t0;
         self.restart(chain);
         Ok(())
+    }
+
+    /// Takes a person's corrections as hard evidence and goes on from the current world (as
+    /// `ksmcmc floorplan --edits`): `editsJson` is a JSON list of
+    /// `{"op": "merge", "at": [[x1, y1], [x2, y2]]}`, `{"op": "split", "line": [[x1, y1], [x2, y2]]}`,
+    /// `{"op": "type", "at": [x, y], "type": "corridor"}` and `{"op": "name", "at": [x, y], "name": "Kitchen"}`
+    /// in map cells. `[]` lifts every edit. While edits are in force, room ids carry over from
+    /// one call to the next (a room keeps its id as the chain goes on). Edits stay through
+    /// `reset`. Throws, changing nothing, on bad JSON or a point off the map.
+    #[wasm_bindgen(js_name = setEdits)]
+    pub fn set_edits(&mut self, #[wasm_bindgen(js_name = editsJson)] edits_json: &str) -> Result<(), JsError> {
+        let e = edits::Edits::parse(edits_json).map_err(|e| JsError::new(&e.to_string()))?;
+        self.chain.set_edits(e).map_err(|e| JsError::new(&e.to_string()))?;
+        if self.chain.edits().is_empty() {
+            self.shown_labels = None;
+        } else if let Some((_, _, labels)) = &self.rooms {
+            self.shown_labels.get_or_insert_with(|| labels.clone());
+        }
+        self.best = None;
+        self.rooms = None;
+        self.current = None;
+        Ok(())
+    }
+
+    /// The edits in force, as the JSON list `setEdits` takes (`[]` for none).
+    #[wasm_bindgen(js_name = editsJson)]
+    pub fn edits_json(&self) -> String {
+        self.chain.edits().to_json()
     }
 
     /// The iteration at which the chain settled: its best log posterior improved by less than

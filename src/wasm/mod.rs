@@ -64,6 +64,14 @@ pub fn version() -> String {
     env!("CARGO_PKG_VERSION").to_string()
 }
 
+/// Bytes of linear memory this module holds (its wasm heap). Memory only grows, so this is the
+/// high-water mark of everything allocated so far: the soak test (`make soak`) watches it for
+/// leaks.
+#[wasm_bindgen(js_name = wasmHeapBytes)]
+pub fn wasm_heap_bytes() -> f64 {
+    (core::arch::wasm32::memory_size(0) * 65536) as f64
+}
+
 /// The number of cells of each class in a map, as `map.counts()` returns it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 pub struct Counts {

@@ -285,3 +285,43 @@ fn evaluate_pairs_knowledge_with_the_weak_prior_and_refuses_unknown_sets() {
         assert!(better.parse::<u32>().unwrap() + worse.parse::<u32>().unwrap() <= 2, "{r:?}");
     }
 }
+
+#[test]
+fn edits_name_and_type_a_room_and_bad_edits_say_which() {
+    let d = tmp("edits");
+    let map = sample("office-small/map.yaml");
+    let m = OccupancyMap::load(&map, &Limits::default()).unwrap();
+    // The free cell nearest the map's centre: some room holds it after a short run.
+    let (w, h) = (m.width() as i64, m.height() as i64);
+    let free = |x: i64, y: i64| *m.classified().at(x as usize, y as usize) == ksmcmc::grid::Cell::Free;
+    let (cx, cy) = (0..w * h)
+        .map(|i| (i % w, i / w))
+        .filter(|&(x, y)| free(x, y))
+        .min_by_key(|&(x, y)| (x - w / 2).pow(2) + (y - h / 2).pow(2))
+        .unwrap();
+    let edits = d.join("edits.json");
+    let text = format!(
+        r#"[{{"op": "type", "at": [{cx}, {cy}], "type": "hall"}}, {{"op": "name", "at": [{cx}, {cy}], "name": "Atrium"}}]"#
+    );
+    std::fs::write(&edits, text).unwrap();
+    let (m_s, d_s, e_s) = (map.to_str().unwrap(), d.to_str().unwrap(), edits.to_str().unwrap());
+    let out = run(&["floorplan", m_s, "--out", d_s, "--iterations", "6000", "--edits", e_s]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let world = World::from_json(&std::fs::read_to_string(d.join("world.json")).unwrap()).unwrap();
+    let named: Vec<_> = world.rooms.iter().filter(|r| r.name.as_deref() == Some("Atrium")).collect();
+    assert_eq!(named.len(), 1, "one room is named");
+    assert_eq!(named[0].kind, ksmcmc::floorplan::UnitType::Hall);
+
+    std::fs::write(
+        &edits,
+        r#"[{"op": "name", "at": [1, 1], "name": "A"}, {"op": "split", "line": [[0, 0], [0, 99999]]}]"#,
+    )
+    .unwrap();
+    let out = run(&["floorplan", m_s, "--out", d_s, "--iterations", "10", "--edits", e_s]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success());
+    assert!(err.contains("edit 2 (split): the point (0, 99999) is outside the"), "{err}");
+    std::fs::write(&edits, r#"{"op": "name"}"#).unwrap();
+    let err = String::from_utf8_lossy(&run(&["floorplan", m_s, "--out", d_s, "--edits", e_s]).stderr).to_string();
+    assert!(err.contains("expected a list"), "{err}");
+}

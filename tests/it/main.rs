@@ -9,6 +9,7 @@ mod cli_floorplan;
 mod cli_render;
 mod cli_synth;
 mod common;
+mod edits;
 mod grid;
 mod hostile;
 mod knowledge;

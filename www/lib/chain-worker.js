@@ -8,7 +8,7 @@
 // and of the scene graph as ImageBitmaps (transferred, not copied), the statistics and the new
 // trace points. Same map, seed and settings, same chain as on the main thread or natively.
 
-import init, { Map as OccMap, Mapper, inferWorld, learnRules, renderMapperRgba, renderSceneGraphRgba } from '../pkg/ksmcmc.js';
+import init, { Map as OccMap, Mapper, inferWorld, learnRules, renderMapperRgba, renderSceneGraphRgba, wasmHeapBytes } from '../pkg/ksmcmc.js';
 
 /** Milliseconds of iterations between looking at the page's requests. */
 const SLICE_MS = 8;
@@ -272,6 +272,10 @@ const ops = {
     if (text === known && !withDetails) return { same: true };
     return { text, types: withDetails ? m.roomTypesJson() : null, labels: withDetails ? m.roomLabels() : null };
   },
+  /** Bytes of the worker's wasm heap (the soak test watches it). Needs no chain. */
+  heap() {
+    return wasmHeapBytes();
+  },
   invoke({ name, args = [] }) {
     if (!INVOKABLE.has(name)) throw new Error(`${name} is not a method the page may call`);
     return state.mapper[name](...args);
@@ -298,7 +302,7 @@ onmessage = async (e) => {
       }
       return;
     }
-    if (op !== 'load' && op !== 'learn' && !state.mapper) throw new Error('no chain yet');
+    if (op !== 'load' && op !== 'learn' && op !== 'heap' && !state.mapper) throw new Error('no chain yet');
     const result = ops[op](args ?? {});
     const transfer = result instanceof Uint8Array ? [result.buffer] : result?.labels instanceof Uint16Array ? [result.labels.buffer] : [];
     postMessage({ id, result }, transfer);

@@ -118,7 +118,7 @@ export function roomSummary(room, types) {
   const m = types?.marginals;
   const p = m ? MARGINALS.map(([k, name]) => `${name} ${fmt(m[k], 2)}`).join(', ') : 'none';
   const units = types?.units?.length ? types.units.map(unitLabel).join(', ') : list(room.units);
-  return `Room ${room.id}, ${room.type}, ${fmt(room.area_m2, 1)} m², doors ${list(room.doors)}, ` +
+  return `Room ${room.id}${room.name ? ` “${room.name}”` : ''}, ${room.type}, ${fmt(room.area_m2, 1)} m², doors ${list(room.doors)}, ` +
     `opens to ${list(room.opens_to)}, units ${units}; type marginals ${p}`;
 }
 
@@ -128,7 +128,7 @@ export function roomSummary(room, types) {
  */
 export function fillRoomInfo(box, room, types) {
   const head = el('p', 'room-info-title');
-  head.append(el('strong', '', `Room ${room.id}`), ` · ${room.type}`);
+  head.append(el('strong', '', `Room ${room.id}`), room.name ? ` “${room.name}”` : '', ` · ${room.type}`);
   const facts = el('p', 'room-info-facts');
   facts.append(
     el('span', 'room-info-area', `${fmt(room.area_m2, 1)} m²`),

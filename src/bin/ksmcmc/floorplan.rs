@@ -37,6 +37,10 @@ Options:
                      world with the built-in rules)
   --region FILE      an image the size of the map whose non-black cells are a region of
                      interest: report.json then also gives K(W,M) inside it
+  --edits FILE       a person's corrections as hard evidence: a JSON list of merges
+                     (the rooms at two points are one), splits (a wall runs along a line),
+                     types and names of the room at a point, in map cells (column, row);
+                     see the README's \"Correcting a floor plan\"
   --classify RULE    how plain images become cells: auto (default; background grays found
                      from the histogram, anti-aliased walls occupied) or fixed (eq. 3.7
                      thresholds only); a map.yaml always uses its own thresholds
@@ -55,6 +59,7 @@ struct Opts {
     region: Option<PathBuf>,
     knowledge: Option<String>,
     until_settled: bool,
+    edits: Option<PathBuf>,
 }
 
 pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
@@ -64,6 +69,9 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     let region = load_region(&o, &map)?;
     let t0 = Instant::now();
     let mut chain = Chain::new(&map, config, o.seed).map_err(|e| args::failed(o.map.display(), e))?;
+    if let Some(path) = &o.edits {
+        chain.set_edits(load_edits(path)?).map_err(|e| args::failed(path.display(), e))?;
+    }
     let deadline = o.time_limit.map(|t| t0 + std::time::Duration::from_secs_f64(t));
     let mut settled = Settled::for_map(map.count(Cell::Free));
     let chunk = if o.until_settled { settled::STRIDE } else { 500 };
@@ -122,6 +130,7 @@ fn parse(argv: Vec<OsString>) -> Result<Option<Opts>, CliError> {
     let mut region_path: Option<PathBuf> = None;
     let mut knowledge: Option<String> = None;
     let mut until_settled = false;
+    let mut edits: Option<PathBuf> = None;
     while let Some(arg) = parser.next()? {
         match arg {
             Value(v) if map.is_none() => map = Some(args::path(v)),
@@ -135,6 +144,7 @@ fn parse(argv: Vec<OsString>) -> Result<Option<Opts>, CliError> {
             Long("region") => region_path = Some(args::path(parser.value()?)),
             Long("knowledge") => knowledge = Some(args::value("--knowledge", parser.value()?)?),
             Long("until-settled") => until_settled = true,
+            Long("edits") => edits = Some(args::path(parser.value()?)),
             Long("help") | Short('h') => {
                 print!("{HELP}");
                 return Ok(None);
@@ -166,7 +176,19 @@ fn parse(argv: Vec<OsString>) -> Result<Option<Opts>, CliError> {
         region: region_path,
         knowledge,
         until_settled,
+        edits,
     }))
+}
+
+/// The edits of `--edits`, size-checked before reading.
+fn load_edits(path: &std::path::Path) -> Result<ksmcmc::floorplan::edits::Edits, CliError> {
+    use ksmcmc::floorplan::edits::{Edits, MAX_EDITS_TEXT};
+    let len = std::fs::metadata(path).map_err(|e| args::failed(path.display(), e))?.len();
+    if len > MAX_EDITS_TEXT as u64 {
+        return Err(args::failed(path.display(), format!("{len} bytes, over the cap of {MAX_EDITS_TEXT} for edits")));
+    }
+    let text = std::fs::read_to_string(path).map_err(|e| args::failed(path.display(), e))?;
+    Edits::parse(&text).map_err(|e| args::failed(path.display(), e))
 }
 
 /// The chain configuration: `--config`, then `--rotation` and `--knowledge` over it.

@@ -107,13 +107,15 @@ vendor/node_modules/.package-lock.json: vendor/package.json vendor/package-lock.
 # ---------------------------------------------------------------- build
 
 # The npm package: release wasm, wasm-bindgen's ES module and .d.ts, the hand-written modules
-# in npm/ (the `mount` embed, the sample recipes) and package.json.
+# in npm/ (the `mount` embed, the sample recipes), the page modules mount imports (PKG_LIB:
+# zoom and pan, shared with the demo pages) and package.json.
+PKG_LIB := www/lib/viewport.js
 pkg: wasm-tools wasm-opt-tool
 	$(CARGO) build --lib --profile wasm-release --target $(WASM_TARGET)
 	wasm-opt $(WASM_OPT_FLAGS) $(WASM) -o $(WASM_OPT)
 	wasm-bindgen --target web --out-dir pkg --out-name ksmcmc $(WASM_OPT)
-	cp npm/*.js npm/*.d.ts pkg/
-	node scripts/pkg-json.mjs Cargo.toml npm > pkg/package.json
+	cp npm/*.js npm/*.d.ts $(PKG_LIB) pkg/
+	node scripts/pkg-json.mjs Cargo.toml npm $(PKG_LIB) > pkg/package.json
 	@echo "pkg/: $$(wc -c < pkg/ksmcmc_bg.wasm) bytes of wasm ($$(gzip -9 -c pkg/ksmcmc_bg.wasm | wc -c) gzipped), version $$(node -p 'require("./pkg/package.json").version')"
 
 # The pages load the package from www/pkg, the live mapper its samples from www/samples and
@@ -122,7 +124,7 @@ www-pkg: pkg www-samples www-vendor
 	rm -rf www/pkg
 	mkdir -p www/pkg
 	cp pkg/ksmcmc.js pkg/ksmcmc_bg.wasm pkg/ksmcmc.d.ts pkg/package.json www/pkg/
-	cp npm/*.js npm/*.d.ts www/pkg/
+	cp npm/*.js npm/*.d.ts $(PKG_LIB) www/pkg/
 
 www-samples:
 	node scripts/www-samples.mjs samples www/samples

@@ -97,6 +97,14 @@ export interface MapperWidget {
   reset(seed?: number | bigint): void;
   stats(): MapperStats;
   redraw(): void;
+  /**
+   * The map's zoom (1: the whole map) and the point at the centre of the view, as fractions
+   * of the map's width and height. Wheel, pinch, drag, the zoom buttons and, with the map
+   * focused, + − 0 and the arrow keys change it.
+   */
+  readonly view: { zoom: number; cx: number; cy: number };
+  /** Shows the whole map again. */
+  resetView(): void;
   /** Stops the chain, removes the widget and frees its memory. */
   destroy(): void;
 }

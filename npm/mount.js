@@ -4,14 +4,16 @@
 //   const widget = await mount(document.getElementById('demo'), { sample: 'office-small', seed: 1, autoplay: true });
 //
 // builds, inside the element, the map with the chain's current world drawn over it, the scene
-// graph beside it, Start/Pause, Step and Reset buttons, cloud and best-world switches and a
-// line of statistics, and runs the chain in requestAnimationFrame with a time budget per frame
-// so the page stays responsive. Plain DOM, no framework, no network: samples are remade by the
+// graph beside it, Start/Pause, Step and Reset buttons, cloud and best-world switches, zoom
+// buttons and a line of statistics, and runs the chain in requestAnimationFrame with a time
+// budget per frame so the page stays responsive. The map zooms and pans by wheel, pinch, drag
+// and keys (+ − 0 and the arrows with the map focused; viewport.js, shared with the demo). Plain DOM, no framework, no network: samples are remade by the
 // synthetic generator (see samples.js), and the styles are injected once, scoped to the
 // widget's class.
 
 import init, { Map as OccupancyMap, Mapper, drawMapper, drawSceneGraph, synth } from './ksmcmc.js';
 import { SAMPLES, sampleRecipe } from './samples.js';
+import { Viewport, detailScale } from './viewport.js';
 
 export { SAMPLES };
 
@@ -31,6 +33,8 @@ const CSS = `
 .ksmcmc-mapper button { font: inherit; padding: .2rem .7rem; border: 1px solid #9aa1ab; border-radius: 3px; background: #f4f5f7; color: #1c1f23; cursor: pointer; }
 .ksmcmc-mapper button:focus-visible, .ksmcmc-mapper input:focus-visible, .ksmcmc-mapper canvas:focus-visible { outline: 3px solid #f0a500; outline-offset: 2px; }
 .ksmcmc-mapper label { display: inline-flex; gap: .3rem; align-items: center; }
+.ksmcmc-mapper .ksmcmc-zoom { display: inline-flex; gap: .25rem; }
+.ksmcmc-mapper .ksmcmc-zoom button { padding: .2rem .5rem; min-width: 2.2rem; }
 .ksmcmc-mapper .ksmcmc-stats { font-variant-numeric: tabular-nums; opacity: .85; }
 .ksmcmc-mapper .ksmcmc-error { color: #b00020; margin: 0; }
 .ksmcmc-mapper .ksmcmc-error:empty { display: none; }
@@ -216,11 +220,19 @@ export async function mount(element, options = {}) {
   const cloudBox = el('input', { type: 'checkbox', checked: cloud });
   const bestBox = el('input', { type: 'checkbox', checked: show === 'best' });
   const statsLine = el('span', { class: 'ksmcmc-stats' });
+  // The chain's picture at the zoom's detail, drawn on the map canvas through the view.
+  const picture = document.createElement('canvas');
+  let drawnScale = 0;
+  const viewport = new Viewport(mapCanvas, {
+    onChange: () => (running ? paint() : draw()),
+    controls: controls ? { className: 'ksmcmc-zoom', label: 'Zoom the map' } : false,
+  });
   const errorLine = el('p', { class: 'ksmcmc-error', role: 'alert' });
   const bar = el('div', { class: 'ksmcmc-bar' }, [
     toggleButton, stepButton, resetButton,
     el('label', {}, [cloudBox, 'posterior cloud']),
     el('label', {}, [bestBox, 'best world']),
+    ...(viewport.controls ? [viewport.controls] : []),
     statsLine,
   ]);
   const root = el('div', { class: `ksmcmc-mapper${graph ? '' : ' ksmcmc-nograph'}`, role: 'group', 'aria-label': `Live mapper: ${name}` }, [
@@ -266,10 +278,27 @@ export async function mount(element, options = {}) {
     return s;
   };
 
+  /** The picture, through the view, on a map canvas that holds the whole map at `s`. */
+  const paint = (s = scale()) => {
+    if (destroyed || !drawnScale) return;
+    if (mapCanvas.width !== mapper.width * s || mapCanvas.height !== mapper.height * s) {
+      mapCanvas.width = mapper.width * s;
+      mapCanvas.height = mapper.height * s;
+    }
+    viewport.draw(mapCanvas, picture);
+  };
+
   const draw = () => {
     if (destroyed) return;
     try {
-      drawMapper(mapCanvas, mapper, { show, cloud, labels, scale: scale() });
+      const s = scale();
+      const v = viewport.view;
+      // Zoomed in: more pixels per cell, but this draws on the page's thread in every frame:
+      // at most 2 million pixels (a few milliseconds).
+      const detail = v.isReset ? s : Math.max(s, detailScale(s, v.zoom, mapper.width * mapper.height, { maxScale: 6, maxPixels: 2_000_000 }));
+      drawMapper(picture, mapper, { show, cloud, labels, scale: detail });
+      drawnScale = detail;
+      paint(s);
       if (graph) {
         const dpr = globalThis.devicePixelRatio || 1;
         const w = Math.max(60, Math.round((graphCanvas.clientWidth || 240) * dpr));
@@ -404,12 +433,17 @@ export async function mount(element, options = {}) {
     reset,
     stats,
     redraw: draw,
+    get view() {
+      return viewport.view.state();
+    },
+    resetView: () => viewport.reset(),
     destroy() {
       if (destroyed) return;
       pause();
       destroyed = true;
       observer?.disconnect();
       resized?.disconnect();
+      viewport.destroy();
       root.remove();
       mapper.free();
     },

@@ -1,13 +1,14 @@
 #!/usr/bin/env node
 // Writes pkg/package.json for the npm package that wasm-bindgen generated into pkg/.
-// Usage: node scripts/pkg-json.mjs [Cargo.toml] [npm-dir] > pkg/package.json
+// Usage: node scripts/pkg-json.mjs [Cargo.toml] [npm-dir] [module.js ...] > pkg/package.json
 // Name, version, description and licence come from Cargo.toml's [package] section, so the
 // npm package and the crate never disagree. The hand-written ES modules in npm/ (the `mount`
 // embed and the sample recipes, copied into pkg/ by `make pkg`) are listed as exports
-// `./NAME.js`, with their `NAME.d.ts` types.
+// `./NAME.js`, with their `NAME.d.ts` types. Further arguments are modules those import (copied
+// into pkg/ beside them, e.g. www/lib/viewport.js): shipped, not exported.
 
 import { existsSync, readdirSync, readFileSync } from 'node:fs';
-import { join } from 'node:path';
+import { basename, join } from 'node:path';
 
 const cargo = readFileSync(process.argv[2] ?? 'Cargo.toml', 'utf8');
 const pkgSection = cargo.split(/^\[/m).find((s) => s.startsWith('package]'));
@@ -27,6 +28,10 @@ const npmDir = process.argv[3] ?? 'npm';
 const extras = existsSync(npmDir) ? readdirSync(npmDir).filter((f) => f.endsWith('.js')).sort() : [];
 for (const f of extras) {
   if (!existsSync(join(npmDir, f.replace(/\.js$/, '.d.ts')))) throw new Error(`${npmDir}/${f} has no .d.ts beside it`);
+}
+const internal = process.argv.slice(4).map((p) => basename(p));
+for (const f of internal) {
+  if (!f.endsWith('.js') || extras.includes(f)) throw new Error(`${f}: an imported module must be a .js file not in ${npmDir}`);
 }
 const json = {
   name,
@@ -48,6 +53,7 @@ const json = {
   files: [
     `${name}_bg.wasm`, `${name}.js`, `${name}.d.ts`, `${name}_bg.wasm.d.ts`,
     ...extras.flatMap((f) => [f, f.replace(/\.js$/, '.d.ts')]),
+    ...internal,
     'README.md',
   ],
   sideEffects: ['./snippets/*'],

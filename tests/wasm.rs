@@ -409,6 +409,30 @@ fn world_glb_matches_the_library() {
 }
 
 #[wasm_bindgen_test]
+fn mapper_gives_room_labels_and_type_marginals_as_the_library() {
+    let map = Map::from_yaml(
+        include_str!("../samples/office-small/map.yaml"),
+        include_bytes!("../samples/office-small/map.pgm"),
+    )
+    .unwrap();
+    let mut m = Mapper::new(&map, None, Some(JsValue::from(3))).unwrap();
+    m.step(2000.0).unwrap();
+    let mut chain = Chain::new(map.inner(), ChainConfig::default(), 3).unwrap();
+    chain.step(2000);
+    let (world, labels) = chain.best_world_with_rooms(&Default::default());
+    assert_eq!(m.room_labels(), labels.cells().to_vec());
+    let inferred = chain.best_world_inferred().1.unwrap();
+    let expected =
+        ksmcmc::floorplan::export::room_types_json(&ksmcmc::floorplan::room_types::room_types(&world, &inferred));
+    assert_eq!(m.room_types_json(), expected);
+    let rooms: serde_json::Value = serde_json::from_str(&m.room_types_json()).unwrap();
+    assert_eq!(rooms.as_array().unwrap().len(), world.rooms.len());
+    assert!(rooms[0]["marginals"]["corridor"].is_f64(), "{rooms}");
+    // Asking changed nothing: the best world is the one it was.
+    assert_eq!(m.best_world_json(), world.to_json());
+}
+
+#[wasm_bindgen_test]
 fn mapper_exports_trace_samples_labels_graph_and_report() {
     let mut m = Mapper::new(&two_rooms(), Some(r#"{"output": {"trace_every": 50}}"#.into()), None).unwrap();
     m.step(2000.0).unwrap();

@@ -13,11 +13,18 @@ import { download } from './lib/download.js';
 import { RemoteChain } from './lib/remote-chain.js';
 import { RouteView } from './lib/route-view.js';
 import { describeEdit, parseEdits } from './lib/edits.js';
+import { Viewport, detailScale } from './lib/viewport.js';
+import { RoomIndex, fillRoomInfo } from './lib/room-info.js';
 
 /** Step runs this many iterations when the speed is `auto`. */
 const AUTO_STEP = 500;
-/** The most pixels per cell the page draws (more only costs time per frame). */
+/** The most pixels per cell the page draws for the whole map (more only costs time per frame). */
 const MAX_SCALE = 3;
+/**
+ * The largest picture the worker draws when zoomed in, pixels: it draws the whole map, so the
+ * detail of a large map's zoom is limited by the time a picture takes.
+ */
+const MAX_PICTURE_PIXELS = 6_000_000;
 /** While the chain runs, the rooms are read at most this often (the worker computes them). */
 const ROOMS_EVERY_MS = 2000;
 /** The weak prior's chain catches up with the main one in steps of at most this many iterations. */
@@ -37,7 +44,7 @@ const ui = {
   blankForm: $('blank-form'), blankWidth: $('blank-width'), blankHeight: $('blank-height'), blankCreate: $('blank-create'),
   showReference: $('show-reference'), cloud: $('cloud'), labels: $('labels'),
   worldFile: $('world-file'), truth: $('truth'), referenceClear: $('reference-clear'),
-  stage: $('stage'), canvas: $('map'), graph: $('graph'), mapName: $('map-name'),
+  stage: $('stage'), canvas: $('map'), graph: $('graph'), mapName: $('map-name'), roomInfo: $('room-info'), zoomBar: $('zoom-bar'),
   compare: $('compare'), mainCaption: $('main-caption'), mainTitle: $('main-title'), mainSide: $('main-side'),
   weakFigure: $('weak-figure'), weakCanvas: $('weak-map'), weakSide: $('weak-side'),
   rooms: $('rooms').tBodies[0], roomsSummary: $('rooms-summary'),
@@ -120,6 +127,21 @@ const state = {
   /** Milliseconds drawing a picture takes on this thread (a running average). */
   drawMs: 0,
   scale: 1,
+  /** Zoom and pan of the map (a Viewport, made in wire()); the weak prior's picture follows it. */
+  viewport: null,
+  /** Pixels per cell the worker draws at: `scale` at zoom 1, more when zoomed in. */
+  drawScale: 1,
+  /** The pictures last drawn, kept to draw them again when the view moves. */
+  shown: null,
+  weakShown: null,
+  /** The painted cells while a stroke goes on (a canvas, one pixel per cell). */
+  paintCanvas: null,
+  /** The best world's rooms for pointing at (a RoomIndex), and the room shown: hovered, focused or pinned. */
+  roomIndex: null,
+  hover: { id: 0, pinned: false, anchor: null, mask: null },
+  /** Where the mouse is over the map (client position), or null; whether the Rooms table is in use. */
+  pointer: null,
+  tableInUse: false,
   /** Painting: cell codes as loaded and as painted, the stroke's last cell. */
   painting: false,
   tool: 'occupied',
@@ -181,13 +203,23 @@ function chainArgs() {
 class RoomsFeed {
   /**
    * @param {() => RemoteChain} chain  the chain's worker
-   * @param {(rooms: object[] | null) => void} show  called with the rooms (null: none read yet)
+   * @param {(rooms: object[] | null, details: object | null) => void} show  called with the
+   *   rooms (null: none read yet) and their details, if wanted and read for these rooms
    */
   constructor(chain, show) {
     this.chain = chain;
     this.show = show;
+    /**
+     * Whether the rooms' details are wanted: their type marginals and the room of every cell
+     * (for pointing at rooms). Read only while wanted: the labels are two bytes per cell, and
+     * reading them every 2 s on a large map makes garbage enough for a long collection.
+     */
+    this.details = false;
     this.generation = -1;
     this.rooms = null;
+    /** { types, labels } of the rooms, and the rooms' text they were read with. */
+    this.extra = null;
+    this.extraText = null;
     /** The rooms' JSON text as last read. */
     this.text = null;
     this.inFlight = false;
@@ -200,6 +232,8 @@ class RoomsFeed {
   restart(generation, iteration) {
     this.generation = generation;
     this.rooms = null;
+    this.extra = null;
+    this.extraText = null;
     this.text = null;
     this.readAt = iteration;
     this.show(null);
@@ -223,6 +257,17 @@ class RoomsFeed {
     }
   }
 
+  /** Details wanted or not; wanted and not read for the rooms shown, they are read now. */
+  want(on) {
+    this.details = on;
+    if (on && this.generation >= 0 && (this.extraText === null || this.extraText !== this.text)) this.request();
+  }
+
+  /** The details, if they are those of the rooms shown. */
+  get fresh() {
+    return this.extra && this.extraText === this.text ? this.extra : null;
+  }
+
   /** Whether the rooms shown are those of the chain at `stats`, with nothing on its way. */
   current(stats) {
     return !this.inFlight && !this.again && stats?.generation === this.generation && this.readAt === stats.iteration;
@@ -238,18 +283,22 @@ class RoomsFeed {
     this.at = performance.now();
     const generation = this.generation;
     this.chain()
-      .call('invoke', { name: 'roomsJson' })
+      .call('rooms', { details: this.details, known: this.rooms ? this.text : null, knownDetails: this.extra ? this.extraText : null })
       .then(
-        (text) => {
+        (reply) => {
           if (generation !== this.generation) {
             this.again = true;
             return;
           }
           // The same rooms as last time (the best world has not changed): nothing to redo.
-          if (text === this.text && this.rooms) return;
-          this.text = text;
-          this.rooms = JSON.parse(text);
-          this.show(this.rooms);
+          if (reply.same) return;
+          this.text = reply.text;
+          this.rooms = JSON.parse(reply.text);
+          if (reply.types !== null) {
+            this.extra = { types: JSON.parse(reply.types), labels: reply.labels };
+            this.extraText = reply.text;
+          }
+          this.show(this.rooms, this.fresh);
         },
         (err) => showError(err),
       )
@@ -275,10 +324,17 @@ function cell(tr, text) {
   tr.append(td);
 }
 
-/** The rooms table and the rooms count of the main chain. */
-function showRooms(rooms) {
+/**
+ * The rooms table and the rooms count of the main chain, and the rooms the map points at
+ * (`details`: their type marginals and the room of every cell).
+ */
+function showRooms(rooms, details) {
   ui.stat.rooms.textContent = rooms ? String(rooms.length) : '–';
   ui.stats.dataset.rooms = rooms ? String(rooms.length) : '';
+  const m = state.map;
+  state.roomIndex = rooms && details && m ? new RoomIndex(rooms, details.types, details.labels, m.width, m.height) : null;
+  // The row in focus is remade: focus moves to its successor, so that the keyboard stays put.
+  const focused = ui.rooms.contains(document.activeElement) ? document.activeElement.dataset.room : null;
   ui.rooms.replaceChildren(
     ...(rooms ?? []).map((r) => {
       const tr = document.createElement('tr');
@@ -294,6 +350,13 @@ function showRooms(rooms) {
       return tr;
     }),
   );
+  if (focused) ui.rooms.querySelector(`tr[data-room="${focused}"]`)?.focus({ preventScroll: true });
+  refreshHover();
+  // The details came while the pointer or the focus waited for them.
+  if (!state.hover.id && state.roomIndex) {
+    if (ui.rooms.contains(document.activeElement)) pointRoom(document.activeElement.closest('tr'), true);
+    else if (state.pointer && !state.painting) setHover(roomAt(...state.viewport.contentAt(state.pointer, ui.canvas)), state.pointer);
+  }
   ui.roomsSummary.textContent = !rooms
     ? 'Reading the best world\'s rooms…'
     : rooms.length === 0
@@ -342,6 +405,8 @@ function adopt({ stats, referenceDropped }, args, source) {
   state.rate = { iteration: 0, time: performance.now(), perSecond: 0 };
   state.picture?.picture.close();
   state.picture = null;
+  state.roomIndex = null;
+  setHover(0);
   updateReferenceControls();
   for (const b of [ui.run, ui.step, ui.reset, ui.route.toggle, ui.route.plan, ui.view3d.toggle, ...Object.values(ui.exports)]) b.disabled = false;
   if (source) select(null);
@@ -372,6 +437,13 @@ async function setMap(map, source, { name, label, sample = null, uploaded = fals
   state.base = map.cells();
   state.codes = state.base.slice();
   if (old && old !== map) old.free();
+  // A new map: all of it, and none of the old one's pictures.
+  state.viewport.view.reset();
+  state.viewport.update();
+  for (const key of ['shown', 'weakShown']) {
+    state[key]?.close();
+    state[key] = null;
+  }
   ui.mapName.textContent = label ? `· ${label}` : '';
   showSampleChoice(sample);
   // An opened map is explained until it settles; a sample or a painted map runs on.
@@ -457,7 +529,7 @@ function view() {
     show: state.show,
     cloud: state.cloud,
     labels: state.labels,
-    scale: state.scale,
+    scale: state.drawScale,
     graphWidth: gw,
     graphHeight: gh,
     graphShow: state.show === 'none' ? 'best' : state.show,
@@ -515,8 +587,10 @@ function frame() {
   const weak = state.weak;
   if (weak) {
     if (weak.picture) {
-      drawBitmap(ui.weakCanvas, weak.picture);
+      state.weakShown?.close();
+      state.weakShown = weak.picture;
       weak.picture = null;
+      paintWeak();
       updateSides();
     }
     const caughtUp = weak.stats && state.stats && weak.stats.iteration === state.stats.iteration;
@@ -547,6 +621,8 @@ function setCompare(on) {
     state.weak.chain.worker.terminate();
     state.weak.picture?.close();
     state.weak = null;
+    state.weakShown?.close();
+    state.weakShown = null;
   }
   ui.weakFigure.hidden = !on;
   ui.mainCaption.hidden = !on;
@@ -587,7 +663,7 @@ function weakView(generation) {
     show: state.show === 'reference' ? 'best' : state.show,
     cloud: state.cloud,
     labels: state.labels,
-    scale: state.scale,
+    scale: state.drawScale,
     graphWidth: 80,
     graphHeight: 60,
     graphShow: 'best',
@@ -692,13 +768,57 @@ function drawBitmap(canvas, bitmap) {
   bitmap.close();
 }
 
+/** The main chain's picture, kept and drawn through the view, with the room pointed at. */
+function showPicture(picture) {
+  state.shown?.close();
+  state.shown = picture;
+  paintMain();
+}
+
+/** Draws the main picture (or, during a stroke, the painted cells) through the view. */
+function paintMain() {
+  if (state.painting && state.strokeAt && state.paintCanvas) {
+    state.viewport.draw(ui.canvas, state.paintCanvas);
+    return;
+  }
+  if (!state.shown) return;
+  state.viewport.draw(ui.canvas, state.shown);
+  const mask = state.hover.mask;
+  const m = state.map;
+  if (mask && m) {
+    state.viewport.draw(ui.canvas, mask.canvas, { clear: false, x: mask.x, y: mask.y, width: m.width, height: m.height });
+  }
+}
+
+function paintWeak() {
+  if (state.weak && state.weakShown) state.viewport.draw(ui.weakCanvas, state.weakShown);
+}
+
+/**
+ * The view moved: both pictures are drawn again at once from what was last received, and a
+ * sharper one is asked for if the zoom needs more pixels per cell.
+ */
+function viewChanged() {
+  paintMain();
+  paintWeak();
+  updateDrawScale();
+  placeRoomInfo();
+}
+
+/** The worker's drawing scale for the zoom: `scale` for the whole map, more when zoomed in. */
+function updateDrawScale() {
+  const m = state.map;
+  if (!m) return;
+  const v = state.viewport.view;
+  const s = v.isReset ? state.scale : Math.max(state.scale, detailScale(state.scale, v.zoom, m.width * m.height, { maxPixels: MAX_PICTURE_PIXELS }));
+  if (s === state.drawScale) return;
+  state.drawScale = s;
+  requestRedraw();
+}
+
 function draw({ stats, trace, picture, graph }) {
   takeStats(stats);
-  if (state.painting && state.strokeAt) {
-    picture.close();
-  } else {
-    drawBitmap(ui.canvas, picture);
-  }
+  showPicture(picture);
   drawBitmap(ui.graph, graph);
   if (stats.running) state.frames++;
   const now = performance.now();
@@ -784,10 +904,18 @@ function fit() {
   // Shrinking with nearest-neighbour drops thin lines: smooth it; enlarging stays crisp.
   ui.canvas.classList.toggle('smooth', state.scale >= s * dpr);
   ui.weakCanvas.classList.toggle('smooth', state.scale >= s * dpr);
+  // The canvases hold the whole map at `scale`; zoomed pictures are drawn into them.
+  for (const c of [ui.canvas, ui.weakCanvas]) {
+    if (c.width !== m.width * state.scale || c.height !== m.height * state.scale) {
+      c.width = m.width * state.scale;
+      c.height = m.height * state.scale;
+    }
+  }
   if (state.weak) state.weak.redrawPending = true;
   state.route?.resize(state.scale);
   drawOverlay();
   requestRedraw();
+  viewChanged();
 }
 
 // ---------------------------------------------------------------- maps
@@ -951,26 +1079,40 @@ async function refresh3d() {
 function setRouting(on) {
   if (!state.route || on === state.route.active) return;
   if (on && state.painting) setPainting(false);
+  // The route's layer is drawn at the whole map's scale: route mode shows the whole map.
+  if (on) state.viewport?.reset?.();
   state.route.setActive(on);
   state.route.show();
   say(on ? 'Route mode: click the start, then the goal on the map. Esc leaves it.' : 'Left route mode.');
 }
 
+/** The cell under a pointer event, through the zoom and pan. */
 function cellFromEvent(e) {
-  const r = ui.canvas.getBoundingClientRect();
-  return cellAt(e.clientX - r.left, e.clientY - r.top, r, state.map.width, state.map.height);
+  const [u, v] = state.viewport.contentAt(e, ui.canvas);
+  return cellAt(u, v, { width: 1, height: 1 }, state.map.width, state.map.height);
 }
 
-/** Shows the painted cells (without a world) while a stroke goes on. */
+/** Shows the painted cells (without a world) while a stroke goes on, through the view. */
 function showPainted() {
+  if (!state.strokeAt) return;
   attempt(() => {
     const painted = OccMap.fromCells(state.map.width, state.map.height, state.codes);
     try {
-      drawToCanvas(ui.canvas, painted, undefined, state.scale, false);
+      state.paintCanvas ??= document.createElement('canvas');
+      drawToCanvas(state.paintCanvas, painted, undefined, 1, false);
     } finally {
       painted.free();
     }
+    paintMain();
   });
+}
+
+/** A pinch began during a stroke: the stroke is undone (two fingers zoom, they do not paint). */
+function abortStroke() {
+  if (!state.strokeAt) return;
+  state.strokeAt = null;
+  state.codes = state.strokeUndo ?? state.base.slice();
+  paintMain();
 }
 
 let paintFramePending = false;
@@ -990,6 +1132,8 @@ function onPointerDown(e) {
     return;
   }
   if (!state.map || (e.pointerType === 'mouse' && e.button !== 0)) return;
+  // A second finger: the viewport pinches.
+  if (state.viewport.pointers.size > 1) return;
   if (!state.painting) {
     editPointerDown(e);
     return;
@@ -999,12 +1143,13 @@ function onPointerDown(e) {
   state.strokeUndo = state.codes.slice();
   state.strokeAt = cellFromEvent(e);
   const [x, y] = state.strokeAt;
-  if (stamp(state.codes, state.base, state.map.width, state.map.height, x, y, state.offsets, TOOLS[state.tool])) schedulePaint();
+  stamp(state.codes, state.base, state.map.width, state.map.height, x, y, state.offsets, TOOLS[state.tool]);
+  showPainted();
 }
 
 function onPointerMove(e) {
   if (state.splitDrag) editPointerMove(e);
-  if (!state.strokeAt) return;
+  if (!state.strokeAt || state.viewport.busy) return;
   const cell = cellFromEvent(e);
   const { width, height } = state.map;
   if (strokeTo(state.codes, state.base, width, height, state.strokeAt, cell, state.offsets, TOOLS[state.tool])) schedulePaint();
@@ -1016,6 +1161,9 @@ async function onPointerUp(e) {
   if (state.splitDrag) editPointerUp(e);
   if (!state.strokeAt) return;
   state.strokeAt = null;
+  // The painted cells stay on the canvas until the painted map's picture comes.
+  state.shown?.close();
+  state.shown = null;
   const { width, height } = state.map;
   try {
     const codes = state.codes.slice();
@@ -1048,6 +1196,117 @@ function setBrush(size) {
   state.offsets = brushOffsets(s);
   ui.brush.value = String(s);
   ui.brushValue.textContent = String(s);
+}
+
+// ---------------------------------------------------------------- pointing at rooms
+
+/**
+ * Shows room `id` (0: none) of the best world: its cells highlighted on the map, and its type,
+ * area, doors, units and type marginals in the info box, beside `anchor` (a pointer's client
+ * position) or, without one, beside the room. A `pinned` room (clicked or tapped) stays when
+ * the pointer leaves; Escape, or a click outside any room, hides it.
+ */
+function setHover(id, anchor = null, pinned = false) {
+  const h = state.hover;
+  const room = id ? state.roomIndex?.rooms.get(id) : null;
+  const shown = room ? id : 0;
+  h.pinned = Boolean(shown) && pinned;
+  h.anchor = anchor;
+  if (shown !== h.id) {
+    h.id = shown;
+    h.mask = shown ? state.roomIndex.mask(shown) : null;
+    paintMain();
+    if (shown) fillRoomInfo(ui.roomInfo, room, state.roomIndex.types.get(shown));
+  }
+  ui.roomInfo.hidden = !shown;
+  ui.roomInfo.dataset.pinned = String(h.pinned);
+  if (!shown) delete ui.roomInfo.dataset.room;
+  placeRoomInfo();
+}
+
+/** The rooms were read again: the room shown is shown as it is now (hidden if it is gone). */
+function refreshHover() {
+  const h = state.hover;
+  if (!h.id) return;
+  const id = h.id;
+  h.id = 0;
+  h.mask = null;
+  setHover(id, h.anchor, h.pinned);
+}
+
+/** Puts the info box beside its anchor (or its room), inside the stage. */
+function placeRoomInfo() {
+  const box = ui.roomInfo;
+  const h = state.hover;
+  if (box.hidden || !h.id) return;
+  const stage = ui.stage.getBoundingClientRect();
+  let x;
+  let y;
+  if (h.anchor) {
+    x = h.anchor.clientX - stage.left + 16;
+    y = h.anchor.clientY - stage.top + 16;
+  } else {
+    const b = state.roomIndex.box(h.id);
+    const m = state.map;
+    const c = ui.canvas.getBoundingClientRect();
+    const [fx, fy] = b ? state.viewport.view.toElement(b.cx / m.width, b.cy / m.height) : [0.5, 0.5];
+    x = c.left - stage.left + Math.min(1, Math.max(0, fx)) * c.width + 12;
+    y = c.top - stage.top + Math.min(1, Math.max(0, fy)) * c.height + 12;
+  }
+  const w = box.offsetWidth;
+  const hh = box.offsetHeight;
+  if (x + w > stage.width) x = Math.max(0, x - w - 32);
+  if (y + hh > stage.height) y = Math.max(0, stage.height - hh);
+  box.style.left = `${Math.round(x)}px`;
+  box.style.top = `${Math.round(y)}px`;
+}
+
+/** The room under the content point (u, v) of the map, or 0. */
+function roomAt(u, v) {
+  return state.roomIndex ? state.roomIndex.atContent(u, v) : 0;
+}
+
+/**
+ * The rooms' details (type marginals, the room of every cell) are read from the worker only
+ * while someone points at rooms: the mouse on the map, the Rooms table in use, a room pinned.
+ */
+function wantRoomDetails() {
+  state.rooms?.want(Boolean(state.pointer || state.tableInUse || state.hover.pinned));
+}
+
+/** A mouse or pen over the map shows the room under it. */
+function onHover(e) {
+  if (e.pointerType !== 'mouse' && e.pointerType !== 'pen') return;
+  const wanted = !state.pointer;
+  state.pointer = { clientX: e.clientX, clientY: e.clientY };
+  if (wanted) wantRoomDetails();
+  if (e.buttons || state.painting || state.hover.pinned) return;
+  setHover(roomAt(...state.viewport.contentAt(e, ui.canvas)), state.pointer);
+}
+
+function onLeave() {
+  state.pointer = null;
+  if (!state.hover.pinned) setHover(0);
+  wantRoomDetails();
+}
+
+/** A click or tap that did not drag: pins the room there, or unpins. */
+function onTap(e, u, v) {
+  if (state.painting || e.currentTarget !== ui.canvas) return;
+  const id = roomAt(u, v);
+  if (!id || (state.hover.pinned && state.hover.id === id)) setHover(0);
+  else setHover(id, { clientX: e.clientX, clientY: e.clientY }, true);
+  wantRoomDetails();
+}
+
+/** A row of the Rooms table in focus (or under the mouse): its room on the map, in view. */
+function pointRoom(tr, reveal) {
+  const id = Number(tr?.dataset.room);
+  // The mouse passing over the table leaves a pinned room; the keyboard moves on from it.
+  if (!id || (!reveal && state.hover.pinned)) return;
+  setHover(id);
+  const b = reveal && state.roomIndex?.box(id);
+  if (b) state.viewport.reveal(b.cx / state.map.width, b.cy / state.map.height);
 }
 
 // ---------------------------------------------------------------- view and reference
@@ -1466,6 +1725,16 @@ function wire() {
   ex.svg.addEventListener('click', exporter('world.svg', 'image/svg+xml', 'svg'));
   ex.glb.addEventListener('click', exporter('world.glb', 'model/gltf-binary', 'worldGlb', () => [heights()]));
 
+  // The viewport's listeners first: a painting stroke asks it whether a pinch is going on.
+  state.viewport = new Viewport(ui.canvas, {
+    onChange: viewChanged,
+    dragPans: () => !state.painting && !state.editMode && !state.route?.active,
+    onTap,
+    onPinch: abortStroke,
+    controls: { className: 'zoom-controls', label: 'Zoom the map' },
+  });
+  state.viewport.listen(ui.weakCanvas);
+  ui.zoomBar.prepend(state.viewport.controls);
   ui.route.toggle.addEventListener('click', () => setRouting(!state.route.active));
   ui.view3d.toggle.addEventListener('click', () => setView3d(!state.view3d.open));
   ui.view3d.form.addEventListener('submit', (e) => {
@@ -1485,6 +1754,34 @@ function wire() {
   ui.canvas.addEventListener('pointermove', onPointerMove);
   ui.canvas.addEventListener('pointerup', onPointerUp);
   ui.canvas.addEventListener('pointercancel', onPointerUp);
+  ui.canvas.addEventListener('pointermove', onHover);
+  ui.canvas.addEventListener('pointerleave', onLeave);
+  const tableUse = (on) => {
+    state.tableInUse = on || ui.rooms.contains(document.activeElement) || ui.rooms.matches(':hover');
+    wantRoomDetails();
+  };
+  ui.rooms.addEventListener('focusin', (e) => {
+    tableUse(true);
+    pointRoom(e.target.closest('tr'), true);
+  });
+  ui.rooms.addEventListener('focusout', (e) => {
+    if (!state.hover.pinned) setHover(0);
+    tableUse(ui.rooms.contains(e.relatedTarget));
+  });
+  ui.rooms.addEventListener('mouseover', (e) => {
+    tableUse(true);
+    pointRoom(e.target.closest('tr'), false);
+  });
+  ui.rooms.addEventListener('mouseleave', () => {
+    if (!state.hover.pinned && !ui.rooms.contains(document.activeElement)) setHover(0);
+    tableUse(false);
+  });
+  document.addEventListener('keydown', (e) => {
+    if (e.key === 'Escape' && state.hover.id) {
+      setHover(0);
+      wantRoomDetails();
+    }
+  });
   document.addEventListener('keydown', onKey);
 
   onDroppedFiles(ui.stage, (files) => attempt(() => openFiles(files)));
@@ -1524,6 +1821,10 @@ function expose() {
     /** The selected room ({ x, y, room }) or null. */
     get selected() {
       return state.selected;
+    },
+    /** Their type marginals and room labels (roomTypesJson, roomLabels), as read. */
+    get roomDetails() {
+      return state.rooms.fresh;
     },
     /** The map on the page (a wasm Map). */
     get map() {
@@ -1586,6 +1887,10 @@ function expose() {
         show: state.show,
         cloud: state.cloud,
         scale: state.scale,
+        drawScale: state.drawScale,
+        view: state.viewport.view.state(),
+        room: state.hover.id,
+        roomPinned: state.hover.pinned,
         ipf: state.ipf,
         drawMs: state.drawMs,
         painting: state.painting,
@@ -1605,6 +1910,7 @@ async function main() {
     plan: (from, to) => invoke('route', from[0], from[1], to[0], to[1]),
     rooms: () => state.rooms.rooms,
     size: () => ({ width: state.map.width, height: state.map.height }),
+    cellOf: (e) => cellFromEvent(e),
   });
   ui.version.textContent = version();
   setBrush(ui.brush.value);

@@ -1,15 +1,20 @@
 // The table-top page: a knowledge-supervised MCMC chain over noisy 6D box poses builds a
 // scene graph while you watch. The chain, the analysis and the pictures are the library's
 // (pkg/ksmcmc.js); this file is wiring: a requestAnimationFrame loop that gives the chain a
-// time budget per frame and redraws the view, the graph and the probability table.
+// time budget per frame and redraws the view, the graph and the probability table. Both
+// pictures zoom and pan (lib/viewport.js): the library draws them off screen, and they are
+// shown through their views.
 
 import init, { Tabletop, tabletopSynth, tabletopRulesDefault, tabletopCheckRules, version, wasmHeapBytes } from './pkg/ksmcmc.js';
 import { messages } from './lib/messages.js';
 import { download } from './lib/download.js';
 import { rulesEditor } from './lib/rules-editor.js';
+import { Viewport } from './lib/viewport.js';
 
 /** Milliseconds of iterations per animation frame. */
 const BUDGET_MS = 10;
+/** Width of the camera view at zoom 1, pixels; zoomed in, it is drawn twice as wide. */
+const VIEW_WIDTH = 800;
 
 const $ = (id) => document.getElementById(id);
 const ui = {
@@ -38,6 +43,15 @@ const state = {
   dirty: true,
   lastAnalysis: null,
   rate: { t: 0, it: 0 },
+  /** The pictures as the library draws them (off screen), and their zoom and pan. */
+  viewPicture: null,
+  graphPicture: null,
+  viewZoom: null,
+  graphZoom: null,
+  /** The camera view is drawn twice as wide when zoomed in (up to the camera's own width). */
+  viewDetail: 1,
+  /** The camera view's size at zoom 1, pixels: the canvas keeps it. */
+  viewBase: null,
 };
 
 function parseSeed(text) {
@@ -115,13 +129,38 @@ function redraw() {
   if (!tt) return;
   const a = JSON.parse(tt.analysisJson());
   state.lastAnalysis = a;
-  tt.drawView(ui.view, 800);
-  tt.drawGraph(ui.graph);
+  const v = state.viewZoom.view;
+  state.viewDetail = v.zoom >= 1.5 ? 2 : 1;
+  tt.drawView(state.viewPicture, VIEW_WIDTH * state.viewDetail);
+  if (state.viewDetail === 1) state.viewBase = [state.viewPicture.width, state.viewPicture.height];
+  tt.drawGraph(state.graphPicture);
+  paintPictures();
   renderTable(a);
   ui.stat.iteration.textContent = String(tt.iteration);
   ui.stat.lp.textContent = tt.logPosterior.toFixed(2);
   ui.stat.best.textContent = tt.bestLogPosterior.toFixed(2);
   state.dirty = false;
+}
+
+/** Shows both pictures through their views, on canvases of the pictures' size at zoom 1. */
+function paintPictures() {
+  const show = (canvas, picture, zoom, [w, h] = [picture.width, picture.height]) => {
+    if (!picture.width) return;
+    if (canvas.width !== w || canvas.height !== h) {
+      canvas.width = w;
+      canvas.height = h;
+    }
+    zoom.draw(canvas, picture);
+  };
+  show(ui.view, state.viewPicture, state.viewZoom, state.viewBase ?? undefined);
+  show(ui.graph, state.graphPicture, state.graphZoom);
+}
+
+/** A view moved: shown again at once; the camera view is drawn again if it needs more detail. */
+function viewMoved() {
+  const detail = state.viewZoom.view.zoom >= 1.5 ? 2 : 1;
+  if (detail !== state.viewDetail) attempt(redraw);
+  else paintPictures();
 }
 
 function frame() {
@@ -189,6 +228,12 @@ function applyRules() {
 }
 
 function wire() {
+  state.viewPicture = document.createElement('canvas');
+  state.graphPicture = document.createElement('canvas');
+  state.viewZoom = new Viewport(ui.view, { onChange: viewMoved, controls: { className: 'zoom-controls', label: 'Zoom the camera view' } });
+  state.graphZoom = new Viewport(ui.graph, { onChange: viewMoved, controls: { className: 'zoom-controls', label: 'Zoom the scene graph' } });
+  ui.view.after(state.viewZoom.controls);
+  ui.graph.after(state.graphZoom.controls);
   ui.messageClose.addEventListener('click', clearError);
   ui.run.addEventListener('click', () => (state.running ? pause() : play()));
   ui.step.addEventListener('click', () => attempt(() => {
@@ -232,6 +277,9 @@ function expose() {
       rulesUnderlined: document.querySelector('.rules-marks .err')?.textContent ?? null,
       rulesBadLine: state.editor?.badLine ?? 0,
       rulesInUse: state.rules,
+      view: state.viewZoom.view.state(),
+      graphView: state.graphZoom.view.state(),
+      viewDetail: state.viewDetail,
     }),
     synthText: () => tabletopSynth(9),
     /** Bytes of the page's wasm heap (the soak test watches it). */

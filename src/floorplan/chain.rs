@@ -566,6 +566,14 @@ impl Chain {
     /// otherwise stay untyped), otherwise with the built-in indoor rules (the weak-prior mode
     /// types its result only at the end). What `ksmcmc floorplan` writes as `world.json`.
     pub fn best_world_typed(&mut self) -> World {
+        self.best_world_inferred().0
+    }
+
+    /// [`Chain::best_world_typed`] and the inference that typed it: every unit's four type
+    /// marginals (`None` if the knowledge base failed on this world; its units then keep the
+    /// chain's types). The inference is cached by its evidence, so asking again for the same
+    /// best world costs nothing and changes nothing in the chain.
+    pub fn best_world_inferred(&mut self) -> (World, Option<super::knowledge::Inferred>) {
         let mut world = self.best_world();
         let resolution = self.resolution;
         if self.knowledge.is_none() && self.typer.is_none() {
@@ -573,12 +581,13 @@ impl Chain {
         }
         let given = self.edits.type_facts(&world);
         let typer = if self.knowledge.is_some() { self.knowledge.as_mut() } else { self.typer.as_mut() };
-        if let Some(Ok(inferred)) = typer.map(|k| k.infer_given(&world, resolution, &given)) {
+        let inferred = typer.and_then(|k| k.infer_given(&world, resolution, &given).ok());
+        if let Some(inferred) = &inferred {
             for u in &mut world.units {
                 u.kind = inferred.types.get(&u.id).map_or(u.kind, |t| t.0);
             }
         }
-        world
+        (world, inferred)
     }
 
     /// Takes a person's edits as hard evidence ([`super::edits`]) and goes on from the current

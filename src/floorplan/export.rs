@@ -187,6 +187,13 @@ pub fn rooms_json(world: &World) -> String {
     serde_json::to_string(&world.rooms).expect("rooms serialise")
 }
 
+/// The type marginals of the rooms ([`super::room_types::room_types`]) as compact JSON: per
+/// room `{"id", "marginals": {"room", "corridor", "hall", "other"} | null, "units": [{"id",
+/// "type", "marginals"}]}`.
+pub fn room_types_json(rooms: &[super::room_types::RoomTypes]) -> String {
+    serde_json::to_string(rooms).expect("room types serialise")
+}
+
 /// `labels.pgm`: the room id per cell as a 16-bit binary PGM.
 pub fn labels_pgm(labels: &Grid<u16>) -> Vec<u8> {
     crate::grid::pgm::encode_u16(labels.width(), labels.height(), labels.cells())

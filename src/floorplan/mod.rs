@@ -23,6 +23,7 @@ pub mod outline;
 pub mod posterior;
 pub mod report;
 pub mod room_layer;
+pub mod room_types;
 pub mod rooms;
 pub mod route;
 mod schedule;

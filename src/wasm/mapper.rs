@@ -20,6 +20,7 @@ use super::{js_message, put_rgba, seed_from_js, Map, Rendered};
 use crate::floorplan::geojson::world_geojson;
 use crate::floorplan::georef::Georef;
 use crate::floorplan::report::report as ksmcmc_report;
+use crate::floorplan::room_types::room_types;
 use crate::floorplan::rooms::RoomConfig;
 use crate::floorplan::route::RoutePlanner;
 use crate::floorplan::settled::Settled;
@@ -511,6 +512,24 @@ impl Mapper {
     ) -> Result<String, JsError> {
         let (from, to) = super::route::ends(from_x, from_y, to_x, to_y)?;
         Ok(self.planner()?.route(from, to)?.to_json())
+    }
+
+    /// What the knowledge base believes about each room's type, as JSON text: per room of
+    /// `roomsJson` (same order), `{"id", "marginals": {"room", "corridor", "hall", "other"} |
+    /// null, "units": [{"id", "type", "marginals"}]}`. A room's marginals are its units'
+    /// `P(Room)`, `P(Corr)`, `P(Hall)` and `P(Other)` averaged by their interiors' areas; the
+    /// four are separate atoms of the knowledge base and need not add up to 1.
+    #[wasm_bindgen(js_name = roomTypesJson)]
+    pub fn room_types_json(&mut self) -> String {
+        let inferred = self.chain.best_world_inferred().1.unwrap_or_default();
+        export::room_types_json(&room_types(self.best_rooms().0, &inferred))
+    }
+
+    /// The room of every map cell in the best world, row-major (`width` x `height` values):
+    /// the room's id as in `roomsJson`, 0 for none. The samples of `labelsPgm`.
+    #[wasm_bindgen(js_name = roomLabels)]
+    pub fn room_labels(&mut self) -> Vec<u16> {
+        self.best_rooms().1.cells().to_vec()
     }
 
     /// The recorded trace from point `from` on (default 0): one point every

@@ -60,6 +60,18 @@ async function open() {
 }
 
 describe('The embed as pkg/README.md shows it', () => {
+  test('the package ships every module its modules import', () => {
+    const json = JSON.parse(readFileSync(join(REPO, 'pkg/package.json'), 'utf8'));
+    const shipped = json.files.filter((f) => f.endsWith('.js'));
+    assert.ok(shipped.includes('mount.js') && shipped.includes('viewport.js'), JSON.stringify(json.files));
+    for (const f of shipped) {
+      const text = readFileSync(join(REPO, 'pkg', f), 'utf8');
+      for (const [, spec] of text.matchAll(/^\s*import\b[^'"]*['"](\.\/[^'"]+)['"]/gm)) {
+        assert.ok(json.files.includes(spec.slice(2)), `${f} imports ${spec}, which package.json's files leave out`);
+      }
+    }
+  });
+
   test('the plain HTML snippet, verbatim, runs a live mapper', async () => {
     const page = await open();
     try {

@@ -7,6 +7,7 @@ import { matchImage, parseSeed, pickYamlImage, planOpen, stem, yamlImageName } f
 import { errorSpan, errorText } from '../../www/lib/rules-editor.js';
 import { naturalCompare } from '../../www/lib/natural.js';
 import { describeEdit, parseEdits } from '../../www/lib/edits.js';
+import { View, detailScale, MAX_ZOOM } from '../../www/lib/viewport.js';
 
 test('unit names sort by their numbers', () => {
   assert.deepEqual(['U10', 'U2', 'U1', 'U21', 'U3'].sort(naturalCompare), ['U1', 'U2', 'U3', 'U10', 'U21']);
@@ -205,4 +206,66 @@ test('edits are worded and imported files checked for a list', () => {
   assert.deepEqual(parseEdits('[]'), []);
   assert.match(parseEdits('not json').message, /not JSON/);
   assert.match(parseEdits('{"op": "merge"}').message, /JSON list/);
+});
+
+test('a view zooms about a point, pans, and never leaves the picture', () => {
+  const v = new View();
+  assert.deepEqual(v.state(), { zoom: 1, cx: 0.5, cy: 0.5 });
+  assert.deepEqual(v.toContent(0.3, 0.7), [0.3, 0.7], 'zoom 1: element and content agree');
+  assert.equal(v.panBy(0.1, 0), false, 'nothing to pan at zoom 1');
+  assert.equal(v.zoomAt(0.5), false, 'nothing to zoom out of');
+
+  // Zooming about (0.2, 0.25) keeps the content there.
+  const before = v.toContent(0.2, 0.25);
+  assert.equal(v.zoomAt(2, 0.2, 0.25), true);
+  const after = v.toContent(0.2, 0.25);
+  assert.ok(Math.abs(after[0] - before[0]) < 1e-12 && Math.abs(after[1] - before[1]) < 1e-12, `${before} -> ${after}`);
+  assert.equal(v.zoom, 2);
+  const [fx, fy] = v.toElement(...before);
+  assert.ok(Math.abs(fx - 0.2) < 1e-12 && Math.abs(fy - 0.25) < 1e-12, 'toElement inverts toContent');
+
+  // Zooming about a point near the corner clamps the view to the picture.
+  v.reset();
+  v.zoomAt(4, 0.01, 0.99);
+  assert.ok(Math.abs(v.cx - (0.01 + 0.49 / 4)) < 1e-12, 'about the point while it fits');
+  assert.equal(v.panBy(0.5, -0.5), true);
+  assert.deepEqual([v.cx, v.cy], [0.125, 0.875], 'the view touches the corner, no further');
+  assert.equal(v.panBy(0.5, -0.5), false, 'cannot pan off the picture');
+  assert.equal(v.panBy(-0.5, 0), true);
+  assert.equal(v.cx, 0.125 + 0.5 / 4);
+
+  // Limits.
+  v.zoomAt(1e6);
+  assert.equal(v.zoom, MAX_ZOOM);
+  v.zoomAt(NaN);
+  assert.ok(Number.isFinite(v.zoom) && v.zoom >= 1, 'a NaN factor does not break the view');
+  v.zoom = Infinity;
+  v.clamp();
+  assert.ok(v.zoom === 1 || v.zoom === MAX_ZOOM);
+
+  // The canvas transform draws content point (u, v) where toElement says.
+  v.reset();
+  v.zoomAt(3, 0.7, 0.4);
+  const [a, , , d, e, f] = v.transform(600, 400, 300, 200);
+  const [u, w] = [0.55, 0.45];
+  const [ex, ey] = v.toElement(u, w);
+  assert.ok(Math.abs(a * u * 300 + e - ex * 600) < 1e-9 && Math.abs(d * w * 200 + f - ey * 400) < 1e-9);
+
+  // A pinch to zoom 2 with content (0.6, 0.5) under (0.6, 0.5): that point stays put.
+  v.reset();
+  v.pinchTo(0.6, 0.5, 2, 0.6, 0.5);
+  assert.deepEqual(v.toElement(0.6, 0.5).map((x) => Math.round(x * 1e12) / 1e12), [0.6, 0.5]);
+  // Centring a point out of view.
+  assert.equal(v.reveal(0.05, 0.05), true);
+  assert.deepEqual([v.cx, v.cy], [0.25, 0.25]);
+  assert.equal(v.reveal(0.25, 0.25), false, 'already in view');
+});
+
+test('zoomed pictures get more pixels per cell within their limits', () => {
+  assert.equal(detailScale(2, 1, 1000), 2);
+  assert.equal(detailScale(2, 2.2, 1000), 5);
+  assert.equal(detailScale(3, 16, 1000), 8, 'at most maxScale');
+  assert.equal(detailScale(3, 4, 831_264, { maxPixels: 6_000_000 }), 2, 'Cartesium: at most 6 million pixels');
+  assert.equal(detailScale(1, 1, 1e9), 1, 'never below 1');
+  assert.equal(detailScale(NaN, 2, 10), 1);
 });

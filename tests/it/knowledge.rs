@@ -64,3 +64,39 @@ fn knowledge_is_on_by_default_and_inference_keeps_to_its_time_share() {
         assert!(err.contains("time_share"), "{err}");
     }
 }
+
+/// The rooms' type marginals on a real run: one row per room of the room layer, in its order,
+/// each unit typed by its most probable marginal, and a one-unit room carrying exactly its
+/// unit's marginals. The same inference typed the world, so asking for it changes nothing.
+#[test]
+fn room_type_marginals_follow_the_units_inference() {
+    use ksmcmc::floorplan::room_types::room_types;
+    let s = generate(&SynthConfig::default(), 201).unwrap();
+    let mut chain = Chain::new(&s.map, ChainConfig::default(), 2).unwrap();
+    chain.step(20_000);
+    let (world, _) = chain.best_world_with_rooms(&Default::default());
+    let (typed, inferred) = chain.best_world_inferred();
+    let inferred = inferred.expect("the built-in rules infer");
+    assert_eq!(typed.units, world.units, "the rooms' world is the inferred one");
+    let rooms = room_types(&world, &inferred);
+    assert_eq!(rooms.iter().map(|r| r.id).collect::<Vec<_>>(), world.rooms.iter().map(|r| r.id).collect::<Vec<_>>());
+    let order = [UnitType::Room, UnitType::Corridor, UnitType::Hall, UnitType::Other];
+    let mut single = 0;
+    for (room, row) in world.rooms.iter().zip(&rooms) {
+        assert_eq!(row.units.iter().map(|u| u.id).collect::<Vec<_>>(), room.units);
+        for u in &row.units {
+            let p = u.marginals.expect("every unit of the best world was inferred");
+            let p = [p.room, p.corridor, p.hall, p.other];
+            assert!(p.iter().all(|v| (0.0..=1.0).contains(v)), "{p:?}");
+            let top = (0..4).max_by(|&a, &b| p[a].total_cmp(&p[b])).unwrap();
+            assert_eq!(u.kind, order[top], "unit {} typed by its most probable marginal {p:?}", u.id);
+        }
+        if let [only] = row.units.as_slice() {
+            single += 1;
+            let (a, b) = (row.marginals.unwrap(), only.marginals.unwrap());
+            let d = [a.room - b.room, a.corridor - b.corridor, a.hall - b.hall, a.other - b.other];
+            assert!(d.iter().all(|d| d.abs() < 1e-12), "room {:?} unit {:?}", a, b);
+        }
+    }
+    assert!(single >= 1, "a run of office 201 has one-unit rooms: {rooms:?}");
+}

@@ -21,7 +21,7 @@ const DRAW_SHARE = 0.3;
  * The mapper's methods the page may call through `invoke` (exports, the report, the best
  * world's rooms, routes through them and its 3D model).
  */
-const INVOKABLE = new Set(['bestWorldJson', 'worldJson', 'labelsPgm', 'graphJson', 'reportJson', 'toPng', 'roomsJson', 'geojson', 'svg', 'route', 'worldGlb', 'setEdits', 'editsJson']);
+const INVOKABLE = new Set(['bestWorldJson', 'worldJson', 'labelsPgm', 'graphJson', 'reportJson', 'toPng', 'roomsJson', 'roomTypesJson', 'geojson', 'svg', 'route', 'worldGlb', 'setEdits', 'editsJson']);
 
 const ready = init();
 const state = {
@@ -305,6 +305,19 @@ const ops = {
   learn({ kb, world, resolution, method }) {
     return learnRules(kb, world, resolution, method);
   },
+  /**
+   * The best world's rooms (`roomsJson` text), and with `details` their type marginals
+   * (`roomTypesJson` text) and the room id of every cell (`roomLabels`, transferred), unless
+   * the page has them: rooms whose text is `known`, details read with rooms `knownDetails`
+   * (then `{ same: true }`, or the text alone).
+   */
+  rooms({ details, known, knownDetails }) {
+    const m = state.mapper;
+    const text = m.roomsJson();
+    const withDetails = Boolean(details) && text !== knownDetails;
+    if (text === known && !withDetails) return { same: true };
+    return { text, types: withDetails ? m.roomTypesJson() : null, labels: withDetails ? m.roomLabels() : null };
+  },
   /** Bytes of the worker's wasm heap (the soak test watches it). Needs no chain. */
   heap() {
     return wasmHeapBytes();
@@ -350,7 +363,7 @@ onmessage = async (e) => {
     }
     if (op !== 'load' && op !== 'learn' && op !== 'heap' && !state.mapper) throw new Error('no chain yet');
     const result = ops[op](args ?? {});
-    const transfer = result instanceof Uint8Array ? [result.buffer] : [];
+    const transfer = result instanceof Uint8Array ? [result.buffer] : result?.labels instanceof Uint16Array ? [result.labels.buffer] : [];
     postMessage({ id, result }, transfer);
   } catch (err) {
     postMessage({ id, error: err instanceof Error ? err.message : String(err) });

@@ -57,7 +57,7 @@ export class RouteView {
   pick(event) {
     const r = this.ui.canvas.getBoundingClientRect();
     const { width, height } = this.host.size();
-    const cell = cellAt(event.clientX - r.left, event.clientY - r.top, r, width, height);
+    const cell = this.host.cellOf ? this.host.cellOf(event) : cellAt(event.clientX - r.left, event.clientY - r.top, r, width, height);
     if (!this.from || this.to) {
       this.from = cell;
       this.to = null;

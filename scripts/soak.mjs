@@ -179,6 +179,8 @@ async function soak(env, kind, seed) {
   const samples = [];
   const actions = {};
   const panics = [];
+  const grew = [];
+  let peak = (await heaps(page, kind)).wasm;
   const start = Date.now();
   let nextSample = start;
   for (let step = 0; Date.now() - start < MINUTES * 60_000; step++) {
@@ -190,13 +192,20 @@ async function soak(env, kind, seed) {
     }
     const { pick, msg } = kind === 'mapper' ? await mapperAction(page, rand, maps, step) : await tabletopAction(page, rand, step);
     actions[pick] = (actions[pick] ?? 0) + 1;
+    // Which action made the wasm heap grow, for whoever has to find out why.
+    const now = (await heaps(page, kind)).wasm;
+    if (now > peak) {
+      console.log(`${kind}: wasm heap ${mib(peak)} -> ${mib(now)} MiB after ${pick} (action ${step + 1})`);
+      grew.push({ step: step + 1, action: pick, wasm_mib: mib(now) });
+      peak = now;
+    }
     if (/panick|unreachable|RuntimeError/i.test(msg)) panics.push(msg);
     await sleep(500 + rand() * 2500);
   }
   const h = await heaps(page, kind);
   samples.push({ minute: MINUTES, wasm_mib: mib(h.wasm), js_mib: mib(h.js) });
   await page.context().close();
-  return { page: kind, samples, actions, problems: [...problems, ...panics.map((p) => `${kind}: panic shown: ${p}`)] };
+  return { page: kind, samples, actions, grew, problems: [...problems, ...panics.map((p) => `${kind}: panic shown: ${p}`)] };
 }
 
 /** The wasm heap's growth after the warm-up: the last sample over the first after WARMUP_MIN. */

@@ -302,6 +302,9 @@ struct Snapshot {
     iteration: u64,
 }
 
+/// Most points a table-top chain's trace holds before it is thinned ([`TabletopChain::trace`]).
+pub const MAX_TRACE_POINTS: usize = 10_000;
+
 /// The chain: a scene, its current and best poses, and the knowledge base.
 #[derive(Debug, Clone)]
 pub struct TabletopChain {
@@ -321,6 +324,8 @@ pub struct TabletopChain {
     iteration: u64,
     stats: ProposalStats,
     trace: Vec<TracePoint>,
+    /// A trace point is recorded every `trace_every` iterations ([`MAX_TRACE_POINTS`]).
+    trace_every: u64,
     candidate_lik: Vec<f64>,
     steps: Vec<Matrix6<f64>>,
 }
@@ -387,6 +392,7 @@ impl TabletopChain {
             iteration: 0,
             stats: ProposalStats::default(),
             trace: Vec::new(),
+            trace_every: 1,
             candidate_lik: Vec::new(),
             steps: Vec::new(),
         };
@@ -436,6 +442,9 @@ impl TabletopChain {
     }
 
     fn record(&mut self) {
+        if self.iteration % self.trace_every != 0 {
+            return;
+        }
         let lp = self.log_posterior();
         let acceptance = self.stats.acceptance();
         self.trace.push(TracePoint {
@@ -444,6 +453,17 @@ impl TabletopChain {
             acceptance,
             size: self.scene.objects.len() as u32,
         });
+        if self.trace.len() >= MAX_TRACE_POINTS {
+            // Every other point goes, and points come half as often: the trace still spans the
+            // whole run at an even stride, in bounded memory (the soak test saw a page left
+            // running grow its heap by tens of MB, one point per iteration).
+            let mut k = 0usize;
+            self.trace.retain(|_| {
+                k += 1;
+                k % 2 == 1
+            });
+            self.trace_every *= 2;
+        }
     }
 
     /// Runs `n` iterations (sweeps over all objects).
@@ -557,7 +577,9 @@ impl TabletopChain {
         self.best.iteration
     }
 
-    /// The trace: one point per iteration (and one for the start).
+    /// The trace: one point per iteration (and one for the start) until it holds
+    /// [`MAX_TRACE_POINTS`]; then every other point is dropped and points are recorded half as
+    /// often, so that a long run keeps an evenly spaced trace of bounded size.
     pub fn trace(&self) -> &[TracePoint] {
         &self.trace
     }

@@ -655,3 +655,20 @@ fn drawings_mark_false_estimates_red_and_hiding_objects_cyan() {
     // Same input, same pixels.
     assert_eq!(marked.data(), draw_view(c.scene(), &poses, &marks(&a), &opts).data());
 }
+
+#[test]
+fn a_long_run_keeps_an_evenly_spaced_trace_of_bounded_size() {
+    use ksmcmc::tabletop::chain::MAX_TRACE_POINTS;
+    let config = SynthConfig { min_objects: 2, max_objects: 2, ..SynthConfig::default() };
+    let mut c = TabletopChain::new(generate(&config, 8).unwrap(), ChainConfig::default(), 2).unwrap();
+    let n = 2 * MAX_TRACE_POINTS as u32 + 123;
+    c.step(n);
+    let t = c.trace();
+    assert!(t.len() < MAX_TRACE_POINTS, "{} points", t.len());
+    assert!(t.len() > MAX_TRACE_POINTS / 4, "{} points", t.len());
+    assert_eq!(t[0].iteration, 0, "the start stays");
+    let stride = t[1].iteration - t[0].iteration;
+    assert_eq!(stride, 4, "thinned twice");
+    assert!(t.windows(2).all(|w| w[1].iteration - w[0].iteration == stride), "an even stride");
+    assert!(u64::from(n) - t.last().unwrap().iteration < stride, "up to the end of the run");
+}

@@ -234,21 +234,6 @@ impl Edits {
             .collect()
     }
 
-    /// The map cells of every split wall (4-connected lines, see [`line_cells`]).
-    pub fn wall_cells(&self, map: &Grid<Cell>) -> Vec<(usize, usize)> {
-        let (w, h) = (map.width() as i64, map.height() as i64);
-        let mut cells: Vec<(usize, usize)> = self
-            .wall_lines(map)
-            .iter()
-            .flat_map(|&[a, b]| line_cells(a, b))
-            .filter(|&(x, y)| x >= 0 && y >= 0 && x < w && y < h)
-            .map(|(x, y)| (x as usize, y as usize))
-            .collect();
-        cells.sort_unstable();
-        cells.dedup();
-        cells
-    }
-
     /// The cells of every split wall in the world frame `frame` (for the chain's constraint), from the
     /// lines on `map` (the map in its own frame).
     pub fn world_wall_cells(&self, map: &Grid<Cell>, frame: &Frame) -> Vec<(i32, i32)> {
@@ -291,12 +276,7 @@ impl Edits {
                 }
             }
         }
-        let preds = [
-            ("Room", UnitType::Room),
-            ("Corr", UnitType::Corridor),
-            ("Hall", UnitType::Hall),
-            ("Other", UnitType::Other),
-        ];
+        let preds = super::knowledge::TYPE_PREDICATES;
         by_unit
             .into_iter()
             .flat_map(|(id, kind)| preds.map(|(p, t)| (p, vec![super::knowledge::constant(id)], t == kind)))
@@ -621,30 +601,19 @@ fn split_room_across(labels: &mut Grid<u16>, a: [i64; 2], b: [i64; 2], wall: &[(
 
 /// The 4-connected parts of the cells labelled `l`, as cell indices.
 fn parts_of(labels: &Grid<u16>, l: u16) -> Vec<Vec<usize>> {
+    use crate::grid::flood::{Flood, Neighbours};
     let (w, h) = (labels.width(), labels.height());
+    let cells = labels.cells();
     let mut seen = vec![false; w * h];
+    let mut flood = Flood::default();
     let mut parts = Vec::new();
     for start in 0..w * h {
-        if seen[start] || labels.cells()[start] != l {
+        if seen[start] || cells[start] != l {
             continue;
         }
-        seen[start] = true;
-        let mut part = vec![start];
-        let mut k = 0;
-        while k < part.len() {
-            let (x, y) = (part[k] % w, part[k] / w);
-            k += 1;
-            for (nx, ny) in [(x.wrapping_sub(1), y), (x + 1, y), (x, y.wrapping_sub(1)), (x, y + 1)] {
-                if nx >= w || ny >= h {
-                    continue;
-                }
-                let j = ny * w + nx;
-                if !seen[j] && labels.cells()[j] == l {
-                    seen[j] = true;
-                    part.push(j);
-                }
-            }
-        }
+        let mut part = Vec::new();
+        let enter = |j: usize| cells[j] == l && !std::mem::replace(&mut seen[j], true);
+        flood.fill(w, h, [start], Neighbours::Four, enter, |i| part.push(i));
         parts.push(part);
     }
     parts
@@ -726,8 +695,8 @@ mod tests {
             }
         }
         let e = Edits::parse(r#"[{"op": "split", "line": [[10, 3], [10, 8]]}]"#).unwrap();
-        let cells = e.wall_cells(&map);
-        assert_eq!(cells.iter().filter(|c| c.0 == 10).count(), 12, "from wall to wall: {cells:?}");
+        // From wall to wall: each end moved onto the first wall cell past it.
+        assert_eq!(e.wall_lines(&map), vec![[[10.0, 0.0], [10.0, 11.0]]]);
         let mut labels = Grid::new(22, 12, 0u16);
         for y in 1..11 {
             for x in 1..21 {

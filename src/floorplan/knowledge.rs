@@ -541,7 +541,9 @@ pub struct Knowledge {
     pub last_work: u64,
 }
 
-const TYPE_PREDICATES: [(&str, UnitType); 4] =
+/// The unit-type predicates of the knowledge bases (Tab. 3.3), with the type each stands for:
+/// the indoor rules' query atoms, the room rules' evidence and the atoms a type edit fixes.
+pub(crate) const TYPE_PREDICATES: [(&str, UnitType); 4] =
     [("Room", UnitType::Room), ("Corr", UnitType::Corridor), ("Hall", UnitType::Hall), ("Other", UnitType::Other)];
 
 impl Knowledge {

@@ -30,8 +30,7 @@ use std::collections::{BTreeMap, BTreeSet};
 pub const BUILTIN_ROOM_RULES: &str = include_str!("../../samples/knowledge/rooms.mln");
 
 /// The unit-type evidence predicates of the room rules, with the type each stands for.
-const TYPES: [(&str, UnitType); 4] =
-    [("Room", UnitType::Room), ("Corr", UnitType::Corridor), ("Hall", UnitType::Hall), ("Other", UnitType::Other)];
+const TYPES: [(&str, UnitType); 4] = super::knowledge::TYPE_PREDICATES;
 
 /// A knowledge base that decides which open-adjacent units are one room (query `SameRoom`).
 #[derive(Debug, Clone)]

@@ -8,7 +8,7 @@
 use super::explain::Explanation;
 use super::world::{Rect, Unit, UnitType};
 pub use crate::geometry::Axis;
-use crate::geometry::CellCounts;
+use crate::geometry::{AreaCounts, CellCounts};
 use crate::grid::{Cell, Grid};
 
 /// A door between two units, by unit id; its rectangle follows the units' walls.
@@ -192,9 +192,9 @@ pub struct State {
     pub wall: i32,
     width: i32,
     height: i32,
-    /// Summed-area table over `(width + 1) x (height + 1)` of the cells no unit interior may
-    /// hold (a person's split walls, [`State::forbid`]); empty when there are none.
-    forbidden: Vec<u32>,
+    /// The cells no unit interior may hold (a person's split walls, [`State::forbid`]),
+    /// counted as occupied cells; `None` when there are none.
+    forbidden: Option<AreaCounts>,
 }
 
 impl State {
@@ -212,7 +212,7 @@ impl State {
             wall: wall.max(1),
             width: map.width() as i32,
             height: map.height() as i32,
-            forbidden: Vec::new(),
+            forbidden: None,
         }
     }
 
@@ -221,41 +221,22 @@ impl State {
     /// invalid ([`State::is_valid`]). An empty list lifts the constraint. Units that already
     /// break it stay until [`State::breaks_forbidden`] finds them and they are removed.
     pub fn forbid(&mut self, cells: &[(i32, i32)]) {
-        let (w, h) = (self.width as usize, self.height as usize);
-        let on_grid: Vec<&(i32, i32)> =
-            cells.iter().filter(|&&(x, y)| x >= 0 && y >= 0 && x < self.width && y < self.height).collect();
-        if on_grid.is_empty() {
-            self.forbidden = Vec::new();
-            return;
-        }
-        let mut sat = vec![0u32; (w + 1) * (h + 1)];
-        for &&(x, y) in &on_grid {
-            sat[(y as usize + 1) * (w + 1) + x as usize + 1] = 1;
-        }
-        for y in 1..=h {
-            for x in 1..=w {
-                let i = y * (w + 1) + x;
-                sat[i] += sat[i - 1] + sat[i - (w + 1)] - sat[i - (w + 1) - 1];
+        let mut marked = Grid::new(self.width as usize, self.height as usize, Cell::Free);
+        let mut any = false;
+        for &(x, y) in cells {
+            if x >= 0 && y >= 0 && x < self.width && y < self.height {
+                *marked.at_mut(x as usize, y as usize) = Cell::Occupied;
+                any = true;
             }
         }
-        self.forbidden = sat;
+        self.forbidden = any.then(|| AreaCounts::new(&marked, Cell::Occupied));
     }
 
     /// Whether the interior of a unit with rectangle `r` holds a forbidden cell.
     pub fn breaks_forbidden(&self, r: Rect) -> bool {
-        if self.forbidden.is_empty() {
-            return false;
-        }
         let t = self.wall;
-        let clamp = |v: i32, hi: i32| v.clamp(0, hi) as usize;
-        let (x0, x1) = (clamp(r.x + t, self.width), clamp(r.right() - t, self.width));
-        let (y0, y1) = (clamp(r.y + t, self.height), clamp(r.bottom() - t, self.height));
-        if x0 >= x1 || y0 >= y1 {
-            return false;
-        }
-        let w1 = self.width as usize + 1;
-        let at = |x: usize, y: usize| self.forbidden[y * w1 + x] as i64;
-        at(x1, y1) - at(x0, y1) - at(x1, y0) + at(x0, y0) > 0
+        let inner = Rect { x: r.x + t, y: r.y + t, w: r.w - 2 * t, h: r.h - 2 * t };
+        self.forbidden.as_ref().is_some_and(|f| f.count(inner) > 0)
     }
 
     /// Grid width.

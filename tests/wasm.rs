@@ -351,10 +351,9 @@ fn mapper_matches_the_library_on_a_sample() {
     assert!(m.best_units() >= 3, "{} units", m.best_units());
 }
 
-#[wasm_bindgen_test]
-fn routes_match_the_library() {
-    // The best world's route, as the library plans it on the same world and labels, and as
-    // planRoute plans it from the world's JSON (with the labels, and finding them again).
+/// The office-small sample in a `Mapper` and in the library's chain, both seed 3 and 2,000
+/// iterations, with the chain's best world and room labels.
+fn office_small_after_2000() -> (Map, Mapper, Chain, World, ksmcmc::grid::Grid<u16>) {
     let map = Map::from_yaml(
         include_str!("../samples/office-small/map.yaml"),
         include_bytes!("../samples/office-small/map.pgm"),
@@ -365,6 +364,14 @@ fn routes_match_the_library() {
     let mut chain = Chain::new(map.inner(), ChainConfig::default(), 3).unwrap();
     chain.step(2000);
     let (world, labels) = chain.best_world_with_rooms(&Default::default());
+    (map, m, chain, world, labels)
+}
+
+#[wasm_bindgen_test]
+fn routes_match_the_library() {
+    // The best world's route, as the library plans it on the same world and labels, and as
+    // planRoute plans it from the world's JSON (with the labels, and finding them again).
+    let (map, mut m, _, world, labels) = office_small_after_2000();
     let mut planner = RoutePlanner::new(map.inner().classified().clone(), labels, &world, 0.05).unwrap();
     let (from, to) = ((200.0, 100.0), (60.0, 250.0));
     let native = planner.route((200, 100), (60, 250)).unwrap().to_json();
@@ -410,16 +417,7 @@ fn world_glb_matches_the_library() {
 
 #[wasm_bindgen_test]
 fn mapper_gives_room_labels_and_type_marginals_as_the_library() {
-    let map = Map::from_yaml(
-        include_str!("../samples/office-small/map.yaml"),
-        include_bytes!("../samples/office-small/map.pgm"),
-    )
-    .unwrap();
-    let mut m = Mapper::new(&map, None, Some(JsValue::from(3))).unwrap();
-    m.step(2000.0).unwrap();
-    let mut chain = Chain::new(map.inner(), ChainConfig::default(), 3).unwrap();
-    chain.step(2000);
-    let (world, labels) = chain.best_world_with_rooms(&Default::default());
+    let (_, mut m, mut chain, world, labels) = office_small_after_2000();
     assert_eq!(m.room_labels(), labels.cells().to_vec());
     let inferred = chain.best_world_inferred().1.unwrap();
     let expected =

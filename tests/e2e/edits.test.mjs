@@ -4,7 +4,7 @@
 
 import { after, before, test } from 'node:test';
 import assert from 'node:assert/strict';
-import { download, openPage, startBrowser } from './harness.mjs';
+import { download, openPage, snap, startBrowser } from './harness.mjs';
 
 let env;
 before(async () => {
@@ -14,7 +14,6 @@ after(async () => {
   await env?.close();
 });
 
-const snap = (page) => page.evaluate(() => window.__ksmcmc.snapshot());
 const idle = (page) => page.evaluate(() => window.__ksmcmc.idle());
 const editsJson = async (page) => JSON.parse(await page.evaluate(() => window.__ksmcmc.mapper.editsJson()));
 

@@ -1,5 +1,6 @@
 // Shared set-up for the browser tests: paths, the native CLI, the server and Chromium.
 
+import assert from 'node:assert/strict';
 import { spawnSync } from 'node:child_process';
 import { existsSync } from 'node:fs';
 import { dirname, join, resolve } from 'node:path';
@@ -134,4 +135,23 @@ export async function download(page, selector) {
 /** An 8-bit binary PGM. */
 export function pgm(width, height, samples) {
   return Buffer.concat([Buffer.from(`P5\n${width} ${height}\n255\n`), Buffer.from(samples)]);
+}
+
+/** Fails on console errors and uncaught exceptions, then closes the page. */
+export async function done(page) {
+  const problems = page.problems;
+  await page.context().close();
+  assert.deepEqual(problems, [], 'the page logged errors');
+}
+
+/** The numbers of a page that exposes `window.__ksmcmc.snapshot()` (the mapper, the table-top). */
+export const snap = (page) => page.evaluate(() => window.__ksmcmc.snapshot());
+
+/** Waits until `predicate(snapshot, arg)` holds; on timeout fails with the last snapshot. */
+export async function until(page, predicate, arg, timeout = 20_000) {
+  try {
+    await page.waitForFunction(([src, a]) => new Function('s', 'a', `return (${src})(s, a)`)(window.__ksmcmc.snapshot(), a), [predicate.toString(), arg], { timeout });
+  } catch (err) {
+    assert.fail(`waited for ${predicate} (${JSON.stringify(arg)}): ${err.message.split('\n')[0]}; the page is at ${JSON.stringify(await snap(page))}`);
+  }
 }

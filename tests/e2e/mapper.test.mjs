@@ -9,7 +9,7 @@ import { existsSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'no
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { check as checkGeoJson } from '@placemarkio/check-geojson';
-import { DATASETS, REPO, cli, download, openPage, pgm, startBrowser } from './harness.mjs';
+import { cli, DATASETS, done, download, openPage, pgm, REPO, snap, startBrowser, until } from './harness.mjs';
 
 let env;
 let tmp;
@@ -23,25 +23,6 @@ after(async () => {
 });
 
 const SAMPLE = join(REPO, 'samples/office-small');
-
-/** Fails on console errors and uncaught exceptions, then closes the page. */
-async function done(page) {
-  const problems = page.problems;
-  await page.context().close();
-  assert.deepEqual(problems, [], 'the page logged errors');
-}
-
-/** The page's numbers (window.__ksmcmc.snapshot()). */
-const snap = (page) => page.evaluate(() => window.__ksmcmc.snapshot());
-
-/** Waits until `predicate(snapshot)` holds; on timeout fails with the last snapshot. */
-async function until(page, predicate, arg, timeout = 20_000) {
-  try {
-    await page.waitForFunction(([src, a]) => new Function('s', 'a', `return (${src})(s, a)`)(window.__ksmcmc.snapshot(), a), [predicate.toString(), arg], { timeout });
-  } catch (err) {
-    assert.fail(`waited for ${predicate} (${JSON.stringify(arg)}): ${err.message.split('\n')[0]}; the page is at ${JSON.stringify(await snap(page))}`);
-  }
-}
 
 /**
  * Waits until the page has drawn the chain's latest state (the chain runs in a worker, and

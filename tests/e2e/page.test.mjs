@@ -7,7 +7,7 @@ import { existsSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'no
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import {
-  DATASETS, canvasClasses, cli, download, nativeInfo, openPage, pgm, shownCounts, startBrowser,
+  DATASETS, canvasClasses, cli, done, download, nativeInfo, openPage, pgm, shownCounts, startBrowser,
 } from './harness.mjs';
 
 let env;
@@ -20,13 +20,6 @@ after(async () => {
   await env?.close();
   if (tmp) rmSync(tmp, { recursive: true, force: true });
 });
-
-/** Fails on console errors and uncaught exceptions, then closes the page. */
-async function done(page) {
-  const problems = page.problems;
-  await page.context().close();
-  assert.deepEqual(problems, [], 'the page logged errors');
-}
 
 /** The canvas shows the map one pixel per cell, in the classes the library counted. */
 async function assertShows(page, expected) {

@@ -8,7 +8,7 @@ import assert from 'node:assert/strict';
 import { mkdtempSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { download, openPage, startBrowser } from './harness.mjs';
+import { done, download, openPage, snap, startBrowser } from './harness.mjs';
 
 let env;
 let tmp;
@@ -20,14 +20,6 @@ after(async () => {
   await env?.close();
   if (tmp) rmSync(tmp, { recursive: true, force: true });
 });
-
-const snap = (page) => page.evaluate(() => window.__ksmcmc.snapshot());
-
-async function done(page) {
-  const problems = page.problems;
-  await page.context().close();
-  assert.deepEqual(problems, [], 'the page logged errors');
-}
 
 /** Pixels of a canvas that are not the background (245, 245, 245) nor transparent. */
 function inked(page, selector) {

@@ -5,7 +5,7 @@
 
 import { after, before, describe, test } from 'node:test';
 import assert from 'node:assert/strict';
-import { openPage, startBrowser } from './harness.mjs';
+import { done, openPage, snap, startBrowser, until } from './harness.mjs';
 
 let env;
 before(async () => {
@@ -14,23 +14,6 @@ before(async () => {
 after(async () => {
   await env?.close();
 });
-
-async function done(page) {
-  const problems = page.problems;
-  await page.context().close();
-  assert.deepEqual(problems, [], 'the page logged errors');
-}
-
-const snap = (page) => page.evaluate(() => window.__ksmcmc.snapshot());
-
-/** Waits until `predicate(snapshot)` holds; on timeout fails with the last snapshot. */
-async function until(page, predicate, arg, timeout = 20_000) {
-  try {
-    await page.waitForFunction(([src, a]) => new Function('s', 'a', `return (${src})(s, a)`)(window.__ksmcmc.snapshot(), a), [predicate.toString(), arg], { timeout });
-  } catch (err) {
-    assert.fail(`waited for ${predicate} (${JSON.stringify(arg)}): ${err.message.split('\n')[0]}; the page is at ${JSON.stringify(await snap(page))}`);
-  }
-}
 
 /** Waits until the mapper has drawn the chain's latest state and waits for nothing. */
 const idle = (page) => page.evaluate(() => window.__ksmcmc.idle());

@@ -89,6 +89,18 @@ async function shownError(page) {
   return page.evaluate(() => (document.getElementById('message').hidden ? '' : document.getElementById('message-text').textContent));
 }
 
+/**
+ * After an action: reads and dismisses the alert it raised, and starts the chain again unless
+ * it runs or `keepPaused` (pages are soaked mostly running). Returns the action and the alert.
+ */
+async function afterAction(page, pick, keepPaused) {
+  const msg = await shownError(page);
+  if (msg) await dismiss(page);
+  const s = await page.evaluate(() => window.__ksmcmc.snapshot());
+  if (!s.running && !keepPaused && (await page.isEnabled('#run'))) await page.click('#run');
+  return { pick, msg };
+}
+
 /** One random action on the mapper page. */
 async function mapperAction(page, rand, maps, step) {
   const pick = step < maps.length ? 'upload' : ['paint', 'upload', 'corrupt', 'reset', 'knowledge', 'pause'][Math.floor(rand() * 6)];
@@ -124,12 +136,7 @@ async function mapperAction(page, rand, maps, step) {
     default:
       if (await page.isEnabled('#run')) await page.click('#run');
   }
-  const msg = await shownError(page);
-  if (msg) await dismiss(page);
-  // Mostly running: start the chain again unless it is.
-  const s = await page.evaluate(() => window.__ksmcmc.snapshot());
-  if (!s.running && pick !== 'pause' && (await page.isEnabled('#run'))) await page.click('#run');
-  return { pick, msg };
+  return afterAction(page, pick, pick === 'pause');
 }
 
 /** One random action on the table-top page. */
@@ -156,11 +163,7 @@ async function tabletopAction(page, rand, step) {
     default:
       if (await page.isEnabled('#run')) await page.click('#run');
   }
-  const msg = await shownError(page);
-  if (msg) await dismiss(page);
-  const s = await page.evaluate(() => window.__ksmcmc.snapshot());
-  if (!s.running && (await page.isEnabled('#run'))) await page.click('#run');
-  return { pick, msg };
+  return afterAction(page, pick, false);
 }
 
 async function heaps(page, kind) {

@@ -34,6 +34,9 @@ use crate::mcmc::{accept, Cumulative, Ring, Rng, TracePoint};
 use crate::vision;
 use serde::{Deserialize, Serialize};
 
+mod update;
+pub use update::MapUpdate;
+
 /// Bottom-up detectors feeding the chain.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -290,6 +293,9 @@ pub struct Chain {
     typer: Option<super::knowledge::Knowledge>,
     /// A person's edits, hard evidence ([`Chain::set_edits`]).
     edits: super::edits::Edits,
+    /// The wall faces (columns, rows) the wall detector last built candidates on; `None` for
+    /// a chain given its candidates ([`Chain::with_candidates`]), whose pool the chain keeps.
+    faces: Option<(Vec<i32>, Vec<i32>)>,
 }
 
 impl Chain {
@@ -335,7 +341,11 @@ impl Chain {
         let min_side = config.kernels.min_side.max(2 * wall + 1);
         let candidates = Candidates::new(found.into_iter().filter(|(r, _)| r.w >= min_side && r.h >= min_side));
         let resolution = map.yaml().resolution;
-        Self::with_parts(config, frame, world_map, classified.clone(), candidates, wall, resolution, seed)
+        let faces = vision::walls::faces_of(&world_map, &config.detectors.walls);
+        let mut chain =
+            Self::with_parts(config, frame, world_map, classified.clone(), candidates, wall, resolution, seed)?;
+        chain.faces = Some(faces);
+        Ok(chain)
     }
 
     /// A chain on an upright world-frame map with an explicit ADD candidate pool (no detectors,
@@ -424,6 +434,7 @@ impl Chain {
             free_space_scratch: Default::default(),
             typer: None,
             edits: Default::default(),
+            faces: None,
         })
     }
 

@@ -18,6 +18,7 @@ mod knowledge;
 mod mln;
 mod mln_cli;
 mod model3d;
+mod online;
 mod pinned;
 mod render;
 mod route;

@@ -275,6 +275,9 @@ pub struct Chain {
     samples: Ring<Vec<Rect>>,
     phase_tables: Vec<Cumulative>,
     phase_index: usize,
+    /// The iteration the kernel schedule counts from: 0, or the last map update's
+    /// ([`Chain::update_map`]), after which the schedule's phases run again.
+    schedule_origin: u64,
     knowledge: Option<super::knowledge::Knowledge>,
     inferred: super::knowledge::Inferred,
     resolution: f64,
@@ -424,6 +427,7 @@ impl Chain {
             best_iteration: 0,
             phase_tables,
             phase_index: 0,
+            schedule_origin: 0,
             knowledge,
             inferred: Default::default(),
             resolution,
@@ -818,8 +822,8 @@ impl Chain {
 
     fn current_weights(&mut self) -> usize {
         let phases = &self.config.schedule.phases;
-        while self.phase_index + 1 < phases.len() && phases[self.phase_index].until.is_some_and(|u| self.iteration > u)
-        {
+        let since = self.iteration - self.schedule_origin;
+        while self.phase_index + 1 < phases.len() && phases[self.phase_index].until.is_some_and(|u| since > u) {
             self.phase_index += 1;
         }
         self.phase_index

@@ -19,12 +19,14 @@
 //! Objects returned as classes (`Map`, `Rendered`, `Synthetic`) live in wasm memory; call
 //! `.free()` on them when done, or let the garbage collector's finaliser do it.
 
+mod explore;
 pub mod knowledge;
 mod mapper;
 mod model3d;
 mod route;
 pub mod tabletop;
 
+pub use explore::Explorer;
 pub use mapper::{
     chain_config, chain_config_defaults, draw_mapper, draw_scene_graph, now_ms, render_mapper_rgba,
     render_scene_graph_rgba, DrawOptions, GraphOptions, Mapper, Show, MAX_BUDGET_MS, MAX_MAPPER_CELLS, MAX_STEP,

@@ -5,6 +5,7 @@
 
 mod chain;
 mod chain_exact;
+mod cli_explore;
 mod cli_floorplan;
 mod cli_render;
 mod cli_route;

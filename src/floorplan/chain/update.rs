@@ -12,7 +12,15 @@
 //! - the wall detector rescores only the candidates that hold a changed cell (within its
 //!   tolerance) or a wall face that appeared or vanished; the others keep their weights, which
 //!   are exactly what a detector run on the whole new map would give them;
-//! - the door proposals, found on the old map, are forgotten and found again on first use.
+//! - the door proposals, found on the old map, are forgotten and found again on first use;
+//! - the units whose rectangle holds a changed cell are removed, with the units they share a
+//!   door with and the fragments lying mostly inside another unit. They were fitted to space
+//!   the map did not know: a corridor seen in three parts becomes three units joined by doors,
+//!   and the chain's own moves seldom merge units with doors (MERGE and DELETE rarely win
+//!   there), so a warm chain that kept them stayed below a cold one for good;
+//! - the kernel schedule starts its phases again, ADD first, so that the changed space is
+//!   explained from the rescored candidates as a cold chain would, while the rooms seen
+//!   before stay as they were.
 //!
 //! The summed-area tables of the map's cell classes and of its object cells are counted again
 //! (a linear pass each). The map's rotation, wall thickness and resolution stay those of the
@@ -78,12 +86,64 @@ impl Chain {
             self.objects = Some(self.count_objects());
         }
         let (candidates_dropped, candidates_added) = self.redetect(window);
+        self.remove_touched(&changed);
         self.proposer.forget_doors();
         if self.iteration >= self.config.detectors.free_space_start {
             self.refresh_free_space();
         }
         self.rescore_best();
+        // New space needs units: the schedule's phases, ADD first, run again from here.
+        self.schedule_origin = self.iteration;
+        self.phase_index = 0;
         Ok(MapUpdate { changed_cells: changed.len(), window: Some(window), candidates_dropped, candidates_added })
+    }
+
+    /// Removes the units (with their doors) whose rectangle holds a changed cell: they were
+    /// fitted to space the map did not know, and fragments of a room seen in parts merge
+    /// badly. The units elsewhere stay, and the schedule's ADD phase explains the changed space
+    /// again from the rescored candidates.
+    fn remove_touched(&mut self, changed: &[usize]) {
+        let w = self.world_map.width();
+        let mut mask = Grid::new(w, self.world_map.height(), Cell::Free);
+        for &i in changed {
+            *mask.at_mut(i % w, i / w) = Cell::Occupied;
+        }
+        let touched = crate::geometry::AreaCounts::new(&mask, Cell::Occupied);
+        let mut ids: Vec<u32> = self.state.units.iter().filter(|u| touched.count(u.rect()) > 0).map(|u| u.id).collect();
+        // And their neighbours through doors: fragments of one room seen in parts are joined
+        // by doors, and a fragment left behind blocks the whole room's unit.
+        let through_doors: Vec<u32> = self
+            .state
+            .doors
+            .iter()
+            .filter_map(|d| match (ids.contains(&d.lo), ids.contains(&d.hi)) {
+                (true, false) => Some(d.hi),
+                (false, true) => Some(d.lo),
+                _ => None,
+            })
+            .collect();
+        ids.extend(through_doors);
+        // And fragments lying mostly inside another unit: the overlap prior (eq. 3.5) is
+        // against them, but a unit with doors is not removed by the chain's own moves.
+        let units = &self.state.units;
+        ids.extend(
+            units
+                .iter()
+                .filter(|u| {
+                    units.iter().any(|o| {
+                        o.id != u.id
+                            && o.rect().intersection(&u.rect()).is_some_and(|i| 2 * i.area() >= u.rect().area())
+                    })
+                })
+                .map(|u| u.id),
+        );
+        while let Some(i) = self.state.units.iter().position(|u| ids.contains(&u.id)) {
+            let id = self.state.units[i].id;
+            while let Some(k) = self.state.doors.iter().position(|d| d.lo == id || d.hi == id) {
+                self.state.apply(&super::Move::Delete(k));
+            }
+            self.state.apply(&super::Move::Remove(i));
+        }
     }
 
     /// The object-cell counts of the current world-frame map.

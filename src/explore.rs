@@ -238,6 +238,7 @@ impl Explorer {
     /// at most a cell apart at full range.
     fn scan(&mut self) {
         self.scans.push(self.robot);
+        self.since_scan = 0;
         let rays = (std::f64::consts::TAU * self.range).ceil().max(8.0) as usize;
         let (ox, oy) = (self.robot.0 as f64 + 0.5, self.robot.1 as f64 + 0.5);
         for k in 0..rays {
@@ -407,6 +408,9 @@ mod tests {
         // Every free cell of both rooms is seen: the robot went through the door.
         assert_eq!(e.seen_count(Cell::Free), truth.count(Cell::Free));
         assert!(e.travelled_m() > 1.0 && e.scans().len() > 5);
+        // A scan every 0.5 m (and one at each goal), not one every cell.
+        let most = 2.0 * e.travelled_m() / 0.5 + 10.0;
+        assert!((e.scans().len() as f64) < most, "{} scans over {} m", e.scans().len(), e.travelled_m());
         // The path stays on free cells.
         assert!(e.scans().iter().all(|&(x, y)| *truth.classified().at(x, y) == Cell::Free));
     }

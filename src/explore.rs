@@ -26,7 +26,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
-use crate::grid::{Cell, Grid, OccupancyMap};
+use crate::grid::{Cell, Grid, MapYaml, OccupancyMap};
 use crate::mcmc::Rng;
 use serde::{Deserialize, Serialize};
 use std::collections::VecDeque;
@@ -109,7 +109,8 @@ const MAX_RANGE_CELLS: f64 = 2000.0;
 pub struct Explorer {
     truth: Grid<Cell>,
     seen: Grid<Cell>,
-    map: OccupancyMap,
+    /// The true map's resolution and origin, which the robot's map shares.
+    yaml: MapYaml,
     robot: (usize, usize),
     /// Cells still to drive to the current goal, next last.
     plan: Vec<(usize, usize)>,
@@ -149,7 +150,7 @@ impl Explorer {
         let mut e = Explorer {
             truth: grid.clone(),
             seen: Grid::new(w, h, Cell::Unknown),
-            map: truth.clone(),
+            yaml: truth.yaml().clone(),
             robot,
             plan: Vec::new(),
             given_up: vec![false; w * h],
@@ -210,7 +211,7 @@ impl Explorer {
 
     /// Metres driven so far.
     pub fn travelled_m(&self) -> f64 {
-        self.travelled * self.map.yaml().resolution
+        self.travelled * self.yaml.resolution
     }
 
     /// The cells where the robot scanned, in order.
@@ -231,7 +232,7 @@ impl Explorer {
     /// The robot's map so far as a map with the true map's resolution and origin: what the
     /// chain is given.
     pub fn snapshot(&self) -> OccupancyMap {
-        OccupancyMap::from_classified(self.seen.clone()).with_yaml(self.map.yaml().clone())
+        OccupancyMap::from_classified(self.seen.clone()).with_yaml(self.yaml.clone())
     }
 
     /// One scan from the robot's cell: rays every `1 / range` radians, so neighbouring rays are

@@ -254,6 +254,19 @@ struct Snapshot {
     doors: Vec<DoorSpec>,
 }
 
+/// The map cells that may be objects, counted for the knowledge terms. Unknown object cells
+/// use up the share of a unit's interior that may be objects even when they earn nothing, so
+/// both classes are counted if either is forgiven (`object_gain` above zero).
+fn object_cells(
+    world_map: &Grid<Cell>,
+    resolution: f64,
+    config: &ChainConfig,
+    object_gain: [f64; 2],
+) -> vision::objects::ObjectCells {
+    let any = object_gain.iter().any(|&g| g > 0.0);
+    vision::objects::ObjectCells::counting(world_map, resolution, config.knowledge.max_object_m, [any, any])
+}
+
 /// A running data-driven MCMC chain over semantic worlds of one map.
 #[derive(Debug, Clone)]
 pub struct Chain {
@@ -390,18 +403,7 @@ impl Chain {
             (libm::log(k.object[1]) - libm::log(sensor[0][1])).max(0.0),
             (libm::log(k.object[2]) - libm::log(sensor[0][2])).max(0.0),
         ];
-        let objects = knowledge.is_some().then(|| {
-            // Unknown object cells use up the share of a unit's interior that may be objects
-            // even when they earn nothing, so both are counted if either is forgiven.
-            let any = object_gain.iter().any(|&g| g > 0.0);
-            let forgiven = [any, any];
-            crate::vision::objects::ObjectCells::counting(
-                &world_map,
-                resolution,
-                config.knowledge.max_object_m,
-                forgiven,
-            )
-        });
+        let objects = knowledge.is_some().then(|| object_cells(&world_map, resolution, &config, object_gain));
         let state = State::new(&world_map, config.doors, wall);
         let proposer = Proposer::new(config.kernels, candidates, state.width(), state.height(), wall);
         let posterior = Posterior::new(&config.posterior);
@@ -482,6 +484,24 @@ impl Chain {
         s
     }
 
+    /// Makes the current world the best one, with log posterior `lp`.
+    #[inline]
+    fn keep_as_best(&mut self, lp: f64) {
+        self.best_log_posterior = lp;
+        self.best_iteration = self.iteration;
+        self.best.units.clone_from(&self.state.units);
+        self.best.doors.clone_from(&self.state.doors);
+    }
+
+    /// Removes the unit in slot `i` of the current world, with its doors.
+    fn remove_unit_with_doors(&mut self, i: usize) {
+        let id = self.state.units[i].id;
+        while let Some(k) = self.state.doors.iter().position(|d| d.lo == id || d.hi == id) {
+            self.state.apply(&Move::Delete(k));
+        }
+        self.state.apply(&Move::Remove(i));
+    }
+
     /// The full log posterior of the current world: likelihood, prior and knowledge terms.
     fn full_log_posterior(&self) -> f64 {
         self.posterior.log_posterior(&self.state.explanation, self.state.units.len()) + self.knowledge_term()
@@ -553,10 +573,7 @@ impl Chain {
             self.log_target = lp * self.posterior.inv_temperature();
             self.best_log_posterior = best_base + self.knowledge_term_for(&self.best.units);
             if lp > self.best_log_posterior || self.best.units.is_empty() {
-                self.best_log_posterior = lp;
-                self.best_iteration = self.iteration;
-                self.best.units.clone_from(&self.state.units);
-                self.best.doors.clone_from(&self.state.doors);
+                self.keep_as_best(lp);
             }
         }
         // The best world may be an older one the current inference did not see: type it by
@@ -631,19 +648,12 @@ impl Chain {
         self.edits = edits;
         self.state.forbid(&walls);
         while let Some(i) = self.state.units.iter().position(|u| self.state.breaks_forbidden(u.rect())) {
-            let id = self.state.units[i].id;
-            while let Some(k) = self.state.doors.iter().position(|d| d.lo == id || d.hi == id) {
-                self.state.apply(&Move::Delete(k));
-            }
-            self.state.apply(&Move::Remove(i));
+            self.remove_unit_with_doors(i);
         }
         let lp = self.full_log_posterior();
         self.log_target = lp * self.posterior.inv_temperature();
         if self.best.units.iter().any(|u| self.state.breaks_forbidden(u.rect())) || self.best.units.is_empty() {
-            self.best_log_posterior = lp;
-            self.best_iteration = self.iteration;
-            self.best.units.clone_from(&self.state.units);
-            self.best.doors.clone_from(&self.state.doors);
+            self.keep_as_best(lp);
         }
         if self.knowledge.is_some() && !self.state.units.is_empty() {
             // New type evidence changes the target at once, not at the next inference.
@@ -918,10 +928,7 @@ impl Chain {
             self.log_target = new_target;
             let lp = new_target / self.posterior.inv_temperature();
             if lp > self.best_log_posterior {
-                self.best_log_posterior = lp;
-                self.best_iteration = self.iteration;
-                self.best.units.clone_from(&self.state.units);
-                self.best.doors.clone_from(&self.state.doors);
+                self.keep_as_best(lp);
             }
             if self.config.output.samples > 0 {
                 let mut rects = Vec::with_capacity(self.state.units.len());

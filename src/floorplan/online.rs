@@ -221,7 +221,8 @@ fn update(
     };
     let last = |curve: &[f64]| *curve.last().expect("a curve has its start");
     let reference = cold.as_deref().map_or(last(&warm), |c| last(c).max(last(&warm)));
-    let back = |curve: &[f64]| came_back(curve, reference, config.iterations);
+    let (warm_iterations, warm_reached) = came_back(&warm, reference, config.iterations);
+    let cold_back = cold.as_deref().map(|c| came_back(c, reference, config.iterations));
     let best = chain.best_world();
     let robot = explorer.robot();
     Ok(UpdateRecord {
@@ -232,10 +233,10 @@ fn update(
         seen_occupied: explorer.seen_count(Cell::Occupied),
         changed_cells: change.changed_cells,
         candidates_added: change.candidates_added,
-        warm_iterations: back(&warm).0,
-        cold_iterations: cold.as_deref().map(|c| back(c).0),
-        warm_reached: back(&warm).1,
-        cold_reached: cold.as_deref().map(|c| back(c).1),
+        warm_iterations,
+        cold_iterations: cold_back.map(|b| b.0),
+        warm_reached,
+        cold_reached: cold_back.map(|b| b.1),
         reference_log_posterior: reference,
         warm_best_log_posterior: last(&warm),
         cold_best_log_posterior: cold.as_deref().map(last),

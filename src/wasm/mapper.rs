@@ -160,13 +160,18 @@ impl Mapper {
         }
     }
 
-    fn restart(&mut self, chain: Chain) {
-        self.chain = chain;
-        self.settled = Settled::for_map(self.map.count(Cell::Free));
+    /// Forgets the worlds cached from the chain: it restarted, took edits or a new map.
+    fn forget_worlds(&mut self) {
         self.best = None;
         self.rooms = None;
         self.planner = None;
         self.current = None;
+    }
+
+    fn restart(&mut self, chain: Chain) {
+        self.chain = chain;
+        self.settled = Settled::for_map(self.map.count(Cell::Free));
+        self.forget_worlds();
         self.busy_ms = 0.0;
     }
 
@@ -317,10 +322,7 @@ impl Mapper {
             self.map = map.inner().clone();
             self.settled = Settled::for_map(self.map.count(Cell::Free));
             self.base = None;
-            self.best = None;
-            self.rooms = None;
-            self.planner = None;
-            self.current = None;
+            self.forget_worlds();
         }
         Ok(update.changed_cells as f64)
     }
@@ -341,10 +343,7 @@ impl Mapper {
         } else if let Some((_, _, labels)) = &self.rooms {
             self.shown_labels.get_or_insert_with(|| labels.clone());
         }
-        self.best = None;
-        self.rooms = None;
-        self.planner = None;
-        self.current = None;
+        self.forget_worlds();
         Ok(())
     }
 

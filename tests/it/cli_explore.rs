@@ -1,22 +1,12 @@
 //! `ksmcmc explore` end to end: the files it writes, what they say, and its errors.
 
+use crate::common::run_cli as run;
 use ksmcmc::floorplan::World;
 use ksmcmc::grid::{Limits, OccupancyMap};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
 fn tmp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("ksmcmc-cli-explore-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn run(args: &[&str]) -> Output {
-    let out = Command::new(env!("CARGO_BIN_EXE_ksmcmc")).args(args).output().unwrap();
-    let text = format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
-    assert!(!text.contains("panicked"), "{args:?}: {text}");
-    out
+    crate::common::tmp_dir("cli-explore", name)
 }
 
 #[test]

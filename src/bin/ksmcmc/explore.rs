@@ -68,7 +68,7 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
             r.cell_prediction_rate
         )
     };
-    let run =
+    let mut run =
         online::explore(&truth, &config, &o.online, o.seed, &mut log).map_err(|e| args::failed(o.map.display(), e))?;
     let seconds = t0.elapsed().as_secs_f64();
     // A cold chain on the whole true map, with as many iterations as one update: the final
@@ -77,8 +77,7 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     cold.step(o.online.iterations);
     let cold_k = metrics::prediction_rate(truth.classified(), &cold.best_world());
     let snapshot = run.explorer.snapshot();
-    let mut chain = run.chain.clone();
-    let input = export::RoomInput::of(&mut chain);
+    let input = export::RoomInput::of(&mut run.chain);
     let (world, labels) = input.explain(&RoomConfig::default());
     let k = metrics::prediction_rate(snapshot.classified(), &world);
     let report = serde_json::json!({

@@ -84,7 +84,7 @@ impl Chain {
         self.state.set_map(&world_map, &changed);
         self.world_map = world_map;
         if self.objects.is_some() {
-            self.objects = Some(self.count_objects());
+            self.objects = Some(super::object_cells(&self.world_map, self.resolution, &self.config, self.object_gain));
         }
         let (candidates_dropped, candidates_added) = self.redetect(window);
         self.remove_touched(&changed);
@@ -139,11 +139,7 @@ impl Chain {
                 .map(|u| u.id),
         );
         while let Some(i) = self.state.units.iter().position(|u| ids.contains(&u.id)) {
-            let id = self.state.units[i].id;
-            while let Some(k) = self.state.doors.iter().position(|d| d.lo == id || d.hi == id) {
-                self.state.apply(&super::Move::Delete(k));
-            }
-            self.state.apply(&super::Move::Remove(i));
+            self.remove_unit_with_doors(i);
         }
     }
 
@@ -178,17 +174,6 @@ impl Chain {
         self.best.doors.clone_from(&self.state.doors);
         let lp = self.full_log_posterior();
         self.log_target = lp * self.posterior.inv_temperature();
-    }
-
-    /// The object-cell counts of the current world-frame map.
-    fn count_objects(&self) -> vision::objects::ObjectCells {
-        let any = self.object_gain.iter().any(|&g| g > 0.0);
-        vision::objects::ObjectCells::counting(
-            &self.world_map,
-            self.resolution,
-            self.config.knowledge.max_object_m,
-            [any, any],
-        )
     }
 
     /// Rescores the wall detector's candidates that a change inside `window` reaches: those
@@ -227,10 +212,7 @@ impl Chain {
         self.best_log_posterior =
             self.posterior.log_posterior(&explanation, units.len()) + self.knowledge_term_for(&self.best.units);
         if lp >= self.best_log_posterior || self.best.units.is_empty() {
-            self.best_log_posterior = lp;
-            self.best_iteration = self.iteration;
-            self.best.units.clone_from(&self.state.units);
-            self.best.doors.clone_from(&self.state.doors);
+            self.keep_as_best(lp);
         }
     }
 }

@@ -59,8 +59,9 @@ const state = {
   inFlight: false,
   picture: null,
   shown: null,
-  /** Pixels per cell the worker draws at. */
+  /** Pixels per cell the worker draws at, and the canvas's width on screen (CSS pixels). */
   scale: 1,
+  shownWidth: 1,
   /** Pictures drawn while running. */
   frames: 0,
 };
@@ -107,9 +108,14 @@ function adopt(stats, args) {
   state.args = args;
   state.resolution = stats.resolution;
   state.path = [];
+  state.pathLayer = null;
   state.pathDrawn = 0;
   state.picture?.picture.close();
   state.picture = null;
+  // The last picture is of the old exploration (maybe of another map): not drawn again.
+  state.shown?.close();
+  state.shown = null;
+  ui.canvas.getContext('2d').clearRect(0, 0, ui.canvas.width, ui.canvas.height);
   state.frames = 0;
   for (const b of [ui.run, ui.reset]) b.disabled = false;
   fit();
@@ -280,7 +286,7 @@ function draw() {
   ctx.drawImage(bitmap, 0, 0);
   const k = bitmap.width / s.width;
   // Screen pixels → canvas pixels, for line widths that look the same at any size.
-  const px = c.width / (c.getBoundingClientRect().width || c.width);
+  const px = c.width / state.shownWidth;
   const at = (x, y) => [(x + 0.5) * k, (y + 0.5) * k];
   const [rx, ry] = at(...s.robot);
   if (ui.path.checked && state.path.length >= 2) {
@@ -363,8 +369,8 @@ function updateStats() {
     ? 'exploring; no chain yet'
     : !s.finished
       ? 'exploring; the chain follows'
-      : s.settled || (c.settledAt !== null && !s.running)
-        ? `explored; settled at iteration ${formatNumber(c.settledAt ?? c.iteration)}`
+      : c.settledAt !== null
+        ? `explored; settled at iteration ${formatNumber(c.settledAt)}`
         : 'explored; the chain runs until it settles';
   ui.canvas.setAttribute(
     'aria-label',
@@ -384,7 +390,8 @@ function fit() {
   const availW = Math.max(64, box.width - 16);
   const availH = Math.max(200, Math.min(window.innerHeight * 0.7, 1200));
   const k = Math.min(availW / s.width, availH / s.height);
-  ui.canvas.style.width = `${Math.max(1, Math.round(s.width * k))}px`;
+  state.shownWidth = Math.max(1, Math.round(s.width * k));
+  ui.canvas.style.width = `${state.shownWidth}px`;
   ui.canvas.style.height = `${Math.max(1, Math.round(s.height * k))}px`;
   const dpr = globalThis.devicePixelRatio || 1;
   const scale = Math.min(MAX_SCALE, Math.max(1, Math.ceil(k * dpr - 0.01)));

@@ -80,6 +80,7 @@ impl Chain {
         let changed = changed_cells(&self.world_map, &world_map);
         self.map = hidden;
         let Some(window) = bounds(&changed, world_map.width()) else { return Ok(MapUpdate::default()) };
+        self.go_to_best();
         self.state.set_map(&world_map, &changed);
         self.world_map = world_map;
         if self.objects.is_some() {
@@ -144,6 +145,39 @@ impl Chain {
             }
             self.state.apply(&super::Move::Remove(i));
         }
+    }
+
+    /// Makes the best world the current one (on the map it was found on): the chain goes on
+    /// from the best explanation it had, not from wherever its walk was.
+    fn go_to_best(&mut self) {
+        if self.best.units.is_empty() || self.best_log_posterior <= self.full_log_posterior() {
+            return;
+        }
+        while !self.state.doors.is_empty() {
+            self.state.apply(&super::Move::Delete(self.state.doors.len() - 1));
+        }
+        while !self.state.units.is_empty() {
+            self.state.apply(&super::Move::Remove(self.state.units.len() - 1));
+        }
+        let best = self.best.clone();
+        let mut ids = std::collections::HashMap::new();
+        for u in &best.units {
+            self.state.apply(&super::Move::Add(u.rect()));
+            let new = self.state.units.last_mut().expect("just added");
+            new.kind = u.kind;
+            ids.insert(u.id, new.id);
+        }
+        for d in &best.doors {
+            let (Some(&lo), Some(&hi)) = (ids.get(&d.lo), ids.get(&d.hi)) else { continue };
+            let door = super::DoorSpec { lo, hi, ..*d };
+            if self.state.is_valid(&super::Move::Allocate(door), 1, usize::MAX) {
+                self.state.apply(&super::Move::Allocate(door));
+            }
+        }
+        self.best.units.clone_from(&self.state.units);
+        self.best.doors.clone_from(&self.state.doors);
+        let lp = self.full_log_posterior();
+        self.log_target = lp * self.posterior.inv_temperature();
     }
 
     /// The object-cell counts of the current world-frame map.

@@ -8,7 +8,8 @@
 // and of the scene graph as ImageBitmaps (transferred, not copied), the statistics and the new
 // trace points. Same map, seed and settings, same chain as on the main thread or natively.
 
-import init, { Map as OccMap, Mapper, inferWorld, learnRules, renderMapperRgba, renderSceneGraphRgba, wasmHeapBytes } from '../pkg/ksmcmc.js';
+import init, { Mapper, inferWorld, learnRules, renderMapperRgba, renderSceneGraphRgba, wasmHeapBytes } from '../pkg/ksmcmc.js';
+import { buildMap } from './map-source.js';
 
 /** Milliseconds of iterations between looking at the page's requests. */
 const SLICE_MS = 8;
@@ -84,27 +85,6 @@ function stats() {
     improvedAt: m.improvedAt ?? null,
     settleWindow: m.settleWindow,
   };
-}
-
-/** The map a `source` describes, classified as the page would. */
-function buildMap(source) {
-  switch (source.kind) {
-    case 'yaml':
-      return OccMap.fromYaml(source.yaml, source.image);
-    case 'image': {
-      const map = OccMap.fromBytes(source.bytes);
-      if (source.classify !== 'auto') return map;
-      try {
-        return map.reclassify('auto');
-      } finally {
-        map.free();
-      }
-    }
-    case 'cells':
-      return OccMap.fromCells(source.width, source.height, source.codes);
-    default:
-      throw new Error(`unknown map source ${source.kind}`);
-  }
 }
 
 /**
@@ -258,6 +238,30 @@ const ops = {
   start(args) {
     if (!state.map) throw new Error('no map yet');
     return start(null, args);
+  },
+  /**
+   * The map changed (a paint stroke): the chain takes the new map, of the same size, and goes
+   * on from its world (`Mapper.updateMap`) instead of starting over. Replies with how many
+   * cells changed and the chain's numbers; if the map is refused, nothing changes.
+   */
+  updateMap({ source }) {
+    const map = buildMap(source);
+    let changed;
+    try {
+      changed = state.mapper.updateMap(map);
+    } catch (err) {
+      map.free();
+      throw err;
+    }
+    if (changed > 0) {
+      state.map?.free();
+      state.map = map;
+      // A changed map is a new climb: "stop when settled" waits for it to settle again.
+      state.wasSettled = false;
+    } else {
+      map.free();
+    }
+    return { stats: stats(), changed };
   },
   play({ ipf, stopWhenSettled }) {
     state.ipf = ipf;

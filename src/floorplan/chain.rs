@@ -316,13 +316,10 @@ pub struct Chain {
 
 impl Chain {
     /// A chain for `map`: estimates the map's orientation (unless configured), runs the
-    /// wall-based detector, and starts from the empty world. The inside of solid occupied
-    /// masses, which no sensor saw, counts as unknown ([`vision::hidden`]).
+    /// wall-based detector, and starts from the empty world.
     pub fn new(map: &OccupancyMap, config: ChainConfig, seed: u64) -> Result<Chain, ChainError> {
         config.validate()?;
-        let hidden =
-            vision::hidden::hide_interior(map.classified(), vision::hidden::depth_cells(map.yaml().resolution));
-        let classified = &hidden;
+        let classified = map.classified();
         let min = config.kernels.min_side as usize;
         if classified.width() < min || classified.height() < min {
             return Err(ChainError::Map(format!(

@@ -25,6 +25,7 @@
 mod classify;
 mod error;
 pub mod flood;
+pub mod hidden;
 pub mod pgm;
 pub mod png;
 mod raster;
@@ -134,6 +135,12 @@ pub fn white_cells(bytes: &[u8], limits: &Limits) -> Result<Grid<bool>, MapError
     Ok(decode_image(bytes, limits)?.gray.map(|&g| g >= 250 * 257))
 }
 
+/// Every pixel of `raster` through `classifier`, then the inside of solid occupied masses
+/// hidden for a map of `resolution` metres per cell.
+fn classify(raster: &Raster, classifier: &Classifier, resolution: f64) -> Grid<Cell> {
+    hidden::hide_interior(&classifier.classify_raster(raster), hidden::depth_cells(resolution))
+}
+
 /// An occupancy grid map: the decoded image, its metadata and its classified cells.
 #[derive(Debug, Clone, PartialEq)]
 pub struct OccupancyMap {
@@ -167,31 +174,29 @@ impl OccupancyMap {
 
     /// Wraps an already decoded raster.
     pub fn from_raster(raster: Raster, yaml: MapYaml, classifier: Classifier) -> Self {
-        let classified = classifier.classify_raster(&raster);
+        let classified = classify(&raster, &classifier, yaml.resolution);
         OccupancyMap { raster, yaml, classifier, classified }
     }
 
     /// A map made directly from classes, e.g. one a person painted. Its raster is the
-    /// conventional rendering (occupied 0, unknown 205, free 254 of 255).
+    /// conventional rendering (occupied 0, unknown 205, free 254 of 255), which map_server's
+    /// trinary rule reads back to the same classes; the inside of solid occupied masses then
+    /// becomes unknown, as for every map ([`hidden`]).
     pub fn from_classified(classified: Grid<Cell>) -> Self {
         let gray = classified.map(|c| gray_of(*c) as u16 * 257);
-        OccupancyMap {
-            raster: Raster { gray, alpha: None },
-            yaml: MapYaml::for_image("map.pgm"),
-            classifier: Classifier::MapServer {
-                negate: false,
-                occupied_thresh: 0.65,
-                free_thresh: 0.196,
-                mode: Mode::Trinary,
-            },
-            classified,
-        }
+        let yaml = MapYaml::for_image("map.pgm");
+        let classifier =
+            Classifier::MapServer { negate: false, occupied_thresh: 0.65, free_thresh: 0.196, mode: Mode::Trinary };
+        let classified = hidden::hide_interior(&classified, hidden::depth_cells(yaml.resolution));
+        OccupancyMap { raster: Raster { gray, alpha: None }, yaml, classifier, classified }
     }
 
     /// The same map with other metadata (resolution, origin): for a map made from classes that
-    /// stands for a real one, such as a snapshot of a map being explored.
+    /// stands for a real one, such as a snapshot of a map being explored. The cells are
+    /// classified again, since how deep a solid mass is hidden depends on the resolution.
     pub fn with_yaml(mut self, yaml: MapYaml) -> Self {
         self.yaml = yaml;
+        self.classified = classify(&self.raster, &self.classifier, self.yaml.resolution);
         self
     }
 
@@ -229,7 +234,7 @@ impl OccupancyMap {
     pub fn set_classifier(&mut self, classifier: Classifier) -> Result<(), MapError> {
         classifier.validate()?;
         self.classifier = classifier;
-        self.classified = classifier.classify_raster(&self.raster);
+        self.classified = classify(&self.raster, &classifier, self.yaml.resolution);
         Ok(())
     }
 
@@ -243,7 +248,8 @@ impl OccupancyMap {
         self.classified.height()
     }
 
-    /// The classified cells `C_M` of eq. 3.7.
+    /// The classified cells `C_M` of eq. 3.7, with the inside of solid occupied masses, which no
+    /// sensor saw, unknown ([`hidden`]).
     pub fn classified(&self) -> &Grid<Cell> {
         &self.classified
     }

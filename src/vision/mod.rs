@@ -7,7 +7,6 @@
 
 pub mod doors;
 pub mod freespace;
-pub mod hidden;
 pub mod hough;
 pub mod objects;
 pub mod orientation;

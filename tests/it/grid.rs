@@ -332,3 +332,26 @@ fn fuzzed_headers_never_panic() {
         }
     }
 }
+
+/// Maps drawn without an unknown class paint everything outside the building black. The map
+/// keeps a wall's depth of it occupied (0.6 m: 12 cells at 5 cm, 6 at 10 cm) and calls the rest
+/// unknown, whichever way the map was made.
+#[test]
+fn the_inside_of_a_solid_mass_is_unknown_in_every_map() {
+    let (w, h) = (60usize, 40usize);
+    let room = |x: usize, y: usize| (25..35).contains(&x) && (15..25).contains(&y);
+    let pixels: Vec<u8> = (0..w * h).map(|i| if room(i % w, i / w) { 255 } else { 0 }).collect();
+    let map = OccupancyMap::from_bytes(&pgm::encode_u8(w, h, &pixels)).unwrap();
+    let c = map.classified();
+    assert_eq!(*c.at(24, 20), Cell::Occupied, "a wall face stays");
+    assert_eq!(*c.at(13, 20), Cell::Occupied, "12 cells deep stays");
+    assert_eq!(*c.at(12, 20), Cell::Unknown, "13 cells deep is hidden");
+    assert_eq!(*c.at(0, 0), Cell::Unknown);
+    // A map made from classes is hidden the same way, and again for its own resolution.
+    let raw = map.classifier().classify_raster(map.raster());
+    let painted = OccupancyMap::from_classified(raw);
+    assert_eq!(painted.classified(), c);
+    let coarse = painted.with_yaml(MapYaml { resolution: 0.1, ..map.yaml().clone() });
+    assert_eq!(*coarse.classified().at(19, 20), Cell::Occupied, "6 cells deep stays at 10 cm");
+    assert_eq!(*coarse.classified().at(18, 20), Cell::Unknown);
+}

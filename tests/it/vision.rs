@@ -2,7 +2,7 @@
 //! without them), and on drawn fixtures with the same features.
 
 use ksmcmc::grid::{Cell, Classifier, Grid, Limits, OccupancyMap};
-use ksmcmc::vision::{hidden, orientation};
+use ksmcmc::vision::orientation;
 
 /// A Bormann map with the automatic classifier, or `None` (skip) without the datasets.
 fn load(test: &str, name: &str) -> Option<OccupancyMap> {
@@ -41,7 +41,7 @@ fn on_a_fixture_the_dominant_angle_follows_the_walls_and_the_solid_outside_is_hi
     let c = solid_outside_fixture();
     let deg = orientation::dominant_angle(&c).to_degrees();
     assert!(deg.abs() < 3.0, "the walls are upright, found {deg:.2} degrees");
-    let out = hidden::hide_interior(&c, 3);
+    let out = ksmcmc::grid::hidden::hide_interior(&c, 3);
     let occupied = |g: &Grid<Cell>| g.cells().iter().filter(|&&k| k == Cell::Occupied).count();
     assert!(occupied(&out) * 3 < occupied(&c), "{} of {} occupied cells kept", occupied(&out), occupied(&c));
     let faces = orientation::wall_surface(&c);
@@ -56,7 +56,7 @@ fn on_a_fixture_the_dominant_angle_follows_the_walls_and_the_solid_outside_is_hi
             *k = Cell::Unknown;
         }
     }
-    assert_eq!(hidden::hide_interior(&open, 3), open);
+    assert_eq!(ksmcmc::grid::hidden::hide_interior(&open, 3), open);
 }
 
 /// lab_ipa is drawn with the outside filled in as occupied, and its free space has 45-degree
@@ -71,16 +71,16 @@ fn the_dominant_angle_follows_the_walls_not_the_solid_outside() {
     }
 }
 
-/// The solid outside of lab_ipa is not wall: all but a wall's depth of it is hidden, while
-/// every occupied cell next to free space (a wall face) stays occupied.
+/// The solid outside of lab_ipa is not wall: the map keeps all but a wall's depth of it
+/// occupied, and every occupied cell next to free space (a wall face) stays occupied.
 #[test]
 fn the_inside_of_a_solid_outside_is_hidden() {
     let Some(map) = load("the_inside_of_a_solid_outside_is_hidden", "lab_ipa.png") else { return };
-    let c = map.classified();
-    let out = hidden::hide_interior(c, hidden::depth_cells(map.yaml().resolution));
+    let raw = map.classifier().classify_raster(map.raster());
+    let out = map.classified();
     let occupied = |g: &ksmcmc::grid::Grid<Cell>| g.cells().iter().filter(|&&k| k == Cell::Occupied).count();
-    assert!(occupied(&out) * 5 < occupied(c), "{} of {} occupied cells kept", occupied(&out), occupied(c));
-    let faces = orientation::wall_surface(c);
+    assert!(occupied(out) * 5 < occupied(&raw), "{} of {} occupied cells kept", occupied(out), occupied(&raw));
+    let faces = orientation::wall_surface(&raw);
     for (i, (&f, &o)) in faces.cells().iter().zip(out.cells()).enumerate() {
         assert!(f != Cell::Occupied || o == Cell::Occupied, "wall face {i} hidden");
     }
@@ -90,6 +90,5 @@ fn the_inside_of_a_solid_outside_is_hidden() {
 #[test]
 fn walls_beside_unexplored_space_are_kept() {
     let Some(map) = load("walls_beside_unexplored_space_are_kept", "lab_c_scan.png") else { return };
-    let out = hidden::hide_interior(map.classified(), hidden::depth_cells(map.yaml().resolution));
-    assert_eq!(&out, map.classified());
+    assert_eq!(&map.classifier().classify_raster(map.raster()), map.classified());
 }

@@ -75,10 +75,9 @@ impl Chain {
                 map.height()
             )));
         }
-        let hidden = vision::hidden::hide_interior(map.classified(), vision::hidden::depth_cells(self.resolution));
-        let (world_map, _) = vision::orientation::to_world_frame(&hidden, self.frame.angle);
+        let (world_map, _) = vision::orientation::to_world_frame(map.classified(), self.frame.angle);
         let changed = changed_cells(&self.world_map, &world_map);
-        self.map = hidden;
+        self.map = map.classified().clone();
         let Some(window) = bounds(&changed, world_map.width()) else { return Ok(MapUpdate::default()) };
         self.go_to_best();
         self.state.set_map(&world_map, &changed);

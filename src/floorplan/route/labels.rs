@@ -32,9 +32,7 @@ use crate::vision;
 pub fn saved_labels(world: &World, map: &OccupancyMap) -> Result<Grid<u16>, RouteError> {
     world.fits(map.width(), map.height()).map_err(|e| RouteError::Mismatch(e.to_string()))?;
     let resolution = map.yaml().resolution;
-    // The map as the chain saw it ([`crate::floorplan::Chain::new`]): solid masses hollow.
-    let hidden = vision::hidden::hide_interior(map.classified(), vision::hidden::depth_cells(resolution));
-    let (world_map, frame) = vision::orientation::to_world_frame(&hidden, world.frame.angle);
+    let (world_map, frame) = vision::orientation::to_world_frame(map.classified(), world.frame.angle);
     if frame.world_size != world.frame.world_size {
         return Err(RouteError::Mismatch(format!(
             "world.json: frame.world_size is {:?}, but this map turned by frame.angle gives {:?}: the world \
@@ -47,7 +45,7 @@ pub fn saved_labels(world: &World, map: &OccupancyMap) -> Result<Grid<u16>, Rout
         let mut found = bare.clone();
         let labels = room_layer::explain_world_rooms(
             &mut found,
-            &hidden,
+            map.classified(),
             &world_map,
             &RoomConfig::default(),
             resolution,

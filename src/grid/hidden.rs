@@ -7,8 +7,8 @@
 //! from every free cell than any wall is thick are therefore treated as unknown, like the
 //! unexplored space they are.
 
-use crate::grid::flood::wavefront;
-use crate::grid::{Cell, Grid};
+use super::flood::wavefront;
+use super::{Cell, Grid};
 
 /// How deep into occupied space, in metres, a wall face reaches: thicker than the walls of
 /// ordinary buildings (about 0.3 - 0.5 m), so real walls keep all their cells.

@@ -25,6 +25,8 @@ Prints the quality tables of BENCHMARKS.md:
   paired     knowledge supervision minus the weak prior on the same maps and chain seeds,
              per synthetic kind: the mean difference of K(W,M) with its standard error
   paired-bormann  the bormann table in both modes, map by map, with the sums compared
+  bormann-seeds   the bormann figures over chain seeds 1..=K: per map and for the means, the
+             mean and standard deviation over seeds (how far one seed's table can be trusted)
   rooms      the room layer against synthetic truth, both modes: rooms per truth unit and
              type accuracy (the room covering most of each truth unit has the unit's type),
              on hall, two-corridor, cluttered, rotated and many-storage floors
@@ -38,8 +40,8 @@ DIR defaults to ../shared/datasets, N to 20000 iterations, K to 6. --only runs o
 ";
 
 /// The sets `--only` can name.
-const SETS: [&str; 8] =
-    ["cartesium", "synthetic", "bormann", "knowledge", "paired", "paired-bormann", "rooms", "routes"];
+const SETS: [&str; 9] =
+    ["cartesium", "synthetic", "bormann", "knowledge", "paired", "paired-bormann", "bormann-seeds", "rooms", "routes"];
 
 struct Opts {
     iterations: u64,
@@ -90,15 +92,21 @@ fn bormann_names(dir: &Path) -> Result<Vec<String>, CliError> {
     Ok(names)
 }
 
-/// Scores of map `name` (plain, then furnished) with the room layer of the options' mode.
+/// Scores of map `name` (plain, then furnished) with the room layer of the options' mode,
+/// chain seed 1.
 fn bormann_map(dir: &Path, name: &str, o: &Opts) -> Result<[MapScore; 2], CliError> {
+    bormann_map_seed(dir, name, o, 1)
+}
+
+/// [`bormann_map`] with chain seed `seed`.
+fn bormann_map_seed(dir: &Path, name: &str, o: &Opts, seed: u64) -> Result<[MapScore; 2], CliError> {
     let truth = truth_regions(&dir.join(format!("{name}_gt_segmentation.png")))?;
     let mut out = Vec::new();
     for suffix in ["", "_furnitures"] {
         let path = dir.join(format!("{name}{suffix}.png"));
         let mut map = args::load_map(&path)?;
         map.set_classifier(Classifier::auto()).map_err(|e| args::failed("classifier", e))?;
-        let mut chain = explain(&map, o, 1)?;
+        let mut chain = explain(&map, o, seed)?;
         let (_, labels) = chain.best_world_with_rooms(&RoomConfig::default());
         let labels = labels.map(|&l| l as u32);
         let free = map.classified().map(|&c| c == Cell::Free);
@@ -169,6 +177,53 @@ fn paired_bormann(dir: &Path, o: &Opts) -> Result<(), CliError> {
         let links: f64 = mean.iter().map(|f| f[2] + f[3]).sum();
         println!("{mode}: sum of the four segmentation means {seg:.3}, of the four link means {links:.3}  ");
     }
+    Ok(())
+}
+
+/// Mean and sample standard deviation.
+fn mean_sd(v: &[f64]) -> (f64, f64) {
+    let m = mean(v);
+    let var = v.iter().map(|x| (x - m) * (x - m)).sum::<f64>() / (v.len().max(2) - 1) as f64;
+    (m, var.sqrt())
+}
+
+fn fmt_mean_sd(v: &[f64]) -> String {
+    let (m, sd) = mean_sd(v);
+    format!("{m:.3} ± {sd:.3}")
+}
+
+/// The eight Bormann figures of every map over chain seeds 1..=K: per map the mean ± standard
+/// deviation over seeds, and for the floor means (taken per seed) the same. The seed-1 table
+/// is one draw from these.
+fn bormann_seeds(dir: &Path, o: &Opts) -> Result<(), CliError> {
+    let dir = dir.join("bormann2016");
+    let names = bormann_names(&dir)?;
+    let mode = if o.config.knowledge.enabled { "knowledge" } else { "weak prior" };
+    println!(
+        "\n### Bormann et al. maps over chain seeds 1..={} ({} iterations, {mode}): mean ± standard deviation\n",
+        o.seeds, o.iterations
+    );
+    println!("| map | precision | recall | link precision | link recall | precision (furnished) | recall (furnished) | link precision (furnished) | link recall (furnished) |");
+    println!("|---|---|---|---|---|---|---|---|---|");
+    // figures[seed][map][8]
+    let mut figures: Vec<Vec<[f64; 8]>> = vec![Vec::new(); o.seeds as usize];
+    for name in &names {
+        for (k, seed) in (1..=o.seeds).enumerate() {
+            let s = bormann_map_seed(&dir, name, o, seed)?;
+            let (a, b) = (s[0].figures(), s[1].figures());
+            figures[k].push([a[0], a[1], a[2], a[3], b[0], b[1], b[2], b[3]]);
+        }
+        let m = figures[0].len() - 1;
+        let cols: Vec<String> =
+            (0..8).map(|f| fmt_mean_sd(&figures.iter().map(|s| s[m][f]).collect::<Vec<_>>())).collect();
+        println!("| {name} | {} |", cols.join(" | "));
+    }
+    let cols: Vec<String> = (0..8)
+        .map(|f| {
+            fmt_mean_sd(&figures.iter().map(|s| mean(&s.iter().map(|m| m[f]).collect::<Vec<_>>())).collect::<Vec<_>>())
+        })
+        .collect();
+    println!("| **mean** | {} |", cols.join(" | "));
     Ok(())
 }
 
@@ -522,6 +577,9 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     }
     if want("paired-bormann") {
         paired_bormann(&dir, &o)?;
+    }
+    if want("bormann-seeds") {
+        bormann_seeds(&dir, &o)?;
     }
     if want("rooms") {
         rooms(&o)?;

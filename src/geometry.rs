@@ -109,18 +109,73 @@ impl Frame {
         self.angle == 0.0 && self.world_size == self.map_size
     }
 
+    /// The frame of a map of `width` x `height` cells turned by `angle`: the world grid is the
+    /// smallest that holds the whole turned map.
+    ///
+    /// ```
+    /// use ksmcmc::geometry::Frame;
+    /// // A 100 x 10 map turned by 30 degrees: 100 cos 30 + 10 sin 30 = 91.6 and
+    /// // 100 sin 30 + 10 cos 30 = 58.7 cells.
+    /// let f = Frame::turned(100, 10, 30f64.to_radians());
+    /// assert_eq!(f.world_size, [92, 59]);
+    /// assert_eq!(Frame::turned(100, 10, 0.0), Frame::identity(100, 10));
+    /// ```
+    pub fn turned(width: u32, height: u32, angle: f64) -> Frame {
+        if angle == 0.0 {
+            return Frame::identity(width, height);
+        }
+        let (w, h) = (width as f64, height as f64);
+        let (s, c) = (libm::fabs(libm::sin(angle)), libm::fabs(libm::cos(angle)));
+        let ww = libm::ceil(w * c + h * s) as u32;
+        let wh = libm::ceil(w * s + h * c) as u32;
+        Frame { angle, world_size: [ww, wh], map_size: [width, height] }
+    }
+
     /// Maps a world-frame point (cell units, continuous) to map coordinates.
     pub fn to_map(&self, x: f64, y: f64) -> (f64, f64) {
-        let (s, c) = (libm::sin(self.angle), libm::cos(self.angle));
-        let (wx, wy) = (x - self.world_size[0] as f64 / 2.0, y - self.world_size[1] as f64 / 2.0);
-        (self.map_size[0] as f64 / 2.0 + c * wx - s * wy, self.map_size[1] as f64 / 2.0 + s * wx + c * wy)
+        self.rotation().to_map(x, y)
     }
 
     /// Maps a map point to the world frame (the inverse of [`Frame::to_map`]).
     pub fn to_world(&self, x: f64, y: f64) -> (f64, f64) {
-        let (s, c) = (libm::sin(self.angle), libm::cos(self.angle));
-        let (mx, my) = (x - self.map_size[0] as f64 / 2.0, y - self.map_size[1] as f64 / 2.0);
-        (self.world_size[0] as f64 / 2.0 + c * mx + s * my, self.world_size[1] as f64 / 2.0 - s * mx + c * my)
+        self.rotation().to_world(x, y)
+    }
+
+    /// The frame's rotation with its sine and cosine worked out once, for loops over cells.
+    pub fn rotation(&self) -> Rotation {
+        Rotation {
+            s: libm::sin(self.angle),
+            c: libm::cos(self.angle),
+            world_half: (self.world_size[0] as f64 / 2.0, self.world_size[1] as f64 / 2.0),
+            map_half: (self.map_size[0] as f64 / 2.0, self.map_size[1] as f64 / 2.0),
+        }
+    }
+}
+
+/// A [`Frame`]'s rotation about the centres of the world grid and the map.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Rotation {
+    s: f64,
+    c: f64,
+    world_half: (f64, f64),
+    map_half: (f64, f64),
+}
+
+impl Rotation {
+    /// [`Frame::to_map`].
+    #[inline]
+    pub fn to_map(&self, x: f64, y: f64) -> (f64, f64) {
+        let (s, c) = (self.s, self.c);
+        let (wx, wy) = (x - self.world_half.0, y - self.world_half.1);
+        (self.map_half.0 + c * wx - s * wy, self.map_half.1 + s * wx + c * wy)
+    }
+
+    /// [`Frame::to_world`].
+    #[inline]
+    pub fn to_world(&self, x: f64, y: f64) -> (f64, f64) {
+        let (s, c) = (self.s, self.c);
+        let (mx, my) = (x - self.map_half.0, y - self.map_half.1);
+        (self.world_half.0 + c * mx + s * my, self.world_half.1 - s * mx + c * my)
     }
 }
 

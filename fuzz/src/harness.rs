@@ -104,7 +104,9 @@ pub fn world_json(data: &[u8]) {
 fn exercise_world(mut world: World) {
     let [mw, mh] = world.frame.map_size;
     let [ww, wh] = world.frame.world_size;
-    if mw as u64 * mh as u64 > SCORE_MAX_CELLS || ww as u64 * wh as u64 > SCORE_MAX_CELLS {
+    // The room layer turns the map by the frame's angle, which a long thin map makes large.
+    let [tw, th] = ksmcmc::geometry::Frame::turned(mw, mh, world.frame.angle).world_size;
+    if [(mw, mh), (ww, wh), (tw, th)].iter().any(|&(w, h)| w as u64 * h as u64 > SCORE_MAX_CELLS) {
         return;
     }
     let json = world.to_json();

@@ -66,17 +66,16 @@ pub fn wall_surface(grid: &Grid<Cell>) -> Grid<Cell> {
 /// world-frame grid and the frame. Cells that fall outside the map are unknown.
 pub fn to_world_frame(grid: &Grid<Cell>, angle: f64) -> (Grid<Cell>, Frame) {
     let (w, h) = (grid.width() as f64, grid.height() as f64);
+    let frame = Frame::turned(grid.width() as u32, grid.height() as u32, angle);
     if angle == 0.0 {
-        return (grid.clone(), Frame::identity(grid.width() as u32, grid.height() as u32));
+        return (grid.clone(), frame);
     }
-    let (s, c) = (libm::fabs(libm::sin(angle)), libm::fabs(libm::cos(angle)));
-    let ww = libm::ceil(w * c + h * s) as u32;
-    let wh = libm::ceil(w * s + h * c) as u32;
-    let frame = Frame { angle, world_size: [ww, wh], map_size: [grid.width() as u32, grid.height() as u32] };
+    let [ww, wh] = frame.world_size;
     let mut out = Grid::new(ww as usize, wh as usize, Cell::Unknown);
+    let rotation = frame.rotation();
     for y in 0..wh as usize {
         for x in 0..ww as usize {
-            let (mx, my) = frame.to_map(x as f64 + 0.5, y as f64 + 0.5);
+            let (mx, my) = rotation.to_map(x as f64 + 0.5, y as f64 + 0.5);
             if mx >= 0.0 && my >= 0.0 && mx < w && my < h {
                 *out.at_mut(x, y) = *grid.at(mx as usize, my as usize);
             }

@@ -27,13 +27,17 @@ pub struct GeometryClassifier {
     /// Free area (m²) below which a unit is `Small`: a store, a stairwell, a shaft. Not in
     /// Tab. 3.6; knowledge bases that do not declare `Small` never see it.
     pub small_area_m2: f64,
+    /// Free width (m, the shorter side inside the walls) below which a unit is `Narrow`: a
+    /// store, a stairwell, a corridor; offices are wider. Not in Tab. 3.6; knowledge bases that
+    /// do not declare `Narrow` never see it.
+    pub narrow_m: f64,
 }
 
 impl Default for GeometryClassifier {
     /// Halls from 60 m²; corridors at least 3.5 times as long as they are wide; small under
-    /// 10 m².
+    /// 10 m²; narrow under 2.5 m wide.
     fn default() -> Self {
-        GeometryClassifier { hall_area_m2: 60.0, corridor_ratio: 3.5, small_area_m2: 10.0 }
+        GeometryClassifier { hall_area_m2: 60.0, corridor_ratio: 3.5, small_area_m2: 10.0, narrow_m: 2.5 }
     }
 }
 
@@ -53,6 +57,11 @@ impl GeometryClassifier {
     pub fn free_area_m2(&self, u: &Unit, t: i32, resolution: f64) -> f64 {
         let (w, h) = ((u.w - 2 * t).max(1) as f64, (u.h - 2 * t).max(1) as f64);
         w * h * resolution * resolution
+    }
+
+    /// The free width inside a unit's walls (`t` cells deep): its shorter side, m.
+    pub fn free_width_m(&self, u: &Unit, t: i32, resolution: f64) -> f64 {
+        (u.w - 2 * t).min(u.h - 2 * t).max(1) as f64 * resolution
     }
 
     /// Classifies a unit whose walls are `t` cells deep, at `resolution` metres per cell.
@@ -132,6 +141,7 @@ pub fn evidence(world: &World, resolution: f64, classifier: &GeometryClassifier)
         facts.push(("CoLi", vec![c.clone()], g == Geometry::CorridorLike));
         facts.push(("HaLi", vec![c.clone()], g == Geometry::HallLike));
         facts.push(("Small", vec![c.clone()], classifier.free_area_m2(u, t, resolution) < classifier.small_area_m2));
+        facts.push(("Narrow", vec![c.clone()], classifier.free_width_m(u, t, resolution) < classifier.narrow_m));
         let doors = world.doors.iter().filter(|d| d.units.contains(&u.id)).count();
         facts.push(("MulDoor", vec![c], doors >= 2));
     }
@@ -319,7 +329,7 @@ mod tests {
         }
         let queries = ["Room", "Corr", "Hall", "Other", "SaLe"];
         let mut ground = GroundConfig::query(&queries);
-        ground.closed_world = ["RoLi", "CoLi", "HaLi", "MulDoor", "Adj", "Small"].map(String::from).to_vec();
+        ground.closed_world = ["RoLi", "CoLi", "HaLi", "MulDoor", "Adj", "Small", "Narrow"].map(String::from).to_vec();
         let ty = mln.argument_types(mln.predicate("Room").unwrap())[0].to_string();
         ground.domains.push((ty, world.units.iter().map(|u| constant(u.id)).collect()));
         let net = Network::ground(&mln, &db, &ground).unwrap();
@@ -607,7 +617,7 @@ impl Knowledge {
         }
         let mut ground = GroundConfig::query(&self.queries);
         // Evidence is complete for the predicates the world supplies: closed world.
-        ground.closed_world = ["RoLi", "CoLi", "HaLi", "MulDoor", "Adj", "Small"]
+        ground.closed_world = ["RoLi", "CoLi", "HaLi", "MulDoor", "Adj", "Small", "Narrow"]
             .iter()
             .filter(|p| self.mln.predicate(p).is_some())
             .map(|p| p.to_string())

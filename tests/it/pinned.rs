@@ -74,12 +74,12 @@ fn pinned_synthetic() {
 
 #[test]
 fn pinned_cartesium() {
-    pin_dataset("radish/ubremen-cartesium.png", 0x4e0b_5822_3615_da3b);
+    pin_dataset("radish/ubremen-cartesium.png", 0x119c_6bcb_51ff_f61e);
 }
 
 #[test]
 fn pinned_lab_a() {
-    pin_dataset("bormann2016/lab_a_scan.png", 0x9c5f_f402_5191_7ce3);
+    pin_dataset("bormann2016/lab_a_scan.png", 0x9c83_e447_b494_93c1);
 }
 
 #[test]
@@ -89,5 +89,5 @@ fn pinned_office_e() {
 
 #[test]
 fn pinned_freiburg79() {
-    pin_dataset("bormann2016/Freiburg79_scan.png", 0x6807_4eb1_ccd0_81f5);
+    pin_dataset("bormann2016/Freiburg79_scan.png", 0x6fe5_2b79_64ac_88d5);
 }

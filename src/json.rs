@@ -58,14 +58,18 @@ pub(crate) mod exact_opt {
 
 /// [`exact`] for an optional map from ids to four numbers (`null` for none).
 pub(crate) mod exact_map {
-    use serde::{Deserialize, Deserializer, Serialize, Serializer};
+    use serde::{Deserialize, Deserializer, Serializer};
     use std::collections::BTreeMap;
 
     type Map = BTreeMap<u32, [f64; 4]>;
 
     pub fn serialize<S: Serializer>(v: &Option<Map>, s: S) -> Result<S::Ok, S::Error> {
         let text = |p: &[f64; 4]| p.map(|x| format!("{x:?}"));
-        v.as_ref().map(|m| m.iter().map(|(k, p)| (*k, text(p))).collect::<BTreeMap<u32, [String; 4]>>()).serialize(s)
+        match v {
+            // Entry by entry, in the map's order: collecting into another map would sort.
+            Some(m) => s.collect_map(m.iter().map(|(k, p)| (*k, text(p)))),
+            None => s.serialize_none(),
+        }
     }
 
     pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Option<Map>, D::Error> {

@@ -66,7 +66,7 @@ pub fn unexplained_areas(
         if members.len() < min_cells {
             continue;
         }
-        members.sort_unstable();
+        crate::sort::sort(&mut members);
         areas.push(area_of(&members, w, areas.len() as u32 + 1));
     }
     areas

@@ -120,5 +120,8 @@ export function mount(element: HTMLElement, options?: MountOptions): Promise<Map
 /** Initialises the WebAssembly module once; `mount` calls it. */
 export function ready(wasm?: MountOptions['wasm']): Promise<unknown>;
 
-/** A sample remade from its recipe: the same cells as samples/NAME/map.pgm. Call after `ready()`. */
-export function loadSample(name: SampleName): OccupancyMap;
+/**
+ * A sample remade from its recipe: the same cells as samples/NAME/map.pgm. Loads the synthetic
+ * generator's module (ksmcmc_synth.js, beside ksmcmc.js) the first time.
+ */
+export function loadSample(name: SampleName): Promise<OccupancyMap>;

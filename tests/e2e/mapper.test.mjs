@@ -608,7 +608,7 @@ describe('mount() embed', () => {
     for (const name of ['office-small', 'office-rotated', 'furnished', 'partial', 'two-corridors', 'building-large']) {
       const b64 = await page.evaluate(async (n) => {
         const { loadSample } = await import('./pkg/mount.js');
-        const map = loadSample(n);
+        const map = await loadSample(n);
         const bytes = map.toPgm();
         map.free();
         let s = '';

@@ -85,7 +85,10 @@ export interface MapperStats {
 export interface MapperWidget {
   /** The widget's root element (inside the element given to `mount`). */
   readonly element: HTMLElement;
-  /** The chain, for anything the widget does not show (`bestWorldJson()`, `labelsPgm()`, ...). */
+  /**
+   * The chain, for anything the widget does not show (`worldJson()`, `trace()`, ...; the best
+   * world's rooms and exports: a `Plan` of `ksmcmc_plan.js` made from `mapper.planInput()`).
+   */
   readonly mapper: Mapper;
   readonly running: boolean;
   play(): void;

@@ -10,6 +10,7 @@
 //! ```js
 //! const plan = await import('./pkg/ksmcmc_plan.js');
 //! await plan.default();
+//! const map = mapper.map;                 // the map the chain explains
 //! const p = new plan.Plan(map.toPgm(), map.toYaml('map.pgm'), mapper.planInput());
 //! p.worldJson(); p.geojson(); p.route(10, 20, 300, 40);
 //! // overlay.png: the mapper module draws, this one encodes.

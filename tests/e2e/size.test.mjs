@@ -74,6 +74,7 @@ test('each page loads the modules it needs and no other', async (t) => {
     'index.html': ['ksmcmc_bg.wasm', 'ksmcmc_synth_bg.wasm'],
     'tabletop.html': ['ksmcmc_tabletop_bg.wasm'],
     'prior.html': ['ksmcmc_rules_bg.wasm'],
+    'rules.html': ['ksmcmc_bg.wasm', 'ksmcmc_rules_bg.wasm'],
     'embed.html': ['ksmcmc_bg.wasm', 'ksmcmc_synth_bg.wasm'],
   };
   for (const [path, want] of Object.entries(pages)) {

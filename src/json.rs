@@ -1,7 +1,22 @@
 //! Reading settings from JSON text, the one way every config of the crate is read, and numbers
-//! that survive a trip through JSON bit for bit.
+//! that read back to the very bits they were written from.
+//!
+//! serde_json writes an `f64` in its shortest exact form, but its reader is fast rather than
+//! exact: it reads about one in nine numbers of 17 significant digits a bit off, and then a
+//! world's JSON does not read back to the same text (`fuzz/regressions/world_json`: a room area
+//! of 3.8e122), nor would the browser's plan module find the rooms the chain found
+//! ([`crate::floorplan::plan_input`]: the frame's angle). serde_json's exact reader (its
+//! `float_roundtrip` feature) would add 12 kB gzipped to every WebAssembly module, which would
+//! put the live mapper's module over its 500 kB (BENCHMARKS.md). So the numbers that must come
+//! back exactly are read through [`exact`] and its kin: serde_json hands over the number's text
+//! as it found it (its `raw_value` feature) and Rust's correctly rounded parser reads it. The
+//! JSON is unchanged (numbers stay numbers); only serde_json's deserializers can read these
+//! fields.
 
 use serde::de::DeserializeOwned;
+use serde::{Deserialize, Deserializer};
+use serde_json::value::RawValue;
+use std::collections::BTreeMap;
 
 /// Parses a JSON object of settings over `T`'s defaults (with `#[serde(default)]`, fields it
 /// leaves out keep theirs). Blank text is the defaults; anything but an object is refused with
@@ -18,78 +33,42 @@ pub(crate) fn settings<T: DeserializeOwned + Default>(text: &str, example: &str)
     serde_json::from_str(text).map_err(|e| e.to_string())
 }
 
-/// Numbers that must come back to the very bits they were written from, written as JSON
-/// strings of their shortest decimal form and read with Rust's correctly rounded parser:
-/// serde_json's own reads about one in nine such numbers (17 significant digits) a bit off,
-/// and its exact mode (`float_roundtrip`) would add 30 kB to every WebAssembly module. For
-/// `#[serde(with = "crate::json::exact")]` on an `f64`; [`exact_opt`] and [`exact_map`] for
-/// an `Option<f64>` and a map to four of them. Used by [`crate::floorplan::plan_input`].
-pub(crate) mod exact {
-    use serde::{Deserialize, Deserializer, Serializer};
-
-    pub fn serialize<S: Serializer>(v: &f64, s: S) -> Result<S::Ok, S::Error> {
-        s.collect_str(&format_args!("{v:?}"))
-    }
-
-    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
-        parse(&String::deserialize(d)?)
-    }
-
-    pub(super) fn parse<E: serde::de::Error>(text: &str) -> Result<f64, E> {
-        text.parse().map_err(|_| E::custom(format!("{text:?} is not a number")))
-    }
+/// A JSON number read exactly: `#[serde(deserialize_with = "crate::json::exact")]` on an
+/// `f64` (see the module docs).
+pub(crate) fn exact<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+    number(&Box::<RawValue>::deserialize(d)?)
 }
 
 /// [`exact`] for an `Option<f64>` (`null` for none).
-pub(crate) mod exact_opt {
-    use serde::{Deserialize, Deserializer, Serializer};
-
-    pub fn serialize<S: Serializer>(v: &Option<f64>, s: S) -> Result<S::Ok, S::Error> {
-        match v {
-            Some(v) => s.collect_str(&format_args!("{v:?}")),
-            None => s.serialize_none(),
-        }
+pub(crate) fn exact_opt<'de, D: Deserializer<'de>>(d: D) -> Result<Option<f64>, D::Error> {
+    let raw = Box::<RawValue>::deserialize(d)?;
+    if raw.get() == "null" {
+        return Ok(None);
     }
-
-    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Option<f64>, D::Error> {
-        Option::<String>::deserialize(d)?.map(|t| super::exact::parse(&t)).transpose()
-    }
+    number(&raw).map(Some)
 }
 
 /// [`exact`] for an optional map from ids to four numbers (`null` for none).
-pub(crate) mod exact_map {
-    use serde::{Deserialize, Deserializer, Serializer};
-    use std::collections::BTreeMap;
-
-    type Map = BTreeMap<u32, [f64; 4]>;
-
-    pub fn serialize<S: Serializer>(v: &Option<Map>, s: S) -> Result<S::Ok, S::Error> {
-        let text = |p: &[f64; 4]| p.map(|x| format!("{x:?}"));
-        match v {
-            // Entry by entry, in the map's order: collecting into another map would sort.
-            Some(m) => s.collect_map(m.iter().map(|(k, p)| (*k, text(p)))),
-            None => s.serialize_none(),
-        }
+pub(crate) fn exact_map<'de, D: Deserializer<'de>>(d: D) -> Result<Option<BTreeMap<u32, [f64; 4]>>, D::Error> {
+    let Some(m) = Option::<BTreeMap<u32, [Box<RawValue>; 4]>>::deserialize(d)? else {
+        return Ok(None);
+    };
+    let mut out = BTreeMap::new();
+    for (k, [a, b, c, e]) in m {
+        out.insert(k, [number(&a)?, number(&b)?, number(&c)?, number(&e)?]);
     }
+    Ok(Some(out))
+}
 
-    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Option<Map>, D::Error> {
-        let Some(m) = Option::<BTreeMap<u32, [String; 4]>>::deserialize(d)? else {
-            return Ok(None);
-        };
-        let mut out = Map::new();
-        for (k, p) in m {
-            let [a, b, c, e] = p;
-            out.insert(
-                k,
-                [
-                    super::exact::parse(&a)?,
-                    super::exact::parse(&b)?,
-                    super::exact::parse(&c)?,
-                    super::exact::parse(&e)?,
-                ],
-            );
-        }
-        Ok(Some(out))
+/// The number a raw JSON value spells, correctly rounded; an error for any other value and for
+/// a number beyond `f64` (as serde_json's own reader refuses it).
+fn number<E: serde::de::Error>(raw: &RawValue) -> Result<f64, E> {
+    let text = raw.get();
+    let is_number = text.starts_with(|c: char| c == '-' || c.is_ascii_digit());
+    match text.parse::<f64>() {
+        Ok(x) if is_number && x.is_finite() => Ok(x),
+        Ok(_) if is_number => Err(E::custom(format!("number out of range: {text}"))),
+        _ => Err(E::invalid_type(serde::de::Unexpected::Other(text), &"a number")),
     }
 }
 
@@ -117,37 +96,56 @@ mod tests {
 
     #[derive(Debug, PartialEq, serde::Serialize, serde::Deserialize)]
     struct E {
-        #[serde(with = "super::exact")]
+        #[serde(deserialize_with = "super::exact")]
         x: f64,
-        #[serde(with = "super::exact_opt")]
+        #[serde(deserialize_with = "super::exact_opt")]
         y: Option<f64>,
-        #[serde(with = "super::exact_map")]
+        #[serde(deserialize_with = "super::exact_map")]
         m: Option<std::collections::BTreeMap<u32, [f64; 4]>>,
     }
 
     #[test]
     fn exact_numbers_come_back_bit_for_bit() {
-        // Numbers of 17 significant digits, which serde_json's default reading gets wrong.
+        // Numbers of 17 significant digits, which serde_json's own reader gets wrong one time
+        // in nine, and huge and tiny ones.
         let mut x = 0x9e37_79b9_7f4a_7c15_u64;
-        let mut wrong = 0;
+        let mut numbers = vec![3.777_777_777_777_778e122, 1e-300, -0.0, f64::MAX, f64::MIN_POSITIVE, 5.0];
         for _ in 0..2000 {
             x ^= x << 13;
             x ^= x >> 7;
             x ^= x << 17;
-            let v = ((x >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 6.3;
+            numbers.push(((x >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 6.3);
+        }
+        let mut wrong = 0;
+        for v in numbers {
             let e = E { x: v, y: Some(-v), m: Some([(7, [v, v / 3.0, 1e-300, -0.0])].into()) };
-            let back: E = serde_json::from_str(&serde_json::to_string(&e).unwrap()).unwrap();
-            assert_eq!(back.x.to_bits(), v.to_bits());
+            let text = serde_json::to_string(&e).unwrap();
+            let back: E = serde_json::from_str(&text).unwrap();
+            assert_eq!(back.x.to_bits(), v.to_bits(), "{v:?} read back as {:?}", back.x);
             assert_eq!(back.y.unwrap().to_bits(), (-v).to_bits());
             let m = back.m.unwrap()[&7];
             assert!(m.iter().zip([v, v / 3.0, 1e-300, -0.0]).all(|(a, b)| a.to_bits() == b.to_bits()));
             let plain: f64 = serde_json::from_str(&serde_json::to_string(&v).unwrap()).unwrap();
             wrong += usize::from(plain.to_bits() != v.to_bits());
         }
-        // The reason for the module: the plain trip changes some of them.
+        // The reason for `exact`: serde_json's own reader changes some of them.
         assert!(wrong > 0, "serde_json read every number back exactly; `exact` may be unneeded");
-        let none = E { x: 0.5, y: None, m: None };
-        assert_eq!(serde_json::from_str::<E>(&serde_json::to_string(&none).unwrap()).unwrap(), none);
-        assert!(serde_json::from_str::<E>(r#"{"x": "nope", "y": null, "m": null}"#).is_err());
+    }
+
+    #[test]
+    fn exact_numbers_are_numbers() {
+        let read = |t: &str| serde_json::from_str::<E>(t).map_err(|e| e.to_string());
+        assert_eq!(read(r#"{"x": 1, "y": null, "m": null}"#), Ok(E { x: 1.0, y: None, m: None }));
+        assert_eq!(read(r#"{"x": -2.5E-3, "y": 1e+2, "m": null}"#), Ok(E { x: -2.5e-3, y: Some(100.0), m: None }));
+        for bad in [r#""1.5""#, "null", "true", "[1]", "1e400", "-1e999"] {
+            let e = read(&format!(r#"{{"x": {bad}, "y": null, "m": null}}"#)).unwrap_err();
+            assert!(e.contains("line 1"), "{bad}: {e}");
+        }
+        assert!(read(r#"{"x": 1, "y": "2", "m": null}"#).unwrap_err().contains("a number"));
+        assert!(read(r#"{"x": 1, "y": null, "m": {"1": [1, 2, 3, "4"]}}"#).unwrap_err().contains("a number"));
+        // Also from a `serde_json::Value`.
+        let v = serde_json::json!({"x": 0.1, "y": 0.2, "m": {"3": [1.0, 2.0, 3.0, 4.0]}});
+        let e: E = serde_json::from_value(v).unwrap();
+        assert_eq!((e.x, e.y, e.m.unwrap()[&3]), (0.1, Some(0.2), [1.0, 2.0, 3.0, 4.0]));
     }
 }

@@ -17,7 +17,8 @@
 //!   vision                grid, geometry
 //!   mcmc                  -
 //!   mln                   mcmc
-//!   floorplan             grid, geometry, vision, mcmc, mln
+//!   explore               grid, mcmc
+//!   floorplan             grid, geometry, vision, mcmc, mln, explore
 //!   tabletop              mcmc, mln
 //!   render                grid, floorplan, tabletop
 //!   wasm, CLI (src/bin)   any of the above
@@ -39,6 +40,8 @@
 //! * [`floorplan`] holds the semantic world (units, doors, types), the chain with its kernels
 //!   and their schedule (Tab. 3.2), rooms, scene graph, metrics, knowledge supervision and the
 //!   synthetic generator.
+//! * [`explore`] simulates a robot exploring a known map with a range sensor: the growing
+//!   maps the online chain ([`floorplan::online`]) is measured on.
 //! * [`mln`] is the Markov logic engine, usable on its own; the chains query it as a service.
 //! * [`tabletop`] turns noisy 6D box poses into a support/contact scene graph (chapter 4).
 //! * [`render`] draws maps, worlds and scene graphs with tiny-skia, natively and in the browser,
@@ -56,6 +59,7 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+pub mod explore;
 pub mod floorplan;
 pub mod geometry;
 pub mod grid;

@@ -538,7 +538,7 @@ fn plans_refuse_bad_inputs() {
     let plan = |pgm: &[u8], input: &str, previous| Plan::new(pgm, &yaml, input, previous).map(|_| ());
     err_contains(plan(&pgm, "{", None), "plan input");
     err_contains(plan(&pgm, "{}", None), "missing field `world`");
-    err_contains(plan(&pgm, r#"{"world": {}, "angle": "0"}"#, None), "plan input");
+    err_contains(plan(&pgm, r#"{"world": {}}"#, None), "plan input");
     err_contains(plan(b"\x89PNG\r\n\x1a\n", &input, None), "PGM");
     err_contains(plan(&pgm, &input, Some(vec![0; 3])), "previousLabels: give the 2560 room ids");
     // A world of another map.
@@ -549,7 +549,7 @@ fn plans_refuse_bad_inputs() {
     v["edits"] = r#"[{"op": "name", "at": [500, 5], "name": "x"}]"#.into();
     err_contains(plan(&pgm, &v.to_string(), None), "edits");
     // A saved typed world alone is a plan without a report.
-    let world = serde_json::json!({"world": v["world"], "angle": v["angle"]});
+    let world = serde_json::json!({"world": v["world"]});
     let saved = Plan::new(&pgm, &yaml, &world.to_string(), None).unwrap();
     assert!(saved.world_json().contains("\"rooms\""));
     err_contains(saved.report_json(), "without a chain");
@@ -840,4 +840,67 @@ fn rules_learn_from_a_labelled_world() {
     // A world that does not parse, and an unknown method, are errors, not panics.
     assert!(learn_rules(&hand_set_indoor_rules(), "{", 0.05, None).is_err());
     assert!(learn_rules(&hand_set_indoor_rules(), truth, 0.05, Some("magic".into())).is_err());
+}
+
+#[wasm_bindgen_test]
+fn update_map_follows_the_library_and_checks_sizes() {
+    let full = Map::from_yaml(
+        include_str!("../samples/office-small/map.yaml"),
+        include_bytes!("../samples/office-small/map.pgm"),
+    )
+    .unwrap();
+    let (w, h) = (full.width(), full.height());
+    let mut codes = full.cells();
+    for (i, c) in codes.iter_mut().enumerate() {
+        if i as u32 % w >= w / 2 {
+            *c = 1;
+        }
+    }
+    let half = Map::from_cells(w, h, &codes).unwrap();
+    let mut m = Mapper::new(&half, None, Some(JsValue::from(3))).unwrap();
+    m.step(2000.0).unwrap();
+    let changed = m.update_map(&full).unwrap();
+    assert!(changed > 0.0);
+    assert_eq!(m.iteration(), 2000.0, "the chain goes on, it does not restart");
+    assert_eq!(m.update_map(&full).unwrap(), 0.0, "the same map again changes nothing");
+    m.step(2000.0).unwrap();
+    let mut chain = Chain::new(half.inner(), ChainConfig::default(), 3).unwrap();
+    chain.step(2000);
+    chain.update_map(full.inner()).unwrap();
+    chain.step(2000);
+    // The plan is made on the mapper's map, which is the new one.
+    let now = m.map();
+    assert_eq!(now.cells(), full.cells());
+    assert_eq!(plan_of(&now, &mut m).world_json(), chain.best_world_with_rooms(&Default::default()).0.to_json());
+    err_contains(m.update_map(&Map::from_cells(5, 5, &[0; 25]).unwrap()), "keep the map's size");
+}
+
+#[wasm_bindgen_test]
+fn explorer_reveals_the_map_as_the_library_does() {
+    let truth = Map::from_yaml(
+        include_str!("../samples/office-small/map.yaml"),
+        include_bytes!("../samples/office-small/map.pgm"),
+    )
+    .unwrap();
+    let mut e = wasm::Explorer::new(&truth, Some(r#"{"range_m": 4}"#.into()), Some(JsValue::from(2))).unwrap();
+    let first = e.snapshot();
+    assert!(counts(&first).free > 0 && counts(&first).free < counts(&truth).free);
+    while e.advance(200.0).unwrap() {}
+    assert!(e.done() && e.travelled_m() > 1.0);
+    assert_eq!(e.scan_cells(0).len(), 2 * e.scans() as usize);
+    let mut robot = ksmcmc::explore::Explorer::new(
+        truth.inner(),
+        ksmcmc::explore::ExploreConfig { range_m: 4.0, ..Default::default() },
+        2,
+    )
+    .unwrap();
+    while robot.advance(200) {}
+    assert_eq!(
+        e.snapshot().cells(),
+        robot.snapshot().classified().cells().iter().map(|&c| c as u8).collect::<Vec<_>>()
+    );
+    assert_eq!(e.seen_free(), counts(&e.snapshot()).free);
+    err_contains(wasm::Explorer::new(&truth, Some(r#"{"range_m": -1}"#.into()), None), "range_m");
+    err_contains(wasm::Explorer::new(&truth, Some(r#"{"start": [0, 0]}"#.into()), None), "not a free cell");
+    err_contains(e.advance(-1.0), "advance");
 }

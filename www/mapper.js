@@ -1018,7 +1018,7 @@ function setPainting(on) {
   ui.canvas.classList.toggle('painting', on);
   if (on) {
     pause();
-    say('Painting: drag on the map. Each stroke starts the chain over on the painted map.');
+    say('Painting: drag on the map. After each stroke the chain goes on from its world on the painted map; Reset starts over.');
   }
 }
 
@@ -1158,7 +1158,10 @@ function onPointerMove(e) {
   state.strokeAt = cell;
 }
 
-/** The stroke is done: the painted map replaces the map, and the chain starts over on it. */
+/**
+ * The stroke is done: the painted map replaces the map, and the chain takes it and goes on from
+ * its world (`updateMap`): where the map did not change, the world stays. Reset starts over.
+ */
 async function onPointerUp(e) {
   if (state.splitDrag) editPointerUp(e);
   if (!state.strokeAt) return;
@@ -1172,24 +1175,54 @@ async function onPointerUp(e) {
     const painted = OccMap.fromCells(width, height, codes);
     const source = { kind: 'cells', width, height, codes };
     let reply;
-    let args;
     try {
-      args = chainArgs();
-      reply = await state.chain.call('load', { source, ...args });
+      reply = await state.chain.call('updateMap', { source });
     } catch (err) {
       painted.free();
       throw err;
     }
     state.map.free();
     state.map = painted;
-    adopt(reply, args, source);
+    followMap(reply, source);
     clearError();
-    say('Painted. Press Start to explain the painted map.');
+    say(
+      `Painted: ${formatNumber(reply.changed)} cell${reply.changed === 1 ? '' : 's'} changed. The chain goes on from its world ` +
+        `on the painted map (iteration ${formatNumber(reply.stats.iteration)}); Start runs it, Reset starts over.`,
+    );
   } catch (err) {
     state.codes = state.strokeUndo ?? state.base.slice();
     showError(new Error(`${err instanceof Error ? err.message : err} (the stroke was undone)`));
     requestRedraw();
   }
+}
+
+/**
+ * The chain took a changed map and went on (the same chain: its trace and statistics carry
+ * on). The rooms, the route, the 3D view and the edits are read again, and the weak prior's
+ * chain, if shown, takes the same map.
+ */
+function followMap({ stats, changed }, source) {
+  takeStats(stats);
+  state.source = source;
+  if (changed > 0) {
+    state.rooms.request();
+    syncEdits();
+    const weak = state.weak;
+    if (weak?.stats) {
+      const token = weak.token;
+      weak.chain.call('updateMap', { source }).then(
+        (reply) => {
+          if (state.weak !== weak || token !== weak.token) return;
+          weak.stats = reply.stats;
+          weak.rooms.request();
+          weak.redrawPending = true;
+          schedule();
+        },
+        (err) => showError(new Error(`The weak prior's chain did not take the painted map: ${err.message}`)),
+      );
+    }
+  }
+  requestRedraw();
 }
 
 function setBrush(size) {

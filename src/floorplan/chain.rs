@@ -34,6 +34,9 @@ use crate::mcmc::{accept, Cumulative, Ring, Rng, TracePoint};
 use crate::vision;
 use serde::{Deserialize, Serialize};
 
+mod update;
+pub use update::MapUpdate;
+
 /// Bottom-up detectors feeding the chain.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -251,6 +254,19 @@ struct Snapshot {
     doors: Vec<DoorSpec>,
 }
 
+/// The map cells that may be objects, counted for the knowledge terms. Unknown object cells
+/// use up the share of a unit's interior that may be objects even when they earn nothing, so
+/// both classes are counted if either is forgiven (`object_gain` above zero).
+fn object_cells(
+    world_map: &Grid<Cell>,
+    resolution: f64,
+    config: &ChainConfig,
+    object_gain: [f64; 2],
+) -> vision::objects::ObjectCells {
+    let any = object_gain.iter().any(|&g| g > 0.0);
+    vision::objects::ObjectCells::counting(world_map, resolution, config.knowledge.max_object_m, [any, any])
+}
+
 /// A running data-driven MCMC chain over semantic worlds of one map.
 #[derive(Debug, Clone)]
 pub struct Chain {
@@ -272,6 +288,9 @@ pub struct Chain {
     samples: Ring<Vec<Rect>>,
     phase_tables: Vec<Cumulative>,
     phase_index: usize,
+    /// The iteration the kernel schedule counts from: 0, or the last map update's
+    /// ([`Chain::update_map`]), after which the schedule's phases run again.
+    schedule_origin: u64,
     knowledge: Option<super::knowledge::Knowledge>,
     inferred: super::knowledge::Inferred,
     resolution: f64,
@@ -290,6 +309,9 @@ pub struct Chain {
     typer: Option<super::knowledge::Knowledge>,
     /// A person's edits, hard evidence ([`Chain::set_edits`]).
     edits: super::edits::Edits,
+    /// The wall faces (columns, rows) the wall detector last built candidates on; `None` for
+    /// a chain given its candidates ([`Chain::with_candidates`]), whose pool the chain keeps.
+    faces: Option<(Vec<i32>, Vec<i32>)>,
 }
 
 impl Chain {
@@ -335,7 +357,11 @@ impl Chain {
         let min_side = config.kernels.min_side.max(2 * wall + 1);
         let candidates = Candidates::new(found.into_iter().filter(|(r, _)| r.w >= min_side && r.h >= min_side));
         let resolution = map.yaml().resolution;
-        Self::with_parts(config, frame, world_map, classified.clone(), candidates, wall, resolution, seed)
+        let faces = vision::walls::faces_of(&world_map, &config.detectors.walls);
+        let mut chain =
+            Self::with_parts(config, frame, world_map, classified.clone(), candidates, wall, resolution, seed)?;
+        chain.faces = Some(faces);
+        Ok(chain)
     }
 
     /// A chain on an upright world-frame map with an explicit ADD candidate pool (no detectors,
@@ -377,18 +403,7 @@ impl Chain {
             (libm::log(k.object[1]) - libm::log(sensor[0][1])).max(0.0),
             (libm::log(k.object[2]) - libm::log(sensor[0][2])).max(0.0),
         ];
-        let objects = knowledge.is_some().then(|| {
-            // Unknown object cells use up the share of a unit's interior that may be objects
-            // even when they earn nothing, so both are counted if either is forgiven.
-            let any = object_gain.iter().any(|&g| g > 0.0);
-            let forgiven = [any, any];
-            crate::vision::objects::ObjectCells::counting(
-                &world_map,
-                resolution,
-                config.knowledge.max_object_m,
-                forgiven,
-            )
-        });
+        let objects = knowledge.is_some().then(|| object_cells(&world_map, resolution, &config, object_gain));
         let state = State::new(&world_map, config.doors, wall);
         let proposer = Proposer::new(config.kernels, candidates, state.width(), state.height(), wall);
         let posterior = Posterior::new(&config.posterior);
@@ -414,6 +429,7 @@ impl Chain {
             best_iteration: 0,
             phase_tables,
             phase_index: 0,
+            schedule_origin: 0,
             knowledge,
             inferred: Default::default(),
             resolution,
@@ -424,6 +440,7 @@ impl Chain {
             free_space_scratch: Default::default(),
             typer: None,
             edits: Default::default(),
+            faces: None,
         })
     }
 
@@ -465,6 +482,24 @@ impl Chain {
             }
         }
         s
+    }
+
+    /// Makes the current world the best one, with log posterior `lp`.
+    #[inline]
+    fn keep_as_best(&mut self, lp: f64) {
+        self.best_log_posterior = lp;
+        self.best_iteration = self.iteration;
+        self.best.units.clone_from(&self.state.units);
+        self.best.doors.clone_from(&self.state.doors);
+    }
+
+    /// Removes the unit in slot `i` of the current world, with its doors.
+    fn remove_unit_with_doors(&mut self, i: usize) {
+        let id = self.state.units[i].id;
+        while let Some(k) = self.state.doors.iter().position(|d| d.lo == id || d.hi == id) {
+            self.state.apply(&Move::Delete(k));
+        }
+        self.state.apply(&Move::Remove(i));
     }
 
     /// The full log posterior of the current world: likelihood, prior and knowledge terms.
@@ -538,10 +573,7 @@ impl Chain {
             self.log_target = lp * self.posterior.inv_temperature();
             self.best_log_posterior = best_base + self.knowledge_term_for(&self.best.units);
             if lp > self.best_log_posterior || self.best.units.is_empty() {
-                self.best_log_posterior = lp;
-                self.best_iteration = self.iteration;
-                self.best.units.clone_from(&self.state.units);
-                self.best.doors.clone_from(&self.state.doors);
+                self.keep_as_best(lp);
             }
         }
         // The best world may be an older one the current inference did not see: type it by
@@ -616,19 +648,12 @@ impl Chain {
         self.edits = edits;
         self.state.forbid(&walls);
         while let Some(i) = self.state.units.iter().position(|u| self.state.breaks_forbidden(u.rect())) {
-            let id = self.state.units[i].id;
-            while let Some(k) = self.state.doors.iter().position(|d| d.lo == id || d.hi == id) {
-                self.state.apply(&Move::Delete(k));
-            }
-            self.state.apply(&Move::Remove(i));
+            self.remove_unit_with_doors(i);
         }
         let lp = self.full_log_posterior();
         self.log_target = lp * self.posterior.inv_temperature();
         if self.best.units.iter().any(|u| self.state.breaks_forbidden(u.rect())) || self.best.units.is_empty() {
-            self.best_log_posterior = lp;
-            self.best_iteration = self.iteration;
-            self.best.units.clone_from(&self.state.units);
-            self.best.doors.clone_from(&self.state.doors);
+            self.keep_as_best(lp);
         }
         if self.knowledge.is_some() && !self.state.units.is_empty() {
             // New type evidence changes the target at once, not at the next inference.
@@ -807,8 +832,8 @@ impl Chain {
 
     fn current_weights(&mut self) -> usize {
         let phases = &self.config.schedule.phases;
-        while self.phase_index + 1 < phases.len() && phases[self.phase_index].until.is_some_and(|u| self.iteration > u)
-        {
+        let since = self.iteration - self.schedule_origin;
+        while self.phase_index + 1 < phases.len() && phases[self.phase_index].until.is_some_and(|u| since > u) {
             self.phase_index += 1;
         }
         self.phase_index
@@ -903,10 +928,7 @@ impl Chain {
             self.log_target = new_target;
             let lp = new_target / self.posterior.inv_temperature();
             if lp > self.best_log_posterior {
-                self.best_log_posterior = lp;
-                self.best_iteration = self.iteration;
-                self.best.units.clone_from(&self.state.units);
-                self.best.doors.clone_from(&self.state.doors);
+                self.keep_as_best(lp);
             }
             if self.config.output.samples > 0 {
                 let mut rects = Vec::with_capacity(self.state.units.len());

@@ -122,6 +122,16 @@ impl Explanation {
         Cell::from_code(self.cells[y * self.width + x].cm).expect("0..=2")
     }
 
+    /// Changes the map class of cell `i` (row-major) to `cm`, keeping the confusion counts
+    /// exact: the map grew or was corrected there ([`crate::floorplan::Chain::update_map`]).
+    pub fn set_map_class(&mut self, i: usize, cm: Cell) {
+        let c = &mut self.cells[i];
+        let p = predicted(c.cover, c.wall, c.door);
+        self.confusion[c.cm as usize][p] -= 1;
+        c.cm = cm as u8;
+        self.confusion[c.cm as usize][p] += 1;
+    }
+
     #[inline]
     fn touch(&mut self, i: usize, dcover: i8, dwall: i8, ddoor: i8) {
         let c = &mut self.cells[i];

@@ -127,6 +127,21 @@ impl Candidates {
         self.cumulative = Cumulative::new(weights);
     }
 
+    /// Drops the rectangles `drop` selects and adds `items` (new rectangles go last, in order):
+    /// how the online chain replaces the candidates a map change reaches. Returns how many
+    /// were dropped.
+    pub fn replace_where(
+        &mut self,
+        drop: impl Fn(Rect) -> bool,
+        items: impl IntoIterator<Item = (Rect, f64)>,
+    ) -> usize {
+        let kept: Vec<(Rect, f64)> = self.iter().filter(|&(r, _)| !drop(r)).collect();
+        let dropped = self.rects.len() - kept.len();
+        *self = Candidates::new(kept);
+        self.extend(items);
+        dropped
+    }
+
     /// Number of candidates.
     pub fn len(&self) -> usize {
         self.rects.len()
@@ -281,6 +296,11 @@ pub fn shifted(r: Rect, side: usize, d: i32) -> Rect {
 
 impl Proposer {
     /// A proposer for a `width` x `height` world with the given ADD candidates.
+    /// Forgets the doors detected so far: they were found on a map that has since changed.
+    pub fn forget_doors(&mut self) {
+        self.doors.generation = None;
+    }
+
     pub fn new(config: KernelConfig, candidates: Candidates, width: i32, height: i32, wall: i32) -> Self {
         let min_side = config.min_side.max(2 * wall + 1);
         let m = libm::ceil(4.0 * config.shift_sigma).max(1.0) as i32;

@@ -19,6 +19,7 @@ pub mod graph;
 pub(crate) mod kernels;
 pub mod knowledge;
 pub mod metrics;
+pub mod online;
 pub mod outline;
 pub mod plan_input;
 pub mod posterior;

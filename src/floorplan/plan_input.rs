@@ -8,8 +8,8 @@
 //! typed best world, the edits in force, whether knowledge supervision is on, the units' type
 //! marginals and the chain's counts for the report) and the other module finds the rooms from that text and
 //! the map, exactly as [`Chain::best_world_with_rooms`] does: the grids are made again as
-//! [`Chain::new`] made them ([`RoomInput::for_map`]), and the numbers that must be exact (the
-//! frame's angle, the marginals, the report's) are written so that they read back to the bits
+//! [`Chain::new`] made them ([`RoomInput::for_map`]), and the numbers (the frame's angle, on
+//! which the room labels are made, the marginals, the report's) are read back to the bits
 //! they were written from ([`crate::json::exact`]).
 //!
 //! ```
@@ -45,10 +45,6 @@ pub const MAX_PLAN_INPUT_BYTES: usize = super::world::MAX_WORLD_JSON_BYTES + (1 
 pub struct PlanInput {
     /// The typed best world ([`Chain::best_world_typed`]), without rooms.
     pub world: World,
-    /// Its frame's angle exactly ([`crate::json::exact`]): the world's own may read back a
-    /// bit off, and the room labels are made on the map turned by it.
-    #[serde(with = "crate::json::exact")]
-    pub angle: f64,
     /// The edits in force: the text of the JSON list [`Edits::parse`] reads (default: none).
     #[serde(default = "no_edits")]
     pub edits: String,
@@ -58,14 +54,14 @@ pub struct PlanInput {
     pub knowledge: bool,
     /// Unit id -> `P(Room)`, `P(Corr)`, `P(Hall)`, `P(Other)` of the best world's inference
     /// ([`Chain::best_world_inferred`]); none when there was none.
-    #[serde(default, with = "crate::json::exact_map")]
+    #[serde(default, deserialize_with = "crate::json::exact_map")]
     pub marginals: Option<BTreeMap<u32, [f64; 4]>>,
     /// What `report.json` needs of the chain; none for a world without a chain.
     #[serde(default)]
     pub chain: Option<ChainSummary>,
     /// Seconds the chain spent setting up (orientation, detectors), if known: the report's
     /// `setup_seconds`.
-    #[serde(default, with = "crate::json::exact_opt")]
+    #[serde(default, deserialize_with = "crate::json::exact_opt")]
     pub setup_seconds: Option<f64>,
 }
 
@@ -103,7 +99,6 @@ impl PlanInput {
             m
         });
         PlanInput {
-            angle: world.frame.angle,
             world,
             edits: chain.edits().to_json(),
             knowledge: chain.config().knowledge.enabled,
@@ -128,8 +123,7 @@ impl PlanInput {
                 text.len()
             )));
         }
-        let mut input: PlanInput = serde_json::from_str(text).map_err(|e| PlanInputError(e.to_string()))?;
-        input.world.frame.angle = input.angle;
+        let input: PlanInput = serde_json::from_str(text).map_err(|e| PlanInputError(e.to_string()))?;
         input.world.validate().map_err(|e| PlanInputError(e.to_string()))?;
         input.edits()?;
         Ok(input)

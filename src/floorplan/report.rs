@@ -51,17 +51,17 @@ pub struct ChainSummary {
     /// Iterations run.
     pub iterations: u64,
     /// Seconds spent iterating.
-    #[serde(with = "crate::json::exact")]
+    #[serde(deserialize_with = "crate::json::exact")]
     pub seconds: f64,
     /// The best log posterior and the iteration it was found at.
-    #[serde(with = "crate::json::exact")]
+    #[serde(deserialize_with = "crate::json::exact")]
     pub log_posterior: f64,
     /// The iteration of the best world.
     pub best_iteration: u64,
     /// The chain's seed.
     pub seed: u64,
     /// The map's rotation, degrees.
-    #[serde(with = "crate::json::exact")]
+    #[serde(deserialize_with = "crate::json::exact")]
     pub rotation_deg: f64,
     /// Depth of the units' wall rings, cells.
     pub wall_thickness: i32,

@@ -239,6 +239,17 @@ impl State {
         self.forbidden.as_ref().is_some_and(|f| f.count(inner) > 0)
     }
 
+    /// Takes a changed world-frame map: the cells listed in `changed` (row-major indices) now
+    /// have the classes `map` gives them. The explanation changes only there; the cell counts
+    /// are counted again.
+    pub fn set_map(&mut self, map: &Grid<Cell>, changed: &[usize]) {
+        let cells = map.cells();
+        for &i in changed {
+            self.explanation.set_map_class(i, cells[i]);
+        }
+        self.counts = CellCounts::new(map);
+    }
+
     /// Grid width.
     pub fn width(&self) -> i32 {
         self.width

@@ -207,6 +207,13 @@ impl OccupancyMap {
         }
     }
 
+    /// The same map with other metadata (resolution, origin): for a map made from classes that
+    /// stands for a real one, such as a snapshot of a map being explored.
+    pub fn with_yaml(mut self, yaml: MapYaml) -> Self {
+        self.yaml = yaml;
+        self
+    }
+
     /// Loads a map file: a `.yaml`/`.yml` map_server description (with the image it names,
     /// relative to the YAML's folder), or a PGM/PNG image.
     #[cfg(not(target_arch = "wasm32"))]

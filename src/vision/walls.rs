@@ -135,6 +135,24 @@ fn faces(lines: &[WallLine]) -> Vec<i32> {
 /// fourth power of the free share of the interior, so that rectangles over unexplored space
 /// are proposed less often than rooms.
 pub fn candidates(grid: &Grid<Cell>, min_side: i32, c: &WallConfig) -> Vec<(Rect, f64)> {
+    candidates_where(grid, min_side, c, &|_| true)
+}
+
+/// The wall faces the detector builds candidates on: the columns (`.0`) and rows (`.1`) of
+/// the sides of the detected wall lines, sorted.
+pub fn faces_of(grid: &Grid<Cell>, c: &WallConfig) -> (Vec<i32>, Vec<i32>) {
+    (faces(&wall_lines(grid, false, c)), faces(&wall_lines(grid, true, c)))
+}
+
+/// [`candidates`] restricted to the rectangles `keep` accepts, which are the only ones scored:
+/// after a map changes in one place, the online chain rescores only the rectangles the change
+/// can reach (see `Chain::update_map`).
+pub fn candidates_where(
+    grid: &Grid<Cell>,
+    min_side: i32,
+    c: &WallConfig,
+    keep: &dyn Fn(Rect) -> bool,
+) -> Vec<(Rect, f64)> {
     let occ = AreaCounts::new(&dilate(grid, c.tolerance), Cell::Occupied);
     let free = AreaCounts::new(grid, Cell::Free);
     // Walls crossing a candidate are judged on the raw map: dilation would close doors.
@@ -159,7 +177,7 @@ pub fn candidates(grid: &Grid<Cell>, min_side: i32, c: &WallConfig) -> Vec<(Rect
             for (b, &(y0, f0)) in ok_rows.iter().enumerate() {
                 for &(y1, f1) in &ok_rows[b + 1..] {
                     let h = y1 - y0 + 1;
-                    if h < min_side {
+                    if h < min_side || !keep(Rect::new(x0, y0, w, h)) {
                         continue;
                     }
                     let fl = frac(Rect::new(x0, y0, 1, h));

@@ -120,11 +120,16 @@ impl Mapper {
         }
     }
 
+    /// Forgets the worlds cached from the chain: it restarted, took edits or a new map.
+    fn forget_worlds(&mut self) {
+        self.best = None;
+        self.current = None;
+    }
+
     fn restart(&mut self, chain: Chain) {
         self.chain = chain;
         self.settled = Settled::for_map(self.map.count(Cell::Free));
-        self.best = None;
-        self.current = None;
+        self.forget_worlds();
         self.busy_ms = 0.0;
     }
 
@@ -257,6 +262,24 @@ impl Mapper {
         Ok(())
     }
 
+    /// Takes a new snapshot of the map and goes on from the current world instead of starting
+    /// over: for a map that grows while a robot explores, or a paint stroke. Only what the
+    /// changed cells reach is redone (the library's `Chain::update_map`). The map must keep its
+    /// size. Returns how many cells changed (0 leaves everything as it was).
+    #[wasm_bindgen(js_name = updateMap)]
+    pub fn update_map(&mut self, map: &Map) -> Result<f64, JsError> {
+        let t0 = now_ms();
+        let update = self.chain.update_map(map.inner()).map_err(|e| JsError::new(&e.to_string()))?;
+        self.busy_ms += now_ms() - t0;
+        if update.changed_cells > 0 {
+            self.map = map.inner().clone();
+            self.settled = Settled::for_map(self.map.count(Cell::Free));
+            self.base = None;
+            self.forget_worlds();
+        }
+        Ok(update.changed_cells as f64)
+    }
+
     /// Takes a person's corrections as hard evidence and goes on from the current world (as
     /// `ksmcmc floorplan --edits`): `editsJson` is a JSON list of
     /// `{"op": "merge", "at": [[x1, y1], [x2, y2]]}`, `{"op": "split", "line": [[x1, y1], [x2, y2]]}`,
@@ -268,8 +291,7 @@ impl Mapper {
     pub fn set_edits(&mut self, #[wasm_bindgen(js_name = editsJson)] edits_json: &str) -> Result<(), JsError> {
         let e = edits::Edits::parse(edits_json).map_err(|e| JsError::new(&e.to_string()))?;
         self.chain.set_edits(e).map_err(|e| JsError::new(&e.to_string()))?;
-        self.best = None;
-        self.current = None;
+        self.forget_worlds();
         Ok(())
     }
 

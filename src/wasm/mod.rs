@@ -12,7 +12,8 @@
 //!
 //! * `wasm-mapper`, `ksmcmc.js`: maps ([`map`]), their pictures and the live floor-plan chain
 //!   ([`mapper`]), with the built-in rules and their syntax check: what the live mapper needs
-//!   for its first frame, and the one module most pages start with.
+//!   for its first frame, and the one module most pages start with. The simulated robot of the
+//!   Exploration page ([`explore`]) is here too: it runs beside a `Mapper` and hands it maps.
 //! * `wasm-plan`, `ksmcmc_plan.js`: the room layer of a best world and everything made from it
 //!   ([`plan`]: `world.json`, labels, room types, GeoJSON, SVG, glTF, routes, the report, PNG
 //!   encoding), and routes and models of saved worlds. The live mapper's worker imports it
@@ -38,9 +39,12 @@
 //! const made = Map.fromYaml(s.mapYaml, s.mapPgm);
 //! ```
 //!
-//! Objects returned as classes (`Map`, `Rendered`, `Mapper`, `Plan`, `Synthetic`) live in wasm
-//! memory; call `.free()` on them when done, or let the garbage collector's finaliser do it.
+//! Objects returned as classes (`Map`, `Rendered`, `Mapper`, `Explorer`, `Plan`, `Synthetic`)
+//! live in wasm memory; call `.free()` on them when done, or let the garbage collector's
+//! finaliser do it.
 
+#[cfg(feature = "wasm-mapper")]
+mod explore;
 #[cfg(any(feature = "wasm-mapper", feature = "wasm-rules"))]
 pub mod knowledge;
 #[cfg(feature = "wasm-mapper")]
@@ -58,6 +62,8 @@ mod synth;
 #[cfg(feature = "wasm-tabletop")]
 pub mod tabletop;
 
+#[cfg(feature = "wasm-mapper")]
+pub use explore::Explorer;
 #[cfg(feature = "wasm-mapper")]
 pub use map::{draw_to_canvas, render_rgba, Counts, Map, Rendered};
 #[cfg(feature = "wasm-mapper")]

@@ -13,7 +13,7 @@ after(async () => {
   await env?.close();
 });
 
-const PAGES = ['index.html', 'mapper.html', 'embed.html', 'rules.html', 'prior.html', 'tabletop.html'];
+const PAGES = ['index.html', 'mapper.html', 'explore.html', 'embed.html', 'rules.html', 'prior.html', 'tabletop.html'];
 
 describe('Phone widths', () => {
   for (const path of PAGES) {

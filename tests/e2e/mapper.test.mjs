@@ -9,7 +9,7 @@ import { existsSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'no
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { check as checkGeoJson } from '@placemarkio/check-geojson';
-import { cli, DATASETS, done, download, openPage, pgm, REPO, snap, startBrowser, until } from './harness.mjs';
+import { cli, DATASETS, done, download, openPage, pgm, readPgm16, REPO, snap, startBrowser, until } from './harness.mjs';
 
 let env;
 let tmp;
@@ -523,6 +523,57 @@ describe('Live mapper', () => {
     assert.equal(s.painting, false, 'starting the chain leaves paint mode');
     assert.ok(s.bestUnits >= 1, `the painted map is explained: ${s.bestUnits} units`);
     assert.ok(s.bestLogPosterior > s.initialLogPosterior);
+    await done(page);
+  });
+
+  test('a paint stroke hands the painted map to the chain (updateMap): the iterations go on, the world stays where the map did not change', async () => {
+    const page = await openMapper('?sample=office-small&ipf=2000&seed=4');
+    for (let i = 0; i < 3; i++) await key(page, 's');
+    await until(page, (s) => s.iteration === 6000);
+    await settled(page);
+    const before = await snap(page);
+    const unitsOf = (json) => JSON.parse(json).units.map((u) => `${u.x},${u.y},${u.w},${u.h}`);
+    const unitsBefore = unitsOf(await page.evaluate(() => window.__ksmcmc.mapper.worldJson()));
+    assert.ok(unitsBefore.length >= 3, `units to keep and to lose: ${unitsBefore.length}`);
+    // A stroke of occupied cells across the middle of the smallest unit at least 12 cells
+    // across (a room: it goes, with the units it has doors to; the corridor's other rooms stay).
+    const [x, y, w, h] = unitsBefore.map((u) => u.split(',').map(Number)).filter((u) => u[2] >= 12 && u[3] >= 12).sort((a, b) => a[2] * a[3] - b[2] * b[3])[0];
+    const cellsBefore = await page.evaluate(() => window.__ksmcmc.map.counts());
+    // The room labels before (the worker makes and keeps the best world's plan for them).
+    const labels = async () => readPgm16(new Uint8Array(await page.evaluate(async () => Array.from(await window.__ksmcmc.mapper.labelsPgm()))));
+    const codes = () => page.evaluate(() => Array.from(window.__ksmcmc.map.cells()));
+    const [labelsBefore, codesBefore] = [await labels(), await codes()];
+    await key(page, 'p');
+    await page.locator('#map').scrollIntoViewIfNeeded();
+    const box = await page.locator('#map').boundingBox();
+    const at = (cx, cy) => [box.x + ((cx + 0.5) / before.width) * box.width, box.y + ((cy + 0.5) / before.height) * box.height];
+    await page.mouse.move(...at(x + w / 4, y + h / 2));
+    await page.mouse.down();
+    await page.mouse.move(...at(x + (3 * w) / 4, y + h / 2), { steps: 5 });
+    await page.mouse.up();
+    await page.waitForFunction((n) => window.__ksmcmc.map.counts().occupied > n, cellsBefore.occupied);
+    await until(page, (s) => /Painted: [\d,]+ cells? changed/.test(document.getElementById('status').textContent));
+    await settled(page);
+    const after = await snap(page);
+    assert.equal(after.iteration, before.iteration, 'the chain was not started over');
+    assert.ok(after.traceLength >= before.traceLength, 'its trace goes on');
+    const unitsAfter = unitsOf(await page.evaluate(() => window.__ksmcmc.mapper.worldJson()));
+    assert.ok(unitsAfter.every((u) => unitsBefore.includes(u)), `the world kept its units (no new ones): ${unitsAfter} of ${unitsBefore}`);
+    assert.ok(unitsAfter.length >= 1, 'units away from the stroke stay');
+    assert.ok(unitsAfter.length < unitsBefore.length, 'the unit the stroke crossed is gone');
+    // The plan is made again on the painted map: the cells the stroke made occupied, free and
+    // in a room before, are in none now.
+    const codesAfter = await codes();
+    const painted = codesAfter.flatMap((c, i) => (c === 2 && codesBefore[i] === 0 ? [i] : []));
+    assert.ok(painted.some((i) => labelsBefore.values[i] > 0), `the stroke crossed a room: ${painted.length} cells`);
+    const labelsAfter = await labels();
+    assert.deepEqual(painted.filter((i) => labelsAfter.values[i] > 0), [], 'no painted wall cell is in a room');
+    // The chain goes on from there; Reset starts it over on the painted map.
+    await key(page, 's');
+    await until(page, (s, n) => s.iteration === n, before.iteration + 2000);
+    await key(page, 'r');
+    await until(page, (s) => s.iteration === 0);
+    assert.equal((await page.evaluate(() => window.__ksmcmc.map.counts())).occupied > cellsBefore.occupied, true, 'Reset keeps the painted map');
     await done(page);
   });
 });

@@ -1,30 +1,16 @@
 //! `ksmcmc floorplan` and `ksmcmc score` end to end: outputs, determinism, bad input.
 
+use crate::common::run_cli as run;
 use ksmcmc::floorplan::World;
 use ksmcmc::grid::{Limits, OccupancyMap};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_ksmcmc"))
-}
 
 fn tmp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("ksmcmc-cli-fp-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    crate::common::tmp_dir("cli-fp", name)
 }
 
 fn sample(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("samples").join(name)
-}
-
-fn run(args: &[&str]) -> Output {
-    let out = bin().args(args).output().unwrap();
-    let text = format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
-    assert!(!text.contains("panicked"), "{args:?}: {text}");
-    out
 }
 
 #[test]

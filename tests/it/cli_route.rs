@@ -1,22 +1,12 @@
 //! `ksmcmc route` end to end: the JSON it prints, with and without labels.pgm, and its errors.
 
+use crate::common::run_cli as run;
 use ksmcmc::floorplan::World;
 use ksmcmc::grid::{Cell, Limits, OccupancyMap};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
 fn tmp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("ksmcmc-cli-route-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn run(args: &[&str]) -> Output {
-    let out = Command::new(env!("CARGO_BIN_EXE_ksmcmc")).args(args).output().unwrap();
-    let text = format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
-    assert!(!text.contains("panicked"), "{args:?}: {text}");
-    out
+    crate::common::tmp_dir("cli-route", name)
 }
 
 /// A floor plan of office-small (6000 iterations), written once for the tests of this file.

@@ -20,3 +20,20 @@ pub fn datasets(test: &str) -> Option<PathBuf> {
         None
     }
 }
+
+/// An empty folder for one test's files, `ksmcmc-PREFIX-PID-NAME` in the system's temporary
+/// folder (emptied first if an earlier run left it).
+pub fn tmp_dir(prefix: &str, name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("ksmcmc-{prefix}-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// Runs the `ksmcmc` command line and fails the test if it panicked (whatever its exit code).
+pub fn run_cli(args: &[&str]) -> std::process::Output {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_ksmcmc")).args(args).output().unwrap();
+    let text = format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+    assert!(!text.contains("panicked"), "{args:?}: {text}");
+    out
+}

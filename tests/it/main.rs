@@ -5,6 +5,7 @@
 
 mod chain;
 mod chain_exact;
+mod cli_explore;
 mod cli_floorplan;
 mod cli_render;
 mod cli_route;
@@ -18,6 +19,7 @@ mod knowledge;
 mod mln;
 mod mln_cli;
 mod model3d;
+mod online;
 mod pinned;
 mod render;
 mod route;

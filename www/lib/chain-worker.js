@@ -16,7 +16,8 @@
 // module alone. They get plain text and bytes: the map's PGM and YAML and `Mapper.planInput()`,
 // from which the plan module's `Plan` finds the rooms as the chain would.
 
-import init, { Map as OccMap, Mapper, renderMapperRgba, renderSceneGraphRgba, wasmHeapBytes } from '../pkg/ksmcmc.js';
+import init, { Mapper, renderMapperRgba, renderSceneGraphRgba, wasmHeapBytes } from '../pkg/ksmcmc.js';
+import { buildMap } from './map-source.js';
 
 /** Milliseconds of iterations between looking at the page's requests. */
 const SLICE_MS = 8;
@@ -122,27 +123,6 @@ function stats() {
     improvedAt: m.improvedAt ?? null,
     settleWindow: m.settleWindow,
   };
-}
-
-/** The map a `source` describes, classified as the page would. */
-function buildMap(source) {
-  switch (source.kind) {
-    case 'yaml':
-      return OccMap.fromYaml(source.yaml, source.image);
-    case 'image': {
-      const map = OccMap.fromBytes(source.bytes);
-      if (source.classify !== 'auto') return map;
-      try {
-        return map.reclassify('auto');
-      } finally {
-        map.free();
-      }
-    }
-    case 'cells':
-      return OccMap.fromCells(source.width, source.height, source.codes);
-    default:
-      throw new Error(`unknown map source ${source.kind}`);
-  }
 }
 
 /**
@@ -334,6 +314,34 @@ const ops = {
   start(args) {
     if (!state.map) throw new Error('no map yet');
     return start(null, args);
+  },
+  /**
+   * The map changed (a paint stroke): the chain takes the new map, of the same size, and goes
+   * on from its world (`Mapper.updateMap`) instead of starting over. Replies with how many
+   * cells changed and the chain's numbers; if the map is refused, nothing changes.
+   */
+  updateMap({ source }) {
+    const map = buildMap(source);
+    let changed;
+    try {
+      changed = state.mapper.updateMap(map);
+    } catch (err) {
+      map.free();
+      throw err;
+    }
+    if (changed > 0) {
+      state.map?.free();
+      state.map = map;
+      // A changed map is a new climb: "stop when settled" waits for it to settle again.
+      state.wasSettled = false;
+      // The plan is made again, on the new map, from the chain's best world as it is now (its
+      // key may not have changed); while edits are in force its rooms keep the shown ids.
+      state.floor = null;
+      if (state.plan) state.plan.key = null;
+    } else {
+      map.free();
+    }
+    return { stats: stats(), changed };
   },
   play({ ipf, stopWhenSettled }) {
     state.ipf = ipf;

@@ -1,4 +1,5 @@
-// The page's side of lib/chain-worker.js: requests as promises.
+// The page's side of lib/chain-worker.js (and of lib/explore-worker.js, which answers the same
+// way): requests as promises.
 
 export class RemoteChain {
   /**
@@ -6,9 +7,11 @@ export class RemoteChain {
    *   chain fails (the worker has paused it)
    * @param {(stats: object) => void} onSettled  called when the worker paused the chain
    *   because it settled
+   * @param {URL} [url]  the worker's module: lib/chain-worker.js, or one that answers the same
+   *   way (lib/explore-worker.js)
    */
-  constructor(onError, onSettled) {
-    this.worker = new Worker(new URL('./chain-worker.js', import.meta.url), { type: 'module' });
+  constructor(onError, onSettled, url = new URL('./chain-worker.js', import.meta.url)) {
+    this.worker = new Worker(url, { type: 'module' });
     this.pending = new Map();
     this.next = 1;
     this.worker.onmessage = (e) => {

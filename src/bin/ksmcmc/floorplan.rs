@@ -220,17 +220,27 @@ fn load_edits(path: &std::path::Path) -> Result<ksmcmc::floorplan::edits::Edits,
 
 /// The chain configuration: `--config`, then `--rotation` and `--knowledge` over it.
 fn chain_config(o: &Opts) -> Result<ChainConfig, CliError> {
-    let mut config = match &o.config {
+    chain_config_from(o.config.as_deref(), o.rotation, o.knowledge.as_deref())
+}
+
+/// The chain configuration from a `--config` file, then `--rotation` and `--knowledge` over
+/// it (`ksmcmc explore` takes the same options).
+pub fn chain_config_from(
+    path: Option<&std::path::Path>,
+    rotation: Option<f64>,
+    knowledge: Option<&str>,
+) -> Result<ChainConfig, CliError> {
+    let mut config = match path {
         Some(p) => {
             let text = std::fs::read_to_string(p).map_err(|e| args::failed(p.display(), e))?;
             ChainConfig::from_json(&text).map_err(|e| args::failed(p.display(), e))?
         }
         None => ChainConfig::default(),
     };
-    if o.rotation.is_some() {
-        config.detectors.rotation_deg = o.rotation;
+    if rotation.is_some() {
+        config.detectors.rotation_deg = rotation;
     }
-    match o.knowledge.as_deref() {
+    match knowledge {
         Some("none") => config.knowledge.enabled = false,
         Some("builtin") => config.knowledge.enabled = true,
         Some("handset") => {

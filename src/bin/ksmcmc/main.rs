@@ -6,6 +6,7 @@
 mod args;
 mod bench;
 mod evaluate;
+mod explore;
 mod floorplan;
 mod info;
 mod mln;
@@ -29,6 +30,8 @@ Usage:
                                            explain a map with a semantic floor plan
   ksmcmc route MAP WORLD.json --from X,Y --to X,Y
                                            a route through the world's rooms and doors (JSON)
+  ksmcmc explore MAP --out DIR [--seed S]  a simulated robot explores MAP; the floor plan
+                                           follows it online (warm against cold chains)
   ksmcmc score LABELS TRUTH                segmentation precision and recall
   ksmcmc bench                             speed of the engine (for BENCHMARKS.md)
   ksmcmc evaluate                          quality on real and synthetic maps (BENCHMARKS.md)
@@ -69,6 +72,7 @@ fn main() -> ExitCode {
         Some("floorplan") => floorplan::run(rest),
         Some("score") => score::run(rest),
         Some("route") => route::run(rest),
+        Some("explore") => explore::run(rest),
         Some("bench") => bench::run(rest),
         Some("evaluate") => evaluate::run(rest),
         Some("synth") => synth::run(rest),

@@ -1,0 +1,284 @@
+//! The floor plan following a robot that explores (dissertation § 3.5, Fig. 3.40), and what a
+//! warm chain saves over starting again.
+//!
+//! [`explore`] drives a simulated robot ([`crate::explore`]) over a true map. Every
+//! `update_every_m` metres it hands the robot's map to the chain ([`Chain::update_map`]) and
+//! runs `iterations` more. To measure the warm start it also starts a cold chain on the same
+//! snapshot, with the same seed and as many iterations, and notes for each how many
+//! iterations it took to come within 0.1 % of the better of the two best log posteriors (the
+//! reference). A warm chain that keeps most of its world needs few; a cold one climbs from the
+//! empty world every time.
+
+use super::{metrics, Chain, ChainConfig, ChainError};
+use crate::explore::{ExploreConfig, ExploreError, Explorer};
+use crate::grid::{Cell, OccupancyMap};
+use serde::{Deserialize, Serialize};
+
+/// How the chain follows the robot.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct OnlineConfig {
+    /// The robot and its sensor.
+    pub explore: ExploreConfig,
+    /// Metres driven between two updates of the chain's map (default 10).
+    pub update_every_m: f64,
+    /// Iterations the chain runs after each update (default 20,000).
+    pub iterations: u64,
+    /// Most updates; the robot stops there even if frontiers remain (default 200).
+    pub max_updates: usize,
+    /// Whether to run a cold chain on every snapshot to compare (default true).
+    pub measure_cold: bool,
+}
+
+impl Default for OnlineConfig {
+    fn default() -> Self {
+        OnlineConfig {
+            explore: ExploreConfig::default(),
+            update_every_m: 10.0,
+            iterations: 20_000,
+            max_updates: 200,
+            measure_cold: true,
+        }
+    }
+}
+
+/// How close to the reference counts as back (eq.: `L ≥ L_ref - 0.001 |L_ref|`).
+pub const WITHIN: f64 = 0.001;
+
+/// How often (iterations) the best log posterior is sampled to find when a chain came back.
+pub const STRIDE: u64 = 100;
+
+/// One update of the chain's map.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct UpdateRecord {
+    /// 1 for the first update (0 is the chain's start on the first snapshot).
+    pub update: usize,
+    /// The robot's cell `[column, row]`.
+    pub robot: [usize; 2],
+    /// Metres driven so far.
+    pub travelled_m: f64,
+    /// Free and occupied cells of the robot's map.
+    pub seen_free: usize,
+    /// Occupied cells of the robot's map.
+    pub seen_occupied: usize,
+    /// Cells whose class changed since the last update (world frame).
+    pub changed_cells: usize,
+    /// Unit candidates the wall detector scored again.
+    pub candidates_added: usize,
+    /// Iterations the warm chain needed to come within 0.1 % of the reference (the whole
+    /// budget if it did not).
+    pub warm_iterations: u64,
+    /// The same for the cold chain; `None` when cold chains are not measured.
+    pub cold_iterations: Option<u64>,
+    /// Whether the warm chain came within 0.1 % in its budget.
+    pub warm_reached: bool,
+    /// Whether the cold chain did.
+    pub cold_reached: Option<bool>,
+    /// The better best log posterior of the two chains.
+    pub reference_log_posterior: f64,
+    /// The warm chain's best after its iterations.
+    pub warm_best_log_posterior: f64,
+    /// The cold chain's best after its iterations.
+    pub cold_best_log_posterior: Option<f64>,
+    /// Units of the warm chain's best world.
+    pub units: usize,
+    /// K(W, M) of the warm chain's best world on the robot's map.
+    pub cell_prediction_rate: f64,
+    /// The cells where the robot scanned since the last update.
+    pub scans: Vec<[usize; 2]>,
+}
+
+/// Why an exploration could not run.
+#[derive(Debug, Clone, PartialEq)]
+pub enum OnlineError {
+    /// The robot cannot explore the map.
+    Explore(ExploreError),
+    /// The chain cannot start on the first snapshot, or an update was refused.
+    Chain(ChainError),
+    /// A setting is out of range.
+    Config(String),
+}
+
+impl std::fmt::Display for OnlineError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            OnlineError::Explore(e) => e.fmt(f),
+            OnlineError::Chain(e) => e.fmt(f),
+            OnlineError::Config(m) => write!(f, "online settings: {m}"),
+        }
+    }
+}
+
+impl std::error::Error for OnlineError {}
+
+impl OnlineConfig {
+    /// Checks every setting, saying which is out of range.
+    pub fn validate(&self) -> Result<(), OnlineError> {
+        self.explore.validate().map_err(OnlineError::Explore)?;
+        if !(self.update_every_m.is_finite() && self.update_every_m > 0.0) {
+            return Err(OnlineError::Config(format!("update_every_m {} must be positive", self.update_every_m)));
+        }
+        if self.iterations == 0 || self.iterations > 100_000_000 {
+            return Err(OnlineError::Config(format!("iterations {} must be 1 to 10^8", self.iterations)));
+        }
+        if self.max_updates == 0 || self.max_updates > 100_000 {
+            return Err(OnlineError::Config(format!("max_updates {} must be 1 to 100000", self.max_updates)));
+        }
+        Ok(())
+    }
+}
+
+/// A finished exploration.
+#[derive(Debug, Clone)]
+pub struct Exploration {
+    /// The warm chain, on the robot's last map.
+    pub chain: Chain,
+    /// The robot, at its last cell.
+    pub explorer: Explorer,
+    /// Every update, in order.
+    pub timeline: Vec<UpdateRecord>,
+}
+
+impl Exploration {
+    /// Updates after the start.
+    pub fn updates(&self) -> usize {
+        self.timeline.len()
+    }
+
+    /// Warm iterations summed over the updates.
+    pub fn warm_iterations(&self) -> u64 {
+        self.timeline.iter().map(|r| r.warm_iterations).sum()
+    }
+
+    /// Cold iterations summed over the updates (`None` if not measured).
+    pub fn cold_iterations(&self) -> Option<u64> {
+        self.timeline.iter().map(|r| r.cold_iterations).sum()
+    }
+}
+
+/// Explores `truth` with a simulated robot and follows it with a chain (module docs).
+/// `progress` sees each update as it is made.
+///
+/// ```
+/// use ksmcmc::floorplan::online::{explore, OnlineConfig};
+/// use ksmcmc::floorplan::{synth, ChainConfig};
+/// let s = synth::generate(&synth::SynthConfig { width: 200, height: 140, ..Default::default() }, 2)?;
+/// let config = OnlineConfig { update_every_m: 6.0, iterations: 3000, ..Default::default() };
+/// let run = explore(&s.map, &ChainConfig::default(), &config, 1, &mut |_| {})?;
+/// assert!(run.updates() >= 2);
+/// assert!(run.warm_iterations() <= run.cold_iterations().unwrap());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn explore(
+    truth: &OccupancyMap,
+    chain_config: &ChainConfig,
+    config: &OnlineConfig,
+    seed: u64,
+    progress: &mut dyn FnMut(&UpdateRecord),
+) -> Result<Exploration, OnlineError> {
+    config.validate()?;
+    let mut explorer = Explorer::new(truth, config.explore, seed).map_err(OnlineError::Explore)?;
+    let mut next = config.update_every_m;
+    drive(&mut explorer, next);
+    let mut chain = Chain::new(&explorer.snapshot(), chain_config.clone(), seed).map_err(OnlineError::Chain)?;
+    chain.step(config.iterations);
+    let mut timeline = Vec::new();
+    let mut scanned = explorer.scans().len();
+    while !explorer.is_done() && timeline.len() < config.max_updates {
+        next += config.update_every_m;
+        drive(&mut explorer, next);
+        let record = update(&mut chain, &explorer, chain_config, config, seed, timeline.len() + 1, scanned)?;
+        scanned = explorer.scans().len();
+        progress(&record);
+        timeline.push(record);
+    }
+    Ok(Exploration { chain, explorer, timeline })
+}
+
+/// Drives until the robot has travelled `until_m` metres or has nothing left to explore.
+fn drive(explorer: &mut Explorer, until_m: f64) {
+    while explorer.travelled_m() < until_m && explorer.advance(16) {}
+}
+
+/// One update: the warm chain takes the snapshot, a cold one starts on it, both run.
+fn update(
+    chain: &mut Chain,
+    explorer: &Explorer,
+    chain_config: &ChainConfig,
+    config: &OnlineConfig,
+    seed: u64,
+    index: usize,
+    scanned: usize,
+) -> Result<UpdateRecord, OnlineError> {
+    let snapshot = explorer.snapshot();
+    let change = chain.update_map(&snapshot).map_err(OnlineError::Chain)?;
+    let warm = climb(chain, config.iterations);
+    let cold = if config.measure_cold {
+        let mut c = Chain::new(&snapshot, chain_config.clone(), seed).map_err(OnlineError::Chain)?;
+        Some(climb(&mut c, config.iterations))
+    } else {
+        None
+    };
+    let last = |curve: &[f64]| *curve.last().expect("a curve has its start");
+    let reference = cold.as_deref().map_or(last(&warm), |c| last(c).max(last(&warm)));
+    let (warm_iterations, warm_reached) = came_back(&warm, reference, config.iterations);
+    let cold_back = cold.as_deref().map(|c| came_back(c, reference, config.iterations));
+    let best = chain.best_world();
+    let robot = explorer.robot();
+    Ok(UpdateRecord {
+        update: index,
+        robot: [robot.0, robot.1],
+        travelled_m: explorer.travelled_m(),
+        seen_free: explorer.seen_count(Cell::Free),
+        seen_occupied: explorer.seen_count(Cell::Occupied),
+        changed_cells: change.changed_cells,
+        candidates_added: change.candidates_added,
+        warm_iterations,
+        cold_iterations: cold_back.map(|b| b.0),
+        warm_reached,
+        cold_reached: cold_back.map(|b| b.1),
+        reference_log_posterior: reference,
+        warm_best_log_posterior: last(&warm),
+        cold_best_log_posterior: cold.as_deref().map(last),
+        units: best.units.len(),
+        cell_prediction_rate: metrics::prediction_rate(snapshot.classified(), &best),
+        scans: explorer.scans()[scanned..].iter().map(|&(x, y)| [x, y]).collect(),
+    })
+}
+
+/// Runs `iterations`, sampling the best log posterior before the first and every [`STRIDE`].
+fn climb(chain: &mut Chain, iterations: u64) -> Vec<f64> {
+    let mut curve = vec![chain.best_log_posterior()];
+    let mut done = 0;
+    while done < iterations {
+        let k = STRIDE.min(iterations - done);
+        chain.step(k);
+        done += k;
+        curve.push(chain.best_log_posterior());
+    }
+    curve
+}
+
+/// Iterations until `curve` (sampled every [`STRIDE`]) first comes within [`WITHIN`] of
+/// `reference`, and whether it did; `budget` if it never did.
+fn came_back(curve: &[f64], reference: f64, budget: u64) -> (u64, bool) {
+    let threshold = reference - WITHIN * reference.abs();
+    match curve.iter().position(|&l| l >= threshold) {
+        Some(k) => ((k as u64 * STRIDE).min(budget), true),
+        None => (budget, false),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn came_back_counts_strides_until_the_threshold() {
+        let curve = [-2000.0, -1500.0, -1001.0, -1000.5, -1000.0];
+        // Within 0.1 % of -1000 is -1001 or better: the third sample, 200 iterations in.
+        assert_eq!(came_back(&curve, -1000.0, 400), (200, true));
+        assert_eq!(came_back(&curve[..2], -1000.0, 100), (100, false));
+        assert_eq!(came_back(&curve, -2000.0, 400), (0, true));
+    }
+}

@@ -1,0 +1,132 @@
+//! Online updates (`Chain::update_map`): a chain that follows a growing map keeps its world,
+//! and what it redoes equals what a chain started on the new map computes.
+
+use ksmcmc::floorplan::{synth, Chain, ChainConfig, Rect};
+use ksmcmc::grid::{Cell, Grid, OccupancyMap};
+use std::collections::BTreeMap;
+
+fn floor(seed: u64) -> synth::Synthetic {
+    synth::generate(&synth::SynthConfig { width: 260, height: 180, ..Default::default() }, seed).unwrap()
+}
+
+/// `map` with every cell outside `keep` unknown: what a robot has seen of it.
+fn seen(map: &Grid<Cell>, keep: impl Fn(usize, usize) -> bool) -> OccupancyMap {
+    let mut g = map.clone();
+    for y in 0..g.height() {
+        for x in 0..g.width() {
+            if !keep(x, y) {
+                *g.at_mut(x, y) = Cell::Unknown;
+            }
+        }
+    }
+    OccupancyMap::from_classified(g)
+}
+
+/// Upright, fixed wall depth, and no free-space detector, so that the candidate pool is the
+/// wall detector's alone.
+fn config() -> ChainConfig {
+    let mut c = ChainConfig::default();
+    c.detectors.rotation_deg = Some(0.0);
+    c.detectors.free_space_start = u64::MAX / 2;
+    c.wall_thickness = Some(3);
+    c
+}
+
+/// The pool's rectangles and weights. The pool gives back a weight as the difference of two
+/// cumulative sums, so a weight differs in its last bits with its place in the pool: weights
+/// are compared to 1e-9 of the larger.
+fn pool(chain: &Chain) -> BTreeMap<(i32, i32, i32, i32), f64> {
+    chain.candidates().iter().map(|(r, w): (Rect, f64)| ((r.x, r.y, r.w, r.h), w)).collect()
+}
+
+fn same(a: f64, b: Option<&f64>) -> bool {
+    b.is_some_and(|&b| (a - b).abs() <= 1e-9 * a.abs().max(b.abs()))
+}
+
+#[test]
+fn rescored_candidates_equal_a_fresh_detector_run() {
+    let mut added = 0;
+    for seed in 1..=4 {
+        let s = floor(seed);
+        let full = s.map.classified();
+        let (w, h) = (full.width(), full.height());
+        // Three snapshots: the left part, then a quadrant more, then everything.
+        let snapshots = [
+            seen(full, |x, _| x < w * 2 / 5),
+            seen(full, |x, y| x < w * 2 / 5 || (x < w * 3 / 4 && y < h / 2)),
+            s.map.clone(),
+        ];
+        let mut chain = Chain::new(&snapshots[0], config(), seed).unwrap();
+        chain.step(1500);
+        for snap in &snapshots[1..] {
+            let update = chain.update_map(snap).unwrap();
+            assert!(update.changed_cells > 0, "seed {seed}: {update:?}");
+            added += update.candidates_added;
+            let fresh = Chain::new(snap, config(), seed).unwrap();
+            assert!(fresh.candidates().len() < 60_000, "the detector truncated its list");
+            let (a, b) = (pool(&chain), pool(&fresh));
+            let only_a: Vec<_> = a.iter().filter(|(k, v)| !same(**v, b.get(k))).take(5).collect();
+            let only_b: Vec<_> = b.iter().filter(|(k, v)| !same(**v, a.get(k))).take(5).collect();
+            assert!(only_a.is_empty() && only_b.is_empty(), "seed {seed}: kept {only_a:?}, fresh {only_b:?}");
+            assert!(chain.check_consistency(), "seed {seed}");
+            chain.step(1500);
+            assert!(chain.check_consistency(), "seed {seed}");
+        }
+    }
+    // The updates did rescore: the comparison is not between two untouched pools.
+    assert!(added > 100, "{added}");
+}
+
+#[test]
+fn an_update_rescores_the_current_and_best_worlds_on_the_new_map() {
+    let s = floor(7);
+    let full = s.map.classified();
+    let half = seen(full, |x, _| x < full.width() / 2);
+    let mut chain = Chain::new(&half, config(), 7).unwrap();
+    chain.step(4000);
+    let before = (chain.log_posterior(), chain.best_log_posterior(), chain.iteration());
+    let best_units = chain.best_world().units.len();
+    chain.update_map(&s.map).unwrap();
+    // The units stay; the map they explain changed, so the log posteriors did too.
+    assert_eq!(chain.iteration(), before.2);
+    assert_ne!(chain.log_posterior(), before.0);
+    assert!(chain.best_log_posterior() >= chain.log_posterior());
+    assert!(chain.best_world().units.len() >= best_units.min(1));
+    // A chain on the full map with the same units in it scores them the same: compare
+    // through K(W, M), which the explanation gives exactly.
+    let k = ksmcmc::floorplan::metrics::prediction_rate(s.map.classified(), &chain.world());
+    assert!((chain.prediction_rate() - k).abs() < 1e-12, "{} vs {k}", chain.prediction_rate());
+    // The same snapshot again changes nothing.
+    let lp = chain.log_posterior();
+    let again = chain.update_map(&s.map).unwrap();
+    assert_eq!(again.changed_cells, 0);
+    assert_eq!(again.window, None);
+    assert_eq!(chain.log_posterior(), lp);
+}
+
+#[test]
+fn a_map_of_another_size_is_refused_and_nothing_changes() {
+    let s = floor(3);
+    let mut chain = Chain::new(&s.map, config(), 3).unwrap();
+    chain.step(500);
+    let lp = chain.log_posterior();
+    let small = OccupancyMap::from_classified(Grid::new(100, 80, Cell::Free));
+    let e = chain.update_map(&small).unwrap_err().to_string();
+    assert!(e.contains("100x80") && e.contains("keep the map's size"), "{e}");
+    assert_eq!(chain.log_posterior(), lp);
+    assert!(chain.check_consistency());
+}
+
+#[test]
+fn updates_are_deterministic() {
+    let s = floor(5);
+    let full = s.map.classified();
+    let run = || {
+        let mut chain = Chain::new(&seen(full, |x, _| x < 120), ChainConfig::default(), 11).unwrap();
+        chain.step(3000);
+        chain.update_map(&s.map).unwrap();
+        chain.step(3000);
+        serde_json::to_string(&chain.best_world()).unwrap()
+    };
+    assert_eq!(run(), run());
+}

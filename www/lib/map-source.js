@@ -1,0 +1,31 @@
+// Making a map from what a page read, the same in every worker: the page sends how to make it
+// (a `source`: a map.yaml with its image, one image, or painted cell codes) and the worker
+// builds the map with the library, so the bytes are parsed where the map is used.
+
+import { Map as OccMap } from '../pkg/ksmcmc.js';
+
+/**
+ * The map a `source` describes, classified as the pages do: `{ kind: 'yaml', yaml, image }`,
+ * `{ kind: 'image', bytes, classify }` (`classify` 'auto' reclassifies by the histogram, as
+ * `ksmcmc floorplan` does) or `{ kind: 'cells', width, height, codes }`. Throws, saying why,
+ * for bytes that are not a map.
+ */
+export function buildMap(source) {
+  switch (source.kind) {
+    case 'yaml':
+      return OccMap.fromYaml(source.yaml, source.image);
+    case 'image': {
+      const map = OccMap.fromBytes(source.bytes);
+      if (source.classify !== 'auto') return map;
+      try {
+        return map.reclassify('auto');
+      } finally {
+        map.free();
+      }
+    }
+    case 'cells':
+      return OccMap.fromCells(source.width, source.height, source.codes);
+    default:
+      throw new Error(`unknown map source ${source.kind}`);
+  }
+}

@@ -11,6 +11,7 @@
 # work on a fresh machine that has only rustup, Node, npm, Python 3 and apt.
 
 SHELL := bash
+comma := ,
 .SHELLFLAGS := -eu -o pipefail -c
 .DEFAULT_GOAL := help
 MAKEFLAGS += --no-builtin-rules
@@ -29,14 +30,26 @@ CHROMEDRIVER ?= /usr/bin/chromedriver
 WASM_TEST_ENV := CARGO_TARGET_WASM32_UNKNOWN_UNKNOWN_RUNNER=wasm-bindgen-test-runner \
 	CHROMEDRIVER=$(CHROMEDRIVER) WASM_BINDGEN_TEST_TIMEOUT=180 \
 	WASM_BINDGEN_TEST_WEBDRIVER_JSON=$(CURDIR)/webdriver.json
-# The package's wasm: the wasm-release profile of Cargo.toml (no debug names), then wasm-opt.
-WASM := target/$(WASM_TARGET)/wasm-release/ksmcmc.wasm
+# The package's modules, NAME:FEATURE (see src/wasm/mod.rs): the mapper module ksmcmc.js (maps,
+# pictures, the live chain), which the live mapper loads first, and the modules pages load
+# when they need them: a best world's plan (rooms, exports, routes), synthetic maps, the rules
+# (inference, learning) and the table-top analysis. Each is the crate built with its feature
+# alone in the wasm-release profile of Cargo.toml (no debug names, fat LTO), with simd128
+# (.cargo/config.toml), then wasm-opt.
+WASM_MODULES := ksmcmc:wasm-mapper ksmcmc_plan:wasm-plan ksmcmc_synth:wasm-synth ksmcmc_rules:wasm-rules \
+	ksmcmc_tabletop:wasm-tabletop
+WASM_FEATURES := $(subst $(eval) ,$(comma),$(foreach m,$(WASM_MODULES),$(lastword $(subst :, ,$(m)))))
+WASM_NAMES := $(foreach m,$(WASM_MODULES),$(firstword $(subst :, ,$(m))))
+WASM_DIR := target/$(WASM_TARGET)/wasm-release
+WASM_SOURCES := Cargo.toml Cargo.lock .cargo/config.toml $(shell find src -name '*.rs' -not -path 'src/bin/*')
 # wasm-opt (binaryen) shrinks rustc's output before wasm-bindgen reads it: Debian's binaryen
 # 108 cannot parse the externref-table code wasm-bindgen adds (table.fill). It is told the
 # features rustc's wasm32 target uses, and drops the name section.
-WASM_OPT := target/$(WASM_TARGET)/wasm-release/ksmcmc.opt.wasm
 WASM_OPT_FLAGS := -O3 --enable-bulk-memory --enable-nontrapping-float-to-int --enable-sign-ext \
-	--enable-mutable-globals --enable-reference-types --enable-multivalue
+	--enable-mutable-globals --enable-reference-types --enable-multivalue --enable-simd
+# The most the mapper module may weigh gzipped (issue 12): what the live mapper page loads
+# before its first frame. `make pkg` warns above it; tests/e2e/size.test.mjs fails.
+MAPPER_GZIP_MAX := 500000
 
 .PHONY: help demo serve pkg www-pkg www-samples www-vendor test lint fmt fmt-check clippy test-native test-wasm \
 	test-e2e cli release-cli bench-wasm tools rust-tools wasm-tools wasm-opt-tool browser-tools e2e-deps vendor-deps clean-pkg \
@@ -106,25 +119,39 @@ vendor/node_modules/.package-lock.json: vendor/package.json vendor/package-lock.
 
 # ---------------------------------------------------------------- build
 
-# The npm package: release wasm, wasm-bindgen's ES module and .d.ts, the hand-written modules
-# in npm/ (the `mount` embed, the sample recipes), the page modules mount imports (PKG_LIB:
-# zoom and pan, shared with the demo pages) and package.json.
+# The npm package: the modules' wasm, wasm-bindgen's ES modules and .d.ts, the hand-written
+# modules in npm/ (the `mount` embed, the sample recipes), the page modules mount imports
+# (PKG_LIB: zoom and pan, shared with the demo pages) and package.json. Prints each module's
+# size, raw and gzipped (gzip -9), and fails if the mapper module is over MAPPER_GZIP_MAX.
 PKG_LIB := www/lib/viewport.js
-pkg: wasm-tools wasm-opt-tool
-	$(CARGO) build --lib --profile wasm-release --target $(WASM_TARGET)
-	wasm-opt $(WASM_OPT_FLAGS) $(WASM) -o $(WASM_OPT)
-	wasm-bindgen --target web --out-dir pkg --out-name ksmcmc $(WASM_OPT)
+pkg: wasm-tools wasm-opt-tool $(foreach n,$(WASM_NAMES),$(WASM_DIR)/$(n).opt.wasm)
+	rm -f pkg/*.js pkg/*.d.ts pkg/*.wasm pkg/package.json
+	@for n in $(WASM_NAMES); do \
+	  echo "wasm-bindgen $$n"; wasm-bindgen --target web --out-dir pkg --out-name $$n $(WASM_DIR)/$$n.opt.wasm; \
+	done
 	cp npm/*.js npm/*.d.ts $(PKG_LIB) pkg/
-	node scripts/pkg-json.mjs Cargo.toml npm $(PKG_LIB) > pkg/package.json
-	@echo "pkg/: $$(wc -c < pkg/ksmcmc_bg.wasm) bytes of wasm ($$(gzip -9 -c pkg/ksmcmc_bg.wasm | wc -c) gzipped), version $$(node -p 'require("./pkg/package.json").version')"
+	node scripts/pkg-json.mjs Cargo.toml npm $(PKG_LIB) --modules $(filter-out ksmcmc,$(WASM_NAMES)) > pkg/package.json
+	@for n in $(WASM_NAMES); do \
+	  echo "pkg/$${n}_bg.wasm: $$(wc -c < pkg/$${n}_bg.wasm) bytes, $$(gzip -9 -c pkg/$${n}_bg.wasm | wc -c) gzipped"; \
+	done
+	@echo "version $$(node -p 'require("./pkg/package.json").version')"
+	@gz=$$(gzip -9 -c pkg/ksmcmc_bg.wasm | wc -c); if [ $$gz -gt $(MAPPER_GZIP_MAX) ]; then \
+	  echo "warning: pkg/ksmcmc_bg.wasm is $$gz bytes gzipped, over the $(MAPPER_GZIP_MAX) the live mapper may load first (tests/e2e/size.test.mjs fails)" >&2; fi
+
+# One module: the crate with that module's feature alone, then wasm-opt. rustc writes every
+# module to the same ksmcmc.wasm, so each is copied out at once (do not build them with -j).
+FEATURE_OF = $(lastword $(subst :, ,$(filter $(1):%,$(WASM_MODULES))))
+$(WASM_DIR)/%.opt.wasm: $(WASM_SOURCES) | wasm-tools wasm-opt-tool
+	$(CARGO) build --lib --profile wasm-release --target $(WASM_TARGET) --no-default-features \
+	  --features $(call FEATURE_OF,$*)
+	wasm-opt $(WASM_OPT_FLAGS) $(WASM_DIR)/ksmcmc.wasm -o $@
 
 # The pages load the package from www/pkg, the live mapper its samples from www/samples and
 # three.js from www/vendor (copies, not committed).
 www-pkg: pkg www-samples www-vendor
 	rm -rf www/pkg
 	mkdir -p www/pkg
-	cp pkg/ksmcmc.js pkg/ksmcmc_bg.wasm pkg/ksmcmc.d.ts pkg/package.json www/pkg/
-	cp npm/*.js npm/*.d.ts $(PKG_LIB) www/pkg/
+	cp pkg/*.js pkg/*_bg.wasm pkg/*.d.ts pkg/package.json www/pkg/
 
 www-samples:
 	node scripts/www-samples.mjs samples www/samples
@@ -175,7 +202,7 @@ fmt-check: rust-tools
 
 clippy: rust-tools wasm-tools
 	$(CARGO) clippy --all-targets -- -D warnings
-	$(CARGO) clippy --target $(WASM_TARGET) --no-default-features --lib --test wasm -- -D warnings
+	$(CARGO) clippy --target $(WASM_TARGET) --no-default-features --features $(WASM_FEATURES) --lib --test wasm -- -D warnings
 
 test: tools
 	@start=$$(date +%s); \
@@ -185,9 +212,10 @@ test: tools
 test-native:
 	$(CARGO) test
 
-# The CLI binary is native only; --no-default-features leaves it out of the wasm build.
+# The CLI binary is native only; --no-default-features leaves it out of the wasm build, which
+# has every module's API (WASM_FEATURES).
 test-wasm: wasm-tools browser-tools
-	$(WASM_TEST_ENV) $(CARGO) test --target $(WASM_TARGET) --no-default-features --test wasm
+	$(WASM_TEST_ENV) $(CARGO) test --target $(WASM_TARGET) --no-default-features --features $(WASM_FEATURES) --test wasm
 
 # Serves www/ (with the release package) and drives Debian's Chromium through playwright-core;
 # compares with the native CLI (target/debug/ksmcmc).

@@ -85,7 +85,10 @@ export interface MapperStats {
 export interface MapperWidget {
   /** The widget's root element (inside the element given to `mount`). */
   readonly element: HTMLElement;
-  /** The chain, for anything the widget does not show (`bestWorldJson()`, `labelsPgm()`, ...). */
+  /**
+   * The chain, for anything the widget does not show (`worldJson()`, `trace()`, ...; the best
+   * world's rooms and exports: a `Plan` of `ksmcmc_plan.js` made from `mapper.planInput()`).
+   */
   readonly mapper: Mapper;
   readonly running: boolean;
   play(): void;
@@ -120,5 +123,8 @@ export function mount(element: HTMLElement, options?: MountOptions): Promise<Map
 /** Initialises the WebAssembly module once; `mount` calls it. */
 export function ready(wasm?: MountOptions['wasm']): Promise<unknown>;
 
-/** A sample remade from its recipe: the same cells as samples/NAME/map.pgm. Call after `ready()`. */
-export function loadSample(name: SampleName): OccupancyMap;
+/**
+ * A sample remade from its recipe: the same cells as samples/NAME/map.pgm. Loads the synthetic
+ * generator's module (ksmcmc_synth.js, beside ksmcmc.js) the first time.
+ */
+export function loadSample(name: SampleName): Promise<OccupancyMap>;

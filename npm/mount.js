@@ -7,11 +7,12 @@
 // graph beside it, Start/Pause, Step and Reset buttons, cloud and best-world switches, zoom
 // buttons and a line of statistics, and runs the chain in requestAnimationFrame with a time
 // budget per frame so the page stays responsive. The map zooms and pans by wheel, pinch, drag
-// and keys (+ − 0 and the arrows with the map focused; viewport.js, shared with the demo). Plain DOM, no framework, no network: samples are remade by the
-// synthetic generator (see samples.js), and the styles are injected once, scoped to the
-// widget's class.
+// and keys (+ − 0 and the arrows with the map focused; viewport.js, shared with the demo).
+// Plain DOM, no framework, no network: samples are remade by the synthetic generator (see
+// samples.js; its module, ksmcmc_synth.js, is loaded only for a sample), and the styles are
+// injected once, scoped to the widget's class.
 
-import init, { Map as OccupancyMap, Mapper, drawMapper, drawSceneGraph, synth } from './ksmcmc.js';
+import init, { Map as OccupancyMap, Mapper, drawMapper, drawSceneGraph } from './ksmcmc.js';
 import { SAMPLES, sampleRecipe } from './samples.js';
 import { Viewport, detailScale } from './viewport.js';
 
@@ -42,6 +43,7 @@ const CSS = `
 `;
 
 let initialised = null;
+let synthModule = null;
 
 /**
  * Initialises the WebAssembly module once (later calls share the first one's promise).
@@ -53,14 +55,30 @@ export function ready(wasm) {
   return initialised;
 }
 
+/** The synthetic generator's module (ksmcmc_synth.js and its .wasm beside it), once. */
+function synthReady() {
+  synthModule ??= import('./ksmcmc_synth.js').then(
+    async (m) => {
+      await m.default();
+      return m;
+    },
+    (err) => {
+      synthModule = null;
+      throw err;
+    },
+  );
+  return synthModule;
+}
+
 /**
  * A sample map, remade by the synthetic generator from its recipe: the same cells as the
- * repository's samples/NAME/map.pgm + map.yaml. Call after `ready()`.
+ * repository's samples/NAME/map.pgm + map.yaml. Loads the generator's module the first time.
  * @param {string} name one of Object.keys(SAMPLES)
- * @returns {OccupancyMap}
+ * @returns {Promise<OccupancyMap>}
  */
-export function loadSample(name) {
+export async function loadSample(name) {
   const { seed, config } = sampleRecipe(name);
+  const [{ synth }] = await Promise.all([synthReady(), ready()]);
   const made = synth(seed, JSON.stringify(config));
   try {
     return OccupancyMap.fromYaml(made.mapYaml, made.mapPgm);
@@ -196,7 +214,7 @@ export async function mount(element, options = {}) {
   } else if (options.url !== undefined) {
     map = await fetchMap(options.url, options.classify ?? 'auto');
   } else {
-    map = loadSample(options.sample ?? 'office-small');
+    map = await loadSample(options.sample ?? 'office-small');
   }
   const config = chainSettings(options.config, options.knowledge);
   let mapper;

@@ -45,7 +45,8 @@ function parseArgs(argv) {
 /** Runs in the page: the same loop as `ksmcmc bench`'s run_one. */
 async function benchInPage({ maps, iterations, seed }) {
   const m = await import('/pkg/ksmcmc.js');
-  await m.default();
+  const sy = await import('/pkg/ksmcmc_synth.js');
+  await Promise.all([m.default(), sy.default()]);
   const rows = [];
   for (const spec of maps) {
     let map;
@@ -53,8 +54,8 @@ async function benchInPage({ maps, iterations, seed }) {
       const bytes = Uint8Array.from(atob(spec.b64), (c) => c.charCodeAt(0));
       map = m.Map.fromBytes(bytes);
     } else {
-      const s = m.synth(spec.synthSeed, JSON.stringify({ width: spec.width, height: spec.height }));
-      map = s.map;
+      const s = sy.synth(spec.synthSeed, JSON.stringify({ width: spec.width, height: spec.height }));
+      map = m.Map.fromYaml(s.mapYaml, s.mapPgm);
       s.free();
     }
     const t0 = performance.now();

@@ -1,11 +1,13 @@
 #!/usr/bin/env node
 // Writes pkg/package.json for the npm package that wasm-bindgen generated into pkg/.
-// Usage: node scripts/pkg-json.mjs [Cargo.toml] [npm-dir] [module.js ...] > pkg/package.json
+// Usage: node scripts/pkg-json.mjs [Cargo.toml] [npm-dir] [module.js ...] [--modules NAME ...] > pkg/package.json
 // Name, version, description and licence come from Cargo.toml's [package] section, so the
 // npm package and the crate never disagree. The hand-written ES modules in npm/ (the `mount`
 // embed and the sample recipes, copied into pkg/ by `make pkg`) are listed as exports
 // `./NAME.js`, with their `NAME.d.ts` types. Further arguments are modules those import (copied
-// into pkg/ beside them, e.g. www/lib/viewport.js): shipped, not exported.
+// into pkg/ beside them, e.g. www/lib/viewport.js): shipped, not exported. The names after
+// --modules are the further wasm-bindgen modules (ksmcmc_extras, ksmcmc_tabletop), exported as
+// `./NAME.js` with their `NAME_bg.wasm`, beside the main one named after the crate.
 
 import { existsSync, readdirSync, readFileSync } from 'node:fs';
 import { basename, join } from 'node:path';
@@ -29,7 +31,10 @@ const extras = existsSync(npmDir) ? readdirSync(npmDir).filter((f) => f.endsWith
 for (const f of extras) {
   if (!existsSync(join(npmDir, f.replace(/\.js$/, '.d.ts')))) throw new Error(`${npmDir}/${f} has no .d.ts beside it`);
 }
-const internal = process.argv.slice(4).map((p) => basename(p));
+const rest = process.argv.slice(4);
+const cut = rest.includes('--modules') ? rest.indexOf('--modules') : rest.length;
+const internal = rest.slice(0, cut).map((p) => basename(p));
+const modules = rest.slice(cut + 1);
 for (const f of internal) {
   if (!f.endsWith('.js') || extras.includes(f)) throw new Error(`${f}: an imported module must be a .js file not in ${npmDir}`);
 }
@@ -47,11 +52,17 @@ const json = {
     '.': { types: `./${name}.d.ts`, default: `./${name}.js` },
     [`./${name}_bg.wasm`]: `./${name}_bg.wasm`,
     ...Object.fromEntries(
+      modules.flatMap((m) => [
+        [`./${m}.js`, { types: `./${m}.d.ts`, default: `./${m}.js` }],
+        [`./${m}_bg.wasm`, `./${m}_bg.wasm`],
+      ]),
+    ),
+    ...Object.fromEntries(
       extras.map((f) => [`./${f}`, { types: `./${f.replace(/\.js$/, '.d.ts')}`, default: `./${f}` }]),
     ),
   },
   files: [
-    `${name}_bg.wasm`, `${name}.js`, `${name}.d.ts`, `${name}_bg.wasm.d.ts`,
+    ...[name, ...modules].flatMap((m) => [`${m}_bg.wasm`, `${m}.js`, `${m}.d.ts`, `${m}_bg.wasm.d.ts`]),
     ...extras.flatMap((f) => [f, f.replace(/\.js$/, '.d.ts')]),
     ...internal,
     'README.md',

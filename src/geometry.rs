@@ -90,7 +90,9 @@ impl Rect {
 #[serde(deny_unknown_fields)]
 pub struct Frame {
     /// Rotation from the world frame to the map, radians, counter-clockwise in image terms
-    /// (x right, y down).
+    /// (x right, y down). Read exactly ([`crate::json`]): a world's JSON reads back to the
+    /// same text, and its rooms are found on the map turned by it.
+    #[serde(deserialize_with = "crate::json::exact")]
     pub angle: f64,
     /// Width and height of the world-frame grid, cells.
     pub world_size: [u32; 2],

@@ -208,13 +208,16 @@ fn synth_is_deterministic() {
     assert_eq!(a.map_yaml(), b.map_yaml());
     assert_eq!(a.truth_json(), b.truth_json());
     assert_eq!(a.labels_pgm(), b.labels_pgm());
-    assert_eq!(a.map().cells(), b.map().cells());
     assert!(a.map_pgm().starts_with(b"P5"));
     assert!(a.labels_pgm().starts_with(b"P5"));
     assert!(a.map_yaml().contains("map.pgm"));
     ksmcmc::floorplan::World::from_json(&a.truth_json()).expect("truth.json is a world");
-    // The map getter is the map the files describe.
-    assert_eq!(a.map().to_pgm(), a.map_pgm());
+    // The files describe the map: read back (as pages do, with the mapper module's `Map`),
+    // it is the generator's.
+    let read = Map::from_yaml(&a.map_yaml(), &a.map_pgm()).unwrap();
+    let made = &a.inner().map;
+    assert_eq!(read.inner().classified(), made.classified());
+    assert_eq!(read.inner().yaml().resolution, made.yaml().resolution);
     // Exactly the library's result: what the native CLI writes.
     let native = ksmcmc::floorplan::synth::generate(&Default::default(), 7).unwrap();
     assert_eq!(a.map_pgm(), native.map_pgm());
@@ -236,7 +239,7 @@ fn synth_is_deterministic() {
 fn synth_config_is_merged_over_the_defaults() {
     // Unrotated (the default), the map is the canvas the config asks for.
     let defaults = ksmcmc::floorplan::synth::SynthConfig::default();
-    let size = |s: &wasm::Synthetic| (s.map().width(), s.map().height());
+    let size = |s: &wasm::Synthetic| (s.inner().map.width() as u32, s.inner().map.height() as u32);
     let s = wasm::synth(JsValue::from(3), Some(r#"{"width": 500, "height": 320}"#.into())).unwrap();
     assert_eq!(size(&s), (500, 320));
     let s = wasm::synth(JsValue::from(3), Some(r#"{"width": 500}"#.into())).unwrap();
@@ -273,7 +276,13 @@ fn bad_seeds_and_configs_are_errors() {
 
 use ksmcmc::floorplan::route::RoutePlanner;
 use ksmcmc::floorplan::{Chain, ChainConfig, World};
-use ksmcmc::wasm::Mapper;
+use ksmcmc::wasm::{Mapper, Plan};
+
+/// The plan module's `Plan` of a mapper's best world now, as the live mapper's worker makes
+/// it: from the map's PGM and YAML and `planInput()`.
+fn plan_of(map: &Map, m: &mut Mapper) -> Plan {
+    Plan::new(&map.to_pgm(), &map.to_yaml("map.pgm"), &m.plan_input(), None).unwrap()
+}
 
 /// Two rooms side by side in a 64x40 map: walls all round, a wall between them with a door.
 fn two_rooms() -> Map {
@@ -317,7 +326,7 @@ fn mapper_runs_and_finds_units() {
     // Both worlds are valid world.json for this map, and the best one is the library's.
     let current = World::from_json(&m.world_json()).expect("worldJson parses and validates");
     assert_eq!(current.units.len() as u32, m.units());
-    let best = World::from_json(&m.best_world_json()).expect("bestWorldJson parses and validates");
+    let best = World::from_json(&plan_of(&map, &mut m).world_json()).expect("the plan's world parses and validates");
     assert_eq!(best.frame.map_size, [64, 40]);
     assert_eq!(best.units.len() as u32, m.best_units());
     assert_eq!(best.doors.len() as u32, m.best_doors());
@@ -326,7 +335,7 @@ fn mapper_runs_and_finds_units() {
     let mut fresh = Mapper::new(&map, None, None).unwrap();
     fresh.step(3000.0).unwrap();
     let (world, _) = chain.best_world_with_rooms(&Default::default());
-    assert_eq!(fresh.best_world_json(), world.to_json(), "seed 1 is the default");
+    assert_eq!(plan_of(&map, &mut fresh).world_json(), world.to_json(), "seed 1 is the default");
     assert_eq!(fresh.seed(), 1);
 }
 
@@ -346,9 +355,16 @@ fn mapper_matches_the_library_on_a_sample() {
     // The exports carry the room layer, as `ksmcmc floorplan` writes them.
     let (world, labels) = chain.best_world_with_rooms(&Default::default());
     assert!(!world.rooms.is_empty());
-    assert_eq!(m.best_world_json(), world.to_json());
-    assert_eq!(m.labels_pgm(), ksmcmc::grid::pgm::encode_u16(labels.width(), labels.height(), labels.cells()));
+    let plan = plan_of(&map, &mut m);
+    assert_eq!(plan.world_json(), world.to_json());
+    assert_eq!(plan.labels_pgm(), ksmcmc::grid::pgm::encode_u16(labels.width(), labels.height(), labels.cells()));
     assert!(m.best_units() >= 3, "{} units", m.best_units());
+    // overlay.png: the mapper module draws the plan's world, the plan module encodes it.
+    let opts = js_sys::Object::new();
+    js_sys::Reflect::set(&opts, &"world".into(), &plan.world_json().into()).unwrap();
+    let r = wasm::render_mapper_rgba(&mut m, Some(opts.into())).unwrap();
+    let png = wasm::encode_png(r.width(), r.height(), r.rgba_bytes()).unwrap();
+    assert_eq!(png, ksmcmc::floorplan::export::overlay_png(map.inner().classified(), &world).unwrap());
 }
 
 /// The office-small sample in a `Mapper` and in the library's chain, both seed 3 and 2,000
@@ -375,64 +391,174 @@ fn routes_match_the_library() {
     let mut planner = RoutePlanner::new(map.inner().classified().clone(), labels, &world, 0.05).unwrap();
     let (from, to) = ((200.0, 100.0), (60.0, 250.0));
     let native = planner.route((200, 100), (60, 250)).unwrap().to_json();
-    let json = m.route(from.0, from.1, to.0, to.1).unwrap();
+    let mut plan = plan_of(&map, &mut m);
+    let json = plan.route(from.0, from.1, to.0, to.1).unwrap();
     assert_eq!(json, native);
     let r: serde_json::Value = serde_json::from_str(&json).unwrap();
     assert_eq!(r["path"][0], serde_json::json!([200, 100]));
-    let world_json = m.best_world_json();
-    let free = wasm::plan_route(&map, &world_json, from.0, from.1, to.0, to.1, Some(m.labels_pgm())).unwrap();
-    assert_eq!(free, native);
-    assert_eq!(wasm::plan_route(&map, &world_json, from.0, from.1, to.0, to.1, None).unwrap(), native);
+    let world_json = plan.world_json();
+    let (pgm, yaml) = (map.to_pgm(), map.to_yaml("map.pgm"));
+    let saved = |labels| wasm::plan_route(&pgm, &yaml, &world_json, from.0, from.1, to.0, to.1, labels);
+    assert_eq!(saved(Some(plan.labels_pgm())).unwrap(), native);
+    assert_eq!(saved(None).unwrap(), native);
     // Bad ends are thrown errors that say why.
-    err_contains(m.route(0.0, 0.0, to.0, to.1), "the start (0, 0) is an unknown cell");
-    err_contains(m.route(f64::NAN, 0.0, to.0, to.1), "fromX: NaN is not a cell coordinate");
-    err_contains(m.route(1.5, 0.0, to.0, to.1), "fromX: 1.5 is not a cell coordinate");
-    err_contains(m.route(from.0, from.1, 9999.0, to.1), "the goal (9999, 250) lies outside the 400x300 map");
-    err_contains(wasm::plan_route(&map, "{}", from.0, from.1, to.0, to.1, None), "world.json");
-    err_contains(wasm::plan_route(&map, &world_json, from.0, from.1, to.0, to.1, Some(vec![1, 2, 3])), "labelsPgm");
+    err_contains(plan.route(0.0, 0.0, to.0, to.1), "the start (0, 0) is an unknown cell");
+    err_contains(plan.route(f64::NAN, 0.0, to.0, to.1), "fromX: NaN is not a cell coordinate");
+    err_contains(plan.route(1.5, 0.0, to.0, to.1), "fromX: 1.5 is not a cell coordinate");
+    err_contains(plan.route(from.0, from.1, 9999.0, to.1), "the goal (9999, 250) lies outside the 400x300 map");
+    err_contains(wasm::plan_route(&pgm, &yaml, "{}", from.0, from.1, to.0, to.1, None), "world.json");
+    err_contains(saved(Some(vec![1, 2, 3])), "labelsPgm");
+    err_contains(wasm::plan_route(b"P5 nope", &yaml, &world_json, from.0, from.1, to.0, to.1, None), "PGM");
 }
 
 #[wasm_bindgen_test]
 fn world_glb_matches_the_library() {
     // The best world in 3D: the bytes `ksmcmc floorplan` writes to world.glb for that world,
     // from the Mapper and from the saved world.json alike.
-    let mut m = Mapper::new(&two_rooms(), None, None).unwrap();
+    let map = two_rooms();
+    let mut m = Mapper::new(&map, None, None).unwrap();
     m.step(1500.0).unwrap();
-    let world = World::from_json(&m.best_world_json()).unwrap();
+    let plan = plan_of(&map, &mut m);
+    let world = World::from_json(&plan.world_json()).unwrap();
     let options = ksmcmc::render::model3d::Model3dOptions { wall_height: 3.0, door_height: 2.2 };
     let native = ksmcmc::render::model3d::world_glb(&world, 0.05, &options).unwrap();
     let heights = js_sys::JSON::parse(r#"{"wallHeight": 3, "doorHeight": 2.2}"#).unwrap();
-    assert_eq!(m.world_glb(Some(heights.clone())).unwrap(), native);
-    assert_eq!(wasm::world_glb(&m.best_world_json(), 0.05, Some(heights)).unwrap(), native);
+    assert_eq!(plan.world_glb(Some(heights.clone())).unwrap(), native);
+    assert_eq!(wasm::world_glb(&plan.world_json(), 0.05, Some(heights)).unwrap(), native);
     let defaults = ksmcmc::render::model3d::world_glb(&world, 0.05, &Default::default()).unwrap();
-    assert_eq!(m.world_glb(None).unwrap(), defaults);
+    assert_eq!(plan.world_glb(None).unwrap(), defaults);
     assert!(defaults.starts_with(b"glTF"));
     let bad = |json: &str| js_sys::JSON::parse(json).unwrap();
-    err_contains(m.world_glb(Some(bad(r#"{"wallHeight": 2, "doorHeight": 3}"#))), "door height 3 m");
-    err_contains(m.world_glb(Some(bad(r#"{"wallheight": 2}"#))), "wallHeight and doorHeight");
-    err_contains(m.world_glb(Some(JsValue::from(3))), "expected an object");
+    err_contains(plan.world_glb(Some(bad(r#"{"wallHeight": 2, "doorHeight": 3}"#))), "door height 3 m");
+    err_contains(plan.world_glb(Some(bad(r#"{"wallheight": 2}"#))), "wallHeight and doorHeight");
+    err_contains(plan.world_glb(Some(JsValue::from(3))), "expected an object");
     err_contains(wasm::world_glb("{", 0.05, None), "world.json");
-    err_contains(wasm::world_glb(&m.best_world_json(), f64::NAN, None), "resolution NaN");
+    err_contains(wasm::world_glb(&plan.world_json(), f64::NAN, None), "resolution NaN");
 }
 
 #[wasm_bindgen_test]
 fn mapper_gives_room_labels_and_type_marginals_as_the_library() {
-    let (_, mut m, mut chain, world, labels) = office_small_after_2000();
-    assert_eq!(m.room_labels(), labels.cells().to_vec());
+    let (map, mut m, mut chain, world, labels) = office_small_after_2000();
+    let plan = plan_of(&map, &mut m);
+    assert_eq!(plan.room_labels(), labels.cells().to_vec());
+    assert_eq!(plan.rooms_json(), ksmcmc::floorplan::export::rooms_json(&world));
     let inferred = chain.best_world_inferred().1.unwrap();
     let expected =
         ksmcmc::floorplan::export::room_types_json(&ksmcmc::floorplan::room_types::room_types(&world, &inferred));
-    assert_eq!(m.room_types_json(), expected);
-    let rooms: serde_json::Value = serde_json::from_str(&m.room_types_json()).unwrap();
+    assert_eq!(plan.room_types_json(), expected, "the marginals cross to the plan module bit for bit");
+    let rooms: serde_json::Value = serde_json::from_str(&plan.room_types_json()).unwrap();
     assert_eq!(rooms.as_array().unwrap().len(), world.rooms.len());
     assert!(rooms[0]["marginals"]["corridor"].is_f64(), "{rooms}");
     // Asking changed nothing: the best world is the one it was.
-    assert_eq!(m.best_world_json(), world.to_json());
+    assert_eq!(plan_of(&map, &mut m).world_json(), world.to_json());
+}
+
+#[wasm_bindgen_test]
+fn plans_of_a_rotated_map_are_the_chains_bit_for_bit() {
+    // A map turned by 20 degrees: the world's frame angle has all 17 digits, which JSON
+    // text alone does not carry back exactly; the room labels are made on the map turned by it.
+    let map = Map::from_yaml(
+        include_str!("../samples/office-rotated/map.yaml"),
+        include_bytes!("../samples/office-rotated/map.pgm"),
+    )
+    .unwrap();
+    let mut m = Mapper::new(&map, None, Some(JsValue::from(2))).unwrap();
+    m.step(1500.0).unwrap();
+    let mut chain = Chain::new(map.inner(), ChainConfig::default(), 2).unwrap();
+    chain.step(1500);
+    let (world, labels) = chain.best_world_with_rooms(&Default::default());
+    assert!(world.frame.angle != 0.0 && !world.rooms.is_empty());
+    let plan = plan_of(&map, &mut m);
+    assert_eq!(plan.world_json(), world.to_json());
+    assert_eq!(plan.room_labels(), labels.cells().to_vec());
+    let native = ksmcmc::floorplan::geojson::world_geojson(&world, &labels, map.inner(), None).unwrap();
+    assert_eq!(plan.geojson(None).unwrap(), native);
+    // The report: the chain's numbers as the library reports them.
+    let typed = chain.best_world_typed();
+    let mut want = ksmcmc::floorplan::report::summary(&chain, map.inner(), &typed, 0.0);
+    ksmcmc::floorplan::report::add_rooms(&mut want, &world, &labels);
+    let mut got: serde_json::Value = serde_json::from_str(&plan.report_json().unwrap()).unwrap();
+    for k in ["seconds", "iterations_per_second", "setup_seconds"] {
+        got.as_object_mut().unwrap().remove(k);
+        want.as_object_mut().unwrap().remove(k);
+    }
+    assert_eq!(got, want);
+}
+
+#[wasm_bindgen_test]
+fn plans_of_an_empty_world_have_only_unexplained_rooms() {
+    // Before any unit: the free space is rooms of no unit and no type (the live mapper's page
+    // lists no rooms until the best world has units, and loads the plan module only then).
+    let map = two_rooms();
+    let mut m = Mapper::new(&map, None, None).unwrap();
+    assert_eq!(m.best_units(), 0);
+    let plan = plan_of(&map, &mut m);
+    let rooms: serde_json::Value = serde_json::from_str(&plan.rooms_json()).unwrap();
+    let rooms = rooms.as_array().unwrap();
+    assert!(!rooms.is_empty());
+    for r in rooms {
+        assert_eq!((r["type"].as_str(), r["units"].as_array().map(Vec::len)), (Some("unknown"), Some(0)), "{r}");
+    }
+    let labels = plan.room_labels();
+    let free: Vec<bool> = map.cells().iter().map(|&c| c == 0).collect();
+    assert!(labels.iter().zip(&free).all(|(&id, &f)| id == 0 || f), "rooms lie on free cells");
+    assert_eq!(labels.len(), 64 * 40);
+}
+
+#[wasm_bindgen_test]
+fn plans_keep_room_ids_through_edits_with_the_previous_labels() {
+    let (map, mut m, mut chain, _, _) = office_small_after_2000();
+    let edits = r#"[{"op": "name", "at": [200, 100], "name": "Hall A"}]"#;
+    m.set_edits(edits).unwrap();
+    chain.set_edits(ksmcmc::floorplan::edits::Edits::parse(edits).unwrap()).unwrap();
+    let first = plan_of(&map, &mut m);
+    m.step(1500.0).unwrap();
+    chain.step(1500);
+    let (pgm, yaml) = (map.to_pgm(), map.to_yaml("map.pgm"));
+    let second = Plan::new(&pgm, &yaml, &m.plan_input(), Some(first.room_labels())).unwrap();
+    // The library: the chain's rooms, ids carried over from the labels shown before.
+    let (mut world, mut labels) = chain.best_world_with_rooms(&Default::default());
+    let previous = ksmcmc::grid::Grid::from_vec(400, 300, first.room_labels()).unwrap();
+    ksmcmc::floorplan::edits::carry_ids(&previous, &mut labels, &mut world.rooms);
+    assert_eq!(second.world_json(), world.to_json());
+    assert_eq!(second.room_labels(), labels.cells().to_vec());
+    assert!(world.rooms.iter().any(|r| r.name.as_deref() == Some("Hall A")), "the name edit holds");
+    // Without edits in force the previous labels change nothing.
+    m.set_edits("[]").unwrap();
+    let a = Plan::new(&pgm, &yaml, &m.plan_input(), Some(first.room_labels())).unwrap();
+    assert_eq!(a.room_labels(), plan_of(&map, &mut m).room_labels());
+}
+
+#[wasm_bindgen_test]
+fn plans_refuse_bad_inputs() {
+    let map = two_rooms();
+    let mut m = Mapper::new(&map, None, None).unwrap();
+    m.step(500.0).unwrap();
+    let (pgm, yaml, input) = (map.to_pgm(), map.to_yaml("map.pgm"), m.plan_input());
+    let plan = |pgm: &[u8], input: &str, previous| Plan::new(pgm, &yaml, input, previous).map(|_| ());
+    err_contains(plan(&pgm, "{", None), "plan input");
+    err_contains(plan(&pgm, "{}", None), "missing field `world`");
+    err_contains(plan(&pgm, r#"{"world": {}}"#, None), "plan input");
+    err_contains(plan(b"\x89PNG\r\n\x1a\n", &input, None), "PGM");
+    err_contains(plan(&pgm, &input, Some(vec![0; 3])), "previousLabels: give the 2560 room ids");
+    // A world of another map.
+    let other = Map::from_cells(50, 40, &[0; 2000]).unwrap();
+    err_contains(Plan::new(&other.to_pgm(), &other.to_yaml("map.pgm"), &input, None).map(|_| ()), "map");
+    // Edits off the map.
+    let mut v: serde_json::Value = serde_json::from_str(&input).unwrap();
+    v["edits"] = r#"[{"op": "name", "at": [500, 5], "name": "x"}]"#.into();
+    err_contains(plan(&pgm, &v.to_string(), None), "edits");
+    // A saved typed world alone is a plan without a report.
+    let world = serde_json::json!({"world": v["world"]});
+    let saved = Plan::new(&pgm, &yaml, &world.to_string(), None).unwrap();
+    assert!(saved.world_json().contains("\"rooms\""));
+    err_contains(saved.report_json(), "without a chain");
 }
 
 #[wasm_bindgen_test]
 fn mapper_exports_trace_samples_labels_graph_and_report() {
-    let mut m = Mapper::new(&two_rooms(), Some(r#"{"output": {"trace_every": 50}}"#.into()), None).unwrap();
+    let map = two_rooms();
+    let mut m = Mapper::new(&map, Some(r#"{"output": {"trace_every": 50}}"#.into()), None).unwrap();
     m.step(2000.0).unwrap();
 
     let trace = m.trace(None).unwrap();
@@ -463,22 +589,24 @@ fn mapper_exports_trace_samples_labels_graph_and_report() {
     let size: js_sys::Array = get(&frame, "mapSize").dyn_into().unwrap();
     assert_eq!((size.get(0).as_f64(), size.get(1).as_f64()), (Some(64.0), Some(40.0)));
 
-    let pgm = m.labels_pgm();
+    let plan = plan_of(&map, &mut m);
+    let pgm = plan.labels_pgm();
     let header = b"P5\n64 40\n65535\n";
     assert!(pgm.starts_with(header), "{:?}", String::from_utf8_lossy(&pgm[..16]));
     assert_eq!(pgm.len(), header.len() + 64 * 40 * 2);
 
-    let graph: serde_json::Value = serde_json::from_str(&m.graph_json(None).unwrap()).unwrap();
+    let graph: serde_json::Value = serde_json::from_str(&plan.graph_json()).unwrap();
     assert_eq!(graph["nodes"].as_array().unwrap().len() as u32, m.best_units());
-    let current: serde_json::Value = serde_json::from_str(&m.graph_json(Some("current".into())).unwrap()).unwrap();
+    let current: serde_json::Value = serde_json::from_str(&wasm::graph_json(&m.world_json()).unwrap()).unwrap();
     assert_eq!(current["nodes"].as_array().unwrap().len() as u32, m.units());
-    err_contains(m.graph_json(Some("worst".into())), "'best' nor 'current'");
+    err_contains(wasm::graph_json("{"), "world.json");
 
-    let report: serde_json::Value = serde_json::from_str(&m.report_json().unwrap()).unwrap();
+    let report: serde_json::Value = serde_json::from_str(&plan.report_json().unwrap()).unwrap();
     assert_eq!(report["iterations"], 2000);
     assert_eq!(report["seed"], 1);
     assert_eq!(report["units"].as_u64().unwrap() as u32, m.best_units());
     assert!(report["kernels"]["add"]["proposed"].as_u64().unwrap() > 0);
+    assert!(report["setup_seconds"].as_f64().unwrap() >= 0.0);
 }
 
 #[wasm_bindgen_test]
@@ -530,18 +658,19 @@ fn mapper_reset_replays_the_same_chain() {
     let map = two_rooms();
     let mut m = Mapper::new(&map, None, Some(JsValue::from(5))).unwrap();
     m.step(1500.0).unwrap();
-    let first = m.best_world_json();
+    let first = m.plan_input();
     m.reset(None).unwrap();
     assert_eq!((m.iteration(), m.best_units(), m.trace_length()), (0.0, 0, 0));
     m.step(1000.0).unwrap();
     m.step(500.0).unwrap();
-    assert_eq!(m.best_world_json(), first, "same seed, same chunks or not: same result");
+    let world = |input: &str| serde_json::from_str::<serde_json::Value>(input).unwrap()["world"].clone();
+    assert_eq!(world(&m.plan_input()), world(&first), "same seed, same chunks or not: same result");
     m.reset(Some(JsValue::from(6))).unwrap();
     assert_eq!(m.seed(), 6);
     m.step(1500.0).unwrap();
     m.reset(Some(JsValue::bigint_from_str("5"))).unwrap();
     m.step(1500.0).unwrap();
-    assert_eq!(m.best_world_json(), first);
+    assert_eq!(world(&m.plan_input()), world(&first));
 }
 
 #[wasm_bindgen_test]
@@ -597,9 +726,19 @@ fn mapper_draws_on_canvases() {
     assert!(magenta(&shown) > 50, "the cloud is drawn");
     let plain = wasm::render_mapper_rgba(&mut m, opts(r#"{"show": "best", "scale": 3}"#)).unwrap();
     assert_eq!(magenta(&plain.rgba().0), 0, "no cloud unless asked for");
-    // PNG export: the picture, with the best world as exported (the room layer types its units).
-    let png = m.to_png(opts(r#"{"show": "best"}"#)).unwrap();
+    // A world given as text is drawn instead of show's (here the current world, twice).
+    let given = js_sys::Object::new();
+    js_sys::Reflect::set(&given, &"world".into(), &m.world_json().into()).unwrap();
+    let current = wasm::render_mapper_rgba(&mut m, opts(r#"{"show": "current"}"#)).unwrap();
+    assert_eq!(wasm::render_mapper_rgba(&mut m, Some(given.into())).unwrap().rgba().0, current.rgba().0);
+    err_contains(wasm::draw_mapper(&canvas, &mut m, opts(r#"{"world": "{"}"#)), "world.json");
+    // As PNG: opaque pixels come back from the PNG as they went in.
+    let png = wasm::encode_png(plain.width(), plain.height(), plain.rgba_bytes()).unwrap();
     assert!(png.starts_with(b"\x89PNG"));
+    let back = ksmcmc::grid::png::decode(&png, &Default::default());
+    assert!(back.is_ok(), "{back:?}");
+    err_contains(wasm::encode_png(2, 2, &[0; 15]), "needs 16 bytes");
+    err_contains(wasm::encode_png(0, 2, &[]), "0x2");
     // Defaults: current world, scale 1.
     wasm::draw_mapper(&canvas, &mut m, None).unwrap();
     assert_eq!((canvas.width(), canvas.height()), (64, 40));
@@ -729,7 +868,10 @@ fn update_map_follows_the_library_and_checks_sizes() {
     chain.step(2000);
     chain.update_map(full.inner()).unwrap();
     chain.step(2000);
-    assert_eq!(m.best_world_json(), chain.best_world_with_rooms(&Default::default()).0.to_json());
+    // The plan is made on the mapper's map, which is the new one.
+    let now = m.map();
+    assert_eq!(now.cells(), full.cells());
+    assert_eq!(plan_of(&now, &mut m).world_json(), chain.best_world_with_rooms(&Default::default()).0.to_json());
     err_contains(m.update_map(&Map::from_cells(5, 5, &[0; 25]).unwrap()), "keep the map's size");
 }
 

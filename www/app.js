@@ -1,7 +1,9 @@
 // The Maps page: generate, open or paint an occupancy map; the wasm library classifies and
-// renders it. All map logic is in the library (pkg/ksmcmc.js); this file is wiring.
+// renders it. All map logic is in the library (pkg/ksmcmc.js; the generator is
+// pkg/ksmcmc_synth.js); this file is wiring.
 
-import init, { Map as OccMap, drawToCanvas, synth, version } from './pkg/ksmcmc.js';
+import init, { Map as OccMap, drawToCanvas, version } from './pkg/ksmcmc.js';
+import initSynth, { synth } from './pkg/ksmcmc_synth.js';
 import { TOOLS, MAX_BRUSH, brushOffsets, stamp, strokeTo, cellAt } from './lib/paint.js';
 import { planOpen, pickYamlImage, stem, parseSeed, onDroppedFiles } from './lib/files.js';
 import { messages } from './lib/messages.js';
@@ -319,7 +321,7 @@ function generate() {
     const s = synth(seed, config);
     try {
       const truth = { json: s.truthJson, labelsPgm: s.labelsPgm };
-      setMap(s.map, { name: 'map', label: `synthetic, seed ${seed}`, truth });
+      setMap(OccMap.fromYaml(s.mapYaml, s.mapPgm), { name: 'map', label: `synthetic, seed ${seed}`, truth });
     } finally {
       s.free();
     }
@@ -465,7 +467,7 @@ function wire() {
 
 async function main() {
   wire();
-  if (!(await loadWasm(init))) return;
+  if (!(await loadWasm(() => Promise.all([init(), initSynth()])))) return;
   ui.version.textContent = version();
   for (const el of [ui.seed, ui.seedRandom, ui.synthConfig, ui.generate, ui.file, ui.blankCreate]) {
     el.disabled = false;

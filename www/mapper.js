@@ -1,8 +1,10 @@
 // The live mapper page: a data-driven MCMC chain explains an occupancy map with a semantic
 // floor plan while you watch. The chain, the pictures and the exports are the library's
-// (pkg/ksmcmc.js). The chain runs in a Web Worker (lib/chain-worker.js), so that no step of it,
-// however long, blocks a frame of the page; the page draws the pictures the worker sends, at
-// most one per animation frame, and asks for the next one when it has drawn the last.
+// (pkg/ksmcmc.js; the rooms and exports pkg/ksmcmc_plan.js, which the worker loads when the
+// best world first has units). The chain runs in a Web Worker (lib/chain-worker.js), so that
+// no step of it, however long, blocks a frame of the page; the page draws the pictures the
+// worker sends, at most one per animation frame, and asks for the next one when it has drawn
+// the last.
 
 import init, { Map as OccMap, chainConfigDefaults, drawToCanvas, version } from './pkg/ksmcmc.js';
 import { TOOLS, MAX_BRUSH, brushOffsets, stamp, strokeTo, cellAt } from './lib/paint.js';

@@ -3,7 +3,7 @@
 // posterior, which a Metropolis random walk samples frame by frame. The prior's numbers come
 // from the library's MLN engine (mlnLogWeight); this file is wiring and drawing.
 
-import init, { checkRules, mlnLogWeight } from './pkg/ksmcmc.js';
+import init, { checkRules, mlnLogWeight } from './pkg/ksmcmc_rules.js';
 import { messages } from './lib/messages.js';
 import { rulesEditor } from './lib/rules-editor.js';
 

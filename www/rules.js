@@ -1,10 +1,10 @@
 // The rules editor: edit the knowledge base that supervises the floor-plan chain, see where it
 // is wrong, what evidence the chain's best world gives and what the rules infer from it, and
-// restart the chain with the edited rules. The engine is the library's (pkg/ksmcmc.js); this
-// file is wiring. The chain and the inference run in a Web Worker (lib/chain-worker.js), as on
+// restart the chain with the edited rules. The engine is the library's (pkg/ksmcmc_rules.js
+// here and for the inference, the chain's pkg/ksmcmc.js in the worker); this file is wiring. The chain and the inference run in a Web Worker (lib/chain-worker.js), as on
 // the live mapper page, so that neither blocks a frame of the page.
 
-import init, { builtinIndoorRules, checkRules, handSetIndoorRules } from './pkg/ksmcmc.js';
+import init, { builtinIndoorRules, checkRules, handSetIndoorRules } from './pkg/ksmcmc_rules.js';
 import { messages } from './lib/messages.js';
 import { RemoteChain } from './lib/remote-chain.js';
 import { rulesEditor } from './lib/rules-editor.js';

@@ -1,11 +1,11 @@
 // The table-top page: a knowledge-supervised MCMC chain over noisy 6D box poses builds a
 // scene graph while you watch. The chain, the analysis and the pictures are the library's
-// (pkg/ksmcmc.js); this file is wiring: a requestAnimationFrame loop that gives the chain a
+// (pkg/ksmcmc_tabletop.js); this file is wiring: a requestAnimationFrame loop that gives the chain a
 // time budget per frame and redraws the view, the graph and the probability table. Both
 // pictures zoom and pan (lib/viewport.js): the library draws them off screen, and they are
 // shown through their views.
 
-import init, { Tabletop, tabletopSynth, tabletopRulesDefault, tabletopCheckRules, version, wasmHeapBytes } from './pkg/ksmcmc.js';
+import init, { Tabletop, tabletopSynth, tabletopRulesDefault, tabletopCheckRules, version, wasmHeapBytes } from './pkg/ksmcmc_tabletop.js';
 import { messages } from './lib/messages.js';
 import { download } from './lib/download.js';
 import { rulesEditor } from './lib/rules-editor.js';

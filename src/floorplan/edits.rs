@@ -250,7 +250,7 @@ impl Edits {
             })
             .map(|(x, y)| (x as i32, y as i32))
             .collect();
-        cells.sort_unstable();
+        crate::sort::sort(&mut cells);
         cells.dedup();
         cells
     }
@@ -427,7 +427,7 @@ pub fn carry_ids(previous: &Grid<u16>, labels: &mut Grid<u16>, rooms: &mut [Room
         }
     }
     let mut pairs: Vec<((u16, u16), u64)> = overlap.into_iter().collect();
-    pairs.sort_by(|a, b| b.1.cmp(&a.1).then(a.0.cmp(&b.0)));
+    crate::sort::sort_by(&mut pairs, |a, b| b.1.cmp(&a.1).then(a.0.cmp(&b.0)));
     let n = labels.cells().iter().copied().max().unwrap_or(0) as usize;
     let mut new_id = vec![0u16; n + 1];
     let mut used = std::collections::HashSet::new();
@@ -454,9 +454,9 @@ pub fn carry_ids(previous: &Grid<u16>, labels: &mut Grid<u16>, rooms: &mut [Room
     for r in rooms.iter_mut() {
         r.id = id(r.id);
         r.opens_to = r.opens_to.iter().map(|&o| id(o)).collect();
-        r.opens_to.sort_unstable();
+        crate::sort::sort(&mut r.opens_to);
     }
-    rooms.sort_by_key(|r| r.id);
+    crate::sort::sort_by_key(rooms, |r| r.id);
 }
 
 /// The labels on either side of the middle of the split line from `a` to `b` (as the person
@@ -580,7 +580,7 @@ fn split_room_across(labels: &mut Grid<u16>, a: [i64; 2], b: [i64; 2], wall: &[(
     // Parts the wall parts (a room already in pieces elsewhere keeps those pieces).
     let mut parts: Vec<Vec<usize>> = parts_of(labels, l).into_iter().filter(|p| p.iter().any(touches)).collect();
     if parts.len() >= 2 {
-        parts.sort_by_key(|p| std::cmp::Reverse(p.len()));
+        crate::sort::sort_by_key(&mut parts, |p| std::cmp::Reverse(p.len()));
         for part in &parts[1..] {
             next = next.saturating_add(1);
             for &i in part {

@@ -32,7 +32,7 @@
 
 use super::georef::{Georef, MapOrigin};
 use super::shapes::{floor_shapes, ShapeError};
-use super::world::World;
+use super::world::{World, WorldError};
 use super::{geojson, graph, room_layer, rooms::RoomConfig, Chain, Trace};
 use crate::grid::{Cell, Grid, OccupancyMap};
 use crate::render::model3d::{world_glb, Model3dError, Model3dOptions};
@@ -62,6 +62,39 @@ impl RoomInput {
             knowledge: chain.config().knowledge.enabled,
             edits: chain.edits().clone(),
         }
+    }
+
+    /// The room input of a typed `world` the chain found on `map`, without the chain: the grids
+    /// are made again as [`Chain::new`] made them (solid masses hollow, the map turned by the
+    /// world's frame angle), so that [`RoomInput::explain`] gives what
+    /// [`Chain::best_world_with_rooms`] gave. Refused if the world was made for another map.
+    ///
+    /// ```
+    /// use ksmcmc::floorplan::export::RoomInput;
+    /// use ksmcmc::floorplan::{rooms::RoomConfig, synth, Chain, ChainConfig};
+    /// let s = synth::generate(&synth::SynthConfig { width: 160, height: 120, ..Default::default() }, 3).unwrap();
+    /// let mut chain = Chain::new(&s.map, ChainConfig::default(), 1).unwrap();
+    /// chain.step(300);
+    /// let input = RoomInput::for_map(chain.best_world_typed(), &s.map, true, Default::default()).unwrap();
+    /// assert!(input.explain(&RoomConfig::default()) == chain.best_world_with_rooms(&RoomConfig::default()));
+    /// ```
+    pub fn for_map(
+        world: World,
+        map: &OccupancyMap,
+        knowledge: bool,
+        edits: super::edits::Edits,
+    ) -> Result<RoomInput, WorldError> {
+        world.fits(map.width(), map.height())?;
+        let resolution = map.yaml().resolution;
+        let (world_map, frame) = crate::vision::orientation::to_world_frame(map.classified(), world.frame.angle);
+        if frame.world_size != world.frame.world_size {
+            return Err(WorldError(format!(
+                "world.json: frame.world_size is {:?}, but this map turned by frame.angle gives {:?}: the \
+                 world was made for another map",
+                world.frame.world_size, frame.world_size
+            )));
+        }
+        Ok(RoomInput { world, map: map.classified().clone(), world_map, resolution, knowledge, edits })
     }
 
     /// The typed best world, without rooms yet.

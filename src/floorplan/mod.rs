@@ -21,6 +21,7 @@ pub mod knowledge;
 pub mod metrics;
 pub mod online;
 pub mod outline;
+pub mod plan_input;
 pub mod posterior;
 pub mod report;
 pub mod room_layer;

@@ -53,7 +53,7 @@ pub fn union_of_rects(rects: &[[i64; 4]]) -> Vec<Polygon> {
 /// Sorted distinct coordinates.
 pub fn edges(values: impl Iterator<Item = i64>) -> Vec<i64> {
     let mut v: Vec<i64> = values.collect();
-    v.sort_unstable();
+    crate::sort::sort(&mut v);
     v.dedup();
     v
 }

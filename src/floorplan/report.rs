@@ -7,6 +7,7 @@ use super::schedule::Kernel;
 use super::world::World;
 use super::Chain;
 use crate::grid::{Grid, OccupancyMap};
+use serde::{Deserialize, Serialize};
 
 /// `report.json` for a chain's typed best `world` on `map`, with its room `labels` and the
 /// `seconds` spent iterating: iterations and speed, K(W,M) and the confusion counts, units,
@@ -38,14 +39,77 @@ pub fn add_rooms(r: &mut serde_json::Value, world: &World, labels: &Grid<u16>) {
 /// drop the chain before computing them ([`super::export::RoomInput`]) and then
 /// [`add_rooms`].
 pub fn summary(chain: &Chain, map: &OccupancyMap, world: &World, seconds: f64) -> serde_json::Value {
-    let t = chain.trace();
+    summary_of(&ChainSummary::of(chain, seconds), map, world)
+}
+
+/// What `report.json` needs of the chain itself: its counts, times, seed, frame and knowledge
+/// status. A plain record, so that a caller without the chain (the browser's plan module,
+/// [`super::plan_input`]) can make the report from it, the map and the world.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ChainSummary {
+    /// Iterations run.
+    pub iterations: u64,
+    /// Seconds spent iterating.
+    #[serde(deserialize_with = "crate::json::exact")]
+    pub seconds: f64,
+    /// The best log posterior and the iteration it was found at.
+    #[serde(deserialize_with = "crate::json::exact")]
+    pub log_posterior: f64,
+    /// The iteration of the best world.
+    pub best_iteration: u64,
+    /// The chain's seed.
+    pub seed: u64,
+    /// The map's rotation, degrees.
+    #[serde(deserialize_with = "crate::json::exact")]
+    pub rotation_deg: f64,
+    /// Depth of the units' wall rings, cells.
+    pub wall_thickness: i32,
+    /// Whether knowledge supervision is on, why it failed if it did, and how many inferences ran.
+    pub knowledge: bool,
+    /// Why the knowledge base failed, if it did.
+    pub knowledge_error: Option<String>,
+    /// Markov logic inferences run (cache misses).
+    pub inferences: u64,
+    /// Unit pairs the last inference found of the same length.
+    pub same_length_pairs: usize,
+    /// Proposals and acceptances per kernel, in the order of [`Kernel::ALL`].
+    pub proposed: Vec<u64>,
+    /// Acceptances per kernel, in the order of [`Kernel::ALL`].
+    pub accepted: Vec<u64>,
+}
+
+impl ChainSummary {
+    /// The summary of `chain` with `seconds` spent iterating.
+    pub fn of(chain: &Chain, seconds: f64) -> ChainSummary {
+        let t = chain.trace();
+        ChainSummary {
+            iterations: chain.iteration(),
+            seconds,
+            log_posterior: chain.best_log_posterior(),
+            best_iteration: chain.best_iteration(),
+            seed: chain.seed(),
+            rotation_deg: chain.frame().angle.to_degrees(),
+            wall_thickness: chain.wall_thickness(),
+            knowledge: chain.config().knowledge.enabled,
+            knowledge_error: chain.knowledge_error().map(str::to_string),
+            inferences: chain.inferences(),
+            same_length_pairs: chain.inferred().same_length.len(),
+            proposed: Kernel::ALL.iter().map(|k| t.proposed[k.index()]).collect(),
+            accepted: Kernel::ALL.iter().map(|k| t.accepted[k.index()]).collect(),
+        }
+    }
+}
+
+/// [`summary`] from a chain's [`ChainSummary`].
+pub fn summary_of(c: &ChainSummary, map: &OccupancyMap, world: &World) -> serde_json::Value {
+    let count = |v: &[u64], i: usize| v.get(i).copied().unwrap_or(0);
     let kernels: serde_json::Map<String, serde_json::Value> = Kernel::ALL
         .iter()
-        .map(|k| {
-            (
-                k.name().to_lowercase(),
-                serde_json::json!({"proposed": t.proposed[k.index()], "accepted": t.accepted[k.index()]}),
-            )
+        .enumerate()
+        .map(|(i, k)| {
+            let (proposed, accepted) = (count(&c.proposed, i), count(&c.accepted, i));
+            (k.name().to_lowercase(), serde_json::json!({"proposed": proposed, "accepted": accepted}))
         })
         .collect();
     // K(W, M) is the confusion matrix's diagonal over its total: one prediction of the map.
@@ -58,9 +122,9 @@ pub fn summary(chain: &Chain, map: &OccupancyMap, world: &World, seconds: f64) -
         *types.entry(u.kind.name()).or_insert(0u32) += 1;
     }
     serde_json::json!({
-        "iterations": chain.iteration(),
-        "seconds": seconds,
-        "iterations_per_second": chain.iteration() as f64 / seconds.max(1e-9),
+        "iterations": c.iterations,
+        "seconds": c.seconds,
+        "iterations_per_second": c.iterations as f64 / c.seconds.max(1e-9),
         "cell_prediction_rate": cell_prediction_rate,
         "confusion": confusion,
         "units": world.units.len(),
@@ -69,15 +133,15 @@ pub fn summary(chain: &Chain, map: &OccupancyMap, world: &World, seconds: f64) -
         "unexplained_cells": world.unexplained.iter().map(|a| a.cells as u64).sum::<u64>(),
         "types": types,
         "defects": defects(world),
-        "log_posterior": chain.best_log_posterior(),
-        "best_iteration": chain.best_iteration(),
-        "seed": chain.seed(),
-        "rotation_deg": chain.frame().angle.to_degrees(),
-        "wall_thickness": chain.wall_thickness(),
-        "knowledge": chain.config().knowledge.enabled,
-        "knowledge_error": chain.knowledge_error(),
-        "inferences": chain.inferences(),
-        "same_length_pairs": chain.inferred().same_length.len(),
+        "log_posterior": c.log_posterior,
+        "best_iteration": c.best_iteration,
+        "seed": c.seed,
+        "rotation_deg": c.rotation_deg,
+        "wall_thickness": c.wall_thickness,
+        "knowledge": c.knowledge,
+        "knowledge_error": c.knowledge_error,
+        "inferences": c.inferences,
+        "same_length_pairs": c.same_length_pairs,
         "kernels": kernels,
     })
 }

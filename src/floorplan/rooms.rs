@@ -411,7 +411,7 @@ pub fn merge_small_segments(labels: &mut Grid<u16>, min_cells: usize) {
         l
     };
     let mut order: Vec<u16> = (1..=n as u16).filter(|&l| size[l as usize] > 0).collect();
-    order.sort_by_key(|&l| (size[l as usize], l));
+    crate::sort::sort_by_key(&mut order, |&l| (size[l as usize], l));
     for l in order {
         let root = find(&to, l);
         if root != l || size[l as usize] >= min_cells {

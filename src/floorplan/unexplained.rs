@@ -66,6 +66,8 @@ pub fn unexplained_areas(
         if members.len() < min_cells {
             continue;
         }
+        // The standard sort: an area can hold most of a large map's cells (crate::sort's
+        // indirect comparisons made the setup on Cartesium a fifth slower).
         members.sort_unstable();
         areas.push(area_of(&members, w, areas.len() as u32 + 1));
     }

@@ -172,6 +172,25 @@ impl OccupancyMap {
         Ok(Self::from_raster(raster, yaml, classifier))
     }
 
+    /// [`OccupancyMap::from_yaml_and_image`] for a PGM image only (e.g. what
+    /// [`OccupancyMap::to_pgm`] and [`OccupancyMap::to_yaml`] write): for a caller that should
+    /// not carry the PNG decoder, as the browser's plan module, which gets the map this way.
+    ///
+    /// ```
+    /// use ksmcmc::grid::{Limits, OccupancyMap};
+    /// let map = OccupancyMap::from_bytes(b"P2 3 1 255\n0 205 254\n").unwrap();
+    /// let back = OccupancyMap::from_yaml_and_pgm(&map.to_yaml("map.pgm"), &map.to_pgm(), &Limits::default()).unwrap();
+    /// assert_eq!(back.classified(), map.classified());
+    /// assert!(OccupancyMap::from_yaml_and_pgm(&map.to_yaml("map.png"), b"\x89PNG\r\n\x1a\n", &Limits::default()).is_err());
+    /// ```
+    pub fn from_yaml_and_pgm(yaml_text: &str, pgm_bytes: &[u8], limits: &Limits) -> Result<Self, MapError> {
+        let yaml = MapYaml::parse(yaml_text)?;
+        let classifier = Classifier::from_yaml(&yaml);
+        classifier.validate()?;
+        let raster = pgm::decode(pgm_bytes, limits)?;
+        Ok(Self::from_raster(raster, yaml, classifier))
+    }
+
     /// Wraps an already decoded raster.
     pub fn from_raster(raster: Raster, yaml: MapYaml, classifier: Classifier) -> Self {
         let classified = classify(&raster, &classifier, yaml.resolution);

@@ -961,7 +961,7 @@ impl<'a> Builder<'a> {
                 QueryAtom { atom: self.space.atom(p, key), value }
             })
             .collect();
-        query.sort_by(|a, b| a.atom.cmp(&b.atom));
+        crate::sort::sort_by(&mut query, |a, b| a.atom.cmp(&b.atom));
         Ok(Network {
             space: self.space,
             atom_key,

@@ -73,7 +73,7 @@ pub fn draw_cloud(
         }
     }
     let mut distinct: Vec<(Rect, u32)> = copies.into_iter().collect();
-    distinct.sort_unstable_by_key(|(r, k)| (*k, r.x, r.y, r.w, r.h));
+    crate::sort::sort_by_key(&mut distinct, |(r, k)| (*k, r.x, r.y, r.w, r.h));
 
     let identity = frame.is_identity();
     let s = scale as f64;

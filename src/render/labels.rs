@@ -112,7 +112,7 @@ pub fn place_labels(
     blocked: &[LabelBox],
 ) -> Vec<LabelBox> {
     let mut order: Vec<usize> = (0..candidates.len()).collect();
-    order.sort_by(|&a, &b| candidates[b].priority.cmp(&candidates[a].priority).then(a.cmp(&b)));
+    crate::sort::sort_by(&mut order, |&a, &b| candidates[b].priority.cmp(&candidates[a].priority).then(a.cmp(&b)));
     let mut placed: Vec<LabelBox> = Vec::new();
     for i in order {
         let c = &candidates[i];

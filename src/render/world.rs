@@ -212,7 +212,7 @@ fn solid(rgba: [u8; 4]) -> Paint<'static> {
 /// then runs of equal column runs side by side.
 fn object_rects(cells: &[[i32; 2]]) -> Vec<CellRect> {
     let mut v: Vec<(i64, i64)> = cells.iter().map(|&[x, y]| (x as i64, y as i64)).collect();
-    v.sort_unstable();
+    crate::sort::sort(&mut v);
     v.dedup();
     let mut columns = Vec::new();
     let mut i = 0;
@@ -226,7 +226,8 @@ fn object_rects(cells: &[[i32; 2]]) -> Vec<CellRect> {
         columns.push(CellRect { x0: x, y0, x1: x + 1, y1 });
         i += 1;
     }
-    columns.sort_unstable_by_key(|r| (r.y0, r.y1, r.x0));
+    // Keys are distinct (one run per column and rows), so the stable sort is the order.
+    crate::sort::sort_by_key(&mut columns, |r| (r.y0, r.y1, r.x0));
     let mut out: Vec<CellRect> = Vec::with_capacity(columns.len());
     for r in columns {
         match out.last_mut() {

@@ -1,17 +1,22 @@
 //! Knowledge-base bindings for the rules editor and the prior-shaping page: thin wrappers over
-//! [`crate::mln`] and [`crate::floorplan::knowledge`].
+//! [`crate::mln`] and [`crate::floorplan::knowledge`]. The built-in rules and their syntax
+//! check are in the mapper module and the rules module; the inference, the log weight and
+//! weight learning only in the rules module (`ksmcmc_rules.js`).
 //!
 //! ```js
-//! import init, { checkRules, inferWorld, mlnLogWeight, builtinIndoorRules } from "./pkg/ksmcmc.js";
+//! import init, { checkRules, inferWorld, mlnLogWeight, builtinIndoorRules } from "./pkg/ksmcmc_rules.js";
 //! await init();
 //! checkRules("Room(unit)\n1 Room(x) =>");   // { line: 2, column: 13, message: "..." }
-//! const out = JSON.parse(inferWorld(builtinIndoorRules(), mapper.bestWorldJson(), 0.05));
+//! const out = JSON.parse(inferWorld(builtinIndoorRules(), plan.worldJson(), 0.05));
 //! mlnLogWeight("Left(pt)\n2 Left(x)", "Left(X)"); // 2
 //! ```
 
-use crate::floorplan::knowledge::{self, WorldInference};
-use crate::floorplan::World;
-use crate::mln::{Database, GroundConfig, Mln, RuleError};
+use crate::floorplan::knowledge;
+#[cfg(feature = "wasm-rules")]
+use crate::floorplan::{knowledge::WorldInference, World};
+#[cfg(feature = "wasm-rules")]
+use crate::mln::{Database, GroundConfig};
+use crate::mln::{Mln, RuleError};
 use wasm_bindgen::prelude::*;
 
 /// The built-in indoor knowledge base (Tab. 3.3 - 3.5) as text.
@@ -20,12 +25,14 @@ pub fn builtin_indoor_rules() -> String {
     knowledge::BUILTIN_INDOOR.to_string()
 }
 
+#[cfg(feature = "wasm-rules")]
 /// The hand-set indoor knowledge base (Tab. 3.5 as transcribed), beside the learned default.
 #[wasm_bindgen(js_name = handSetIndoorRules)]
 pub fn hand_set_indoor_rules() -> String {
     knowledge::HAND_SET_INDOOR.to_string()
 }
 
+#[cfg(feature = "wasm-rules")]
 /// Learns the weights of knowledge base `rules` from a labelled world (`world.json` text with
 /// typed units, e.g. a sample's `truth.json`) at `resolution` metres per cell, by
 /// pseudo-likelihood (`method` "pll", the default: milliseconds) or discriminatively
@@ -54,6 +61,7 @@ pub fn check_rules(text: &str) -> Result<JsValue, JsError> {
     }
 }
 
+#[cfg(feature = "wasm-rules")]
 /// The evidence `worldJson` (a `world.json` text) gives at `resolution` metres per cell, and
 /// what the knowledge base `rulesText` infers from it, as JSON text
 /// `{evidence: [{predicate, args, value}], types: {U1: {kind, room, corr, hall, other}},
@@ -73,6 +81,7 @@ pub fn infer_world(
     Ok(inference.to_json())
 }
 
+#[cfg(feature = "wasm-rules")]
 /// The unnormalised log probability `sum_i w_i n_i(x)` of the complete world `evidenceText`
 /// (one ground atom per line; unlisted atoms are false) under the knowledge base `rulesText`.
 /// `-Infinity` when a hard formula is violated. Throws on bad text (message with line and

@@ -1,9 +1,9 @@
 //! The live mapper's bindings: a running [`Chain`] as the JavaScript class `Mapper`, and the
-//! drawing helpers that show it on a `<canvas>`.
+//! drawing helpers that show it on a `<canvas>`. In the mapper module (`ksmcmc.js`).
 //!
 //! As in the rest of this layer there is no logic here beyond converting and checking
-//! arguments: stepping, the best world, the trace, the samples, the room labels and the scene
-//! graph are the library's; the pictures are [`crate::render`]'s. A page drives the chain from
+//! arguments: stepping, the best world, the trace, the samples and the scene graph are the
+//! library's; the pictures are [`crate::render`]'s. A page drives the chain from
 //! `requestAnimationFrame`:
 //!
 //! ```js
@@ -15,21 +15,41 @@
 //! }
 //! requestAnimationFrame(frame);
 //! ```
+//!
+//! The best world's rooms and everything made from them (`world.json`, the labels, GeoJSON,
+//! SVG, glTF, routes, the report, `overlay.png`) are the plan module's `Plan`
+//! ([`super::plan`]), which `planInput()` feeds: the room layer is not needed for the first
+//! frame, and leaving it out keeps this module small.
 
-use super::{js_message, put_rgba, seed_from_js, Map, Rendered};
-use crate::floorplan::geojson::world_geojson;
-use crate::floorplan::georef::Georef;
-use crate::floorplan::report::report as ksmcmc_report;
-use crate::floorplan::room_types::room_types;
-use crate::floorplan::rooms::RoomConfig;
-use crate::floorplan::route::RoutePlanner;
+use super::{from_object, js_message, now_ms, put_rgba, seed_from_js, Map, Rendered};
+use crate::floorplan::plan_input::PlanInput;
 use crate::floorplan::settled::Settled;
-use crate::floorplan::{edits, export, metrics, Chain, ChainConfig, Rect, World};
-use crate::grid::{Cell, Grid, OccupancyMap};
+use crate::floorplan::{edits, metrics, Chain, ChainConfig, Rect, World};
+use crate::grid::{Cell, OccupancyMap};
 use crate::render::{self, RenderOptions};
 use serde::Deserialize;
 use tiny_skia::Pixmap;
 use wasm_bindgen::prelude::*;
+
+#[wasm_bindgen(typescript_custom_section)]
+const TS_TYPES: &str = r#"
+/** Options of `drawMapper` and `renderMapperRgba`. */
+export interface MapperDrawOptions {
+  /** Which world to draw over the map (default 'current'). */
+  show?: 'current' | 'best' | 'reference' | 'none';
+  /** Overlay the posterior cloud: the last accepted worlds as thin lines (default false). */
+  cloud?: boolean;
+  /** Output pixels per map cell (default 1). */
+  scale?: number;
+  /** Each unit's type and id at its centre (default true). */
+  labels?: boolean;
+  /**
+   * A `world.json` text to draw instead of the world `show` names, e.g. a plan's
+   * `worldJson()` (the plan module's), which makes the picture its `overlay.png`.
+   */
+  world?: string;
+}
+"#;
 
 /// The largest map the live mapper takes, in cells: 2^23 (e.g. 4096 x 2048). The chain keeps
 /// several per-cell grids and the canvas a picture of the map; beyond this a browser tab runs
@@ -42,19 +62,6 @@ pub const MAX_STEP: f64 = 10_000_000.0;
 
 /// The longest time budget of one `runFor` call, in milliseconds.
 pub const MAX_BUDGET_MS: f64 = 60_000.0;
-
-#[wasm_bindgen]
-extern "C" {
-    /// `performance.now()`: milliseconds, sub-millisecond where the browser allows.
-    #[wasm_bindgen(catch, js_namespace = performance, js_name = now)]
-    fn performance_now() -> Result<f64, JsValue>;
-}
-
-/// The clock `runFor` uses: `performance.now()`, or `Date.now()` where there is no
-/// `performance` object.
-pub fn now_ms() -> f64 {
-    performance_now().unwrap_or_else(|_| js_sys::Date::now())
-}
 
 /// A floor-plan chain running on one map, for a page's frame loop.
 #[wasm_bindgen]
@@ -70,15 +77,6 @@ pub struct Mapper {
     /// The current world, exported once per iteration count: a frame draws it twice (map and
     /// scene graph), and exporting a large world costs milliseconds.
     current: Option<(u64, World)>,
-    /// The best world with its room layer and room labels, keyed as `best`: computed only
-    /// when an export or the room list asks (a pass over the map and a small inference).
-    rooms: Option<((u64, u64), World, Grid<u16>)>,
-    /// The last room labels handed out while edits are in force: room ids carry over from
-    /// them ([`edits::carry_ids`]).
-    shown_labels: Option<Grid<u16>>,
-    /// The route planner of the best world, keyed as `best`: its room graph and the
-    /// distances inside rooms are reused by the next route.
-    planner: Option<((u64, u64), RoutePlanner)>,
     reference: Option<World>,
     /// Whether the best world has stopped improving (the library's rule).
     settled: Settled,
@@ -104,35 +102,6 @@ impl Mapper {
         (world, *k)
     }
 
-    /// The best world with its rooms, and the room labels (cached between improvements).
-    fn best_rooms(&mut self) -> (&World, &Grid<u16>) {
-        let key = (self.chain.best_iteration(), self.chain.best_log_posterior().to_bits());
-        if self.rooms.as_ref().is_none_or(|(k, _, _)| *k != key) {
-            let (mut world, mut labels) = self.chain.best_world_with_rooms(&RoomConfig::default());
-            if !self.chain.edits().is_empty() {
-                if let Some(previous) = &self.shown_labels {
-                    edits::carry_ids(previous, &mut labels, &mut world.rooms);
-                }
-                self.shown_labels = Some(labels.clone());
-            }
-            self.rooms = Some((key, world, labels));
-        }
-        let (_, world, labels) = self.rooms.as_ref().expect("just filled");
-        (world, labels)
-    }
-
-    /// The route planner of the best world (cached between improvements).
-    fn planner(&mut self) -> Result<&mut RoutePlanner, JsError> {
-        let key = (self.chain.best_iteration(), self.chain.best_log_posterior().to_bits());
-        if self.planner.as_ref().is_none_or(|(k, _)| *k != key) {
-            let (world, labels) = self.best_rooms();
-            let (world, labels) = (world.clone(), labels.clone());
-            let planner = RoutePlanner::new(self.map.classified().clone(), labels, &world, self.chain.resolution())?;
-            self.planner = Some((key, planner));
-        }
-        Ok(&mut self.planner.as_mut().expect("just filled").1)
-    }
-
     /// The current world (cached until the chain moves).
     fn current(&mut self) -> &World {
         let it = self.chain.iteration();
@@ -151,20 +120,9 @@ impl Mapper {
         }
     }
 
-    /// The world an export shows: the best world as `bestWorldJson` gives it (with the room
-    /// layer's unit types, as `ksmcmc floorplan` draws `overlay.png`), the others as drawn live.
-    fn exported_world_for(&mut self, show: Show) -> Option<World> {
-        match show {
-            Show::Best => Some(self.best_rooms().0.clone()),
-            _ => self.world_for(show),
-        }
-    }
-
     /// Forgets the worlds cached from the chain: it restarted, took edits or a new map.
     fn forget_worlds(&mut self) {
         self.best = None;
-        self.rooms = None;
-        self.planner = None;
         self.current = None;
     }
 
@@ -177,11 +135,6 @@ impl Mapper {
 
     /// The picture `drawMapper` shows.
     pub fn picture(&mut self, options: &DrawOptions) -> Result<Pixmap, JsError> {
-        self.picture_of(options, false)
-    }
-
-    /// The picture of `options`; `exported`: with the exported best world (`toPng`).
-    fn picture_of(&mut self, options: &DrawOptions, exported: bool) -> Result<Pixmap, JsError> {
         let (w, h) = (self.map.width(), self.map.height());
         let scale = options.scale;
         render::check_size(w, h, scale)?;
@@ -192,7 +145,10 @@ impl Mapper {
             self.base = Some((scale, base));
         }
         let mut pixmap = self.base.as_ref().expect("just drawn").1.clone();
-        let world = if exported { self.exported_world_for(options.show) } else { self.world_for(options.show) };
+        let world = match &options.world {
+            Some(text) => Some(World::from_json(text)?),
+            None => self.world_for(options.show),
+        };
         if let Some(world) = world {
             render::draw_world(
                 &mut pixmap,
@@ -258,9 +214,6 @@ impl Mapper {
             base: None,
             best: None,
             current: None,
-            rooms: None,
-            shown_labels: None,
-            planner: None,
             reference: None,
             settled: Settled::for_map(inner.count(Cell::Free)),
             setup_ms,
@@ -331,18 +284,13 @@ impl Mapper {
     /// `ksmcmc floorplan --edits`): `editsJson` is a JSON list of
     /// `{"op": "merge", "at": [[x1, y1], [x2, y2]]}`, `{"op": "split", "line": [[x1, y1], [x2, y2]]}`,
     /// `{"op": "type", "at": [x, y], "type": "corridor"}` and `{"op": "name", "at": [x, y], "name": "Kitchen"}`
-    /// in map cells. `[]` lifts every edit. While edits are in force, room ids carry over from
-    /// one call to the next (a room keeps its id as the chain goes on). Edits stay through
-    /// `reset`. Throws, changing nothing, on bad JSON or a point off the map.
+    /// in map cells. `[]` lifts every edit. While edits are in force, a `Plan` made with the
+    /// previous plan's `roomLabels()` keeps its rooms' ids. Edits stay through `reset`. Throws,
+    /// changing nothing, on bad JSON or a point off the map.
     #[wasm_bindgen(js_name = setEdits)]
     pub fn set_edits(&mut self, #[wasm_bindgen(js_name = editsJson)] edits_json: &str) -> Result<(), JsError> {
         let e = edits::Edits::parse(edits_json).map_err(|e| JsError::new(&e.to_string()))?;
         self.chain.set_edits(e).map_err(|e| JsError::new(&e.to_string()))?;
-        if self.chain.edits().is_empty() {
-            self.shown_labels = None;
-        } else if let Some((_, _, labels)) = &self.rooms {
-            self.shown_labels.get_or_insert_with(|| labels.clone());
-        }
         self.forget_worlds();
         Ok(())
     }
@@ -504,54 +452,6 @@ impl Mapper {
         self.current().to_json()
     }
 
-    /// The best world as `world.json` text: what `ksmcmc floorplan` writes to `world.json`
-    /// after as many iterations with the same seed.
-    #[wasm_bindgen(js_name = bestWorldJson)]
-    pub fn best_world_json(&mut self) -> String {
-        self.best_rooms().0.to_json()
-    }
-
-    /// The rooms of the best world as JSON text: the `rooms` of `world.json`, each with its
-    /// `id` (its value in `labelsPgm`), `type`, `units`, `area_m2`, `doors` and `opens_to`.
-    #[wasm_bindgen(js_name = roomsJson)]
-    pub fn rooms_json(&mut self) -> Result<String, JsError> {
-        Ok(export::rooms_json(self.best_rooms().0))
-    }
-
-    /// The route from cell (`fromX`, `fromY`) to (`toX`, `toY`) (column, row) through the
-    /// rooms and doors of the best world, as JSON text: `{"rooms": [...], "doors": [...],
-    /// "path": [[x, y], ...], "length_m": ...}`, what `ksmcmc route` prints for the
-    /// `world.json` and `labels.pgm` of `bestWorldJson` and `labelsPgm`. Throws, with the
-    /// reason, for ends off the map or not free, or a goal no free path reaches.
-    pub fn route(
-        &mut self,
-        #[wasm_bindgen(js_name = fromX)] from_x: f64,
-        #[wasm_bindgen(js_name = fromY)] from_y: f64,
-        #[wasm_bindgen(js_name = toX)] to_x: f64,
-        #[wasm_bindgen(js_name = toY)] to_y: f64,
-    ) -> Result<String, JsError> {
-        let (from, to) = super::route::ends(from_x, from_y, to_x, to_y)?;
-        Ok(self.planner()?.route(from, to)?.to_json())
-    }
-
-    /// What the knowledge base believes about each room's type, as JSON text: per room of
-    /// `roomsJson` (same order), `{"id", "marginals": {"room", "corridor", "hall", "other"} |
-    /// null, "units": [{"id", "type", "marginals"}]}`. A room's marginals are its units'
-    /// `P(Room)`, `P(Corr)`, `P(Hall)` and `P(Other)` averaged by their interiors' areas; the
-    /// four are separate atoms of the knowledge base and need not add up to 1.
-    #[wasm_bindgen(js_name = roomTypesJson)]
-    pub fn room_types_json(&mut self) -> String {
-        let inferred = self.chain.best_world_inferred().1.unwrap_or_default();
-        export::room_types_json(&room_types(self.best_rooms().0, &inferred))
-    }
-
-    /// The room of every map cell in the best world, row-major (`width` x `height` values):
-    /// the room's id as in `roomsJson`, 0 for none. The samples of `labelsPgm`.
-    #[wasm_bindgen(js_name = roomLabels)]
-    pub fn room_labels(&mut self) -> Vec<u16> {
-        self.best_rooms().1.cells().to_vec()
-    }
-
     /// The recorded trace from point `from` on (default 0): one point every
     /// `output.trace_every` iterations (100 by default) with the iteration, the current log
     /// posterior, the acceptance rate and the unit count. Pass the number of points already
@@ -608,86 +508,6 @@ impl Mapper {
         ])
     }
 
-    /// The room segmentation of the best world as a 16-bit binary PGM of the map's size (room
-    /// id per free cell, 0 elsewhere): `labels.pgm` of `ksmcmc floorplan`.
-    #[wasm_bindgen(js_name = labelsPgm)]
-    pub fn labels_pgm(&mut self) -> Vec<u8> {
-        export::labels_pgm(self.best_rooms().1)
-    }
-
-    /// The best world's rooms and doors as `world.geojson` text (an RFC 7946 FeatureCollection
-    /// in IMDF shape: a `level`, a `unit` per room, an `opening` per door), what `ksmcmc
-    /// floorplan` writes after as many iterations with the same seed. Coordinates are metres in
-    /// the map's frame, or longitude/latitude with `georef`, `"LAT,LON,BEARING"` in degrees as
-    /// the CLI's `--georef` (throws if it is not).
-    pub fn geojson(
-        &mut self,
-        #[wasm_bindgen(unchecked_optional_param_type = "string")] georef: Option<String>,
-    ) -> Result<String, JsError> {
-        let georef = match georef.as_deref() {
-            Some(text) => Some(text.parse::<Georef>().map_err(|e| JsError::new(&format!("georef: {e}")))?),
-            None => None,
-        };
-        let map = self.map.clone();
-        let (world, labels) = self.best_rooms();
-        Ok(world_geojson(world, labels, &map, georef.as_ref())?)
-    }
-
-    /// The best world as `world.svg` text: the floor plan as a vector drawing in map cells,
-    /// with layers `rooms` (one path per room with `data-room` and `data-type`), `walls`,
-    /// `doors` and `labels`; what `ksmcmc floorplan` writes.
-    pub fn svg(&mut self) -> Result<String, JsError> {
-        let resolution = self.map.yaml().resolution;
-        let (world, labels) = self.best_rooms();
-        Ok(render::svg::world_svg(world, labels, resolution)?)
-    }
-
-    /// The best world in 3D, as the `world.glb` (glTF 2.0 binary) `ksmcmc floorplan` writes:
-    /// walls with openings at the doors, a floor slab per room in its type's colour, metres,
-    /// Y up. `options`: `{ wallHeight?: number = 2.5, doorHeight?: number = 2.0 }` in metres
-    /// (`ksmcmc floorplan --wall-height --door-height`); out-of-range heights are errors.
-    #[wasm_bindgen(js_name = worldGlb)]
-    pub fn world_glb(
-        &mut self,
-        #[wasm_bindgen(unchecked_optional_param_type = "{ wallHeight?: number; doorHeight?: number }")] options: Option<
-            JsValue,
-        >,
-    ) -> Result<Vec<u8>, JsError> {
-        let options = super::model3d::options(options.as_ref())?;
-        let resolution = self.chain.resolution();
-        Ok(crate::render::model3d::world_glb(self.best_rooms().0, resolution, &options)?)
-    }
-
-    /// The scene graph of the best world (or the current one, `which = 'current'`) as
-    /// `graph.json` text: `{"nodes": [{"id", "type"}], "edges": [{"from", "to", "kind", "door"?}],
-    /// "rooms": [...]}` (the rooms of `world.json`; the current world has none).
-    #[wasm_bindgen(js_name = graphJson)]
-    pub fn graph_json(
-        &mut self,
-        #[wasm_bindgen(unchecked_optional_param_type = "'best' | 'current'")] which: Option<String>,
-    ) -> Result<String, JsError> {
-        let world = match which.as_deref() {
-            None | Some("best") => self.best_rooms().0.clone(),
-            Some("current") => self.current().clone(),
-            Some(other) => return Err(JsError::new(&format!("graphJson: {other:?} is neither 'best' nor 'current'"))),
-        };
-        Ok(export::graph_json(&world))
-    }
-
-    /// A summary of the run as JSON text, with the fields of `ksmcmc floorplan`'s
-    /// `report.json` (the map's path aside): iterations, seconds spent iterating, K(W,M),
-    /// confusion counts, units, doors, rooms, best log posterior and iteration, seed, rotation,
-    /// wall thickness and per-kernel proposal counts.
-    #[wasm_bindgen(js_name = reportJson)]
-    pub fn report_json(&mut self) -> Result<String, JsError> {
-        let seconds = self.busy_ms / 1000.0;
-        let (world, labels) = self.best_rooms();
-        let (world, labels) = (world.clone(), labels.clone());
-        let mut report = ksmcmc_report(&self.chain, &self.map, &world, &labels, seconds);
-        report["setup_seconds"] = (self.setup_ms / 1000.0).into();
-        Ok(export::report_json(&report))
-    }
-
     /// Sets a world to compare with (`show: 'reference'`), e.g. a sample's `truth.json` or a
     /// saved result, or clears it with no argument. The world must be valid `world.json` for a
     /// map of this map's size whose units land on the map ([`World::fits`]); otherwise this
@@ -711,19 +531,6 @@ impl Mapper {
     #[wasm_bindgen(getter, js_name = hasReference)]
     pub fn has_reference(&self) -> bool {
         self.reference.is_some()
-    }
-
-    /// The picture `drawMapper` shows, as PNG bytes, but the best world as `bestWorldJson`
-    /// gives it (its units typed by the room layer too). With the default options but
-    /// `show: 'best'` it is the `overlay.png` of `ksmcmc floorplan`.
-    #[wasm_bindgen(js_name = toPng)]
-    pub fn to_png(
-        &mut self,
-        #[wasm_bindgen(unchecked_optional_param_type = "MapperDrawOptions")] options: Option<JsValue>,
-    ) -> Result<Vec<u8>, JsError> {
-        let options = DrawOptions::from_js(options.as_ref())?;
-        let pixmap = self.picture_of(&options, true)?;
-        Ok(render::encode_png(&pixmap))
     }
 }
 
@@ -754,11 +561,13 @@ pub struct DrawOptions {
     pub scale: u32,
     /// Each unit's type and id at its centre.
     pub labels: bool,
+    /// A `world.json` text to draw instead of `show`'s world (e.g. a plan's, with its rooms).
+    pub world: Option<String>,
 }
 
 impl Default for DrawOptions {
     fn default() -> Self {
-        DrawOptions { show: Show::Current, cloud: false, scale: 1, labels: true }
+        DrawOptions { show: Show::Current, cloud: false, scale: 1, labels: true, world: None }
     }
 }
 
@@ -774,7 +583,7 @@ impl DrawOptions {
         from_object(v).map_err(|e| {
             JsError::new(&format!(
                 "options: {e} (show is 'current', 'best', 'reference' or 'none'; cloud and labels are \
-                 booleans; scale is a whole number of pixels per cell)"
+                 booleans; scale is a whole number of pixels per cell; world is world.json text)"
             ))
         })
     }
@@ -812,8 +621,9 @@ impl GraphOptions {
 /// Draws the map with the mapper's current or best world (or the reference, or none) and
 /// optionally the posterior cloud on `canvas`, resizing it to the map's size times `scale`.
 /// `options`: `{ show?: 'current' | 'best' | 'reference' | 'none', cloud?: boolean,
-/// scale?: number, labels?: boolean }`, by default the current world, no cloud, scale 1, with
-/// labels. Call it at most once per animation frame.
+/// scale?: number, labels?: boolean, world?: string }`, by default the current world, no cloud,
+/// scale 1, with labels; `world`, a `world.json` text, is drawn instead of `show`'s. Call it at
+/// most once per animation frame.
 #[wasm_bindgen(js_name = drawMapper)]
 pub fn draw_mapper(
     canvas: &web_sys::HtmlCanvasElement,
@@ -889,15 +699,6 @@ pub fn chain_config(json: Option<&str>) -> Result<ChainConfig, JsError> {
     ChainConfig::from_json(json.unwrap_or("")).map_err(|e| JsError::new(&e.to_string()))
 }
 
-/// Reads an options object through its JSON text, so that unknown fields are refused
-/// (serde-wasm-bindgen looks up only the fields it knows) and NaN, which JSON writes as
-/// `null`, is no number.
-pub(crate) fn from_object<T: serde::de::DeserializeOwned>(v: &JsValue) -> Result<T, String> {
-    let text = js_sys::JSON::stringify(v).map_err(|e| js_message(&e))?;
-    let text = text.as_string().unwrap_or_default();
-    serde_json::from_str(&text).map_err(|e| e.to_string())
-}
-
 /// A plain JavaScript object with the given properties.
 fn object(fields: &[(&str, JsValue)]) -> Result<JsValue, JsError> {
     let o = js_sys::Object::new();
@@ -906,4 +707,20 @@ fn object(fields: &[(&str, JsValue)]) -> Result<JsValue, JsError> {
             .map_err(|e| JsError::new(&format!("cannot build the result: {}", js_message(&e))))?;
     }
     Ok(o.into())
+}
+
+/// The hand-off to the plan module, apart from the rest (see the module docs).
+#[wasm_bindgen]
+impl Mapper {
+    /// What the plan module's `Plan` needs of the chain now, as JSON text (a [`PlanInput`]):
+    /// the typed best world without rooms, the edits in force, whether knowledge supervision
+    /// is on, the units' type marginals and the chain's counts and times for `report.json`.
+    /// `new Plan(map.toPgm(), map.toYaml('map.pgm'), mapper.planInput())` then gives the best
+    /// world's rooms and exports, byte for byte what `ksmcmc floorplan` writes after as many
+    /// iterations.
+    #[wasm_bindgen(js_name = planInput)]
+    pub fn plan_input(&mut self) -> String {
+        let input = PlanInput::of(&mut self.chain, self.busy_ms / 1000.0);
+        PlanInput { setup_seconds: Some(self.setup_ms / 1000.0), ..input }.to_json()
+    }
 }

@@ -1,5 +1,5 @@
-//! WebAssembly bindings: a thin wasm-bindgen layer over [`crate::grid`], [`crate::render`] and
-//! [`crate::floorplan::synth`], compiled only for `wasm32`.
+//! WebAssembly bindings: a thin wasm-bindgen layer over the library, compiled only for
+//! `wasm32`.
 //!
 //! Nothing here has logic of its own: every function converts its arguments, calls the library
 //! and converts the answer back. Every export returns `Result<_, JsError>`, so bad input becomes
@@ -7,55 +7,81 @@
 //! [`crate::grid::MapError`] and friends); malformed input never panics, because a panic
 //! kills the whole module.
 //!
+//! The API comes as separately loaded modules, one per cargo feature, so that a page downloads
+//! only what it uses (`make pkg` builds the crate once per module):
+//!
+//! * `wasm-mapper`, `ksmcmc.js`: maps ([`map`]), their pictures and the live floor-plan chain
+//!   ([`mapper`]), with the built-in rules and their syntax check: what the live mapper needs
+//!   for its first frame, and the one module most pages start with. The simulated robot of the
+//!   Exploration page ([`explore`]) is here too: it runs beside a `Mapper` and hands it maps.
+//! * `wasm-plan`, `ksmcmc_plan.js`: the room layer of a best world and everything made from it
+//!   ([`plan`]: `world.json`, labels, room types, GeoJSON, SVG, glTF, routes, the report, PNG
+//!   encoding), and routes and models of saved worlds. The live mapper's worker imports it
+//!   once the chain has found units.
+//! * `wasm-synth`, `ksmcmc_synth.js`: synthetic maps ([`synth`]), for the samples.
+//! * `wasm-rules`, `ksmcmc_rules.js`: the knowledge tools ([`knowledge`]: inference, the log
+//!   weight, weight learning) of the rules and prior pages.
+//! * `wasm-tabletop`, `ksmcmc_tabletop.js`: the table-top analysis ([`tabletop`]).
+//!
+//! Modules do not share memory: what passes between them is bytes and text (a map's PGM and
+//! YAML, `Mapper.planInput()`, a world's JSON), never an object. `start`, `version` and
+//! `wasmHeapBytes` are in each.
+//!
 //! ```js
-//! import init, { Map, drawToCanvas, synth } from "./pkg/ksmcmc.js";
+//! import init, { Map, drawToCanvas } from "./pkg/ksmcmc.js";
 //! await init();
 //! const map = Map.fromBytes(new Uint8Array(await file.arrayBuffer()));
 //! console.log(map.width, map.height, map.counts());
 //! drawToCanvas(document.querySelector("canvas"), map);
-//! const s = synth(7);               // same seed, same bytes as `ksmcmc synth --seed 7`
+//! const synth = await import("./pkg/ksmcmc_synth.js");
+//! await synth.default();
+//! const s = synth.synth(7);         // same seed, same bytes as `ksmcmc synth --seed 7`
+//! const made = Map.fromYaml(s.mapYaml, s.mapPgm);
 //! ```
 //!
-//! Objects returned as classes (`Map`, `Rendered`, `Synthetic`) live in wasm memory; call
-//! `.free()` on them when done, or let the garbage collector's finaliser do it.
+//! Objects returned as classes (`Map`, `Rendered`, `Mapper`, `Explorer`, `Plan`, `Synthetic`)
+//! live in wasm memory; call `.free()` on them when done, or let the garbage collector's
+//! finaliser do it.
 
+#[cfg(feature = "wasm-mapper")]
 mod explore;
+#[cfg(any(feature = "wasm-mapper", feature = "wasm-rules"))]
 pub mod knowledge;
+#[cfg(feature = "wasm-mapper")]
+mod map;
+#[cfg(feature = "wasm-mapper")]
 mod mapper;
+#[cfg(feature = "wasm-plan")]
 mod model3d;
+#[cfg(feature = "wasm-plan")]
+mod plan;
+#[cfg(feature = "wasm-plan")]
 mod route;
+#[cfg(feature = "wasm-synth")]
+mod synth;
+#[cfg(feature = "wasm-tabletop")]
 pub mod tabletop;
 
+#[cfg(feature = "wasm-mapper")]
 pub use explore::Explorer;
+#[cfg(feature = "wasm-mapper")]
+pub use map::{draw_to_canvas, render_rgba, Counts, Map, Rendered};
+#[cfg(feature = "wasm-mapper")]
 pub use mapper::{
-    chain_config, chain_config_defaults, draw_mapper, draw_scene_graph, now_ms, render_mapper_rgba,
-    render_scene_graph_rgba, DrawOptions, GraphOptions, Mapper, Show, MAX_BUDGET_MS, MAX_MAPPER_CELLS, MAX_STEP,
+    chain_config, chain_config_defaults, draw_mapper, draw_scene_graph, render_mapper_rgba, render_scene_graph_rgba,
+    DrawOptions, GraphOptions, Mapper, Show, MAX_BUDGET_MS, MAX_MAPPER_CELLS, MAX_STEP,
 };
+#[cfg(feature = "wasm-plan")]
 pub use model3d::world_glb;
+#[cfg(feature = "wasm-plan")]
+pub use plan::{encode_png, graph_json, Plan};
+#[cfg(feature = "wasm-plan")]
 pub use route::plan_route;
+#[cfg(feature = "wasm-synth")]
+pub use synth::{synth, synth_config, Synthetic};
 
-use crate::floorplan::synth::{self, SynthConfig};
-use crate::floorplan::World;
-use crate::grid::{Cell, Classifier, Grid, Limits, OccupancyMap};
-use crate::render::{self, RenderOptions};
-use serde::{Deserialize, Serialize};
 use wasm_bindgen::prelude::*;
 use wasm_bindgen::Clamped;
-
-#[wasm_bindgen(typescript_custom_section)]
-const TS_TYPES: &str = r#"
-/** Options of `drawMapper`, `renderMapperRgba` and `Mapper.toPng`. */
-export interface MapperDrawOptions {
-  /** Which world to draw over the map (default 'current'). */
-  show?: 'current' | 'best' | 'reference' | 'none';
-  /** Overlay the posterior cloud: the last accepted worlds as thin lines (default false). */
-  cloud?: boolean;
-  /** Output pixels per map cell (default 1). */
-  scale?: number;
-  /** Each unit's type and id at its centre (default true). */
-  labels?: boolean;
-}
-"#;
 
 /// Installs the panic hook, so that a bug prints its message to the console instead of an
 /// opaque `unreachable` trap. Runs by itself when the module is initialised.
@@ -78,221 +104,19 @@ pub fn wasm_heap_bytes() -> f64 {
     (core::arch::wasm32::memory_size(0) * 65536) as f64
 }
 
-/// The number of cells of each class in a map, as `map.counts()` returns it.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-pub struct Counts {
-    /// Free cells (code 0).
-    pub free: u32,
-    /// Unknown cells (code 1).
-    pub unknown: u32,
-    /// Occupied cells (code 2).
-    pub occupied: u32,
-}
-
-/// A classified occupancy map.
-///
-/// Cell codes (eq. 3.7): 0 free, 1 unknown, 2 occupied; cells are row-major from the top-left.
+#[cfg(any(feature = "wasm-mapper", feature = "wasm-tabletop"))]
 #[wasm_bindgen]
-#[derive(Debug, Clone)]
-pub struct Map {
-    inner: OccupancyMap,
+extern "C" {
+    /// `performance.now()`: milliseconds, sub-millisecond where the browser allows.
+    #[wasm_bindgen(catch, js_namespace = performance, js_name = now)]
+    fn performance_now() -> Result<f64, JsValue>;
 }
 
-impl Map {
-    /// Wraps a library map.
-    pub fn new(inner: OccupancyMap) -> Map {
-        Map { inner }
-    }
-
-    /// The library map.
-    pub fn inner(&self) -> &OccupancyMap {
-        &self.inner
-    }
-}
-
-#[wasm_bindgen]
-impl Map {
-    /// Loads a map image: a PGM (P2 or P5, 8 or 16 bits) or a PNG of any colour type, told
-    /// apart by their first bytes. Cells are classified with the default intensity rule.
-    /// Throws an `Error` that says what is wrong with the data.
-    #[wasm_bindgen(js_name = fromBytes)]
-    pub fn from_bytes(bytes: &[u8]) -> Result<Map, JsError> {
-        Ok(Map::new(OccupancyMap::from_bytes(bytes)?))
-    }
-
-    /// Loads a ROS map_server pair: the text of `map.yaml` and the bytes of the image it
-    /// names (the caller matches the `image:` name to a file). Cells are classified with the
-    /// YAML's own rule and thresholds.
-    #[wasm_bindgen(js_name = fromYaml)]
-    pub fn from_yaml(
-        #[wasm_bindgen(js_name = yamlText)] yaml_text: &str,
-        #[wasm_bindgen(js_name = imageBytes)] image_bytes: &[u8],
-    ) -> Result<Map, JsError> {
-        Ok(Map::new(OccupancyMap::from_yaml_and_image(yaml_text, image_bytes, &Limits::default())?))
-    }
-
-    /// A map from cell codes, e.g. one a person painted: `codes` holds `width * height` bytes,
-    /// each 0 (free), 1 (unknown) or 2 (occupied), row-major from the top-left.
-    #[wasm_bindgen(js_name = fromCells)]
-    pub fn from_cells(width: u32, height: u32, codes: &[u8]) -> Result<Map, JsError> {
-        let (w, h) = Limits::default().check(width.into(), height.into())?;
-        if codes.len() != w * h {
-            return Err(JsError::new(&format!(
-                "a {w}x{h} map needs {} cell codes, but {} were given",
-                w * h,
-                codes.len()
-            )));
-        }
-        let mut cells = Vec::with_capacity(codes.len());
-        for (i, &code) in codes.iter().enumerate() {
-            let cell = Cell::from_code(code).ok_or_else(|| {
-                JsError::new(&format!(
-                    "cell code {code} at ({}, {}) is not 0 (free), 1 (unknown) or 2 (occupied)",
-                    i % w,
-                    i / w
-                ))
-            })?;
-            cells.push(cell);
-        }
-        let grid = Grid::from_vec(w, h, cells).ok_or_else(|| JsError::new("cell count mismatch"))?;
-        Ok(Map::new(OccupancyMap::from_classified(grid)))
-    }
-
-    /// Width in cells.
-    #[wasm_bindgen(getter)]
-    pub fn width(&self) -> u32 {
-        self.inner.width() as u32
-    }
-
-    /// Height in cells.
-    #[wasm_bindgen(getter)]
-    pub fn height(&self) -> u32 {
-        self.inner.height() as u32
-    }
-
-    /// How many cells are free, unknown and occupied.
-    #[wasm_bindgen(unchecked_return_type = "{ free: number; unknown: number; occupied: number }")]
-    pub fn counts(&self) -> Result<JsValue, JsError> {
-        Ok(serde_wasm_bindgen::to_value(&self.counts_struct())?)
-    }
-
-    /// The cell codes, `width * height` bytes row-major: 0 free, 1 unknown, 2 occupied. A
-    /// copy: change it and build a new map with `Map.fromCells`.
-    pub fn cells(&self) -> Vec<u8> {
-        self.inner.classified().cells().iter().map(|c| c.code()).collect()
-    }
-
-    /// The classified map as an 8-bit binary PGM in the ROS convention (occupied 0, unknown
-    /// 205, free 254).
-    #[wasm_bindgen(js_name = toPgm)]
-    pub fn to_pgm(&self) -> Vec<u8> {
-        self.inner.to_pgm()
-    }
-
-    /// The same image classified by another rule, as a new map: `'auto'` finds the background
-    /// grays from the histogram and counts anti-aliased wall edges as occupied (what
-    /// `ksmcmc floorplan --classify auto`, its default, does to plain images), `'fixed'` applies
-    /// the default intensity thresholds (what `Map.fromBytes` does).
-    pub fn reclassify(
-        &self,
-        #[wasm_bindgen(unchecked_param_type = "'auto' | 'fixed'")] rule: &str,
-    ) -> Result<Map, JsError> {
-        let classifier = match rule {
-            "auto" => Classifier::auto(),
-            "fixed" => Classifier::default(),
-            other => return Err(JsError::new(&format!("classify: {other:?} is neither 'auto' nor 'fixed'"))),
-        };
-        let mut inner = self.inner.clone();
-        inner.set_classifier(classifier)?;
-        Ok(Map::new(inner))
-    }
-
-    /// The `map.yaml` text for `toPgm()` saved under the file name `imageName`.
-    #[wasm_bindgen(js_name = toYaml)]
-    pub fn to_yaml(&self, #[wasm_bindgen(js_name = imageName)] image_name: &str) -> String {
-        self.inner.to_yaml(image_name)
-    }
-}
-
-impl Map {
-    /// The class counts as a Rust struct.
-    pub fn counts_struct(&self) -> Counts {
-        let n = |c| self.inner.count(c) as u32;
-        Counts { free: n(Cell::Free), unknown: n(Cell::Unknown), occupied: n(Cell::Occupied) }
-    }
-}
-
-/// Rendered pixels: `width * height` straight (not premultiplied) RGBA pixels, row-major.
-#[wasm_bindgen]
-#[derive(Debug, Clone)]
-pub struct Rendered {
-    width: u32,
-    height: u32,
-    rgba: Vec<u8>,
-}
-
-#[wasm_bindgen]
-impl Rendered {
-    /// Width in pixels.
-    #[wasm_bindgen(getter)]
-    pub fn width(&self) -> u32 {
-        self.width
-    }
-
-    /// Height in pixels.
-    #[wasm_bindgen(getter)]
-    pub fn height(&self) -> u32 {
-        self.height
-    }
-
-    /// The pixels, `4 * width * height` bytes, ready for `new ImageData(rgba, width)`. Each
-    /// read makes a fresh copy.
-    #[wasm_bindgen(getter)]
-    pub fn rgba(&self) -> Clamped<Vec<u8>> {
-        Clamped(self.rgba.clone())
-    }
-}
-
-impl Rendered {
-    /// Wraps straight RGBA pixels.
-    pub fn new(width: u32, height: u32, rgba: Vec<u8>) -> Rendered {
-        Rendered { width, height, rgba }
-    }
-
-    /// The pixels without a copy.
-    pub fn rgba_bytes(&self) -> &[u8] {
-        &self.rgba
-    }
-}
-
-/// Renders a map, with the world of a `world.json` text over it if given, exactly as the
-/// native renderer does. `scale` is output pixels per map cell (default 1); `labels` draws
-/// each unit's type and id (default true).
-#[wasm_bindgen(js_name = renderRgba)]
-pub fn render_rgba(
-    map: &Map,
-    #[wasm_bindgen(js_name = worldJson)] world_json: Option<String>,
-    scale: Option<u32>,
-    labels: Option<bool>,
-) -> Result<Rendered, JsError> {
-    let options = options(map, scale, labels)?;
-    let world = world_json.as_deref().map(World::from_json).transpose()?;
-    let pixmap = render::render(map.inner.classified(), world.as_ref(), &options);
-    Ok(Rendered { width: pixmap.width(), height: pixmap.height(), rgba: render::to_rgba(&pixmap) })
-}
-
-/// Renders like `renderRgba` and puts the pixels on `canvas` with `ImageData`, resizing the
-/// canvas to the rendered size. Scale it for display with CSS (`image-rendering: pixelated`).
-#[wasm_bindgen(js_name = drawToCanvas)]
-pub fn draw_to_canvas(
-    canvas: &web_sys::HtmlCanvasElement,
-    map: &Map,
-    #[wasm_bindgen(js_name = worldJson)] world_json: Option<String>,
-    scale: Option<u32>,
-    labels: Option<bool>,
-) -> Result<(), JsError> {
-    let rendered = render_rgba(map, world_json, scale, labels)?;
-    put_rgba(canvas, rendered.width, rendered.height, rendered.rgba_bytes())
+/// The clock `runFor` uses: `performance.now()`, or `Date.now()` where there is no
+/// `performance` object.
+#[cfg(any(feature = "wasm-mapper", feature = "wasm-tabletop"))]
+pub fn now_ms() -> f64 {
+    performance_now().unwrap_or_else(|_| js_sys::Date::now())
 }
 
 /// Puts straight RGBA pixels on a canvas with `ImageData`, resizing it to `width` x `height`.
@@ -315,19 +139,9 @@ pub fn put_rgba(canvas: &web_sys::HtmlCanvasElement, width: u32, height: u32, rg
     Ok(())
 }
 
-/// Checks scale and output size ([`render::check_size`]) before anything is allocated.
-// `..defaults` keeps this compiling when the renderer grows options.
-#[allow(clippy::needless_update)]
-fn options(map: &Map, scale: Option<u32>, labels: Option<bool>) -> Result<RenderOptions, JsError> {
-    let defaults = RenderOptions::default();
-    let scale = scale.unwrap_or(defaults.scale);
-    render::check_size(map.inner.width(), map.inner.height(), scale)?;
-    Ok(RenderOptions { scale, labels: labels.unwrap_or(defaults.labels), ..defaults })
-}
-
-/// The message of a thrown JavaScript value.
 /// A number of iterations from JavaScript, for `method` (`"step"`): a whole number from 0 to
 /// `max`, or an error that says so.
+#[cfg(any(feature = "wasm-mapper", feature = "wasm-tabletop"))]
 pub(crate) fn iterations_from_js(method: &str, n: f64, max: f64) -> Result<u64, JsError> {
     if n.is_finite() && n >= 0.0 && n.fract() == 0.0 && n <= max {
         Ok(n as u64)
@@ -337,6 +151,7 @@ pub(crate) fn iterations_from_js(method: &str, n: f64, max: f64) -> Result<u64, 
 }
 
 /// A time budget from JavaScript, for `method` (`"runFor"`): milliseconds from 0 to `max`.
+#[cfg(any(feature = "wasm-mapper", feature = "wasm-tabletop"))]
 pub(crate) fn budget_from_js(method: &str, ms: f64, max: f64) -> Result<f64, JsError> {
     if ms.is_finite() && (0.0..=max).contains(&ms) {
         Ok(ms)
@@ -345,6 +160,7 @@ pub(crate) fn budget_from_js(method: &str, ms: f64, max: f64) -> Result<f64, JsE
     }
 }
 
+/// The message of a thrown JavaScript value.
 fn js_message(e: &JsValue) -> String {
     e.dyn_ref::<js_sys::Error>()
         .map(|e| String::from(e.message()))
@@ -352,71 +168,14 @@ fn js_message(e: &JsValue) -> String {
         .unwrap_or_else(|| format!("{e:?}"))
 }
 
-/// A synthetic floor plan with its ground truth, as `synth()` returns it. The byte and text
-/// getters are the files `ksmcmc synth --seed N --out DIR` writes, byte for byte.
-#[wasm_bindgen]
-#[derive(Debug, Clone)]
-pub struct Synthetic {
-    inner: synth::Synthetic,
-}
-
-#[wasm_bindgen]
-impl Synthetic {
-    /// The occupancy map (a new `Map` on each read).
-    #[wasm_bindgen(getter)]
-    pub fn map(&self) -> Map {
-        Map::new(self.inner.map.clone())
-    }
-
-    /// `map.pgm`: the map as an 8-bit binary PGM.
-    #[wasm_bindgen(getter, js_name = mapPgm)]
-    pub fn map_pgm(&self) -> Vec<u8> {
-        self.inner.map_pgm()
-    }
-
-    /// `map.yaml`: the map_server description naming `map.pgm`.
-    #[wasm_bindgen(getter, js_name = mapYaml)]
-    pub fn map_yaml(&self) -> String {
-        self.inner.map_yaml()
-    }
-
-    /// `truth.json`: the true world, in `world.json` form.
-    #[wasm_bindgen(getter, js_name = truthJson)]
-    pub fn truth_json(&self) -> String {
-        self.inner.truth_json()
-    }
-
-    /// `truth_labels.pgm`: per cell, index + 1 of its truth unit (0 elsewhere), 16-bit PGM.
-    #[wasm_bindgen(getter, js_name = labelsPgm)]
-    pub fn labels_pgm(&self) -> Vec<u8> {
-        self.inner.labels_pgm()
-    }
-}
-
-impl Synthetic {
-    /// The library result.
-    pub fn inner(&self) -> &synth::Synthetic {
-        &self.inner
-    }
-}
-
-/// Generates a synthetic floor plan with ground truth; same seed and config, same bytes as
-/// the native `ksmcmc synth` on every platform.
-///
-/// `seed` is a non-negative integer: a `number` up to `Number.MAX_SAFE_INTEGER` (2^53 - 1),
-/// or a `bigint` for the whole 64-bit range. `configJson` is a JSON object of generator
-/// settings (e.g. `{"width": 200, "height": 150}`); fields it leaves out keep their defaults.
-#[wasm_bindgen]
-pub fn synth(
-    #[wasm_bindgen(unchecked_param_type = "number | bigint")] seed: JsValue,
-    #[wasm_bindgen(js_name = configJson)] config_json: Option<String>,
-) -> Result<Synthetic, JsError> {
-    let seed = seed_from_js(&seed)?;
-    let config = synth_config(config_json.as_deref())?;
-    // The generator allocates width x height cells: refuse what no map could hold, as the
-    // loaders do, instead of aborting on a failed allocation.
-    Limits::default().check(config.width.into(), config.height.into())?;
-    Ok(Synthetic { inner: synth::generate(&config, seed)? })
+/// Reads an options object through its JSON text, so that unknown fields are refused
+/// (serde-wasm-bindgen looks up only the fields it knows) and NaN, which JSON writes as
+/// `null`, is no number.
+#[cfg(any(feature = "wasm-mapper", feature = "wasm-plan"))]
+pub(crate) fn from_object<T: serde::de::DeserializeOwned>(v: &JsValue) -> Result<T, String> {
+    let text = js_sys::JSON::stringify(v).map_err(|e| js_message(&e))?;
+    let text = text.as_string().unwrap_or_default();
+    serde_json::from_str(&text).map_err(|e| e.to_string())
 }
 
 /// Reads a seed: a safe non-negative integer `number`, or a `bigint` that fits in 64 bits.
@@ -460,10 +219,4 @@ fn describe(v: &JsValue) -> String {
         None if v.is_null() => "null".into(),
         None => v.js_typeof().as_string().unwrap_or_default(),
     }
-}
-
-/// Parses a generator config: the JSON object's fields over the defaults (see
-/// [`SynthConfig::parse_json`]; `generate` validates it).
-pub fn synth_config(json: Option<&str>) -> Result<SynthConfig, JsError> {
-    Ok(SynthConfig::parse_json(json.unwrap_or(""))?)
 }

@@ -23,7 +23,7 @@ pub(crate) fn options(v: Option<&JsValue>) -> Result<Model3dOptions, JsError> {
     if !v.is_object() {
         return Err(JsError::new("options: expected an object such as { wallHeight: 2.5, doorHeight: 2.0 }"));
     }
-    let h: Heights = super::mapper::from_object(v)
+    let h: Heights = super::from_object(v)
         .map_err(|e| JsError::new(&format!("options: {e} (wallHeight and doorHeight are numbers of metres)")))?;
     let o = Model3dOptions {
         wall_height: h.wall_height.unwrap_or(d.wall_height),

@@ -1,10 +1,10 @@
 //! Routes in the browser: `planRoute` on a map and a `world.json`, and the coordinate checks
-//! that `Mapper.route` shares. The planning is [`crate::floorplan::route`]'s.
+//! that `Plan.route` shares. In the plan module (`ksmcmc_plan.js`). The planning is
+//! [`crate::floorplan::route`]'s.
 
-use super::Map;
 use crate::floorplan::route::{saved_labels, RoutePlanner};
 use crate::floorplan::World;
-use crate::grid::{decode_image, Limits};
+use crate::grid::{pgm, Limits, OccupancyMap};
 use wasm_bindgen::prelude::*;
 
 /// A cell coordinate from JavaScript: a whole number (any sign: one off the map is the
@@ -29,14 +29,17 @@ pub(crate) fn ends(from_x: f64, from_y: f64, to_x: f64, to_y: f64) -> Result<(At
 }
 
 /// The route from cell (`fromX`, `fromY`) to (`toX`, `toY`) (column, row) through the rooms and
-/// doors of `worldJson`, a world made for `map`, as `ksmcmc route` prints it:
+/// doors of `worldJson`, a world made for the map `mapPgm` + `mapYaml` (as the mapper module's
+/// `map.toPgm()` and `map.toYaml('map.pgm')` give it), as `ksmcmc route` prints it:
 /// `{"rooms": [...], "doors": [...], "path": [[x, y], ...], "length_m": ...}`. `labelsPgm`
 /// is the room labels written with the world (`labels.pgm`); without it they are found again
 /// from the map and the world. Throws, with the reason, for ends off the map or not free, a
 /// goal no free path reaches, or a world or labels of another map.
 #[wasm_bindgen(js_name = planRoute)]
+#[allow(clippy::too_many_arguments)]
 pub fn plan_route(
-    map: &Map,
+    #[wasm_bindgen(js_name = mapPgm)] map_pgm: &[u8],
+    #[wasm_bindgen(js_name = mapYaml)] map_yaml: &str,
     #[wasm_bindgen(js_name = worldJson)] world_json: &str,
     #[wasm_bindgen(js_name = fromX)] from_x: f64,
     #[wasm_bindgen(js_name = fromY)] from_y: f64,
@@ -45,11 +48,11 @@ pub fn plan_route(
     #[wasm_bindgen(js_name = labelsPgm)] labels_pgm: Option<Vec<u8>>,
 ) -> Result<String, JsError> {
     let (from, to) = ends(from_x, from_y, to_x, to_y)?;
-    let map = map.inner();
+    let map = &OccupancyMap::from_yaml_and_pgm(map_yaml, map_pgm, &Limits::default())?;
     let world = World::from_json(world_json)?;
     let labels = match labels_pgm {
         Some(bytes) => {
-            decode_image(&bytes, &Limits::default()).map_err(|e| JsError::new(&format!("labelsPgm: {e}")))?.gray
+            pgm::decode(&bytes, &Limits::default()).map_err(|e| JsError::new(&format!("labelsPgm: {e}")))?.gray
         }
         None => saved_labels(&world, map)?,
     };

@@ -15,7 +15,7 @@
 //! }
 //! ```
 
-use super::mapper::now_ms;
+use super::now_ms;
 use super::{put_rgba, seed_from_js};
 use crate::mln::RuleError;
 use crate::render;

@@ -126,7 +126,7 @@ describe('The embed as pkg/README.md shows it', () => {
         const out = [];
         for (const options of [{}, { knowledge: false }, { knowledge: false, config: { posterior: { temperature: 2 } } }]) {
           const w = await mount(div, { sample: 'office-small', ...options });
-          const r = JSON.parse(w.mapper.reportJson());
+          const r = JSON.parse(w.mapper.planInput());
           out.push(r.knowledge);
           w.destroy();
         }

@@ -115,6 +115,11 @@ describe('Exploration page', () => {
     const report = JSON.parse(readFileSync(join(out, 'report.json'), 'utf8'));
     const page = await openExplore('?sample=office-small&seed=3&speed=64');
     await page.keyboard.press('Space');
+    // The best world with its rooms while the robot drives (the worker loads the plan module
+    // for it and keeps the plan until the chain's map or best world changes).
+    await until(page, (s) => s.units > 0 && !s.finished, undefined, 60_000);
+    const early = JSON.parse(await page.evaluate(() => window.__ksmcmc.bestWorldJson()));
+    assert.ok(early.units.length > 0 && early.rooms.length > 0, `units ${early.units.length}, rooms ${early.rooms.length}`);
     await until(page, (s) => s.finished, undefined, 120_000);
     const f = await snap(page);
     // The robot is the library's: the same path, scans and map as natively, whatever the speed.

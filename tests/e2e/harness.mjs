@@ -137,6 +137,18 @@ export function pgm(width, height, samples) {
   return Buffer.concat([Buffer.from(`P5\n${width} ${height}\n255\n`), Buffer.from(samples)]);
 }
 
+/** A 16-bit binary PGM (e.g. `labels.pgm`) as { width, height, values }. */
+export function readPgm16(bytes) {
+  const text = Buffer.from(bytes.subarray(0, 40)).toString('latin1');
+  const m = /^P5\s+(\d+)\s+(\d+)\s+(\d+)\s/.exec(text);
+  assert.ok(m, `not a PGM: ${text}`);
+  const [width, height] = [Number(m[1]), Number(m[2])];
+  const data = bytes.subarray(m[0].length);
+  const values = new Uint16Array(width * height);
+  for (let i = 0; i < values.length; i++) values[i] = (data[2 * i] << 8) | data[2 * i + 1];
+  return { width, height, values };
+}
+
 /** Fails on console errors and uncaught exceptions, then closes the page. */
 export async function done(page) {
   const problems = page.problems;

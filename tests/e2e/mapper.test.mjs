@@ -9,7 +9,7 @@ import { existsSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'no
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { check as checkGeoJson } from '@placemarkio/check-geojson';
-import { cli, DATASETS, done, download, openPage, pgm, REPO, snap, startBrowser, until } from './harness.mjs';
+import { cli, DATASETS, done, download, openPage, pgm, readPgm16, REPO, snap, startBrowser, until } from './harness.mjs';
 
 let env;
 let tmp;
@@ -539,6 +539,10 @@ describe('Live mapper', () => {
     // across (a room: it goes, with the units it has doors to; the corridor's other rooms stay).
     const [x, y, w, h] = unitsBefore.map((u) => u.split(',').map(Number)).filter((u) => u[2] >= 12 && u[3] >= 12).sort((a, b) => a[2] * a[3] - b[2] * b[3])[0];
     const cellsBefore = await page.evaluate(() => window.__ksmcmc.map.counts());
+    // The room labels before (the worker makes and keeps the best world's plan for them).
+    const labels = async () => readPgm16(new Uint8Array(await page.evaluate(async () => Array.from(await window.__ksmcmc.mapper.labelsPgm()))));
+    const codes = () => page.evaluate(() => Array.from(window.__ksmcmc.map.cells()));
+    const [labelsBefore, codesBefore] = [await labels(), await codes()];
     await key(page, 'p');
     await page.locator('#map').scrollIntoViewIfNeeded();
     const box = await page.locator('#map').boundingBox();
@@ -557,6 +561,13 @@ describe('Live mapper', () => {
     assert.ok(unitsAfter.every((u) => unitsBefore.includes(u)), `the world kept its units (no new ones): ${unitsAfter} of ${unitsBefore}`);
     assert.ok(unitsAfter.length >= 1, 'units away from the stroke stay');
     assert.ok(unitsAfter.length < unitsBefore.length, 'the unit the stroke crossed is gone');
+    // The plan is made again on the painted map: the cells the stroke made occupied, free and
+    // in a room before, are in none now.
+    const codesAfter = await codes();
+    const painted = codesAfter.flatMap((c, i) => (c === 2 && codesBefore[i] === 0 ? [i] : []));
+    assert.ok(painted.some((i) => labelsBefore.values[i] > 0), `the stroke crossed a room: ${painted.length} cells`);
+    const labelsAfter = await labels();
+    assert.deepEqual(painted.filter((i) => labelsAfter.values[i] > 0), [], 'no painted wall cell is in a room');
     // The chain goes on from there; Reset starts it over on the painted map.
     await key(page, 's');
     await until(page, (s, n) => s.iteration === n, before.iteration + 2000);
@@ -648,7 +659,7 @@ describe('mount() embed', () => {
     for (const name of ['office-small', 'office-rotated', 'furnished', 'partial', 'two-corridors', 'building-large']) {
       const b64 = await page.evaluate(async (n) => {
         const { loadSample } = await import('./pkg/mount.js');
-        const map = loadSample(n);
+        const map = await loadSample(n);
         const bytes = map.toPgm();
         map.free();
         let s = '';

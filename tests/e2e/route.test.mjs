@@ -8,7 +8,7 @@ import assert from 'node:assert/strict';
 import { mkdtempSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { REPO, cli, openPage, startBrowser } from './harness.mjs';
+import { REPO, cli, openPage, readPgm16, startBrowser } from './harness.mjs';
 
 let env;
 let tmp;
@@ -20,18 +20,6 @@ after(async () => {
   await env?.close();
   if (tmp) rmSync(tmp, { recursive: true, force: true });
 });
-
-/** A 16-bit binary PGM as { width, height, values }. */
-function readPgm16(bytes) {
-  const text = Buffer.from(bytes.subarray(0, 40)).toString('latin1');
-  const m = /^P5\s+(\d+)\s+(\d+)\s+(\d+)\s/.exec(text);
-  assert.ok(m, `not a PGM: ${text}`);
-  const [width, height] = [Number(m[1]), Number(m[2])];
-  const data = bytes.subarray(m[0].length);
-  const values = new Uint16Array(width * height);
-  for (let i = 0; i < values.length; i++) values[i] = (data[2 * i] << 8) | data[2 * i + 1];
-  return { width, height, values };
-}
 
 /** A cell in the middle (in scan order) of each of the two largest rooms of `labels`. */
 function twoRooms({ width, values }) {

@@ -126,7 +126,7 @@ test('learn the weights from the reference world, undo, hand-set weights, and th
   await page.waitForFunction((b) => document.getElementById('kb').value === b, builtin);
   // The hand-set weights of Tab. 3.5.
   await page.click('#handset');
-  const handset = await page.evaluate(async () => (await import('./pkg/ksmcmc.js')).handSetIndoorRules());
+  const handset = await page.evaluate(async () => (await import('./pkg/ksmcmc_rules.js')).handSetIndoorRules());
   assert.equal(await page.inputValue('#kb'), handset);
   assert.notEqual(handset, builtin);
   // Learn again (from the hand-set rules) and run the chain and the inference with them.

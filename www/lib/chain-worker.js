@@ -7,8 +7,16 @@
 // of SLICE_MS and, between slices, answers requests, among them `frame`: the picture of the map
 // and of the scene graph as ImageBitmaps (transferred, not copied), the statistics and the new
 // trace points. Same map, seed and settings, same chain as on the main thread or natively.
+//
+// The chain and its pictures are the mapper module's (ksmcmc.js). The best world's rooms and
+// everything made from them (the exports, routes, the report) are the plan module's
+// (ksmcmc_plan.js), the rules page's inference and weight learning the rules module's
+// (ksmcmc_rules.js): the worker imports each when first asked for something of it, which for
+// the live mapper is once the best world has units, so that the page starts with the mapper
+// module alone. They get plain text and bytes: the map's PGM and YAML and `Mapper.planInput()`,
+// from which the plan module's `Plan` finds the rooms as the chain would.
 
-import init, { Mapper, inferWorld, learnRules, renderMapperRgba, renderSceneGraphRgba, wasmHeapBytes } from '../pkg/ksmcmc.js';
+import init, { Mapper, renderMapperRgba, renderSceneGraphRgba, wasmHeapBytes } from '../pkg/ksmcmc.js';
 import { buildMap } from './map-source.js';
 
 /** Milliseconds of iterations between looking at the page's requests. */
@@ -18,11 +26,35 @@ const SLICE_MS = 8;
  * costs milliseconds, and the page would ask for one every frame.
  */
 const DRAW_SHARE = 0.3;
+/** The `Mapper` methods the page may call through `invoke`. */
+const MAPPER_METHODS = new Set(['worldJson', 'setEdits', 'editsJson']);
 /**
- * The mapper's methods the page may call through `invoke` (exports, the report, the best
- * world's rooms, routes through them and its 3D model).
+ * The best world's `Plan` methods the page may call through `invoke` (exports, the report, the
+ * rooms, routes through them and the 3D model); `bestWorldJson` is the plan's `worldJson`, and
+ * `toPng` draws what the page shows (below).
  */
-const INVOKABLE = new Set(['bestWorldJson', 'worldJson', 'labelsPgm', 'graphJson', 'reportJson', 'toPng', 'roomsJson', 'roomTypesJson', 'geojson', 'svg', 'route', 'worldGlb', 'setEdits', 'editsJson']);
+const PLAN_METHODS = new Set(['bestWorldJson', 'labelsPgm', 'graphJson', 'reportJson', 'toPng', 'roomsJson', 'roomTypesJson', 'geojson', 'svg', 'route', 'worldGlb']);
+
+/** Modules imported and initialised when first needed (then kept), by file name. */
+const loaded = new Map();
+function load(file) {
+  if (!loaded.has(file)) {
+    const module = import(`../pkg/${file}`).then(
+      async (m) => {
+        await m.default();
+        return m;
+      },
+      (err) => {
+        loaded.delete(file);
+        throw err;
+      },
+    );
+    loaded.set(file, module);
+  }
+  return loaded.get(file);
+}
+const loadPlan = () => load('ksmcmc_plan.js');
+const loadRules = () => load('ksmcmc_rules.js');
 
 const ready = init();
 const state = {
@@ -42,6 +74,12 @@ const state = {
   /** Milliseconds a picture takes (a running average), and when the last one was done. */
   drawMs: 0,
   drawnAt: 0,
+  /** The map's PGM and YAML for the plan module ({ pgm, yaml }), made when the first plan is. */
+  floor: null,
+  /** The last plan made: { key, plan }. Its room ids carry over to the next while edits are in force. */
+  plan: null,
+  /** The modules loaded besides the mapper module (for the heap's size). */
+  modules: new Set(),
 };
 
 // The loop yields to the event loop between slices through a MessageChannel (setTimeout would
@@ -114,6 +152,10 @@ function start(map, { config, seed, reference }) {
   if (map && state.map !== map) {
     state.map?.free();
     state.map = map;
+    // Another map: its plans are made on another floor, and no room ids carry over.
+    state.floor = null;
+    state.plan?.plan.free();
+    state.plan = null;
   }
   state.mapper?.free();
   state.mapper = mapper;
@@ -189,19 +231,6 @@ function loop() {
   if (state.ipf === 'auto') schedule();
 }
 
-/** The room ids of a 16-bit binary PGM (`labelsPgm`: "P5\\nW H\\n65535\\n", big-endian samples). */
-function labels(pgm) {
-  const head = new TextDecoder().decode(pgm.subarray(0, 64)).match(/^P5\s+(\d+)\s+(\d+)\s+(\d+)\s/);
-  if (!head) throw new Error('the labels are not a binary PGM');
-  const [whole, w, h] = head;
-  const width = Number(w);
-  const height = Number(h);
-  const data = new DataView(pgm.buffer, pgm.byteOffset + whole.length);
-  const ids = new Uint16Array(width * height);
-  for (let i = 0; i < ids.length; i++) ids[i] = data.getUint16(2 * i);
-  return { width, height, ids };
-}
-
 /** The cell of room `id` nearest the mean of its cells (inside it, away from its walls), or null. */
 function innerCell(ids, width, id) {
   let n = 0;
@@ -223,6 +252,53 @@ function innerCell(ids, width, id) {
     if (d < bestD) [best, bestD] = [[i % width, Math.floor(i / width)], d];
   }
   return best;
+}
+
+/**
+ * The `Plan` of the chain's best world as it is now: made again when the chain, its best world
+ * or its edits have changed. While edits are in force, the rooms keep the ids of the plan shown
+ * before.
+ */
+async function plan() {
+  const x = await loadPlan();
+  state.modules.add(x);
+  const m = state.mapper;
+  if (!m) throw new Error('no chain yet');
+  const edits = m.editsJson();
+  const key = `${state.generation} ${m.bestIteration} ${m.bestLogPosterior} ${edits}`;
+  if (state.plan?.key === key) return state.plan.plan;
+  state.floor ??= { pgm: state.map.toPgm(), yaml: state.map.toYaml('map.pgm') };
+  const previous = edits !== '[]' && state.plan ? state.plan.plan.roomLabels() : undefined;
+  const made = new x.Plan(state.floor.pgm, state.floor.yaml, m.planInput(), previous);
+  state.plan?.plan.free();
+  state.plan = { key, plan: made };
+  return made;
+}
+
+/**
+ * The PNG of the picture the page shows (`options`: show, cloud, labels, scale), drawn by the
+ * mapper module and encoded by the plan module; the best world is the plan's (the world with
+ * its rooms), which makes it the `overlay.png` of `ksmcmc floorplan`.
+ */
+async function toPng({ show = 'current', cloud = false, labels = true, scale = 1 } = {}) {
+  const x = await loadPlan();
+  const world = show === 'best' ? (await plan()).worldJson() : undefined;
+  const r = renderMapperRgba(state.mapper, { show, cloud, labels, scale, world });
+  try {
+    return x.encodePng(r.width, r.height, r.rgba);
+  } finally {
+    r.free();
+  }
+}
+
+/**
+ * Rooms, room types and labels of a best world without units: none yet (its plan would be the
+ * free space as rooms of no unit), without loading the plan module before the chain has found
+ * something.
+ */
+function noRooms(details) {
+  const m = state.mapper;
+  return { text: '[]', types: details ? '[]' : null, labels: details ? new Uint16Array(m.width * m.height) : null };
 }
 
 const ops = {
@@ -258,6 +334,10 @@ const ops = {
       state.map = map;
       // A changed map is a new climb: "stop when settled" waits for it to settle again.
       state.wasSettled = false;
+      // The plan is made again, on the new map, from the chain's best world as it is now (its
+      // key may not have changed); while edits are in force its rooms keep the shown ids.
+      state.floor = null;
+      if (state.plan) state.plan.key = null;
     } else {
       map.free();
     }
@@ -294,20 +374,26 @@ const ops = {
     return stats();
   },
   /** What the rules `kb` infer from the best world (the rules page): `inferWorld`'s JSON. */
-  infer({ kb, resolution }) {
-    const world = state.mapper.bestWorldJson();
+  async infer({ kb, resolution }) {
+    const generation = state.generation;
+    // The typed best world: its rooms are no evidence.
+    const world = JSON.stringify(JSON.parse(state.mapper.planInput()).world);
+    const x = await loadRules();
+    state.modules.add(x);
     try {
-      return { generation: state.generation, world, inferred: inferWorld(kb, world, resolution), error: null };
+      return { generation, world, inferred: x.inferWorld(kb, world, resolution), error: null };
     } catch (err) {
-      return { generation: state.generation, world, inferred: null, error: err instanceof Error ? err.message : String(err) };
+      return { generation, world, inferred: null, error: err instanceof Error ? err.message : String(err) };
     }
   },
   /**
    * The rules `kb` with weights learned from a labelled world (the rules page): `learnRules`'s
    * text. Needs no chain.
    */
-  learn({ kb, world, resolution, method }) {
-    return learnRules(kb, world, resolution, method);
+  async learn({ kb, world, resolution, method }) {
+    const x = await loadRules();
+    state.modules.add(x);
+    return x.learnRules(kb, world, resolution, method);
   },
   /**
    * The best world's rooms (`roomsJson` text), and with `details` their type marginals
@@ -315,23 +401,29 @@ const ops = {
    * the page has them: rooms whose text is `known`, details read with rooms `knownDetails`
    * (then `{ same: true }`, or the text alone).
    */
-  rooms({ details, known, knownDetails }) {
-    const m = state.mapper;
-    const text = m.roomsJson();
+  async rooms({ details, known, knownDetails }) {
+    if (state.mapper.bestUnits === 0) {
+      const none = noRooms(details);
+      return none.text === known && (!details || none.text === knownDetails) ? { same: true } : none;
+    }
+    const p = await plan();
+    const text = p.roomsJson();
     const withDetails = Boolean(details) && text !== knownDetails;
     if (text === known && !withDetails) return { same: true };
-    return { text, types: withDetails ? m.roomTypesJson() : null, labels: withDetails ? m.roomLabels() : null };
+    return { text, types: withDetails ? p.roomTypesJson() : null, labels: withDetails ? p.roomLabels() : null };
   },
-  /** Bytes of the worker's wasm heap (the soak test watches it). Needs no chain. */
+  /** Bytes of the worker's wasm heaps, the mapper module's and the others' it loaded (the soak test watches them). Needs no chain. */
   heap() {
-    return wasmHeapBytes();
+    return [...state.modules].reduce((sum, m) => sum + m.wasmHeapBytes(), wasmHeapBytes());
   },
   /**
    * The best world's room at map cell (x, y) (its id in `labelsPgm`, 0 for none) and, with
    * `id`, a cell of that room: for the page's room selection.
    */
-  roomAt({ x, y, id }) {
-    const { width, height, ids } = labels(state.mapper.labelsPgm());
+  async roomAt({ x, y, id }) {
+    const m = state.mapper;
+    const ids = m.bestUnits === 0 ? new Uint16Array(m.width * m.height) : (await plan()).roomLabels();
+    const { width, height } = state.mapper;
     if (id !== undefined) {
       const c = innerCell(ids, width, id);
       return c && { x: c[0], y: c[1], room: id };
@@ -339,9 +431,12 @@ const ops = {
     if (!(x >= 0 && y >= 0 && x < width && y < height)) return null;
     return { x, y, room: ids[y * width + x] };
   },
-  invoke({ name, args = [] }) {
-    if (!INVOKABLE.has(name)) throw new Error(`${name} is not a method the page may call`);
-    return state.mapper[name](...args);
+  async invoke({ name, args = [] }) {
+    if (MAPPER_METHODS.has(name)) return state.mapper[name](...args);
+    if (!PLAN_METHODS.has(name)) throw new Error(`${name} is not a method the page may call`);
+    if (name === 'toPng') return toPng(...args);
+    const p = await plan();
+    return name === 'bestWorldJson' ? p.worldJson() : p[name](...args);
   },
 };
 
@@ -366,7 +461,7 @@ onmessage = async (e) => {
       return;
     }
     if (op !== 'load' && op !== 'learn' && op !== 'heap' && !state.mapper) throw new Error('no chain yet');
-    const result = ops[op](args ?? {});
+    const result = await ops[op](args ?? {});
     const transfer = result instanceof Uint8Array ? [result.buffer] : result?.labels instanceof Uint16Array ? [result.labels.buffer] : [];
     postMessage({ id, result }, transfer);
   } catch (err) {

@@ -13,6 +13,11 @@
 // SLICE_MS, as in chain-worker.js. Requests and replies are those of chain-worker.js
 // ({ id, op, args } → { id, result } or { id, error }; events `error` and `settled`), so the
 // page talks to it through lib/remote-chain.js.
+//
+// The robot, the chain and the pictures are the mapper module's (ksmcmc.js), which is all the
+// page loads to run. The best world with its rooms (`bestWorldJson`) is the plan module's
+// `Plan` (ksmcmc_plan.js), imported when first asked for and made again after the chain's map
+// or best world changed.
 
 import init, { Explorer, Mapper, renderMapperRgba, renderRgba, wasmHeapBytes } from '../pkg/ksmcmc.js';
 import { buildMap } from './map-source.js';
@@ -42,6 +47,22 @@ const CODE_RGB = [
   [160, 160, 160],
   [0, 0, 0],
 ];
+
+/** The plan module, imported and initialised when first needed (then kept). */
+let planModule = null;
+function loadPlan() {
+  planModule ??= import('../pkg/ksmcmc_plan.js').then(
+    async (m) => {
+      await m.default();
+      return m;
+    },
+    (err) => {
+      planModule = null;
+      throw err;
+    },
+  );
+  return planModule;
+}
 
 const ready = init();
 const state = {
@@ -84,6 +105,10 @@ const state = {
   /** Milliseconds a picture takes (a running average), and when the last one was done. */
   drawMs: 0,
   drawnAt: 0,
+  /** The last `Plan` made of the chain's best world: { key, plan }; dropped when the chain's map changes. */
+  plan: null,
+  /** The plan module once loaded (for the heap's size). */
+  planModule: null,
 };
 
 const tick = new MessageChannel();
@@ -159,8 +184,39 @@ function start({ seed, rangeM }) {
   state.chainCells = null;
   state.robotCells = null;
   state.cellsAt = -1;
+  dropPlan();
   dropFrame();
   return stats();
+}
+
+/** Forgets the plan made of the chain's best world (the chain is gone or has another map). */
+function dropPlan() {
+  state.plan?.plan.free();
+  state.plan = null;
+}
+
+/**
+ * The `Plan` of the chain's best world on the chain's map, made again when the exploration or
+ * the best world has changed (an update that changed the map drops it: `update`); null if
+ * there is no chain (by the time the plan module has loaded).
+ */
+async function plan() {
+  const x = await loadPlan();
+  state.planModule = x;
+  const m = state.mapper;
+  if (!m) return null;
+  const key = `${state.generation} ${m.bestIteration} ${m.bestLogPosterior}`;
+  if (state.plan?.key === key) return state.plan.plan;
+  const map = m.map;
+  let made;
+  try {
+    made = new x.Plan(map.toPgm(), map.toYaml('map.pgm'), m.planInput());
+  } finally {
+    map.free();
+  }
+  dropPlan();
+  state.plan = { key, plan: made };
+  return made;
 }
 
 /** Answers a waiting `frame` request with nothing (its exploration is gone). */
@@ -200,6 +256,8 @@ function update() {
     } else {
       state.lastChanged = state.mapper.updateMap(snapshot);
       state.updates++;
+      // The chain's map changed: its plan is made again from its new best world.
+      if (state.lastChanged > 0) dropPlan();
     }
     state.chainCells = snapshot.cells();
   } finally {
@@ -404,13 +462,16 @@ const ops = {
   timeline() {
     return state.timeline;
   },
-  /** Bytes of the worker's wasm heap. */
+  /** Bytes of the worker's wasm heaps: the mapper module's, and the plan module's once loaded. */
   heap() {
-    return wasmHeapBytes();
+    return wasmHeapBytes() + (state.planModule?.wasmHeapBytes() ?? 0);
   },
-  /** The chain's best world (`bestWorldJson`), or null before the chain starts. */
-  bestWorldJson() {
-    return state.mapper ? state.mapper.bestWorldJson() : null;
+  /**
+   * The chain's best world with its rooms as world.json text (the plan module's `worldJson`,
+   * what `ksmcmc explore` writes), or null before the chain starts.
+   */
+  async bestWorldJson() {
+    return state.mapper ? ((await plan())?.worldJson() ?? null) : null;
   },
 };
 
@@ -435,7 +496,7 @@ onmessage = async (e) => {
     }
     if (!(op in ops)) throw new Error(`unknown request ${op}`);
     if (op !== 'load' && op !== 'heap' && !state.explorer) throw new Error('no map yet');
-    postMessage({ id, result: ops[op](args ?? {}) });
+    postMessage({ id, result: await ops[op](args ?? {}) });
   } catch (err) {
     postMessage({ id, error: err instanceof Error ? err.message : String(err) });
   }

@@ -2,18 +2,17 @@
 //!
 //! Rooms are regions of the label image, which `ksmcmc floorplan` writes as `labels.pgm`
 //! beside `world.json`. Without that file the labels are found again from the map and the
-//! world's units and doors, exactly as the run found them ([`room_layer`]): with the built-in
+//! world's units and doors, exactly as the run found them ([`crate::floorplan::room_layer`], through [`RoomInput::for_map`]): with the built-in
 //! room rules (knowledge supervision, the default) or without. The result is used only if its
 //! rooms are the world's own (ids, types, units, doors and the rooms each opens to), so a route
 //! never names rooms the world does not have; otherwise the caller is told to pass the run's
 //! `labels.pgm`.
 
 use super::RouteError;
-use crate::floorplan::room_layer;
+use crate::floorplan::export::RoomInput;
 use crate::floorplan::rooms::RoomConfig;
 use crate::floorplan::world::{Room, World};
 use crate::grid::{Grid, OccupancyMap};
-use crate::vision;
 
 /// The room labels of `world` on `map` (see the module docs), with the default
 /// [`RoomConfig`] that `ksmcmc floorplan` and the live mapper use. A world without a room
@@ -30,28 +29,11 @@ use crate::vision;
 /// assert!(saved_labels(&world, &s.map).unwrap() == labels);
 /// ```
 pub fn saved_labels(world: &World, map: &OccupancyMap) -> Result<Grid<u16>, RouteError> {
-    world.fits(map.width(), map.height()).map_err(|e| RouteError::Mismatch(e.to_string()))?;
-    let resolution = map.yaml().resolution;
-    let (world_map, frame) = vision::orientation::to_world_frame(map.classified(), world.frame.angle);
-    if frame.world_size != world.frame.world_size {
-        return Err(RouteError::Mismatch(format!(
-            "world.json: frame.world_size is {:?}, but this map turned by frame.angle gives {:?}: the world \
-             was made for another map",
-            world.frame.world_size, frame.world_size
-        )));
-    }
     let bare = World { rooms: Vec::new(), ..world.clone() };
     for knowledge in [true, false] {
-        let mut found = bare.clone();
-        let labels = room_layer::explain_world_rooms(
-            &mut found,
-            map.classified(),
-            &world_map,
-            &RoomConfig::default(),
-            resolution,
-            knowledge,
-            &Default::default(),
-        );
+        let input = RoomInput::for_map(bare.clone(), map, knowledge, Default::default())
+            .map_err(|e| RouteError::Mismatch(e.to_string()))?;
+        let (found, labels) = input.explain(&RoomConfig::default());
         if world.rooms.is_empty() || same_rooms(&found.rooms, &world.rooms) {
             return Ok(labels);
         }

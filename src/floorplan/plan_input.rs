@@ -1,0 +1,176 @@
+//! A running chain's best world as the room layer and the exports need it, written as JSON
+//! text: the hand-off between the browser's WebAssembly modules.
+//!
+//! The live mapper's chain runs in one module (`ksmcmc.js`), the room layer and everything made
+//! from it (`world.json` with its rooms, the labels, GeoJSON, SVG, glTF, routes, the report) in
+//! another, loaded when first needed (`ksmcmc_plan.js`), so that a page starts with the
+//! smaller one. Modules share no memory: the chain writes what the other needs as text (its
+//! typed best world, the edits in force, whether knowledge supervision is on, the units' type
+//! marginals and the chain's counts for the report) and the other module finds the rooms from that text and
+//! the map, exactly as [`Chain::best_world_with_rooms`] does: the grids are made again as
+//! [`Chain::new`] made them ([`RoomInput::for_map`]), and the numbers (the frame's angle, on
+//! which the room labels are made, the marginals, the report's) are read back to the bits
+//! they were written from ([`crate::json::exact`]).
+//!
+//! ```
+//! use ksmcmc::floorplan::plan_input::PlanInput;
+//! use ksmcmc::floorplan::{rooms::RoomConfig, synth, Chain, ChainConfig};
+//! let s = synth::generate(&synth::SynthConfig { width: 160, height: 120, ..Default::default() }, 3).unwrap();
+//! let mut chain = Chain::new(&s.map, ChainConfig::default(), 1).unwrap();
+//! chain.step(300);
+//! let text = PlanInput::of(&mut chain, 0.5).to_json();
+//! let input = PlanInput::from_json(&text)?;
+//! assert!(input.explain(&s.map, None)? == chain.best_world_with_rooms(&RoomConfig::default()));
+//! # Ok::<(), ksmcmc::floorplan::plan_input::PlanInputError>(())
+//! ```
+
+use super::edits::{self, Edits};
+use super::export::RoomInput;
+use super::knowledge::Inferred;
+use super::report::{self, ChainSummary};
+use super::rooms::RoomConfig;
+use super::world::World;
+use super::Chain;
+use crate::grid::{Grid, OccupancyMap};
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+
+/// The longest plan input text read: a world of [`super::world::MAX_WORLD_JSON_BYTES`] and
+/// room for the rest.
+pub const MAX_PLAN_INPUT_BYTES: usize = super::world::MAX_WORLD_JSON_BYTES + (1 << 20);
+
+/// What the room layer and the exports need of a chain (see the module docs).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlanInput {
+    /// The typed best world ([`Chain::best_world_typed`]), without rooms.
+    pub world: World,
+    /// The edits in force: the text of the JSON list [`Edits::parse`] reads (default: none).
+    #[serde(default = "no_edits")]
+    pub edits: String,
+    /// Whether knowledge supervision is on: the room rules then decide which units share a
+    /// room (default: on, as the chain's default).
+    #[serde(default = "on")]
+    pub knowledge: bool,
+    /// Unit id -> `P(Room)`, `P(Corr)`, `P(Hall)`, `P(Other)` of the best world's inference
+    /// ([`Chain::best_world_inferred`]); none when there was none.
+    #[serde(default, deserialize_with = "crate::json::exact_map")]
+    pub marginals: Option<BTreeMap<u32, [f64; 4]>>,
+    /// What `report.json` needs of the chain; none for a world without a chain.
+    #[serde(default)]
+    pub chain: Option<ChainSummary>,
+    /// Seconds the chain spent setting up (orientation, detectors), if known: the report's
+    /// `setup_seconds`.
+    #[serde(default, deserialize_with = "crate::json::exact_opt")]
+    pub setup_seconds: Option<f64>,
+}
+
+fn no_edits() -> String {
+    "[]".into()
+}
+
+fn on() -> bool {
+    true
+}
+
+/// Why a plan input was refused, or its world does not fit the map.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PlanInputError(pub String);
+
+impl std::fmt::Display for PlanInputError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "plan input: {}", self.0)
+    }
+}
+
+impl std::error::Error for PlanInputError {}
+
+impl PlanInput {
+    /// The input of `chain` now, with `seconds` spent iterating for the report.
+    pub fn of(chain: &mut Chain, seconds: f64) -> PlanInput {
+        let (world, inferred) = chain.best_world_inferred();
+        // Inserted one by one: collecting into a map would sort, and each sort is code in the
+        // wasm module that ships first.
+        let marginals = inferred.map(|i| {
+            let mut m = BTreeMap::new();
+            for (id, (_, p)) in &i.types {
+                m.insert(*id, *p);
+            }
+            m
+        });
+        PlanInput {
+            world,
+            edits: chain.edits().to_json(),
+            knowledge: chain.config().knowledge.enabled,
+            marginals,
+            chain: Some(ChainSummary::of(chain, seconds)),
+            setup_seconds: None,
+        }
+    }
+
+    /// The input as JSON text (pretty, as `world.json`: the same serialiser, no second copy of
+    /// its code in the wasm module).
+    pub fn to_json(&self) -> String {
+        serde_json::to_string_pretty(self).expect("a plan input always serialises")
+    }
+
+    /// Reads plan input text: its world is checked as `world.json` is ([`World::validate`]),
+    /// its edits as [`Edits::parse`] checks them.
+    pub fn from_json(text: &str) -> Result<PlanInput, PlanInputError> {
+        if text.len() > MAX_PLAN_INPUT_BYTES {
+            return Err(PlanInputError(format!(
+                "the text is {} bytes, over the limit of {MAX_PLAN_INPUT_BYTES}",
+                text.len()
+            )));
+        }
+        let input: PlanInput = serde_json::from_str(text).map_err(|e| PlanInputError(e.to_string()))?;
+        input.world.validate().map_err(|e| PlanInputError(e.to_string()))?;
+        input.edits()?;
+        Ok(input)
+    }
+
+    /// The edits.
+    pub fn edits(&self) -> Result<Edits, PlanInputError> {
+        Edits::parse(&self.edits).map_err(|e| PlanInputError(format!("edits: {e}")))
+    }
+
+    /// The inference as [`super::room_types::room_types`] reads it (types from the world).
+    pub fn inferred(&self) -> Option<Inferred> {
+        let kind = |id: &u32| self.world.units.iter().find(|u| u.id == *id).map(|u| u.kind).unwrap_or_default();
+        let types = self.marginals.as_ref()?.iter().map(|(id, p)| (*id, (kind(id), *p))).collect();
+        Some(Inferred { types, same_length: Vec::new() })
+    }
+
+    /// The world with its room layer and the room labels on `map`, as
+    /// [`Chain::best_world_with_rooms`] gives them. While edits are in force, room ids carry
+    /// over from the `previous` labels handed out ([`edits::carry_ids`]), as the live mapper's
+    /// do from one call to the next. Refused if the world or the edits do not fit the map.
+    pub fn explain(
+        &self,
+        map: &OccupancyMap,
+        previous: Option<&Grid<u16>>,
+    ) -> Result<(World, Grid<u16>), PlanInputError> {
+        let edits = self.edits()?;
+        edits.check_map(map.width(), map.height()).map_err(|e| PlanInputError(format!("edits: {e}")))?;
+        let carry = !edits.is_empty();
+        let input = RoomInput::for_map(self.world.clone(), map, self.knowledge, edits)
+            .map_err(|e| PlanInputError(e.to_string()))?;
+        let (mut world, mut labels) = input.explain(&RoomConfig::default());
+        if let Some(previous) = previous.filter(|_| carry) {
+            edits::carry_ids(previous, &mut labels, &mut world.rooms);
+        }
+        Ok((world, labels))
+    }
+
+    /// `report.json` of the chain for `world` (the world with its rooms) and its `labels`, as
+    /// `ksmcmc floorplan` writes it ([`report::summary`] of the typed world, then
+    /// [`report::add_rooms`]); none without a chain.
+    pub fn report(&self, map: &OccupancyMap, world: &World, labels: &Grid<u16>) -> Option<serde_json::Value> {
+        let mut r = report::summary_of(self.chain.as_ref()?, map, &self.world);
+        report::add_rooms(&mut r, world, labels);
+        if let Some(s) = self.setup_seconds {
+            r["setup_seconds"] = s.into();
+        }
+        Some(r)
+    }
+}

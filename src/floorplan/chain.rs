@@ -351,8 +351,9 @@ impl Chain {
         let (world_map, frame) = vision::orientation::to_world_frame(classified, angle);
         let found = vision::walls::candidates(&world_map, config.kernels.min_side, &config.detectors.walls);
         let wall = config.wall_thickness.unwrap_or_else(|| vision::walls::ring_depth(classified, angle));
-        let min_side = config.kernels.min_side.max(2 * wall + 1);
-        let candidates = Candidates::new(found.into_iter().filter(|(r, _)| r.w >= min_side && r.h >= min_side));
+        let min_side = config.kernels.min_side;
+        let candidates =
+            Candidates::new(found.into_iter().filter(|&(r, _)| super::state::fits_unit(r, min_side, wall)));
         let resolution = map.yaml().resolution;
         let faces = vision::walls::faces_of(&world_map, &config.detectors.walls);
         let mut chain =
@@ -818,10 +819,10 @@ impl Chain {
             self.config.detectors.free_space_min_cells,
             &mut self.free_space_scratch,
         );
-        let min = self.config.kernels.min_side;
+        let (min, wall) = (self.config.kernels.min_side, self.state.wall);
         let items: Vec<(Rect, f64)> = rects
             .into_iter()
-            .filter(|r| r.w >= min.max(2 * self.state.wall + 1) && r.h >= min.max(2 * self.state.wall + 1))
+            .filter(|&r| super::state::fits_unit(r, min, wall))
             .map(|r| (r, self.state.unit_weight(r).max(0.2)))
             .collect();
         self.proposer.candidates.extend(items);

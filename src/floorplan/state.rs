@@ -45,6 +45,14 @@ impl Default for DoorLimits {
     }
 }
 
+/// Whether `r` is big enough for a unit: both sides at least `min_side` and longer than two
+/// walls `wall` deep, so that a unit has a free interior. Every proposal source (the
+/// kernels, the detectors' candidates, the free-space detector) uses this one bound.
+pub fn fits_unit(r: Rect, min_side: i32, wall: i32) -> bool {
+    let side = min_side.max(2 * wall + 1);
+    r.w >= side && r.h >= side
+}
+
 /// The interior range two facing units share along their walls, if they face each other:
 /// `hi` lies beyond `lo` (their wall rings of depth `t` may overlap, their rectangles may be
 /// up to `max_gap` cells apart), and their interiors overlap along the walls.
@@ -311,9 +319,7 @@ impl State {
     }
 
     fn rect_ok(&self, r: Rect, min_side: i32) -> bool {
-        let min_side = min_side.max(2 * self.wall + 1);
-        r.w >= min_side
-            && r.h >= min_side
+        fits_unit(r, min_side, self.wall)
             && r.x >= 0
             && r.y >= 0
             && r.right() <= self.width

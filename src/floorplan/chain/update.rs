@@ -190,9 +190,10 @@ impl Chain {
                 || dx.iter().any(|&x| x >= r.x && x < r.right())
                 || dy.iter().any(|&y| y >= r.y && y < r.bottom())
         };
-        let min_side = self.config.kernels.min_side.max(2 * self.state.wall + 1);
-        let found = vision::walls::candidates_where(&self.world_map, self.config.kernels.min_side, &c, &reached);
-        let items: Vec<(Rect, f64)> = found.into_iter().filter(|(r, _)| r.w >= min_side && r.h >= min_side).collect();
+        let (min_side, wall) = (self.config.kernels.min_side, self.state.wall);
+        let found = vision::walls::candidates_where(&self.world_map, min_side, &c, &reached);
+        let items: Vec<(Rect, f64)> =
+            found.into_iter().filter(|&(r, _)| crate::floorplan::state::fits_unit(r, min_side, wall)).collect();
         let added = items.len();
         let dropped = self.proposer.candidates.replace_where(reached, items);
         self.faces = Some((xs, ys));

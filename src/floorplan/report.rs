@@ -11,8 +11,10 @@ use serde::{Deserialize, Serialize};
 
 /// `report.json` for a chain's typed best `world` on `map`, with its room `labels` and the
 /// `seconds` spent iterating: iterations and speed, K(W,M) and the confusion counts, units,
-/// doors, unexplained areas ("N") and their cells, rooms, types, defects, log posterior, seed, rotation, wall thickness, knowledge
-/// status and per-kernel counts.
+/// doors, unexplained areas ("N") and their cells, rooms, types, defects, log posterior, seed,
+/// rotation, the directions the map's walls follow (`wall_directions`, strongest first: units
+/// follow only the rotation, so several directions say where they fit badly), wall thickness,
+/// knowledge status and per-kernel counts.
 pub fn report(chain: &Chain, map: &OccupancyMap, world: &World, labels: &Grid<u16>, seconds: f64) -> serde_json::Value {
     let mut r = summary(chain, map, world, seconds);
     add_rooms(&mut r, world, labels);
@@ -101,6 +103,36 @@ impl ChainSummary {
     }
 }
 
+/// A note for a report whose map has walls in several directions, which the world's units
+/// (all at the map's one rotation) cannot follow: `None` for one direction or none.
+///
+/// ```
+/// use ksmcmc::floorplan::report::several_directions_note;
+/// let one = serde_json::json!({"wall_directions": [{"angle_deg": 0.0, "strength": 1.0}]});
+/// assert_eq!(several_directions_note(&one), None);
+/// let two = serde_json::json!({"wall_directions": [
+///     {"angle_deg": 1.8, "strength": 1.0}, {"angle_deg": -43.5, "strength": 0.55}]});
+/// let note = several_directions_note(&two).unwrap();
+/// assert!(note.contains("2 directions (1.8°, -43.5°)"), "{note}");
+/// ```
+pub fn several_directions_note(r: &serde_json::Value) -> Option<String> {
+    let angles: Vec<f64> = r["wall_directions"].as_array()?.iter().filter_map(|d| d["angle_deg"].as_f64()).collect();
+    if angles.len() < 2 {
+        return None;
+    }
+    let list: Vec<String> = angles.iter().map(|a| format!("{a:.1}°")).collect();
+    Some(format!(
+        "note: the walls of this map follow {} directions ({}); the units follow only the first, so \
+         rooms along the others are explained by several rectangles and may come out cut in pieces",
+        angles.len(),
+        list.join(", ")
+    ))
+}
+
+/// The least strength of a wall direction `report.json` lists
+/// ([`crate::vision::orientation::wall_directions`]): 0.3 of the strongest.
+pub const MIN_DIRECTION: f64 = 0.3;
+
 /// [`summary`] from a chain's [`ChainSummary`].
 pub fn summary_of(c: &ChainSummary, map: &OccupancyMap, world: &World) -> serde_json::Value {
     let count = |v: &[u64], i: usize| v.get(i).copied().unwrap_or(0);
@@ -121,6 +153,11 @@ pub fn summary_of(c: &ChainSummary, map: &OccupancyMap, world: &World) -> serde_
     for u in &world.units {
         *types.entry(u.kind.name()).or_insert(0u32) += 1;
     }
+    let directions: Vec<serde_json::Value> =
+        crate::vision::orientation::wall_directions(map.classified(), MIN_DIRECTION)
+            .iter()
+            .map(|d| serde_json::json!({"angle_deg": d.angle.to_degrees(), "strength": d.strength}))
+            .collect();
     serde_json::json!({
         "iterations": c.iterations,
         "seconds": c.seconds,
@@ -137,6 +174,7 @@ pub fn summary_of(c: &ChainSummary, map: &OccupancyMap, world: &World) -> serde_
         "best_iteration": c.best_iteration,
         "seed": c.seed,
         "rotation_deg": c.rotation_deg,
+        "wall_directions": directions,
         "wall_thickness": c.wall_thickness,
         "knowledge": c.knowledge,
         "knowledge_error": c.knowledge_error,

@@ -15,14 +15,9 @@ use crate::grid::{Cell, Grid};
 /// outside filled in as occupied (the Bormann et al. floor plans) would otherwise let the
 /// outline of that solid mass, not the walls, choose the angle.
 pub fn dominant_angle(grid: &Grid<Cell>) -> f64 {
-    // 0.25 degree bins.
-    let n = 720;
-    let surface = wall_surface(grid);
-    let h = Hough::occupied(if surface.cells().contains(&Cell::Occupied) { &surface } else { grid }, n, 60_000);
-    let half = n / 2;
+    let (h, profile) = folded_profile(grid);
     let mut best = (0usize, -1.0f64);
-    for t in 0..half {
-        let score = h.peakiness(t) + h.peakiness(t + half);
+    for (t, &score) in profile.iter().enumerate() {
         if score > best.1 {
             best = (t, score);
         }
@@ -30,13 +25,86 @@ pub fn dominant_angle(grid: &Grid<Cell>) -> f64 {
     if best.1 <= 0.0 {
         return 0.0;
     }
-    // The normal angle θ and the line direction θ + 90° agree modulo 90°.
-    let mut phi = h.theta(best.0);
+    fold(h.theta(best.0))
+}
+
+/// Hough angle bins: 0.25 degree each.
+const BINS: usize = 720;
+
+/// The Hough accumulator of the wall surfaces and, per angle bin in `[0°, 90°)`, the
+/// peakiness of that angle and of the angle 90° on (walls at right angles vote together).
+fn folded_profile(grid: &Grid<Cell>) -> (Hough, Vec<f64>) {
+    let surface = wall_surface(grid);
+    let h = Hough::occupied(if surface.cells().contains(&Cell::Occupied) { &surface } else { grid }, BINS, 60_000);
+    let half = BINS / 2;
+    let profile = (0..half).map(|t| h.peakiness(t) + h.peakiness(t + half)).collect();
+    (h, profile)
+}
+
+/// A Hough normal angle folded into `(-π/4, π/4]`: the normal and the line direction agree
+/// modulo 90°.
+fn fold(mut phi: f64) -> f64 {
     let quarter = std::f64::consts::FRAC_PI_2;
     while phi > quarter / 2.0 {
         phi -= quarter;
     }
     phi
+}
+
+/// One direction the walls of a map follow (with the direction at right angles to it).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WallDirection {
+    /// Radians in `(-π/4, π/4]`, as [`dominant_angle`] gives them.
+    pub angle: f64,
+    /// How strongly the walls follow it, relative to the strongest direction (1): the height of
+    /// its Hough peak above the median over all angles.
+    pub strength: f64,
+}
+
+/// The directions the walls of a map follow, strongest first: every angle whose folded Hough
+/// peak stands out of the angles within 3° on either side and reaches `min_strength` of the
+/// strongest one's height above the median. The first is [`dominant_angle`]'s (when the map
+/// has walls). A building whose wings meet at an angle, or a pentagon, has several; the world
+/// model's units follow only the first (issue 13), so more than one says where units will
+/// fit badly.
+///
+/// ```
+/// use ksmcmc::grid::{Cell, Grid};
+/// use ksmcmc::vision::orientation::wall_directions;
+/// // A free 10 m x 6 m room with upright walls: one direction, 0 (to the Hough
+/// // transform's resolution).
+/// let mut g = Grid::new(220, 140, Cell::Unknown);
+/// for y in 10..130 {
+///     for x in 10..210 {
+///         let wall = x == 10 || x == 209 || y == 10 || y == 129;
+///         *g.at_mut(x, y) = if wall { Cell::Occupied } else { Cell::Free };
+///     }
+/// }
+/// let found = wall_directions(&g, 0.3);
+/// assert_eq!(found.len(), 1, "{found:?}");
+/// assert!(found[0].angle.abs() < 0.01 && found[0].strength == 1.0, "{found:?}");
+/// ```
+pub fn wall_directions(grid: &Grid<Cell>, min_strength: f64) -> Vec<WallDirection> {
+    let (h, profile) = folded_profile(grid);
+    let n = profile.len();
+    let mut sorted = profile.clone();
+    sorted.sort_by(f64::total_cmp);
+    let median = sorted[n / 2];
+    let top = sorted[n - 1] - median;
+    if top <= 0.0 {
+        return Vec::new();
+    }
+    let window = 12; // 3 degrees of 0.25 degree bins
+    let mut found: Vec<WallDirection> = (0..n)
+        .filter(|&t| {
+            let s = profile[t];
+            (1..=window).all(|d| s > profile[(t + n - d) % n] && s >= profile[(t + d) % n])
+        })
+        .map(|t| WallDirection { angle: fold(h.theta(t)), strength: (profile[t] - median) / top })
+        .filter(|d| d.strength >= min_strength)
+        .collect();
+    found.sort_by(|a, b| b.strength.total_cmp(&a.strength));
+    found
 }
 
 /// The occupied cells with a free 8-neighbour (the faces of walls a range sensor sees, with
@@ -104,6 +172,31 @@ mod tests {
             }
         }
         g
+    }
+
+    #[test]
+    fn one_box_has_one_wall_direction_two_boxes_at_an_angle_two() {
+        for deg in [0.0, 20.0, -15.0] {
+            let found = wall_directions(&rotated_box(deg), 0.3);
+            assert_eq!(found.len(), 1, "{deg}: {found:?}");
+            assert!((found[0].angle.to_degrees() - deg).abs() < 1.0, "{deg}: {found:?}");
+        }
+        // Two boxes, upright and at 30 degrees, side by side.
+        let (a, b) = (rotated_box(0.0), rotated_box(30.0));
+        let mut g = Grid::new(240, 100, Cell::Unknown);
+        for y in 0..100 {
+            for x in 0..120 {
+                *g.at_mut(x, y) = *a.at(x, y);
+                *g.at_mut(x + 120, y) = *b.at(x, y);
+            }
+        }
+        let found = wall_directions(&g, 0.3);
+        let mut degs: Vec<f64> = found.iter().map(|d| d.angle.to_degrees()).collect();
+        degs.sort_by(f64::total_cmp);
+        assert_eq!(degs.len(), 2, "{found:?}");
+        assert!(degs[0].abs() < 1.0 && (degs[1] - 30.0).abs() < 1.0, "{degs:?}");
+        assert_eq!(found[0].strength, 1.0);
+        assert!((found[0].angle - dominant_angle(&g)).abs() < 1e-12);
     }
 
     #[test]

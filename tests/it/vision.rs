@@ -92,3 +92,41 @@ fn walls_beside_unexplored_space_are_kept() {
     let Some(map) = load("walls_beside_unexplored_space_are_kept", "lab_c_scan.png") else { return };
     assert_eq!(&map.classifier().classify_raster(map.raster()), map.classified());
 }
+
+/// The pentagon office_e has walls in five directions, 18 degrees apart modulo 90; lab_ipa
+/// has upright walls and 45-degree ones; office_c only upright walls. The CLI's report lists
+/// them and says that the units follow only the first.
+#[test]
+fn wall_directions_of_a_pentagon_a_45_degree_wing_and_an_upright_floor() {
+    let degrees = |name: &str| -> Option<Vec<f64>> {
+        let map = load("wall_directions_of_a_pentagon_a_45_degree_wing_and_an_upright_floor", name)?;
+        let mut d: Vec<f64> =
+            orientation::wall_directions(map.classified(), 0.3).iter().map(|d| d.angle.to_degrees()).collect();
+        d.sort_by(f64::total_cmp);
+        Some(d)
+    };
+    let close = |found: &[f64], want: &[f64]| {
+        found.len() == want.len() && found.iter().zip(want).all(|(f, w)| (f - w).abs() < 1.5)
+    };
+    let Some(e) = degrees("office_e.png") else { return };
+    assert!(close(&e, &[-36.0, -18.0, 0.0, 18.0, 36.0]), "office_e: {e:?}");
+    let ipa = degrees("lab_ipa.png").unwrap();
+    assert!(close(&ipa, &[-43.5, 1.8]), "lab_ipa: {ipa:?}");
+    let c = degrees("office_c.png").unwrap();
+    assert!(close(&c, &[0.0]), "office_c: {c:?}");
+    let dir = crate::common::tmp_dir("wall-directions", "office_e");
+    let path = crate::common::datasets("").unwrap().join("bormann2016/office_e.png");
+    let out = crate::common::run_cli(&[
+        "floorplan",
+        path.to_str().unwrap(),
+        "--iterations",
+        "200",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(out.status.success());
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("follow 5 directions"), "{stderr}");
+    let report: serde_json::Value = serde_json::from_slice(&std::fs::read(dir.join("report.json")).unwrap()).unwrap();
+    assert_eq!(report["wall_directions"].as_array().unwrap().len(), 5);
+}

@@ -136,6 +136,9 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
         rooms,
         o.out.display()
     );
+    if let Some(note) = ksmcmc::floorplan::report::several_directions_note(&report) {
+        eprintln!("{note}");
+    }
     Ok(())
 }
 

@@ -6,7 +6,8 @@
 // worker sends, at most one per animation frame, with the robot's path over them.
 
 import init, { version } from './pkg/ksmcmc.js';
-import { planOpen, pickYamlImage, stem, parseSeed, onDroppedFiles } from './lib/files.js';
+import { parseSeed, onDroppedFiles, readPickedMap } from './lib/files.js';
+import { SampleList, fetchSampleMap } from './lib/samples.js';
 import { formatNumber } from './lib/plot.js';
 import { messages } from './lib/messages.js';
 import { RemoteChain } from './lib/remote-chain.js';
@@ -39,7 +40,8 @@ const state = {
   worker: null,
   stats: null,
   running: false,
-  samples: [],
+  /** The sample list, with the description of the picked sample. */
+  sampleList: new SampleList(ui.sample, ui.sampleHint, '(an opened map)'),
   sample: null,
   name: '',
   /** What the robot was started with: { seed, rangeM }; the update interval and the speed now. */
@@ -130,7 +132,7 @@ async function setTruth(source, { name, label, sample = null }) {
   state.name = name;
   state.sample = sample;
   ui.mapName.textContent = `· ${label}`;
-  showSampleChoice(sample);
+  state.sampleList.show(sample);
   adopt(stats, args);
   clearError();
   say(`${label}: ${stats.width} × ${stats.height} cells, ${formatNumber(stats.truthFree)} of them free. The robot stands at (${stats.robot.join(', ')}). Press Start (or Space).`);
@@ -405,56 +407,15 @@ function fit() {
 
 // ---------------------------------------------------------------- maps
 
-function describeSample() {
-  ui.sampleHint.textContent = state.samples.find((s) => s.name === ui.sample.value)?.description ?? '';
-}
-
-/** The sample list shows the sample explored, or an entry saying an opened map is. */
-function showSampleChoice(sample) {
-  let other = ui.sample.querySelector('option[value=""]');
-  if (sample) {
-    other?.remove();
-    ui.sample.value = sample;
-  } else {
-    if (!other) {
-      other = new Option('(an opened map)', '');
-      other.disabled = true;
-      ui.sample.prepend(other);
-    }
-    ui.sample.value = '';
-  }
-  describeSample();
-}
-
 async function loadSample(name) {
-  if (!name) throw new Error('Pick a sample from the list first.');
-  if (!state.samples.some((s) => s.name === name)) throw new Error(`There is no sample "${name}".`);
-  const get = async (file) => {
-    const r = await fetch(`samples/${name}/${file}`);
-    if (!r.ok) throw new Error(`samples/${name}/${file}: ${r.status} ${r.statusText}`);
-    return r;
-  };
-  const [yaml, pgm] = await Promise.all([get('map.yaml').then((r) => r.text()), get('map.pgm').then((r) => r.arrayBuffer())]);
-  await setTruth({ kind: 'yaml', yaml, image: new Uint8Array(pgm) }, { name, label: name, sample: name });
+  state.sampleList.find(name);
+  await setTruth(await fetchSampleMap(name), { name, label: name, sample: name });
 }
 
 /** Loads a true map from the picked files: one image, or a map.yaml with the image it names. */
 async function openFiles(fileList) {
-  const files = [...fileList];
-  const plan = planOpen(files.map((f) => f.name));
-  if (plan.kind === 'error') throw new Error(plan.message);
-  const byName = (n) => files.find((f) => f.name === n);
-  if (plan.kind === 'image') {
-    const file = byName(plan.image);
-    const bytes = new Uint8Array(await file.arrayBuffer());
-    await setTruth({ kind: 'image', bytes, classify: 'auto' }, { name: stem(file.name), label: file.name });
-    return;
-  }
-  const yaml = await byName(plan.yaml).text();
-  const pick = pickYamlImage(plan.yaml, yaml, plan.images);
-  if ('message' in pick) throw new Error(pick.message);
-  const image = new Uint8Array(await byName(pick.image).arrayBuffer());
-  await setTruth({ kind: 'yaml', yaml, image }, { name: stem(plan.yaml), label: `${plan.yaml} + ${pick.image}` });
+  const { source, name, label } = await readPickedMap(fileList, 'auto');
+  await setTruth(source, { name, label });
 }
 
 // ---------------------------------------------------------------- wiring
@@ -491,7 +452,7 @@ function wire() {
     e.preventDefault();
     attempt(() => loadSample(ui.sample.value));
   });
-  ui.sample.addEventListener('change', describeSample);
+  ui.sample.addEventListener('change', () => state.sampleList.describe());
   ui.file.addEventListener('change', async () => {
     await attempt(() => openFiles(ui.file.files));
     ui.file.value = '';
@@ -561,19 +522,13 @@ async function main() {
   await attempt(readUpdateEvery);
   ui.file.disabled = false;
   try {
-    const r = await fetch('samples/index.json');
-    if (!r.ok) throw new Error(`${r.status} ${r.statusText}`);
-    state.samples = await r.json();
-    for (const s of state.samples) ui.sample.append(new Option(`${s.name} (${s.width} × ${s.height})`, s.name));
-    ui.sample.disabled = ui.sampleLoad.disabled = false;
-    const wanted = params.get('sample') ?? 'office-small';
-    ui.sample.value = state.samples.some((s) => s.name === wanted) ? wanted : state.samples[0]?.name;
-    describeSample();
+    await state.sampleList.fill(params.get('sample') ?? 'office-small');
+    ui.sampleLoad.disabled = false;
   } catch (err) {
     ui.sampleHint.textContent = `The samples did not load (${err.message}): \`make demo\` copies them into www/samples. Open a map file instead.`;
   }
   state.ready = true;
-  if (state.samples.length > 0) await attempt(() => loadSample(ui.sample.value));
+  if (state.sampleList.samples.length > 0) await attempt(() => loadSample(ui.sample.value));
   document.documentElement.dataset.state = 'ready';
   if (params.get('autoplay') === '1') play();
 }

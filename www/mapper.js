@@ -8,7 +8,9 @@
 
 import init, { Map as OccMap, chainConfigDefaults, drawToCanvas, version } from './pkg/ksmcmc.js';
 import { TOOLS, MAX_BRUSH, brushOffsets, stamp, strokeTo, cellAt } from './lib/paint.js';
-import { planOpen, pickYamlImage, stem, parseSeed, onDroppedFiles } from './lib/files.js';
+import { parseSeed, onDroppedFiles, readPickedMap } from './lib/files.js';
+import { SampleList, fetchSampleFile, fetchSampleMap } from './lib/samples.js';
+import { buildMap } from './lib/map-source.js';
 import { drawPlot, formatNumber, parseIterationsPerFrame } from './lib/plot.js';
 import { messages } from './lib/messages.js';
 import { download } from './lib/download.js';
@@ -103,7 +105,8 @@ const state = {
   name: 'map',
   label: '',
   sample: null,
-  samples: [],
+  /** The sample list, with the description of the picked sample. */
+  sampleList: new SampleList(ui.sample, ui.sampleHint, '(an opened or painted map)'),
   /** The chain in its worker, and its numbers as last reported (null before the first map). */
   chain: null,
   stats: null,
@@ -447,10 +450,10 @@ async function setMap(map, source, { name, label, sample = null, uploaded = fals
     state[key] = null;
   }
   ui.mapName.textContent = label ? `· ${label}` : '';
-  showSampleChoice(sample);
+  state.sampleList.show(sample);
   // An opened map is explained until it settles; a sample or a painted map runs on.
   ui.stopSettled.checked = uploaded;
-  ui.truth.disabled = !(sample && state.samples.find((s) => s.name === sample)?.truth);
+  ui.truth.disabled = !(sample && state.sampleList.samples.find((s) => s.name === sample)?.truth);
   adopt(reply, args, source);
   clearError();
   say(`${label}: ${map.width} × ${map.height} cells. Press Start (or Space).`);
@@ -922,70 +925,16 @@ function fit() {
 
 // ---------------------------------------------------------------- maps
 
-function describeSample() {
-  ui.sampleHint.textContent = state.samples.find((s) => s.name === ui.sample.value)?.description ?? '';
-}
-
-/**
- * The sample list shows the sample on the map, or, for any other map, an entry saying so
- * (disabled: it cannot be picked, only left by picking a sample).
- */
-function showSampleChoice(sample) {
-  let other = ui.sample.querySelector('option[value=""]');
-  if (sample) {
-    other?.remove();
-    ui.sample.value = sample;
-  } else {
-    if (!other) {
-      other = new Option('(an opened or painted map)', '');
-      other.disabled = true;
-      ui.sample.prepend(other);
-    }
-    ui.sample.value = '';
-  }
-  describeSample();
-}
-
 async function loadSample(name) {
-  if (!name) throw new Error('Pick a sample from the list first.');
-  const info = state.samples.find((s) => s.name === name);
-  if (!info) throw new Error(`There is no sample "${name}".`);
-  const get = async (file) => {
-    const r = await fetch(`samples/${name}/${file}`);
-    if (!r.ok) throw new Error(`samples/${name}/${file}: ${r.status} ${r.statusText}`);
-    return r;
-  };
-  const [yaml, pgm] = await Promise.all([get('map.yaml').then((r) => r.text()), get('map.pgm').then((r) => r.arrayBuffer())]);
-  const image = new Uint8Array(pgm);
-  const map = OccMap.fromYaml(yaml, image);
-  await setMap(map, { kind: 'yaml', yaml, image }, { name, label: name, sample: name });
+  state.sampleList.find(name);
+  const source = await fetchSampleMap(name);
+  await setMap(buildMap(source), source, { name, label: name, sample: name });
 }
 
 /** Loads a map from the picked files: one image, or a map.yaml with the image it names. */
 async function openFiles(fileList) {
-  const files = [...fileList];
-  const plan = planOpen(files.map((f) => f.name));
-  if (plan.kind === 'error') throw new Error(plan.message);
-  const byName = (n) => files.find((f) => f.name === n);
-  if (plan.kind === 'image') {
-    const file = byName(plan.image);
-    const bytes = new Uint8Array(await file.arrayBuffer());
-    const classify = ui.classify.value;
-    let map = OccMap.fromBytes(bytes);
-    if (classify === 'auto') {
-      const auto = map.reclassify('auto');
-      map.free();
-      map = auto;
-    }
-    await setMap(map, { kind: 'image', bytes, classify }, { name: stem(file.name), label: file.name, uploaded: true });
-    return;
-  }
-  const yamlText = await byName(plan.yaml).text();
-  const pick = pickYamlImage(plan.yaml, yamlText, plan.images);
-  if ('message' in pick) throw new Error(pick.message);
-  const image = new Uint8Array(await byName(pick.image).arrayBuffer());
-  const source = { kind: 'yaml', yaml: yamlText, image };
-  await setMap(OccMap.fromYaml(yamlText, image), source, { name: stem(plan.yaml), label: `${plan.yaml} + ${pick.image}`, uploaded: true });
+  const { source, name, label } = await readPickedMap(fileList, ui.classify.value);
+  await setMap(buildMap(source), source, { name, label, uploaded: true });
 }
 
 /** A blank map to paint on: one free room inside a two-cell wall, which the chain explains at once. */
@@ -1733,8 +1682,7 @@ function wire() {
   });
   ui.truth.addEventListener('click', () =>
     attempt(async () => {
-      const r = await fetch(`samples/${state.sample}/truth.json`);
-      if (!r.ok) throw new Error(`samples/${state.sample}/truth.json: ${r.status} ${r.statusText}`);
+      const r = await fetchSampleFile(state.sample, 'truth.json');
       setReference(await r.text(), `${state.sample}/truth.json`);
     }),
   );
@@ -1956,22 +1904,14 @@ async function main() {
   if (params.has('ipf')) ui.ipf.value = params.get('ipf');
   ui.compare.checked = false;
   try {
-    const r = await fetch('samples/index.json');
-    if (!r.ok) throw new Error(`${r.status} ${r.statusText}`);
-    state.samples = await r.json();
-    for (const s of state.samples) {
-      ui.sample.append(new Option(`${s.name} (${s.width} × ${s.height})`, s.name));
-    }
-    ui.sample.disabled = ui.sampleLoad.disabled = false;
-    ui.sample.addEventListener('change', describeSample);
-    const wanted = params.get('sample') ?? 'office-small';
-    ui.sample.value = state.samples.some((s) => s.name === wanted) ? wanted : state.samples[0]?.name;
-    describeSample();
+    await state.sampleList.fill(params.get('sample') ?? 'office-small');
+    ui.sampleLoad.disabled = false;
+    ui.sample.addEventListener('change', () => state.sampleList.describe());
   } catch (err) {
     ui.sampleHint.textContent = `The samples did not load (${err.message}): \`make demo\` copies them into www/samples. Open or paint a map instead.`;
   }
   state.ready = true;
-  const first = state.samples.length > 0 ? attempt(() => loadSample(ui.sample.value)) : attempt(blankMap);
+  const first = state.sampleList.samples.length > 0 ? attempt(() => loadSample(ui.sample.value)) : attempt(blankMap);
   await first;
   if (!state.stats) await attempt(blankMap);
   document.documentElement.dataset.state = 'ready';

@@ -144,3 +144,28 @@ export function onDroppedFiles(stage, open) {
     open(e.dataTransfer.files);
   });
 }
+
+/**
+ * The map in picked files, as a map source ([`buildMap`](./map-source.js)): one image (read
+ * with the classification rule `classify`), or a map.yaml with the image it names. Throws,
+ * saying what to pick, when the files are not one map.
+ * @param {FileList|File[]} fileList
+ * @param {string} classify 'auto' or 'fixed', for an image
+ * @returns {Promise<{source: object, name: string, label: string}>}
+ */
+export async function readPickedMap(fileList, classify) {
+  const files = [...fileList];
+  const plan = planOpen(files.map((f) => f.name));
+  if (plan.kind === 'error') throw new Error(plan.message);
+  const byName = (n) => files.find((f) => f.name === n);
+  if (plan.kind === 'image') {
+    const file = byName(plan.image);
+    const bytes = new Uint8Array(await file.arrayBuffer());
+    return { source: { kind: 'image', bytes, classify }, name: stem(file.name), label: file.name };
+  }
+  const yaml = await byName(plan.yaml).text();
+  const pick = pickYamlImage(plan.yaml, yaml, plan.images);
+  if ('message' in pick) throw new Error(pick.message);
+  const image = new Uint8Array(await byName(pick.image).arrayBuffer());
+  return { source: { kind: 'yaml', yaml, image }, name: stem(plan.yaml), label: `${plan.yaml} + ${pick.image}` };
+}

@@ -18,6 +18,7 @@
 
 import init, { Mapper, renderMapperRgba, renderSceneGraphRgba, wasmHeapBytes } from '../pkg/ksmcmc.js';
 import { buildMap } from './map-source.js';
+import { loadModule } from './modules.js';
 
 /** Milliseconds of iterations between looking at the page's requests. */
 const SLICE_MS = 8;
@@ -35,26 +36,8 @@ const MAPPER_METHODS = new Set(['worldJson', 'setEdits', 'editsJson']);
  */
 const PLAN_METHODS = new Set(['bestWorldJson', 'labelsPgm', 'graphJson', 'reportJson', 'toPng', 'roomsJson', 'roomTypesJson', 'geojson', 'svg', 'route', 'worldGlb']);
 
-/** Modules imported and initialised when first needed (then kept), by file name. */
-const loaded = new Map();
-function load(file) {
-  if (!loaded.has(file)) {
-    const module = import(`../pkg/${file}`).then(
-      async (m) => {
-        await m.default();
-        return m;
-      },
-      (err) => {
-        loaded.delete(file);
-        throw err;
-      },
-    );
-    loaded.set(file, module);
-  }
-  return loaded.get(file);
-}
-const loadPlan = () => load('ksmcmc_plan.js');
-const loadRules = () => load('ksmcmc_rules.js');
+const loadPlan = () => loadModule('ksmcmc_plan.js');
+const loadRules = () => loadModule('ksmcmc_rules.js');
 
 const ready = init();
 const state = {

@@ -21,6 +21,7 @@
 
 import init, { Explorer, Mapper, renderMapperRgba, renderRgba, wasmHeapBytes } from '../pkg/ksmcmc.js';
 import { buildMap } from './map-source.js';
+import { loadModule } from './modules.js';
 
 /** Milliseconds of iterations between looking at the page's requests. */
 const SLICE_MS = 8;
@@ -49,20 +50,7 @@ const CODE_RGB = [
 ];
 
 /** The plan module, imported and initialised when first needed (then kept). */
-let planModule = null;
-function loadPlan() {
-  planModule ??= import('../pkg/ksmcmc_plan.js').then(
-    async (m) => {
-      await m.default();
-      return m;
-    },
-    (err) => {
-      planModule = null;
-      throw err;
-    },
-  );
-  return planModule;
-}
+const loadPlan = () => loadModule('ksmcmc_plan.js');
 
 const ready = init();
 const state = {

@@ -13,6 +13,7 @@ use std::path::{Path, PathBuf};
 
 const HELP: &str = "\
 Usage: ksmcmc evaluate [--datasets DIR] [--iterations N] [--seeds K] [--config FILE] [--only SET]
+                       [--room-rules FILE]
 
 Prints the quality tables of BENCHMARKS.md:
   bormann    room-segmentation precision and recall on the Bormann et al. maps in DIR/bormann2016
@@ -37,6 +38,7 @@ bormann also scores door topology: a truth link is a drawn doorway line on free 
 between two truth rooms; a predicted link is two segments, standing for the truth rooms they
 overlap most, touching along at least 10 free cells (see floorplan::topology).
 DIR defaults to ../shared/datasets, N to 20000 iterations, K to 6. --only runs one set.
+--room-rules FILE: the room rules of knowledge mode (default: the built-in ones).
 ";
 
 /// The sets `--only` can name.
@@ -535,6 +537,7 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     let mut dir = PathBuf::from("../shared/datasets");
     let mut o = Opts { iterations: 20_000, seeds: 6, config: ChainConfig::default() };
     let mut only: Option<String> = None;
+    let mut rules: Option<String> = None;
     while let Some(arg) = parser.next()? {
         match arg {
             Long("datasets") => dir = args::path(parser.value()?),
@@ -546,12 +549,17 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
                 let text = std::fs::read_to_string(&p).map_err(|e| args::failed(p.display(), e))?;
                 o.config = ChainConfig::from_json(&text).map_err(|e| args::failed(p.display(), e))?;
             }
+            Long("room-rules") => rules = Some(crate::floorplan::room_rules(&args::path(parser.value()?))?),
             Long("help") | Short('h') => {
                 print!("{HELP}");
                 return Ok(());
             }
             _ => return Err(arg.unexpected().into()),
         }
+    }
+    // After --config, whichever came first.
+    if rules.is_some() {
+        o.config.knowledge.room_kb = rules;
     }
     if o.seeds == 0 {
         return Err(CliError::Usage("--seeds must be at least 1".into()));

@@ -22,6 +22,7 @@
 set -eu
 KSMCMC=${KSMCMC:-ksmcmc}
 OUT=${OUT:-target/rooms-train}
+LEARNED=${LEARNED:-samples/knowledge/rooms-learned.mln}
 mkdir -p "$OUT"
 cat >"$OUT/open.json" <<JSON
 {"door_width": [2.2, 2.8], "room_width": [3.0, 5.0], "corridor_width": [2.5, 3.0], "other_width": [3.0, 3.5]}
@@ -65,4 +66,4 @@ SEEDS
 # shellcheck disable=SC2086
 "$KSMCMC" mln learn --mln samples/knowledge/rooms.mln $dbs --query SameRoom \
     --method discriminative --iterations 200 --prior-sigma 2 \
-    --out samples/knowledge/rooms-learned.mln
+    --out "$LEARNED"

@@ -97,7 +97,22 @@ impl RoomInput {
                 world.frame.world_size, frame.world_size
             )));
         }
-        Ok(RoomInput { world, map: map.classified().clone(), world_map, resolution, knowledge, room_rules: None, edits })
+        Ok(RoomInput {
+            world,
+            map: map.classified().clone(),
+            world_map,
+            resolution,
+            knowledge,
+            room_rules: None,
+            edits,
+        })
+    }
+
+    /// The same input with other room rules (`None`: the built-in ones); they apply when
+    /// knowledge supervision is on.
+    pub fn with_room_rules(mut self, rules: Option<String>) -> RoomInput {
+        self.room_rules = rules;
+        self
     }
 
     /// The training world of the room rules for this input's world, with `truth` the truth

@@ -495,6 +495,28 @@ mod tests {
     }
 
     #[test]
+    fn the_configured_room_rules_decide() {
+        let (map, mut world) = rooms_off_a_corridor();
+        let c = RoomConfig { door_half_width: 0, ..RoomConfig::default() };
+        // Rules that join every open pair: one room, where the built-in rules make four.
+        let mut config = crate::floorplan::knowledge::KnowledgeConfig {
+            room_kb: Some("Open(unit, unit)\nSameRoom(unit, unit)\n5 Open(p, q) => SameRoom(p, q)\n".into()),
+            ..Default::default()
+        };
+        config.validate().unwrap();
+        let kb = RoomKnowledge::configured(&config).unwrap();
+        explain_rooms(&mut world, &map, &map, &c, 0.05, Some(&kb)).unwrap();
+        assert_eq!(world.rooms.len(), 1, "{:?}", world.rooms);
+        config.room_kb = None;
+        explain_rooms(&mut world, &map, &map, &c, 0.05, Some(&RoomKnowledge::configured(&config).unwrap())).unwrap();
+        assert_eq!(world.rooms.len(), 4, "{:?}", world.rooms);
+        // Rules without the query are refused when the configuration is checked.
+        config.room_kb = Some("Open(unit, unit)\n".into());
+        let e = config.validate().unwrap_err();
+        assert!(e.contains("room_kb") && e.contains("SameRoom"), "{e}");
+    }
+
+    #[test]
     fn room_rules_must_declare_the_query() {
         let e = RoomKnowledge::parse("Open(unit, unit)\n").unwrap_err();
         assert!(e.to_string().contains("SameRoom"), "{e}");

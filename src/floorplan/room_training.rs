@@ -215,7 +215,8 @@ mod tests {
                 *truth.at_mut(x, y) = 0;
             }
         }
-        let t = room_training(&world, &map, &truth, &RoomConfig { door_half_width: 0, ..RoomConfig::default() }).unwrap();
+        let t =
+            room_training(&world, &map, &truth, &RoomConfig { door_half_width: 0, ..RoomConfig::default() }).unwrap();
         assert_eq!(t.truth_rooms[2], None);
         assert!(!same_room(&t, "U2", "U3"));
         assert_eq!(t.same_room, 0);

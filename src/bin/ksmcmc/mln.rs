@@ -378,8 +378,8 @@ fn room_evidence(o: &Options) -> Result<(), CliError> {
     let map = args::load_classified(map_path, "auto")?;
     let world = args::load_world(world_path, &map)?;
     let units = world.units.len();
-    let input = RoomInput::for_map(world, &map, true, Default::default())
-        .map_err(|e| args::failed(world_path.display(), e))?;
+    let input =
+        RoomInput::for_map(world, &map, true, Default::default()).map_err(|e| args::failed(world_path.display(), e))?;
     let truth = match &o.truth_labels {
         Some(p) => {
             let bytes = std::fs::read(p).map_err(|e| args::failed(p.display(), e))?;
@@ -388,9 +388,9 @@ fn room_evidence(o: &Options) -> Result<(), CliError> {
         // Without truth no unit lies in a truth room: the SameRoom atoms are dropped below.
         None => ksmcmc::grid::Grid::new(map.width(), map.height(), 0),
     };
-    let t = input.room_training(&truth, &RoomConfig::default()).map_err(|e| {
-        args::failed(o.truth_labels.as_ref().map_or(world_path.display(), |p| p.display()), e)
-    })?;
+    let t = input
+        .room_training(&truth, &RoomConfig::default())
+        .map_err(|e| args::failed(o.truth_labels.as_ref().map_or(world_path.display(), |p| p.display()), e))?;
     let mut facts = t.facts;
     if o.truth_labels.is_none() {
         facts.retain(|f| f.0 != "SameRoom");
@@ -401,11 +401,8 @@ fn room_evidence(o: &Options) -> Result<(), CliError> {
     }
     let what = if o.truth_labels.is_some() { "training world (evidence and true SameRoom atoms)" } else { "evidence" };
     let stray = t.truth_rooms.iter().filter(|r| r.is_none()).count();
-    let mut text = format!(
-        "// Room-layer {what} of {}, {units} units, {} open pairs",
-        world_path.display(),
-        t.open_pairs
-    );
+    let mut text =
+        format!("// Room-layer {what} of {}, {units} units, {} open pairs", world_path.display(), t.open_pairs);
     if o.truth_labels.is_some() {
         text.push_str(&format!(", {} in one truth room; {stray} units in no truth room", t.same_room));
     }

@@ -7,8 +7,9 @@
 //! Which units with no wall between them ([`open_pairs`]) are one room is decided here:
 //!
 //! * with knowledge supervision, by the Markov logic network of
-//!   `samples/knowledge/rooms.mln` ([`RoomKnowledge`]): evidence `Open`, `Flush` and the unit
-//!   types, query `SameRoom`, pairs joined where `P(SameRoom) > 0.5`;
+//!   `samples/knowledge/rooms.mln` ([`RoomKnowledge`], or the configuration's
+//!   `knowledge.room_kb`): evidence `Open`, `Flush` and the unit types ([`room_evidence`]),
+//!   query `SameRoom`, pairs joined where `P(SameRoom) > 0.5`;
 //! * without it, every open pair is joined (the rule of [`super::rooms::group_units`]).
 //!
 //! The grouping then becomes the label image ([`labels_of_groups`], one id per room, split at

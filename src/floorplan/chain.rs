@@ -952,19 +952,20 @@ impl Chain {
     }
 
     /// The typed best world ([`Chain::best_world_typed`]) with its room layer filled in, and
-    /// the room labels (one id per room, `labels.pgm`). With knowledge supervision the built-in
-    /// room rules decide which units are one room ([`super::room_layer`]); without it every
+    /// the room labels (one id per room, `labels.pgm`). With knowledge supervision the room
+    /// rules (the configuration's `knowledge.room_kb`, by default the built-in ones) decide which units are one room ([`super::room_layer`]); without it every
     /// open boundary joins.
     pub fn best_world_with_rooms(&mut self, rooms: &super::rooms::RoomConfig) -> (World, Grid<u16>) {
         let mut world = self.best_world_typed();
-        let knowledge = self.config.knowledge.enabled;
-        let labels = super::room_layer::explain_world_rooms(
+        let k = &self.config.knowledge;
+        let kb = if k.enabled { super::room_layer::RoomKnowledge::configured(k).ok() } else { None };
+        let labels = super::room_layer::explain_world_rooms_by(
             &mut world,
             &self.map,
             &self.world_map,
             rooms,
             self.resolution,
-            knowledge,
+            kb.as_ref(),
             &self.edits,
         );
         (world, labels)

@@ -48,6 +48,8 @@ pub struct RoomInput {
     world_map: Grid<Cell>,
     resolution: f64,
     knowledge: bool,
+    /// The room rules when not the built-in ones (the chain's `knowledge.room_kb`).
+    room_rules: Option<String>,
     edits: super::edits::Edits,
 }
 
@@ -60,6 +62,7 @@ impl RoomInput {
             world_map: chain.world_map().clone(),
             resolution: chain.resolution(),
             knowledge: chain.config().knowledge.enabled,
+            room_rules: chain.config().knowledge.room_kb.clone(),
             edits: chain.edits().clone(),
         }
     }
@@ -94,7 +97,32 @@ impl RoomInput {
                 world.frame.world_size, frame.world_size
             )));
         }
-        Ok(RoomInput { world, map: map.classified().clone(), world_map, resolution, knowledge, edits })
+        Ok(RoomInput {
+            world,
+            map: map.classified().clone(),
+            world_map,
+            resolution,
+            knowledge,
+            room_rules: None,
+            edits,
+        })
+    }
+
+    /// The same input with other room rules (`None`: the built-in ones); they apply when
+    /// knowledge supervision is on.
+    pub fn with_room_rules(mut self, rules: Option<String>) -> RoomInput {
+        self.room_rules = rules;
+        self
+    }
+
+    /// The training world of the room rules for this input's world, with `truth` the truth
+    /// labels of the map ([`super::room_training::room_training`]).
+    pub fn room_training(
+        &self,
+        truth: &Grid<u16>,
+        rooms: &RoomConfig,
+    ) -> Result<super::room_training::RoomTraining, super::room_training::RoomTrainingError> {
+        super::room_training::room_training(&self.world, &self.world_map, truth, rooms)
     }
 
     /// The typed best world, without rooms yet.
@@ -105,9 +133,11 @@ impl RoomInput {
     /// The world with its room layer and the room labels, as
     /// [`Chain::best_world_with_rooms`] gives them ([`room_layer::explain_world_rooms`]).
     pub fn explain(self, rooms: &RoomConfig) -> (World, Grid<u16>) {
-        let RoomInput { mut world, map, world_map, resolution, knowledge, edits } = self;
+        let RoomInput { mut world, map, world_map, resolution, knowledge, room_rules, edits } = self;
+        let text = room_rules.as_deref().unwrap_or(room_layer::BUILTIN_ROOM_RULES);
+        let kb = if knowledge { room_layer::RoomKnowledge::parse(text).ok() } else { None };
         let labels =
-            room_layer::explain_world_rooms(&mut world, &map, &world_map, rooms, resolution, knowledge, &edits);
+            room_layer::explain_world_rooms_by(&mut world, &map, &world_map, rooms, resolution, kb.as_ref(), &edits);
         (world, labels)
     }
 }

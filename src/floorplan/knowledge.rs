@@ -432,6 +432,11 @@ pub struct KnowledgeConfig {
     /// and whose query predicates are among `Room`, `Corr`, `Hall`, `Other`, `SaLe`; others
     /// are left to the open world.
     pub kb: Option<String>,
+    /// The room rules in the Alchemy format (query `SameRoom`, see
+    /// [`super::room_layer::RoomKnowledge::parse`]); `None` is
+    /// [`super::room_layer::BUILTIN_ROOM_RULES`]. They decide which units are one room when
+    /// knowledge is on; the chain itself never uses them.
+    pub room_kb: Option<String>,
     /// Share of the map's free cells the world must cover before knowledge switches on.
     pub coverage: f64,
     /// Iterations between inferences (results are cached by their evidence), at least.
@@ -471,6 +476,7 @@ impl Default for KnowledgeConfig {
         KnowledgeConfig {
             enabled: true,
             kb: None,
+            room_kb: None,
             coverage: 0.8,
             every: 500,
             time_share: 0.2,
@@ -506,6 +512,9 @@ impl KnowledgeConfig {
         }
         if self.object.iter().any(|p| !(p.is_finite() && *p > 0.0 && *p <= 1.0)) {
             return Err("knowledge: object probabilities must be in (0, 1]".into());
+        }
+        if let Some(text) = &self.room_kb {
+            super::room_layer::RoomKnowledge::parse(text).map_err(|e| format!("knowledge: room_kb: {e}"))?;
         }
         let g = &self.geometry;
         if !(g.hall_area_m2.is_finite()

@@ -25,6 +25,7 @@ pub mod plan_input;
 pub mod posterior;
 pub mod report;
 pub mod room_layer;
+pub mod room_training;
 pub mod room_types;
 pub mod rooms;
 pub mod route;

@@ -7,8 +7,9 @@
 //! Which units with no wall between them ([`open_pairs`]) are one room is decided here:
 //!
 //! * with knowledge supervision, by the Markov logic network of
-//!   `samples/knowledge/rooms.mln` ([`RoomKnowledge`]): evidence `Open`, `Flush` and the unit
-//!   types, query `SameRoom`, pairs joined where `P(SameRoom) > 0.5`;
+//!   `samples/knowledge/rooms.mln` ([`RoomKnowledge`], or the configuration's
+//!   `knowledge.room_kb`): evidence `Open`, `Flush` and the unit types ([`room_evidence`]),
+//!   query `SameRoom`, pairs joined where `P(SameRoom) > 0.5`;
 //! * without it, every open pair is joined (the rule of [`super::rooms::group_units`]).
 //!
 //! The grouping then becomes the label image ([`labels_of_groups`], one id per room, split at
@@ -18,7 +19,7 @@
 //! passable stretch ([`MIN_CONTACT_CELLS`]) or through a door.
 
 use super::edits::Edits;
-use super::knowledge::constant;
+use super::knowledge::{constant, Fact};
 use super::rooms::{join, labels_of_groups, open_pairs, OpenPair, RoomConfig};
 use super::topology::{touching, MIN_CONTACT_CELLS};
 use super::world::{Room, UnitType, World};
@@ -43,6 +44,11 @@ impl RoomKnowledge {
     /// The built-in rules.
     pub fn builtin() -> RoomKnowledge {
         RoomKnowledge::parse(BUILTIN_ROOM_RULES).expect("the built-in room rules parse")
+    }
+
+    /// The rules of a knowledge configuration: its `room_kb`, or the built-in ones.
+    pub fn configured(config: &super::knowledge::KnowledgeConfig) -> Result<RoomKnowledge, MlnError> {
+        RoomKnowledge::parse(config.room_kb.as_deref().unwrap_or(BUILTIN_ROOM_RULES))
     }
 
     /// Rules from text: they must declare `SameRoom(unit, unit)`; they may use the evidence
@@ -73,31 +79,15 @@ impl RoomKnowledge {
         }
         let mut db = Database::new();
         let mut closed = Vec::new();
-        let fact = |db: &mut Database, pred: &str, args: &[&str]| -> Result<(), MlnError> {
-            if self.mln.predicate(pred).is_some() {
-                db.insert(&self.mln, pred, args, Evidence::True)?;
-            }
-            Ok(())
-        };
         for pred in TYPES.iter().map(|t| t.0).chain(["Open", "Flush"]) {
             if self.mln.predicate(pred).is_some() {
                 closed.push(pred.to_string());
             }
         }
-        for u in &world.units {
-            let c = constant(u.id);
-            if let Some((pred, _)) = TYPES.iter().find(|t| t.1 == u.kind) {
-                fact(&mut db, pred, &[&c])?;
-            }
-        }
-        // Only the true facts: the evidence is closed world, and never quadratic in units.
-        for p in pairs {
-            let (a, b) = (constant(world.units[p.a].id), constant(world.units[p.b].id));
-            for (x, y) in [(&a, &b), (&b, &a)] {
-                fact(&mut db, "Open", &[x, y])?;
-                if p.flush {
-                    fact(&mut db, "Flush", &[x, y])?;
-                }
+        for (pred, args, _) in room_evidence(world, pairs) {
+            if self.mln.predicate(pred).is_some() {
+                let args: Vec<&str> = args.iter().map(String::as_str).collect();
+                db.insert(&self.mln, pred, &args, Evidence::True)?;
             }
         }
         for &(a, b, value) in given {
@@ -122,6 +112,43 @@ impl RoomKnowledge {
             })
             .collect())
     }
+}
+
+/// The evidence the room rules are given about `world` and its open pairs `pairs` (unit
+/// indices, [`open_pairs`]), units named by [`constant`]: each typed unit's type predicate
+/// (`Room`, `Corr`, `Hall`, `Other`) and `Open` (and `Flush` where the pair is flush) of every
+/// pair both ways. Only true facts: the evidence is closed world, so it grows with the units
+/// and their open pairs, never with all pairs of units.
+///
+/// ```
+/// use ksmcmc::floorplan::room_layer::room_evidence;
+/// use ksmcmc::floorplan::rooms::OpenPair;
+/// use ksmcmc::floorplan::{Unit, UnitType, World};
+/// let mut world = World::empty(80, 40);
+/// for (id, x) in [(1, 0), (2, 40)] {
+///     world.units.push(Unit { id, x, y: 0, w: 40, h: 40, kind: UnitType::Room });
+/// }
+/// let facts = room_evidence(&world, &[OpenPair { a: 0, b: 1, flush: true }]);
+/// let text: Vec<String> = facts.iter().map(|(p, a, _)| format!("{p}({})", a.join(","))).collect();
+/// assert_eq!(text, ["Room(U1)", "Room(U2)", "Open(U1,U2)", "Flush(U1,U2)", "Open(U2,U1)", "Flush(U2,U1)"]);
+/// ```
+pub fn room_evidence(world: &World, pairs: &[OpenPair]) -> Vec<Fact> {
+    let mut facts = Vec::new();
+    for u in &world.units {
+        if let Some((pred, _)) = TYPES.iter().find(|t| t.1 == u.kind) {
+            facts.push((*pred, vec![constant(u.id)], true));
+        }
+    }
+    for p in pairs {
+        let (a, b) = (constant(world.units[p.a].id), constant(world.units[p.b].id));
+        for (x, y) in [(&a, &b), (&b, &a)] {
+            facts.push(("Open", vec![x.clone(), y.clone()], true));
+            if p.flush {
+                facts.push(("Flush", vec![x.clone(), y.clone()], true));
+            }
+        }
+    }
+    facts
 }
 
 /// Groups `world`'s units into rooms (by `knowledge` if given, else every open pair), labels
@@ -193,8 +220,7 @@ pub fn explain_rooms_edited(
 }
 
 /// [`explain_rooms`] with the built-in room rules when `knowledge` is on, and without them
-/// otherwise or should the rules fail (they cannot on a valid world; the rooms are then still
-/// found, by the rule without knowledge).
+/// otherwise ([`explain_world_rooms_by`]).
 pub fn explain_world_rooms(
     world: &mut World,
     map: &Grid<Cell>,
@@ -205,7 +231,22 @@ pub fn explain_world_rooms(
     edits: &Edits,
 ) -> Grid<u16> {
     let kb = knowledge.then(RoomKnowledge::builtin);
-    explain_rooms_edited(world, map, world_map, c, resolution, kb.as_ref(), edits)
+    explain_world_rooms_by(world, map, world_map, c, resolution, kb.as_ref(), edits)
+}
+
+/// [`explain_rooms_edited`] with the rules `knowledge` (`None`: every open pair joins), and
+/// without them should the rules fail (they cannot on a valid world; the rooms are then still
+/// found, by the rule without knowledge).
+pub fn explain_world_rooms_by(
+    world: &mut World,
+    map: &Grid<Cell>,
+    world_map: &Grid<Cell>,
+    c: &RoomConfig,
+    resolution: f64,
+    knowledge: Option<&RoomKnowledge>,
+    edits: &Edits,
+) -> Grid<u16> {
+    explain_rooms_edited(world, map, world_map, c, resolution, knowledge, edits)
         .or_else(|_| explain_rooms_edited(world, map, world_map, c, resolution, None, edits))
         .unwrap_or_else(|_| Grid::new(map.width(), map.height(), 0))
 }
@@ -452,6 +493,28 @@ mod tests {
         let total: f64 = world.rooms.iter().map(|r| r.area_m2).sum();
         assert!((total - (150 * 40 - 30) as f64 * 0.01).abs() < 1e-9, "{total}");
         assert!(a.area_m2 >= (free_left - 10) as f64 * 0.01 - 1e-9);
+    }
+
+    #[test]
+    fn the_configured_room_rules_decide() {
+        let (map, mut world) = rooms_off_a_corridor();
+        let c = RoomConfig { door_half_width: 0, ..RoomConfig::default() };
+        // Rules that join every open pair: one room, where the built-in rules make four.
+        let mut config = crate::floorplan::knowledge::KnowledgeConfig {
+            room_kb: Some("Open(unit, unit)\nSameRoom(unit, unit)\n5 Open(p, q) => SameRoom(p, q)\n".into()),
+            ..Default::default()
+        };
+        config.validate().unwrap();
+        let kb = RoomKnowledge::configured(&config).unwrap();
+        explain_rooms(&mut world, &map, &map, &c, 0.05, Some(&kb)).unwrap();
+        assert_eq!(world.rooms.len(), 1, "{:?}", world.rooms);
+        config.room_kb = None;
+        explain_rooms(&mut world, &map, &map, &c, 0.05, Some(&RoomKnowledge::configured(&config).unwrap())).unwrap();
+        assert_eq!(world.rooms.len(), 4, "{:?}", world.rooms);
+        // Rules without the query are refused when the configuration is checked.
+        config.room_kb = Some("Open(unit, unit)\n".into());
+        let e = config.validate().unwrap_err();
+        assert!(e.contains("room_kb") && e.contains("SameRoom"), "{e}");
     }
 
     #[test]

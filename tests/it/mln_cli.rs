@@ -374,3 +374,99 @@ fn the_learned_indoor_knowledge_base_is_reproducible() {
     assert_eq!(info.lines().filter(|l| l.starts_with("  ") && l.contains("=>")).count(), 33, "{info}");
     run_ok(&["mln", "query", "--mln", "samples/knowledge/indoor-learned.mln", "--db", DB, "--query", QUERY]);
 }
+
+/// `mln evidence --rooms`: a chain's world of a synthetic floor as a training world of the room
+/// rules, its SameRoom atoms on open pairs only, counted in the header.
+#[test]
+fn room_training_worlds_from_chain_worlds() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("rooms-train");
+    let s = dir.join("synth");
+    let (s, run) = (s.to_str().unwrap(), dir.join("run"));
+    run_ok(&["synth", "--seed", "2031", "--clutter", "0.1", "--out", s]);
+    let map = format!("{s}/map.yaml");
+    run_ok(&["floorplan", &map, "--seed", "1", "--out", run.to_str().unwrap()]);
+    let world = run.join("world.json");
+    let world = world.to_str().unwrap();
+    let labels = format!("{s}/truth_labels.pgm");
+    let db = run_ok(&["mln", "evidence", "--rooms", "--world", world, "--map", &map, "--truth-labels", &labels]);
+    let header = db.lines().next().unwrap();
+    assert!(header.starts_with("// Room-layer training world"), "{db}");
+    let lines: Vec<&str> = db.lines().filter(|l| !l.starts_with("//")).collect();
+    let same: Vec<&str> = lines.iter().copied().filter(|l| l.starts_with("SameRoom(")).collect();
+    assert!(!same.is_empty(), "a cluttered floor has rooms the chain cuts in two: {db}");
+    for l in &same {
+        let open = l.replace("SameRoom(", "Open(");
+        assert!(lines.contains(&open.as_str()), "{l} without {open}");
+    }
+    assert!(header.contains(&format!(", {} in one truth room", same.len() / 2)), "{header}");
+    // Without truth: the evidence alone, as the room layer gives it to the rules.
+    let evidence = run_ok(&["mln", "evidence", "--rooms", "--world", world, "--map", &map]);
+    assert!(!evidence.contains("SameRoom(") && evidence.contains("\nOpen("), "{evidence}");
+    // A training world learns.
+    let path = scratch("rooms-train.db", &db);
+    let learned = run_ok(&[
+        "mln",
+        "learn",
+        "--mln",
+        "samples/knowledge/rooms.mln",
+        "--db",
+        path.to_str().unwrap(),
+        "--query",
+        "SameRoom",
+        "--method",
+        "discriminative",
+    ]);
+    assert!(learned.contains("Flush(p, q) => SameRoom(p, q)"), "{learned}");
+    // Errors: usage (2), and labels of another map or no PGM at all (1).
+    for args in [
+        vec!["mln", "evidence", "--rooms", "--world", world],
+        vec!["mln", "evidence", "--rooms", "--world", world, "--map", &map, "--truth"],
+        vec!["mln", "evidence", "--rooms", "--world", world, "--resolution", "0.05"],
+        vec!["mln", "evidence", "--world", world, "--map", &map, "--truth-labels", &labels],
+    ] {
+        run_err(&args, 2);
+    }
+    let small = scratch("small-labels.pgm", "P2\n2 2\n65535\n0 1 1 0\n");
+    let e = run_err(
+        &["mln", "evidence", "--rooms", "--world", world, "--map", &map, "--truth-labels", small.to_str().unwrap()],
+        1,
+    );
+    assert!(e.contains("small-labels.pgm") && e.contains("truth labels are 2x2"), "{e}");
+    let junk = scratch("junk-labels.pgm", "not an image");
+    let e = run_err(
+        &["mln", "evidence", "--rooms", "--world", world, "--map", &map, "--truth-labels", junk.to_str().unwrap()],
+        1,
+    );
+    assert!(e.contains("junk-labels.pgm") && e.contains("truth labels"), "{e}");
+    let narrow = dir.join("narrow");
+    run_ok(&["synth", "--seed", "1", "--width", "300", "--out", narrow.to_str().unwrap()]);
+    let narrow = format!("{}/map.yaml", narrow.display());
+    let other = run_err(&["mln", "evidence", "--rooms", "--world", world, "--map", &narrow], 1);
+    assert!(other.contains("world.json") && other.contains("different map"), "{other}");
+}
+
+/// `samples/knowledge/rooms-learned.mln` is what `learn-rooms.sh` makes.
+#[test]
+fn the_learned_room_rules_are_reproducible() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("rooms-recipe");
+    let learned = dir.join("rooms-learned.mln");
+    let out = Command::new("sh")
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .arg("samples/knowledge/learn-rooms.sh")
+        .env("KSMCMC", env!("CARGO_BIN_EXE_ksmcmc"))
+        .env("OUT", &dir)
+        .env("LEARNED", &learned)
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let body = |t: &str| t.lines().filter(|l| !l.starts_with("//")).map(String::from).collect::<Vec<_>>();
+    let committed = std::fs::read_to_string("samples/knowledge/rooms-learned.mln").unwrap();
+    assert_eq!(body(&std::fs::read_to_string(&learned).unwrap()), body(&committed), "rerun learn-rooms.sh");
+    // The same formulas as the hand-set rules, hard ones hard.
+    let info = run_ok(&["mln", "info", "--mln", "samples/knowledge/rooms-learned.mln"]);
+    let hand = run_ok(&["mln", "info", "--mln", "samples/knowledge/rooms.mln"]);
+    let formulas =
+        |t: &str| t.lines().filter(|l| l.contains("=>")).map(|l| l.split_at(12).1.to_string()).collect::<Vec<_>>();
+    assert_eq!(formulas(&info), formulas(&hand));
+    assert_eq!(info.matches("    hard  ").count(), 2, "{info}");
+}

@@ -13,6 +13,7 @@ use std::path::{Path, PathBuf};
 
 const HELP: &str = "\
 Usage: ksmcmc evaluate [--datasets DIR] [--iterations N] [--seeds K] [--config FILE] [--only SET]
+                       [--room-rules FILE]
 
 Prints the quality tables of BENCHMARKS.md:
   bormann    room-segmentation precision and recall on the Bormann et al. maps in DIR/bormann2016
@@ -37,6 +38,9 @@ bormann also scores door topology: a truth link is a drawn doorway line on free 
 between two truth rooms; a predicted link is two segments, standing for the truth rooms they
 overlap most, touching along at least 10 free cells (see floorplan::topology).
 DIR defaults to ../shared/datasets, N to 20000 iterations, K to 6. --only runs one set.
+--room-rules FILE: the room rules of knowledge mode (default: the built-in ones).
+--also-room-rules FILE (repeatable): bormann-seeds in knowledge mode also scores these room
+rules on the same chains, one more table each.
 ";
 
 /// The sets `--only` can name.
@@ -47,6 +51,8 @@ struct Opts {
     iterations: u64,
     seeds: u64,
     config: ChainConfig,
+    /// Further room rules bormann-seeds scores on the same knowledge-mode chains: (file, text).
+    more_rules: Vec<(String, String)>,
 }
 
 impl Opts {
@@ -54,7 +60,7 @@ impl Opts {
     fn with_knowledge(&self, enabled: bool) -> Opts {
         let mut config = self.config.clone();
         config.knowledge.enabled = enabled;
-        Opts { iterations: self.iterations, seeds: self.seeds, config }
+        Opts { iterations: self.iterations, seeds: self.seeds, config, more_rules: self.more_rules.clone() }
     }
 }
 
@@ -100,19 +106,35 @@ fn bormann_map(dir: &Path, name: &str, o: &Opts) -> Result<[MapScore; 2], CliErr
 
 /// [`bormann_map`] with chain seed `seed`.
 fn bormann_map_seed(dir: &Path, name: &str, o: &Opts, seed: u64) -> Result<[MapScore; 2], CliError> {
+    Ok(bormann_map_variants(dir, name, o, seed)?[0])
+}
+
+/// The scores of map `name` with chain seed `seed`, for the options' room rules and then, in
+/// knowledge mode, for each of `o.more_rules` on the same chains.
+fn bormann_map_variants(dir: &Path, name: &str, o: &Opts, seed: u64) -> Result<Vec<[MapScore; 2]>, CliError> {
+    use ksmcmc::floorplan::export::RoomInput;
     let truth = truth_regions(&dir.join(format!("{name}_gt_segmentation.png")))?;
-    let mut out = Vec::new();
+    let rules: Vec<Option<String>> = std::iter::once(o.config.knowledge.room_kb.clone())
+        .chain(o.more_rules.iter().filter(|_| o.config.knowledge.enabled).map(|(_, t)| Some(t.clone())))
+        .collect();
+    let mut out: Vec<Vec<MapScore>> = vec![Vec::new(); rules.len()];
     for suffix in ["", "_furnitures"] {
         let path = dir.join(format!("{name}{suffix}.png"));
         let mut map = args::load_map(&path)?;
         map.set_classifier(Classifier::auto()).map_err(|e| args::failed("classifier", e))?;
         let mut chain = explain(&map, o, seed)?;
-        let (_, labels) = chain.best_world_with_rooms(&RoomConfig::default());
-        let labels = labels.map(|&l| l as u32);
+        let input = RoomInput::of(&mut chain);
         let free = map.classified().map(|&c| c == Cell::Free);
-        out.push(MapScore { seg: score_segmentation(&labels, &truth), links: score_links(&labels, &truth, &free) });
+        for (v, r) in rules.iter().enumerate() {
+            let (_, labels) = input.clone().with_room_rules(r.clone()).explain(&RoomConfig::default());
+            let labels = labels.map(|&l| l as u32);
+            out[v].push(MapScore {
+                seg: score_segmentation(&labels, &truth),
+                links: score_links(&labels, &truth, &free),
+            });
+        }
     }
-    Ok([out[0], out[1]])
+    Ok(out.into_iter().map(|v| [v[0], v[1]]).collect())
 }
 
 fn fmt4(f: [f64; 4]) -> String {
@@ -199,31 +221,52 @@ fn bormann_seeds(dir: &Path, o: &Opts) -> Result<(), CliError> {
     let dir = dir.join("bormann2016");
     let names = bormann_names(&dir)?;
     let mode = if o.config.knowledge.enabled { "knowledge" } else { "weak prior" };
-    println!(
-        "\n### Bormann et al. maps over chain seeds 1..={} ({} iterations, {mode}): mean ± standard deviation\n",
-        o.seeds, o.iterations
-    );
-    println!("| map | precision | recall | link precision | link recall | precision (furnished) | recall (furnished) | link precision (furnished) | link recall (furnished) |");
-    println!("|---|---|---|---|---|---|---|---|---|");
-    // figures[seed][map][8]
-    let mut figures: Vec<Vec<[f64; 8]>> = vec![Vec::new(); o.seeds as usize];
+    let mut variants = vec![match (&o.config.knowledge.room_kb, o.config.knowledge.enabled) {
+        (_, false) => String::new(),
+        (None, true) => ", built-in room rules".to_string(),
+        (Some(_), true) => ", --room-rules".to_string(),
+    }];
+    if o.config.knowledge.enabled {
+        variants.extend(o.more_rules.iter().map(|(f, _)| format!(", room rules {f}")));
+    }
+    // figures[variant][seed][map][8]
+    let mut figures: Vec<Vec<Vec<[f64; 8]>>> = vec![vec![Vec::new(); o.seeds as usize]; variants.len()];
+    let mut rows: Vec<Vec<String>> = vec![Vec::new(); variants.len()];
     for name in &names {
         for (k, seed) in (1..=o.seeds).enumerate() {
-            let s = bormann_map_seed(&dir, name, o, seed)?;
-            let (a, b) = (s[0].figures(), s[1].figures());
-            figures[k].push([a[0], a[1], a[2], a[3], b[0], b[1], b[2], b[3]]);
+            for (v, s) in bormann_map_variants(&dir, name, o, seed)?.into_iter().enumerate() {
+                let (a, b) = (s[0].figures(), s[1].figures());
+                figures[v][k].push([a[0], a[1], a[2], a[3], b[0], b[1], b[2], b[3]]);
+            }
         }
-        let m = figures[0].len() - 1;
-        let cols: Vec<String> =
-            (0..8).map(|f| fmt_mean_sd(&figures.iter().map(|s| s[m][f]).collect::<Vec<_>>())).collect();
-        println!("| {name} | {} |", cols.join(" | "));
+        for (v, fig) in figures.iter().enumerate() {
+            let m = fig[0].len() - 1;
+            let cols: Vec<String> =
+                (0..8).map(|f| fmt_mean_sd(&fig.iter().map(|s| s[m][f]).collect::<Vec<_>>())).collect();
+            rows[v].push(format!("| {name} | {} |", cols.join(" | ")));
+        }
     }
-    let cols: Vec<String> = (0..8)
-        .map(|f| {
-            fmt_mean_sd(&figures.iter().map(|s| mean(&s.iter().map(|m| m[f]).collect::<Vec<_>>())).collect::<Vec<_>>())
-        })
-        .collect();
-    println!("| **mean** | {} |", cols.join(" | "));
+    for ((variant, fig), rows) in variants.iter().zip(&figures).zip(&rows) {
+        println!(
+            "\n### Bormann et al. maps over chain seeds 1..={} ({} iterations, {mode}{variant}): mean ± standard deviation\n",
+            o.seeds, o.iterations
+        );
+        println!("| map | precision | recall | link precision | link recall | precision (furnished) | recall (furnished) | link precision (furnished) | link recall (furnished) |");
+        println!("|---|---|---|---|---|---|---|---|---|");
+        for row in rows {
+            println!("{row}");
+        }
+        let means: Vec<Vec<f64>> =
+            (0..8).map(|f| fig.iter().map(|s| mean(&s.iter().map(|m| m[f]).collect::<Vec<_>>())).collect()).collect();
+        let cols: Vec<String> = means.iter().map(|v| fmt_mean_sd(v)).collect();
+        println!("| **mean** | {} |", cols.join(" | "));
+        let sum = |idx: [usize; 4]| idx.iter().map(|&f| mean(&means[f])).sum::<f64>();
+        println!(
+            "\nsum of the four segmentation means {:.3}, of the four link means {:.3}",
+            sum([0, 1, 4, 5]),
+            sum([2, 3, 6, 7])
+        );
+    }
     Ok(())
 }
 
@@ -533,8 +576,9 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     use lexopt::prelude::*;
     let mut parser = lexopt::Parser::from_args(argv);
     let mut dir = PathBuf::from("../shared/datasets");
-    let mut o = Opts { iterations: 20_000, seeds: 6, config: ChainConfig::default() };
+    let mut o = Opts { iterations: 20_000, seeds: 6, config: ChainConfig::default(), more_rules: Vec::new() };
     let mut only: Option<String> = None;
+    let mut rules: Option<String> = None;
     while let Some(arg) = parser.next()? {
         match arg {
             Long("datasets") => dir = args::path(parser.value()?),
@@ -546,12 +590,21 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
                 let text = std::fs::read_to_string(&p).map_err(|e| args::failed(p.display(), e))?;
                 o.config = ChainConfig::from_json(&text).map_err(|e| args::failed(p.display(), e))?;
             }
+            Long("room-rules") => rules = Some(crate::floorplan::room_rules(&args::path(parser.value()?))?),
+            Long("also-room-rules") => {
+                let p = args::path(parser.value()?);
+                o.more_rules.push((p.display().to_string(), crate::floorplan::room_rules(&p)?));
+            }
             Long("help") | Short('h') => {
                 print!("{HELP}");
                 return Ok(());
             }
             _ => return Err(arg.unexpected().into()),
         }
+    }
+    // After --config, whichever came first.
+    if rules.is_some() {
+        o.config.knowledge.room_kb = rules;
     }
     if o.seeds == 0 {
         return Err(CliError::Usage("--seeds must be at least 1".into()));

@@ -44,6 +44,9 @@ Options:
                      (Alchemy format), or `none`
                      (the weak prior of the first paper; types are then inferred on the final
                      world with the built-in rules)
+  --room-rules FILE  the rules that decide which units are one room when knowledge is on
+                     (Alchemy format, query SameRoom; default: the built-in
+                     samples/knowledge/rooms.mln)
   --region FILE      an image the size of the map whose non-black cells are a region of
                      interest: report.json then also gives K(W,M) inside it
   --georef LAT,LON,BEARING
@@ -75,6 +78,7 @@ struct Opts {
     classify: String,
     region: Option<PathBuf>,
     knowledge: Option<String>,
+    room_rules: Option<PathBuf>,
     until_settled: bool,
     georef: Option<Georef>,
     edits: Option<PathBuf>,
@@ -151,6 +155,7 @@ fn parse(argv: Vec<OsString>) -> Result<Option<Opts>, CliError> {
     let mut classify = String::from("auto");
     let mut region_path: Option<PathBuf> = None;
     let mut knowledge: Option<String> = None;
+    let mut room_rules: Option<PathBuf> = None;
     let mut until_settled = false;
     let mut georef = None;
     let mut edits: Option<PathBuf> = None;
@@ -167,6 +172,7 @@ fn parse(argv: Vec<OsString>) -> Result<Option<Opts>, CliError> {
             Long("classify") => classify = args::value("--classify", parser.value()?)?,
             Long("region") => region_path = Some(args::path(parser.value()?)),
             Long("knowledge") => knowledge = Some(args::value("--knowledge", parser.value()?)?),
+            Long("room-rules") => room_rules = Some(args::path(parser.value()?)),
             Long("until-settled") => until_settled = true,
             Long("georef") => georef = Some(args::value::<Georef>("--georef", parser.value()?)?),
             Long("edits") => edits = Some(args::path(parser.value()?)),
@@ -203,6 +209,7 @@ fn parse(argv: Vec<OsString>) -> Result<Option<Opts>, CliError> {
         classify,
         region: region_path,
         knowledge,
+        room_rules,
         until_settled,
         georef,
         edits,
@@ -223,7 +230,18 @@ fn load_edits(path: &std::path::Path) -> Result<ksmcmc::floorplan::edits::Edits,
 
 /// The chain configuration: `--config`, then `--rotation` and `--knowledge` over it.
 fn chain_config(o: &Opts) -> Result<ChainConfig, CliError> {
-    chain_config_from(o.config.as_deref(), o.rotation, o.knowledge.as_deref())
+    let mut config = chain_config_from(o.config.as_deref(), o.rotation, o.knowledge.as_deref())?;
+    if let Some(p) = &o.room_rules {
+        config.knowledge.room_kb = Some(room_rules(p)?);
+    }
+    Ok(config)
+}
+
+/// The room rules of `--room-rules`, parsed now so that a broken file is named.
+pub fn room_rules(path: &std::path::Path) -> Result<String, CliError> {
+    let text = std::fs::read_to_string(path).map_err(|e| args::failed(path.display(), e))?;
+    ksmcmc::floorplan::room_layer::RoomKnowledge::parse(&text).map_err(|e| args::failed(path.display(), e))?;
+    Ok(text)
 }
 
 /// The chain configuration from a `--config` file, then `--rotation` and `--knowledge` over

@@ -32,6 +32,13 @@ Usage:
       geometry classes by the default classifier of Tab. 3.6 (halls from 60 m²,
       corridors 3.5 times as long as wide, small under 10 m²); with --mln only the
       predicates that knowledge base declares (Tab. 3.5's indoor.mln has no Small)
+  ksmcmc mln evidence --rooms --world world.json --map MAP [--truth-labels LABELS.pgm]
+                      [--mln KB] [--out FILE]
+      the room layer's evidence (Open, Flush, Room/Corr/Hall/Other) of a chain's world.json
+      (from `ksmcmc floorplan MAP`) as the room rules (samples/knowledge/rooms.mln) are given
+      it; with --truth-labels (the truth_labels.pgm of `ksmcmc synth`) also SameRoom for each
+      open pair whose units lie mostly in the same truth room: a training world for
+      `mln learn --query SameRoom`
 
 Knowledge bases use the Alchemy / ProbCog format (see samples/knowledge/*.mln); evidence has
 one ground atom per line: Pred(A,B), !Pred(A,B), or 0.8 Pred(A) for soft evidence.
@@ -89,6 +96,8 @@ struct Options {
     map_yaml: Option<PathBuf>,
     resolution: Option<f64>,
     truth: bool,
+    rooms: bool,
+    truth_labels: Option<PathBuf>,
 }
 
 fn list(name: &str, v: OsString) -> Result<Vec<String>, CliError> {
@@ -128,6 +137,8 @@ fn parse_options(argv: Vec<OsString>) -> Result<Option<Options>, CliError> {
         map_yaml: None,
         resolution: None,
         truth: false,
+        rooms: false,
+        truth_labels: None,
     };
     while let Some(arg) = parser.next()? {
         match arg {
@@ -168,6 +179,8 @@ fn parse_options(argv: Vec<OsString>) -> Result<Option<Options>, CliError> {
             Long("map") => o.map_yaml = Some(args::path(parser.value()?)),
             Long("resolution") => o.resolution = Some(args::value("--resolution", parser.value()?)?),
             Long("truth") => o.truth = true,
+            Long("rooms") => o.rooms = true,
+            Long("truth-labels") => o.truth_labels = Some(args::path(parser.value()?)),
             _ => return Err(arg.unexpected().into()),
         }
     }
@@ -350,8 +363,67 @@ fn progress(learned: &ksmcmc::mln::Learned, config: &LearnConfig) -> String {
     )
 }
 
+/// `mln evidence --rooms`: the room layer's evidence of a chain's world (and with
+/// --truth-labels the SameRoom atoms).
+fn room_evidence(o: &Options) -> Result<(), CliError> {
+    use ksmcmc::floorplan::{export::RoomInput, room_training, rooms::RoomConfig};
+    if o.truth || o.resolution.is_some() {
+        return Err(CliError::Usage(
+            "mln evidence --rooms takes --truth-labels, not --truth, and the map itself (--map), not --resolution"
+                .into(),
+        ));
+    }
+    let world_path = args::required(o.world.as_ref(), "--world world.json", "mln evidence")?;
+    let map_path = args::required(o.map_yaml.as_ref(), "--map MAP (the map the world explains)", "mln evidence")?;
+    let map = args::load_classified(map_path, "auto")?;
+    let world = args::load_world(world_path, &map)?;
+    let units = world.units.len();
+    let input =
+        RoomInput::for_map(world, &map, true, Default::default()).map_err(|e| args::failed(world_path.display(), e))?;
+    let truth = match &o.truth_labels {
+        Some(p) => {
+            let bytes = std::fs::read(p).map_err(|e| args::failed(p.display(), e))?;
+            room_training::truth_labels_from_pgm(&bytes).map_err(|e| args::failed(p.display(), e))?
+        }
+        // Without truth no unit lies in a truth room: the SameRoom atoms are dropped below.
+        None => ksmcmc::grid::Grid::new(map.width(), map.height(), 0),
+    };
+    let t = input
+        .room_training(&truth, &RoomConfig::default())
+        .map_err(|e| args::failed(o.truth_labels.as_ref().map_or(world_path.display(), |p| p.display()), e))?;
+    let mut facts = t.facts;
+    if o.truth_labels.is_none() {
+        facts.retain(|f| f.0 != "SameRoom");
+    }
+    if let Some(kb) = &o.kb {
+        let mln = Mln::parse(&read(kb)?).map_err(|e| args::failed(kb.display(), e))?;
+        facts.retain(|f| mln.predicate(f.0).is_some());
+    }
+    let what = if o.truth_labels.is_some() { "training world (evidence and true SameRoom atoms)" } else { "evidence" };
+    let stray = t.truth_rooms.iter().filter(|r| r.is_none()).count();
+    let mut text =
+        format!("// Room-layer {what} of {}, {units} units, {} open pairs", world_path.display(), t.open_pairs);
+    if o.truth_labels.is_some() {
+        text.push_str(&format!(", {} in one truth room; {stray} units in no truth room", t.same_room));
+    }
+    text.push_str(&format!(".\n// Closed world: atoms not listed are false.\n{}", knowledge::database_text(&facts)));
+    match &o.out {
+        Some(p) => args::write(p, text.as_bytes()),
+        None => {
+            print!("{text}");
+            Ok(())
+        }
+    }
+}
+
 /// `mln evidence`: the indoor evidence (and with --truth the query atoms) of a world.
 fn evidence(o: &Options) -> Result<(), CliError> {
+    if o.rooms {
+        return room_evidence(o);
+    }
+    if o.truth_labels.is_some() {
+        return Err(CliError::Usage("--truth-labels needs --rooms (the room layer's training world)".into()));
+    }
     let world_path = args::required(o.world.as_ref(), "--world truth.json", "mln evidence")?;
     let resolution = match (o.resolution, &o.map_yaml) {
         (Some(r), None) => r,

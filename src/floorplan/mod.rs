@@ -37,6 +37,7 @@ pub mod synth;
 pub mod topology;
 mod trace;
 pub mod unexplained;
+pub mod wall_gaps;
 pub mod world;
 
 pub use chain::{Chain, ChainConfig, ChainError, DetectorConfig, OutputConfig};

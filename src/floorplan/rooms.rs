@@ -49,6 +49,17 @@ pub struct RoomConfig {
     /// other is an opening, not a door: the units have an open boundary ([`open_pairs`]).
     /// Above 1 no door is.
     pub wide_door_share: f64,
+    /// Longest gap, in cells, between two collinear wall stubs that the doorway split closes
+    /// ([`super::wall_gaps`]): a room open onto a corridor over its width is closed along the
+    /// corridor's wall, as a person draws it. 0 turns it off. The default is 2.5 m at 5 cm
+    /// cells, a double door or the open front of a small office.
+    pub max_wall_gap: u32,
+    /// Shortest wall stub, in cells, on each side of such a gap along its line: a wall crossed
+    /// at right angles (as thick as a wall) is no stub. The default is 0.3 m at 5 cm cells.
+    pub min_wall_stub: u32,
+    /// Smallest extent, in cells, of a connected occupied part for a wall gap to close onto
+    /// it: chairs and the dots of a drawn table are no walls. The default is 1 m at 5 cm cells.
+    pub min_wall_len: u32,
 }
 
 impl Default for RoomConfig {
@@ -63,6 +74,9 @@ impl Default for RoomConfig {
             min_room_depth: 6,
             min_segment_cells: 1000,
             wide_door_share: 0.8,
+            max_wall_gap: 50,
+            min_wall_stub: 6,
+            min_wall_len: 20,
         }
     }
 }
@@ -263,6 +277,9 @@ pub fn labels_of_groups(
     spread_labels(&mut labels, map, queue, c.max_reach);
     label_far_regions(&mut labels, map, rooms.iter().copied().max().unwrap_or(0), c);
     split_at_doorways(&mut labels, map, c);
+    if let Some(closed) = super::wall_gaps::close_wall_gaps(world, map, world_map, c) {
+        split_at_wall_gaps(&mut labels, &closed, c);
+    }
     merge_small_segments(&mut labels, c.min_segment_cells);
     labels
 }
@@ -517,18 +534,41 @@ pub fn split_at_doorways(labels: &mut Grid<u16>, map: &Grid<Cell>, c: &RoomConfi
     }
     let dist = free_depth(map);
     let core_min = c.door_half_width.saturating_mul(3);
-    // Cores: 4-connected parts of core cells with one label; `seed[i]` is the core's number.
+    let (seed, cores) = find_cores(labels, |i| dist[i] > core_min);
+    divide_among_cores(labels, &seed, &cores, c.min_core_cells);
+}
+
+/// Splits rooms along the wall gaps of `closed` (the map with every gap drawn as a wall,
+/// [`super::wall_gaps::close_wall_gaps`]): a room whose free cells, gaps left out, fall into
+/// two or more 4-connected parts of `min_core_cells` or more is divided among those parts
+/// as [`split_at_doorways`] divides a room among its cores. A gap that closes nothing (two
+/// desks in a row, a notch) leaves one part and changes nothing.
+pub fn split_at_wall_gaps(labels: &mut Grid<u16>, closed: &Grid<Cell>, c: &RoomConfig) {
+    let (w, h) = (labels.width(), labels.height());
+    if w == 0 || h == 0 || (closed.width(), closed.height()) != (w, h) {
+        return;
+    }
+    let (seed, cores) = find_cores(labels, |i| closed.cells()[i] == Cell::Free);
+    divide_among_cores(labels, &seed, &cores, c.min_core_cells);
+}
+
+/// The 4-neighbours of `(x, y)` within a `w` x `h` grid.
+fn neighbours4(x: usize, y: usize, w: usize, h: usize) -> impl Iterator<Item = (usize, usize)> {
+    [(x.wrapping_sub(1), y), (x + 1, y), (x, y.wrapping_sub(1)), (x, y + 1)]
+        .into_iter()
+        .filter(move |&(nx, ny)| nx < w && ny < h)
+}
+
+/// Cores: the 4-connected parts of labelled cells with `is_core` and one label. Returns each
+/// cell's core number (0 for none) and each core's (label, cells), index 0 standing for none.
+fn find_cores(labels: &Grid<u16>, is_core: impl Fn(usize) -> bool) -> (Vec<u32>, Vec<(u16, usize)>) {
+    let (w, h) = (labels.width(), labels.height());
     let mut seed = vec![0u32; w * h];
-    let mut cores: Vec<(u16, usize)> = vec![(0, 0)]; // (label, cells); index 0 = none
+    let mut cores: Vec<(u16, usize)> = vec![(0, 0)];
     let mut stack = Vec::new();
-    let neighbours = |x: usize, y: usize| {
-        [(x.wrapping_sub(1), y), (x + 1, y), (x, y.wrapping_sub(1)), (x, y + 1)]
-            .into_iter()
-            .filter(move |&(nx, ny)| nx < w && ny < h)
-    };
     for start in 0..w * h {
         let l = labels.cells()[start];
-        if l == 0 || seed[start] != 0 || dist[start] <= core_min {
+        if l == 0 || seed[start] != 0 || !is_core(start) {
             continue;
         }
         let id = cores.len() as u32;
@@ -537,9 +577,9 @@ pub fn split_at_doorways(labels: &mut Grid<u16>, map: &Grid<Cell>, c: &RoomConfi
         stack.push((start % w, start / w));
         while let Some((x, y)) = stack.pop() {
             n += 1;
-            for (nx, ny) in neighbours(x, y) {
+            for (nx, ny) in neighbours4(x, y, w, h) {
                 let j = ny * w + nx;
-                if seed[j] == 0 && dist[j] > core_min && labels.cells()[j] == l {
+                if seed[j] == 0 && labels.cells()[j] == l && is_core(j) {
                     seed[j] = id;
                     stack.push((nx, ny));
                 }
@@ -547,11 +587,19 @@ pub fn split_at_doorways(labels: &mut Grid<u16>, map: &Grid<Cell>, c: &RoomConfi
         }
         cores.push((l, n));
     }
-    // Rooms with two or more big cores are split; small cores are forgotten.
+    (seed, cores)
+}
+
+/// Divides every room with two or more cores of `min_core_cells` or more among them: each of
+/// its cells joins the core nearest to it through the room (wavefront), cells no core reaches
+/// keep the room's label, and small cores are forgotten. Rooms are then numbered 1..=n in
+/// scan order (unchanged when no room is divided).
+fn divide_among_cores(labels: &mut Grid<u16>, seed: &[u32], cores: &[(u16, usize)], min_core_cells: usize) {
+    let (w, h) = (labels.width(), labels.height());
     let max_label = labels.cells().iter().copied().max().unwrap_or(0) as usize;
     let mut big = vec![0usize; max_label + 1];
     for &(l, n) in &cores[1..] {
-        if n >= c.min_core_cells {
+        if n >= min_core_cells {
             big[l as usize] += 1;
         }
     }
@@ -564,7 +612,7 @@ pub fn split_at_doorways(labels: &mut Grid<u16>, map: &Grid<Cell>, c: &RoomConfi
         let s = seed[i] as usize;
         if s != 0 {
             let (l, n) = cores[s];
-            if big[l as usize] >= 2 && n >= c.min_core_cells {
+            if big[l as usize] >= 2 && n >= min_core_cells {
                 owner[i] = s as u32;
                 queue.push_back(i as u32);
             }
@@ -574,7 +622,7 @@ pub fn split_at_doorways(labels: &mut Grid<u16>, map: &Grid<Cell>, c: &RoomConfi
         let (x, y) = (i as usize % w, i as usize / w);
         let o = owner[i as usize];
         let l = cores[o as usize].0;
-        for (nx, ny) in neighbours(x, y) {
+        for (nx, ny) in neighbours4(x, y, w, h) {
             let j = ny * w + nx;
             if owner[j] == 0 && labels.cells()[j] == l {
                 owner[j] = o;
@@ -783,8 +831,9 @@ mod tests {
         assert_eq!(*labels.at(95, 115), left);
         assert_eq!(*labels.at(105, 45), right);
         assert_eq!(labels.cells().iter().copied().max(), Some(3), "rooms are numbered 1..=n");
-        // Without the split it is one room.
-        let off = RoomConfig { door_half_width: 0, ..RoomConfig::default() };
+        // Without the split (and without closing wall gaps, which close these doorways too)
+        // it is one room.
+        let off = RoomConfig { door_half_width: 0, max_wall_gap: 0, ..RoomConfig::default() };
         let labels = room_labels(&world, &map, &map, &off);
         assert_eq!(*labels.at(50, 20), *labels.at(150, 80));
     }
@@ -812,10 +861,15 @@ mod tests {
         }
         let mut world = World::empty(160, 80);
         world.units = vec![unit(1, 0, 0, 160, 80)];
-        let labels = room_labels(&world, &map, &map, &RoomConfig::default());
+        // Wall gaps off: the doorway split alone (closing the 10-cell gap between the two
+        // wall-thin pieces of cupboard, as the default does, makes the 2 m nook a room).
+        let doorways = RoomConfig { max_wall_gap: 0, ..RoomConfig::default() };
+        let labels = room_labels(&world, &map, &map, &doorways);
         assert_eq!(*labels.at(50, 40), *labels.at(137, 60), "the nook is part of the room");
+        let labels = room_labels(&world, &map, &map, &RoomConfig::default());
+        assert_ne!(*labels.at(50, 40), *labels.at(137, 60), "closed, the nook is a room");
         // With small cores allowed, the same nook is a room of its own: the test can fail.
-        let small = RoomConfig { min_core_cells: 50, ..RoomConfig::default() };
+        let small = RoomConfig { min_core_cells: 50, ..doorways };
         let labels = room_labels(&world, &map, &map, &small);
         assert_ne!(*labels.at(50, 40), *labels.at(137, 60));
     }

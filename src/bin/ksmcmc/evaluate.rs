@@ -13,7 +13,7 @@ use std::path::{Path, PathBuf};
 
 const HELP: &str = "\
 Usage: ksmcmc evaluate [--datasets DIR] [--iterations N] [--seeds K] [--config FILE] [--only SET]
-                       [--room-rules FILE]
+                       [--room-rules FILE] [--room-config FILE]
 
 Prints the quality tables of BENCHMARKS.md:
   bormann    room-segmentation precision and recall on the Bormann et al. maps in DIR/bormann2016
@@ -41,6 +41,10 @@ DIR defaults to ../shared/datasets, N to 20000 iterations, K to 6. --only runs o
 --room-rules FILE: the room rules of knowledge mode (default: the built-in ones).
 --also-room-rules FILE (repeatable): bormann-seeds in knowledge mode also scores these room
 rules on the same chains, one more table each.
+--room-config FILE: the room layer's settings (floorplan::rooms::RoomConfig as JSON, for
+example {\"max_wall_gap\": 0}; default: the built-in ones).
+--also-room-config FILE (repeatable): bormann-seeds also scores these room-layer settings on
+the same chains, in either mode, one more table each.
 ";
 
 /// The sets `--only` can name.
@@ -53,6 +57,10 @@ struct Opts {
     config: ChainConfig,
     /// Further room rules bormann-seeds scores on the same knowledge-mode chains: (file, text).
     more_rules: Vec<(String, String)>,
+    /// The room layer's settings.
+    rooms: RoomConfig,
+    /// Further room-layer settings bormann-seeds scores on the same chains: (file, settings).
+    more_rooms: Vec<(String, RoomConfig)>,
 }
 
 impl Opts {
@@ -60,7 +68,7 @@ impl Opts {
     fn with_knowledge(&self, enabled: bool) -> Opts {
         let mut config = self.config.clone();
         config.knowledge.enabled = enabled;
-        Opts { iterations: self.iterations, seeds: self.seeds, config, more_rules: self.more_rules.clone() }
+        Opts { config, more_rules: self.more_rules.clone(), more_rooms: self.more_rooms.clone(), ..*self }
     }
 }
 
@@ -109,14 +117,22 @@ fn bormann_map_seed(dir: &Path, name: &str, o: &Opts, seed: u64) -> Result<[MapS
     Ok(bormann_map_variants(dir, name, o, seed)?[0])
 }
 
-/// The scores of map `name` with chain seed `seed`, for the options' room rules and then, in
-/// knowledge mode, for each of `o.more_rules` on the same chains.
+/// The room rules and room-layer settings bormann-seeds scores on the same chains: the
+/// options' own, then (in knowledge mode) each of `o.more_rules`, then each of `o.more_rooms`.
+fn room_variants(o: &Opts) -> Vec<(Option<String>, RoomConfig)> {
+    let own = o.config.knowledge.room_kb.clone();
+    std::iter::once((own.clone(), o.rooms))
+        .chain(o.more_rules.iter().filter(|_| o.config.knowledge.enabled).map(|(_, t)| (Some(t.clone()), o.rooms)))
+        .chain(o.more_rooms.iter().map(|(_, c)| (own.clone(), *c)))
+        .collect()
+}
+
+/// The scores of map `name` with chain seed `seed`, for each of [`room_variants`] on the same
+/// chains.
 fn bormann_map_variants(dir: &Path, name: &str, o: &Opts, seed: u64) -> Result<Vec<[MapScore; 2]>, CliError> {
     use ksmcmc::floorplan::export::RoomInput;
     let truth = truth_regions(&dir.join(format!("{name}_gt_segmentation.png")))?;
-    let rules: Vec<Option<String>> = std::iter::once(o.config.knowledge.room_kb.clone())
-        .chain(o.more_rules.iter().filter(|_| o.config.knowledge.enabled).map(|(_, t)| Some(t.clone())))
-        .collect();
+    let rules = room_variants(o);
     let mut out: Vec<Vec<MapScore>> = vec![Vec::new(); rules.len()];
     for suffix in ["", "_furnitures"] {
         let path = dir.join(format!("{name}{suffix}.png"));
@@ -125,8 +141,8 @@ fn bormann_map_variants(dir: &Path, name: &str, o: &Opts, seed: u64) -> Result<V
         let mut chain = explain(&map, o, seed)?;
         let input = RoomInput::of(&mut chain);
         let free = map.classified().map(|&c| c == Cell::Free);
-        for (v, r) in rules.iter().enumerate() {
-            let (_, labels) = input.clone().with_room_rules(r.clone()).explain(&RoomConfig::default());
+        for (v, (r, rooms)) in rules.iter().enumerate() {
+            let (_, labels) = input.clone().with_room_rules(r.clone()).explain(rooms);
             let labels = labels.map(|&l| l as u32);
             out[v].push(MapScore {
                 seg: score_segmentation(&labels, &truth),
@@ -229,6 +245,7 @@ fn bormann_seeds(dir: &Path, o: &Opts) -> Result<(), CliError> {
     if o.config.knowledge.enabled {
         variants.extend(o.more_rules.iter().map(|(f, _)| format!(", room rules {f}")));
     }
+    variants.extend(o.more_rooms.iter().map(|(f, _)| format!(", room layer {f}")));
     // figures[variant][seed][map][8]
     let mut figures: Vec<Vec<Vec<[f64; 8]>>> = vec![vec![Vec::new(); o.seeds as usize]; variants.len()];
     let mut rows: Vec<Vec<String>> = vec![Vec::new(); variants.len()];
@@ -296,7 +313,7 @@ fn synthetic(o: &Opts) -> Result<(), CliError> {
             let world = chain.best_world();
             ks.push(prediction_rate(s.map.classified(), &world));
             furniture.push(s.truth.object_cells.len() as f64 / s.map.classified().cells().len() as f64);
-            let (_, labels) = chain.best_world_with_rooms(&RoomConfig::default());
+            let (_, labels) = chain.best_world_with_rooms(&o.rooms);
             let labels = labels.map(|&l| l as u32);
             let truth: Grid<u32> = s.labels.map(|&l| l as u32);
             let score = score_segmentation(&labels, &truth);
@@ -456,7 +473,7 @@ fn room_kinds() -> Vec<(&'static str, SynthConfig)> {
 fn room_truth(s: &ksmcmc::floorplan::synth::Synthetic, o: &Opts, seed: u64) -> Result<[usize; 4], CliError> {
     use std::collections::BTreeMap;
     let mut chain = explain(&s.map, o, seed)?;
-    let (world, labels) = chain.best_world_with_rooms(&RoomConfig::default());
+    let (world, labels) = chain.best_world_with_rooms(&o.rooms);
     // Cells of each (truth unit index + 1, predicted room) pair.
     let mut overlap: BTreeMap<(u16, u16), u64> = BTreeMap::new();
     for (&t, &p) in s.labels.cells().iter().zip(labels.cells()) {
@@ -530,7 +547,7 @@ fn routes(o: &Opts) -> Result<(), CliError> {
         for seed in 0..o.seeds {
             let s = generate(&synth, 300 + seed).map_err(|e| args::failed(name, e))?;
             let mut chain = explain(&s.map, o, seed + 1)?;
-            let (world, labels) = chain.best_world_with_rooms(&RoomConfig::default());
+            let (world, labels) = chain.best_world_with_rooms(&o.rooms);
             let map = s.map.classified().clone();
             let mut planner =
                 RoutePlanner::new(map, labels, &world, s.map.yaml().resolution).map_err(|e| args::failed(name, e))?;
@@ -572,11 +589,24 @@ fn cartesium(dir: &Path, o: &Opts) -> Result<(), CliError> {
     Ok(())
 }
 
+/// Room-layer settings from a JSON file (missing fields take their defaults).
+fn room_config(path: &Path) -> Result<RoomConfig, CliError> {
+    let text = std::fs::read_to_string(path).map_err(|e| args::failed(path.display(), e))?;
+    serde_json::from_str(&text).map_err(|e| args::failed(format!("{} (room-layer settings)", path.display()), e))
+}
+
 pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     use lexopt::prelude::*;
     let mut parser = lexopt::Parser::from_args(argv);
     let mut dir = PathBuf::from("../shared/datasets");
-    let mut o = Opts { iterations: 20_000, seeds: 6, config: ChainConfig::default(), more_rules: Vec::new() };
+    let mut o = Opts {
+        iterations: 20_000,
+        seeds: 6,
+        config: ChainConfig::default(),
+        more_rules: Vec::new(),
+        rooms: RoomConfig::default(),
+        more_rooms: Vec::new(),
+    };
     let mut only: Option<String> = None;
     let mut rules: Option<String> = None;
     while let Some(arg) = parser.next()? {
@@ -594,6 +624,11 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
             Long("also-room-rules") => {
                 let p = args::path(parser.value()?);
                 o.more_rules.push((p.display().to_string(), crate::floorplan::room_rules(&p)?));
+            }
+            Long("room-config") => o.rooms = room_config(&args::path(parser.value()?))?,
+            Long("also-room-config") => {
+                let p = args::path(parser.value()?);
+                o.more_rooms.push((p.display().to_string(), room_config(&p)?));
             }
             Long("help") | Short('h') => {
                 print!("{HELP}");

@@ -1,0 +1,376 @@
+//! Wall gaps: the lines a person draws to close a room where its wall stops short.
+//!
+//! A room that opens onto a corridor over most of its width has no wall and no door between
+//! the two, yet a person drawing the floor plan closes it along the corridor's wall, from one
+//! wall stub to the next (the ground truth of the room-segmentation benchmark is drawn so).
+//! A rectangle of the chain cannot tell: the unit that explains the corridor's walls may reach
+//! into the room, and the room layer then labels room and corridor as one segment.
+//!
+//! This module finds those gaps. In the world frame, where walls run along the axes, a *gap*
+//! is a run of free cells along a row or a column, at most [`RoomConfig::max_wall_gap`] cells
+//! long, between two ends of walls of that line, at least one of them a *stub*: a wall lying
+//! along the line for [`RoomConfig::min_wall_stub`] cells or more and somewhere no deeper
+//! across it than a wall (a desk is deep all along). The other end may be a stub or a
+//! *corner*, a wall meeting the line from one side. Three things a person would not close
+//! stay open:
+//!
+//! * a corridor seen from the tip of a wall pointing at its far wall (that wall runs on
+//!   through the line on both sides: no corner);
+//! * a corridor passing between the walls of the rooms either side of it (walls cross the
+//!   line at both ends of the gap);
+//! * gaps onto chairs, the dots of a drawn table and specks: occupied parts less than
+//!   [`RoomConfig::min_wall_len`] long are no walls.
+//!
+//! The gaps are drawn into a copy of the map as occupied cells ([`close_wall_gaps`]), and the
+//! room layer splits a room whose cells the gaps part into two or more parts of a room core's
+//! size ([`super::rooms::split_at_wall_gaps`]); a gap that closes nothing changes nothing.
+//! The gaps never reach the chain, its likelihood or K(W,M): they are a reading of the walls,
+//! not an observation.
+
+use super::rooms::RoomConfig;
+use super::world::World;
+use crate::grid::{Cell, Grid};
+
+/// Cells of the world frame (row-major, `world_map`'s size) that close a wall gap. `depth` is
+/// the thickest a wall stub may be across its line, in cells (furniture along a line is
+/// deeper than a wall).
+///
+/// ```
+/// use ksmcmc::floorplan::rooms::RoomConfig;
+/// use ksmcmc::floorplan::wall_gaps::wall_gaps;
+/// use ksmcmc::grid::{Cell, Grid};
+///
+/// // A wall along row 5 with a 4-cell gap between two 10-cell stubs.
+/// let mut map = Grid::new(24, 11, Cell::Free);
+/// for x in (0..10).chain(14..24) {
+///     *map.at_mut(x, 5) = Cell::Occupied;
+/// }
+/// let c = RoomConfig { max_wall_gap: 6, min_wall_stub: 6, min_wall_len: 8, ..RoomConfig::default() };
+/// let gaps = wall_gaps(&map, &c, 3);
+/// assert!((10..14).all(|x| gaps[5 * 24 + x]));
+/// assert_eq!(gaps.iter().filter(|&&g| g).count(), 4);
+/// ```
+pub fn wall_gaps(world_map: &Grid<Cell>, c: &RoomConfig, depth: usize) -> Vec<bool> {
+    let (w, h) = (world_map.width(), world_map.height());
+    let mut gaps = vec![false; w * h];
+    if c.max_wall_gap == 0 || w == 0 || h == 0 {
+        return gaps;
+    }
+    let cells = world_map.cells();
+    let wall = walls(world_map, c.min_wall_len as usize);
+    for y in 0..h {
+        let line = Line {
+            len: w,
+            wall: |x: usize, off: isize| {
+                let yy = y as isize + off;
+                yy >= 0 && (yy as usize) < h && wall[yy as usize * w + x]
+            },
+            free: |x: usize| cells[y * w + x] == Cell::Free,
+            depth,
+        };
+        line.mark(c, |x| gaps[y * w + x] = true);
+    }
+    for x in 0..w {
+        let line = Line {
+            len: h,
+            wall: |y: usize, off: isize| {
+                let xx = x as isize + off;
+                xx >= 0 && (xx as usize) < w && wall[y * w + xx as usize]
+            },
+            free: |y: usize| cells[y * w + x] == Cell::Free,
+            depth,
+        };
+        line.mark(c, |y| gaps[y * w + x] = true);
+    }
+    gaps
+}
+
+/// Which cells are walls: occupied cells of an 8-connected occupied part at least `min_len`
+/// cells long or wide. Smaller parts (chairs, the dots of a drawn table, specks) are no wall
+/// a gap could close onto.
+fn walls(map: &Grid<Cell>, min_len: usize) -> Vec<bool> {
+    let (w, h) = (map.width(), map.height());
+    let cells = map.cells();
+    let mut wall = vec![false; w * h];
+    let mut seen = vec![false; w * h];
+    let (mut stack, mut part) = (Vec::new(), Vec::new());
+    for start in 0..w * h {
+        if seen[start] || cells[start] != Cell::Occupied {
+            continue;
+        }
+        seen[start] = true;
+        stack.push(start);
+        part.clear();
+        let (mut x0, mut y0, mut x1, mut y1) = (usize::MAX, usize::MAX, 0, 0);
+        while let Some(i) = stack.pop() {
+            part.push(i);
+            let (x, y) = (i % w, i / w);
+            (x0, y0, x1, y1) = (x0.min(x), y0.min(y), x1.max(x), y1.max(y));
+            for ny in y.saturating_sub(1)..=(y + 1).min(h - 1) {
+                for nx in x.saturating_sub(1)..=(x + 1).min(w - 1) {
+                    let j = ny * w + nx;
+                    if !seen[j] && cells[j] == Cell::Occupied {
+                        seen[j] = true;
+                        stack.push(j);
+                    }
+                }
+            }
+        }
+        if (x1 - x0 + 1).max(y1 - y0 + 1) >= min_len {
+            part.iter().for_each(|&i| wall[i] = true);
+        }
+    }
+    wall
+}
+
+/// One row or column of the world frame: `wall(i, off)` is whether a wall holds the cell at
+/// position `i` along the line and `off` cells across it, `free(i)` whether the line's own
+/// cell at `i` is free. `depth` is the thickest a wall stub may be across the line.
+struct Line<W, F> {
+    len: usize,
+    wall: W,
+    free: F,
+    depth: usize,
+}
+
+impl<W: Fn(usize, isize) -> bool, F: Fn(usize) -> bool> Line<W, F> {
+    /// Whether a wall of the line holds position `i`.
+    fn band(&self, i: usize) -> bool {
+        (self.wall)(i, 0)
+    }
+
+    /// Wall cells within `2 * depth` of the line across it at position `i`.
+    fn across(&self, i: usize) -> usize {
+        let d = 2 * self.depth as isize;
+        (-d..=d).filter(|&off| (self.wall)(i, off)).count()
+    }
+
+    /// Whether a wall crosses the line at position `i`: wall beyond a stub's depth on both
+    /// sides.
+    fn crossed(&self, i: usize) -> bool {
+        let d = self.depth as isize;
+        (d + 1..=2 * d).any(|off| (self.wall)(i, off)) && (d + 1..=2 * d).any(|off| (self.wall)(i, -off))
+    }
+
+    /// Whether the run `s..e` of the band is a wall stub: long along the line and somewhere
+    /// no deeper across it than a wall (a stub meets the wall it sticks out of; a desk is
+    /// deep all along).
+    fn stub(&self, (s, e): (usize, usize), c: &RoomConfig) -> bool {
+        e - s >= c.min_wall_stub.max(1) as usize && (s..e).any(|k| self.across(k) <= self.depth)
+    }
+
+    /// Whether the run `s..e` is a stub or a corner: a wall meeting the line from one side,
+    /// no longer along the line than a stub is deep and reaching across it at least twice
+    /// that. A wall running on through the line (the far wall of a corridor seen from the tip
+    /// of a wall pointing at it) is no end: closing onto it would cut the corridor.
+    fn end(&self, (s, e): (usize, usize), c: &RoomConfig) -> bool {
+        let mid = (s + e) / 2;
+        self.stub((s, e), c) || (e - s <= self.depth && self.across(mid) >= 2 * self.depth && !self.crossed(mid))
+    }
+
+    /// Marks every free run between two ends of walls of the line ([`Line::end`]), at least
+    /// one of them a stub, that is short enough to be a gap, unless walls cross the line at
+    /// both ends (a corridor passing between the walls of the rooms either side of it).
+    fn mark(&self, c: &RoomConfig, mut mark: impl FnMut(usize)) {
+        let max_gap = c.max_wall_gap as usize;
+        let mut prev: Option<(usize, usize)> = None;
+        let mut i = 0;
+        while i < self.len {
+            if !self.band(i) {
+                i += 1;
+                continue;
+            }
+            let start = i;
+            while i < self.len && self.band(i) {
+                i += 1;
+            }
+            if let Some(p) = prev {
+                let gap = p.1..start;
+                let next = (start, i);
+                let d = self.depth;
+                let passage = (p.1.saturating_sub(d).max(p.0)..p.1).any(|k| self.crossed(k))
+                    && (start..(start + d).min(i)).any(|k| self.crossed(k));
+                if gap.len() <= max_gap
+                    && gap.clone().all(|k| (self.free)(k))
+                    && ((self.stub(p, c) && self.end(next, c)) || (self.end(p, c) && self.stub(next, c)))
+                    && !passage
+                {
+                    gap.for_each(&mut mark);
+                }
+            }
+            prev = Some((start, i));
+        }
+    }
+}
+
+/// The deepest a wall stub may be across its line for walls `t` cells thick: the wall and
+/// three cells of drawing noise (anti-aliased edges, a wall a cell off its line).
+pub fn stub_depth(t: i32) -> usize {
+    t.max(1) as usize + 3
+}
+
+/// The map (in the map frame) with every wall gap ([`wall_gaps`], found in the world frame)
+/// drawn as occupied; `None` when there is none, or gaps are off.
+pub fn close_wall_gaps(world: &World, map: &Grid<Cell>, world_map: &Grid<Cell>, c: &RoomConfig) -> Option<Grid<Cell>> {
+    let gaps = wall_gaps(world_map, c, stub_depth(world.wall_thickness));
+    if !gaps.contains(&true) {
+        return None;
+    }
+    let (ww, wh) = (world_map.width(), world_map.height());
+    let rotation = world.frame.rotation();
+    let mut closed = map.clone();
+    for my in 0..map.height() {
+        for mx in 0..map.width() {
+            if *map.at(mx, my) != Cell::Free {
+                continue;
+            }
+            let (wx, wy) = if world.frame.is_identity() {
+                (mx as f64 + 0.5, my as f64 + 0.5)
+            } else {
+                rotation.to_world(mx as f64 + 0.5, my as f64 + 0.5)
+            };
+            if wx >= 0.0
+                && wy >= 0.0
+                && (wx as usize) < ww
+                && (wy as usize) < wh
+                && gaps[wy as usize * ww + wx as usize]
+            {
+                *closed.at_mut(mx, my) = Cell::Occupied;
+            }
+        }
+    }
+    Some(closed)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::floorplan::rooms::labels_of_groups;
+    use crate::floorplan::{Unit, UnitType};
+
+    fn config(gap: u32, stub: u32) -> RoomConfig {
+        RoomConfig { max_wall_gap: gap, min_wall_stub: stub, min_wall_len: 1, ..RoomConfig::default() }
+    }
+
+    fn fill(map: &mut Grid<Cell>, xs: std::ops::Range<usize>, ys: std::ops::Range<usize>, cell: Cell) {
+        for y in ys {
+            for x in xs.clone() {
+                *map.at_mut(x, y) = cell;
+            }
+        }
+    }
+
+    fn marked(gaps: &[bool], w: usize) -> Vec<(usize, usize)> {
+        (0..gaps.len()).filter(|&i| gaps[i]).map(|i| (i % w, i / w)).collect()
+    }
+
+    #[test]
+    fn gaps_between_stubs_close_along_rows_and_columns() {
+        let mut map = Grid::new(30, 30, Cell::Free);
+        fill(&mut map, 0..8, 10..11, Cell::Occupied);
+        fill(&mut map, 12..13, 10..30, Cell::Occupied);
+        fill(&mut map, 20..21, 0..14, Cell::Occupied);
+        fill(&mut map, 20..21, 17..30, Cell::Occupied);
+        let got = marked(&wall_gaps(&map, &config(5, 5), 3), 30);
+        // Row 10 between the stub 0..8 and the corner of the wall meeting it from below at
+        // x = 12; column 20 between y = 14 and 17.
+        let want = [(8, 10), (9, 10), (10, 10), (11, 10), (20, 14), (20, 15), (20, 16)];
+        assert_eq!(got, want);
+        // A stub and a short run that crosses nothing: no wall end there, nothing closes.
+        let mut map = Grid::new(30, 5, Cell::Free);
+        fill(&mut map, 0..8, 2..3, Cell::Occupied);
+        fill(&mut map, 12..16, 2..3, Cell::Occupied);
+        assert!(!wall_gaps(&map, &config(5, 5), 3).contains(&true));
+    }
+
+    #[test]
+    fn walls_crossed_at_right_angles_and_deep_furniture_are_no_stubs() {
+        // A room 4 cells wide between two vertical walls: its rows cross the walls (runs of
+        // one cell), which are no stubs, so nothing closes.
+        let mut map = Grid::new(20, 20, Cell::Free);
+        fill(&mut map, 5..6, 0..20, Cell::Occupied);
+        fill(&mut map, 10..11, 0..20, Cell::Occupied);
+        assert!(!wall_gaps(&map, &config(8, 3), 3).contains(&true));
+        // A desk 8 cells deep 3 cells from a wall: deep all along, no stub.
+        let mut map = Grid::new(30, 30, Cell::Free);
+        fill(&mut map, 0..1, 0..30, Cell::Occupied);
+        fill(&mut map, 4..14, 10..18, Cell::Occupied);
+        assert!(!wall_gaps(&map, &config(8, 3), 3).contains(&true));
+        // A wall stub pointing at a wall that runs on through its line (the far wall of a
+        // corridor): no corner, nothing closes.
+        let mut map = Grid::new(30, 30, Cell::Free);
+        fill(&mut map, 0..1, 0..30, Cell::Occupied);
+        fill(&mut map, 4..14, 10..11, Cell::Occupied);
+        assert!(!wall_gaps(&map, &config(8, 3), 3).contains(&true));
+        // Where that wall meets the line from one side only (a corner), the gap closes.
+        fill(&mut map, 0..1, 0..10, Cell::Free);
+        assert_eq!(marked(&wall_gaps(&map, &config(8, 3), 3), 30), [(1, 10), (2, 10), (3, 10)]);
+        // Parts shorter than `min_wall_len` (chairs, a table's dots) are no walls to close onto.
+        let mut map = Grid::new(30, 5, Cell::Free);
+        fill(&mut map, 0..10, 2..3, Cell::Occupied);
+        fill(&mut map, 14..20, 2..3, Cell::Occupied);
+        let c = RoomConfig { min_wall_len: 7, ..config(8, 3) };
+        assert!(!wall_gaps(&map, &c, 3).contains(&true));
+        let c = RoomConfig { min_wall_len: 6, ..config(8, 3) };
+        assert_eq!(marked(&wall_gaps(&map, &c, 3), 30), [(10, 2), (11, 2), (12, 2), (13, 2)]);
+    }
+
+    #[test]
+    fn a_corridor_between_room_walls_stays_open_a_door_closes() {
+        // A corridor (x = 20..30) between two vertical walls; the rooms either side have walls
+        // along row 20 that meet the corridor's walls. The corridor passes between them: the
+        // walls cross the row at both ends of the gap, and it stays open.
+        let mut map = Grid::new(50, 40, Cell::Free);
+        fill(&mut map, 19..20, 0..40, Cell::Occupied);
+        fill(&mut map, 30..31, 0..40, Cell::Occupied);
+        fill(&mut map, 0..19, 20..21, Cell::Occupied);
+        fill(&mut map, 31..50, 20..21, Cell::Occupied);
+        assert!(!wall_gaps(&map, &config(15, 5), 3).iter().enumerate().any(|(i, &g)| g && i / 50 == 20));
+        // A door in the corridor's right wall (y = 5..9), between two free wall ends, closes.
+        fill(&mut map, 30..31, 5..9, Cell::Free);
+        let gaps = wall_gaps(&map, &config(15, 5), 3);
+        assert!((5..9).all(|y| gaps[y * 50 + 30]));
+    }
+
+    #[test]
+    fn long_gaps_unknown_gaps_and_off_stay_open() {
+        let mut map = Grid::new(40, 5, Cell::Free);
+        fill(&mut map, 0..10, 2..3, Cell::Occupied);
+        fill(&mut map, 20..30, 2..3, Cell::Occupied);
+        fill(&mut map, 33..40, 2..3, Cell::Occupied);
+        *map.at_mut(31, 2) = Cell::Unknown;
+        // 10 cells is over the longest gap; the second gap holds an unknown cell on its line.
+        assert!(!wall_gaps(&map, &config(9, 5), 3).iter().enumerate().any(|(i, &g)| g && i / 40 == 2));
+        let gaps = wall_gaps(&map, &config(10, 5), 3);
+        assert!((10..20).all(|x| gaps[2 * 40 + x]));
+        assert!(!(30..33).any(|x| gaps[2 * 40 + x]));
+        assert!(!wall_gaps(&map, &config(0, 5), 3).contains(&true));
+    }
+
+    /// A corridor along the top and, below it, a room whose front is open between two wall
+    /// stubs, one unit over both: the room layer parts them only with gaps closed.
+    #[test]
+    fn an_open_room_front_parts_room_and_corridor() {
+        let (w, h) = (120, 100);
+        let mut map = Grid::new(w, h, Cell::Free);
+        // Outer walls.
+        fill(&mut map, 0..w, 0..1, Cell::Occupied);
+        fill(&mut map, 0..w, h - 1..h, Cell::Occupied);
+        fill(&mut map, 0..1, 0..h, Cell::Occupied);
+        fill(&mut map, w - 1..w, 0..h, Cell::Occupied);
+        // The corridor's lower wall at y = 40, open between x = 40 and x = 80.
+        fill(&mut map, 0..40, 40..41, Cell::Occupied);
+        fill(&mut map, 80..w, 40..41, Cell::Occupied);
+        let mut world = World::empty(w as u32, h as u32);
+        world.wall_thickness = 1;
+        world.units = vec![Unit { id: 1, x: 0, y: 0, w: w as i32, h: h as i32, kind: UnitType::Room }];
+        let c = RoomConfig { max_wall_gap: 50, min_wall_stub: 6, min_core_cells: 200, ..RoomConfig::default() };
+        let labels = labels_of_groups(&world, &[1], &map, &map, &c);
+        assert_ne!(labels.at(60, 20), labels.at(60, 70), "corridor and room are two segments");
+        let open = labels_of_groups(&world, &[1], &map, &map, &RoomConfig { max_wall_gap: 0, ..c });
+        assert_eq!(open.at(60, 20), open.at(60, 70), "without gaps they are one");
+        // 40 cells is over a 30-cell gap: the front stays open.
+        let wide = labels_of_groups(&world, &[1], &map, &map, &RoomConfig { max_wall_gap: 30, ..c });
+        assert_eq!(wide.at(60, 20), wide.at(60, 70));
+    }
+}

@@ -58,7 +58,8 @@ pub struct RoomConfig {
     /// at right angles (as thick as a wall) is no stub. The default is 0.3 m at 5 cm cells.
     pub min_wall_stub: u32,
     /// Smallest extent, in cells, of a connected occupied part for a wall gap to close onto
-    /// it: chairs and the dots of a drawn table are no walls. The default is 1 m at 5 cm cells.
+    /// it: chairs, the dots of a drawn table and the clutter of a SLAM map are no walls. The
+    /// default is 2 m at 5 cm cells, the side of a small room.
     pub min_wall_len: u32,
 }
 
@@ -76,7 +77,7 @@ impl Default for RoomConfig {
             wide_door_share: 0.8,
             max_wall_gap: 50,
             min_wall_stub: 6,
-            min_wall_len: 20,
+            min_wall_len: 40,
         }
     }
 }

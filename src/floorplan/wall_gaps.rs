@@ -148,8 +148,14 @@ impl<W: Fn(usize, isize) -> bool, F: Fn(usize) -> bool> Line<W, F> {
     /// Whether a wall crosses the line at position `i`: wall beyond a stub's depth on both
     /// sides.
     fn crossed(&self, i: usize) -> bool {
+        self.side(i, 1) && self.side(i, -1)
+    }
+
+    /// Whether a wall leaves the line at position `i` towards `sign` (1 or -1), beyond a
+    /// stub's depth.
+    fn side(&self, i: usize, sign: isize) -> bool {
         let d = self.depth as isize;
-        (d + 1..=2 * d).any(|off| (self.wall)(i, off)) && (d + 1..=2 * d).any(|off| (self.wall)(i, -off))
+        (d + 1..=2 * d).any(|off| (self.wall)(i, sign * off))
     }
 
     /// Whether the run `s..e` of the band is a wall stub: long along the line and somewhere

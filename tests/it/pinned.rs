@@ -74,7 +74,7 @@ fn pinned_synthetic() {
 
 #[test]
 fn pinned_cartesium() {
-    pin_dataset("radish/ubremen-cartesium.png", 0xbeef_be2e_edf5_5312);
+    pin_dataset("radish/ubremen-cartesium.png", 0x3fe8_829c_8cbe_1bec);
 }
 
 #[test]

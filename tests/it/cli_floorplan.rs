@@ -291,6 +291,22 @@ fn evaluate_pairs_knowledge_with_the_weak_prior_and_refuses_unknown_sets() {
 }
 
 #[test]
+fn evaluate_reads_room_layer_settings_and_says_what_is_wrong_with_them() {
+    let d = tmp("room-config");
+    let missing = d.join("missing.json");
+    let out = run(&["evaluate", "--only", "bormann", "--room-config", missing.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("missing.json"), "{err}");
+    let bad = d.join("bad.json");
+    std::fs::write(&bad, r#"{"max_wall_gap": 50, "max_wal_gap": 3}"#).unwrap();
+    let out = run(&["evaluate", "--only", "bormann", "--also-room-config", bad.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("bad.json") && err.contains("room-layer settings") && err.contains("max_wal_gap"), "{err}");
+}
+
+#[test]
 fn edits_name_and_type_a_room_and_bad_edits_say_which() {
     let d = tmp("edits");
     let map = sample("office-small/map.yaml");

@@ -15,7 +15,7 @@
 //! stay open:
 //!
 //! * a corridor seen from the tip of a wall pointing at its far wall (that wall runs on
-//!   through the line on both sides: no corner);
+//!   through the line on both sides, or is the jamb of a door in it: no corner);
 //! * a corridor passing between the walls of the rooms either side of it (walls cross the
 //!   line at both ends of the gap);
 //! * gaps onto chairs, the dots of a drawn table and specks: occupied parts less than
@@ -167,11 +167,36 @@ impl<W: Fn(usize, isize) -> bool, F: Fn(usize) -> bool> Line<W, F> {
 
     /// Whether the run `s..e` is a stub or a corner: a wall meeting the line from one side,
     /// no longer along the line than a stub is deep and reaching across it at least twice
-    /// that. A wall running on through the line (the far wall of a corridor seen from the tip
-    /// of a wall pointing at it) is no end: closing onto it would cut the corridor.
-    fn end(&self, (s, e): (usize, usize), c: &RoomConfig) -> bool {
+    /// that. Two walls are no corner: one running on through the line (the far wall of a
+    /// corridor seen from the tip of a wall pointing at it), and the jamb of a door in a wall
+    /// across the line (the wall resumes beyond the tip within a doorway's width, `door`
+    /// cells). Closing onto either would cut a corridor.
+    fn end(&self, (s, e): (usize, usize), c: &RoomConfig, door: usize) -> bool {
         let mid = (s + e) / 2;
-        self.stub((s, e), c) || (e - s <= self.depth && self.across(mid) >= 2 * self.depth && !self.crossed(mid))
+        if self.stub((s, e), c) {
+            return true;
+        }
+        let corner = e - s <= self.depth && self.across(mid) >= 2 * self.depth && !self.crossed(mid);
+        corner && !(s..e).any(|k| self.jamb(k, door))
+    }
+
+    /// Whether the wall meeting the line at position `i` (from the side it reaches) resumes
+    /// beyond its tip, on the other side, within `door` free cells.
+    fn jamb(&self, i: usize, door: usize) -> bool {
+        let sign = if self.side(i, 1) { -1 } else { 1 };
+        // Past the tip's own cells, then across the opening.
+        let mut k = 1;
+        while k <= self.depth as isize && (self.wall)(i, sign * k) {
+            k += 1;
+        }
+        let opening = k;
+        while k < opening + door as isize {
+            if (self.wall)(i, sign * k) {
+                return k > opening;
+            }
+            k += 1;
+        }
+        false
     }
 
     /// Marks every free run between two ends of walls of the line ([`Line::end`]), at least
@@ -179,6 +204,7 @@ impl<W: Fn(usize, isize) -> bool, F: Fn(usize) -> bool> Line<W, F> {
     /// both ends (a corridor passing between the walls of the rooms either side of it).
     fn mark(&self, c: &RoomConfig, mut mark: impl FnMut(usize)) {
         let max_gap = c.max_wall_gap as usize;
+        let door = 2 * c.door_half_width as usize;
         let mut prev: Option<(usize, usize)> = None;
         let mut i = 0;
         while i < self.len {
@@ -198,7 +224,7 @@ impl<W: Fn(usize, isize) -> bool, F: Fn(usize) -> bool> Line<W, F> {
                     && (start..(start + d).min(i)).any(|k| self.crossed(k));
                 if gap.len() <= max_gap
                     && gap.clone().all(|k| (self.free)(k))
-                    && ((self.stub(p, c) && self.end(next, c)) || (self.end(p, c) && self.stub(next, c)))
+                    && ((self.stub(p, c) && self.end(next, c, door)) || (self.end(p, c, door) && self.stub(next, c)))
                     && !passage
                 {
                     gap.for_each(&mut mark);
@@ -336,6 +362,26 @@ mod tests {
         fill(&mut map, 30..31, 5..9, Cell::Free);
         let gaps = wall_gaps(&map, &config(15, 5), 3);
         assert!((5..9).all(|y| gaps[y * 50 + 30]));
+    }
+
+    #[test]
+    fn a_door_jamb_across_the_line_is_no_corner() {
+        // A stub along column 20 (y = 30..50) points up at a horizontal wall (row 10) that
+        // ends at x = 21: a corner, so the column closes between them.
+        let mut map = Grid::new(60, 60, Cell::Free);
+        fill(&mut map, 20..21, 30..50, Cell::Occupied);
+        fill(&mut map, 0..22, 10..11, Cell::Occupied);
+        let c = RoomConfig { door_half_width: 6, ..config(30, 5) };
+        let gaps = wall_gaps(&map, &c, 3);
+        assert!((11..30).all(|y| gaps[y * 60 + 20]));
+        // The same wall resuming 8 cells on (a door 8 cells wide, under 12): a jamb, no corner.
+        fill(&mut map, 30..60, 10..11, Cell::Occupied);
+        let gaps = wall_gaps(&map, &c, 3);
+        assert!(!(11..30).any(|y| gaps[y * 60 + 20]));
+        // A wider opening (over twice the door half-width) is no door: the corner is back.
+        let c = RoomConfig { door_half_width: 3, ..c };
+        let gaps = wall_gaps(&map, &c, 3);
+        assert!((11..30).all(|y| gaps[y * 60 + 20]));
     }
 
     #[test]

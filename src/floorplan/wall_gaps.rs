@@ -85,31 +85,37 @@ pub fn wall_gaps(world_map: &Grid<Cell>, c: &RoomConfig, depth: usize) -> Vec<bo
     gaps
 }
 
-/// Which cells are walls: occupied cells of an 8-connected occupied part at least `min_len`
-/// cells long or wide. Smaller parts (chairs, the dots of a drawn table, specks) are no wall
-/// a gap could close onto.
+/// Which cells are walls: occupied cells of a connected part at least `min_len` cells long or
+/// wide. Parts are 8-connected through occupied cells and unknown cells next to them (within
+/// [`HOLE_REACH`]), so a wall that a scan saw in pieces, with unseen cells in it, is one part;
+/// smaller parts (chairs, the dots of a drawn table, specks amid free space) are no wall a gap
+/// could close onto.
 fn walls(map: &Grid<Cell>, min_len: usize) -> Vec<bool> {
     let (w, h) = (map.width(), map.height());
     let cells = map.cells();
     let mut wall = vec![false; w * h];
     let mut seen = vec![false; w * h];
-    let (mut stack, mut part) = (Vec::new(), Vec::new());
+    let near = near_occupied(map, HOLE_REACH);
+    let (mut stack, mut occupied) = (Vec::new(), Vec::new());
     for start in 0..w * h {
         if seen[start] || cells[start] != Cell::Occupied {
             continue;
         }
         seen[start] = true;
         stack.push(start);
-        part.clear();
+        occupied.clear();
         let (mut x0, mut y0, mut x1, mut y1) = (usize::MAX, usize::MAX, 0, 0);
         while let Some(i) = stack.pop() {
-            part.push(i);
+            if cells[i] == Cell::Occupied {
+                occupied.push(i);
+            }
             let (x, y) = (i % w, i / w);
             (x0, y0, x1, y1) = (x0.min(x), y0.min(y), x1.max(x), y1.max(y));
             for ny in y.saturating_sub(1)..=(y + 1).min(h - 1) {
                 for nx in x.saturating_sub(1)..=(x + 1).min(w - 1) {
                     let j = ny * w + nx;
-                    if !seen[j] && cells[j] == Cell::Occupied {
+                    let joins = cells[j] == Cell::Occupied || (cells[j] == Cell::Unknown && near[j]);
+                    if !seen[j] && joins {
                         seen[j] = true;
                         stack.push(j);
                     }
@@ -117,10 +123,42 @@ fn walls(map: &Grid<Cell>, min_len: usize) -> Vec<bool> {
             }
         }
         if (x1 - x0 + 1).max(y1 - y0 + 1) >= min_len {
-            part.iter().for_each(|&i| wall[i] = true);
+            occupied.iter().for_each(|&i| wall[i] = true);
         }
     }
     wall
+}
+
+/// How far, in cells, an unknown cell may lie from an occupied one and still join the parts of
+/// a wall (a hole a scan left in it), without joining clutter to the unexplored space around.
+const HOLE_REACH: usize = 2;
+
+/// Cells within `reach` (Chebyshev distance) of an occupied cell.
+fn near_occupied(map: &Grid<Cell>, reach: usize) -> Vec<bool> {
+    let (w, h) = (map.width(), map.height());
+    let cells = map.cells();
+    // Rows first, then columns: a square dilation in two passes.
+    let mut rows = vec![false; w * h];
+    for y in 0..h {
+        for x in 0..w {
+            if cells[y * w + x] == Cell::Occupied {
+                for nx in x.saturating_sub(reach)..=(x + reach).min(w - 1) {
+                    rows[y * w + nx] = true;
+                }
+            }
+        }
+    }
+    let mut near = vec![false; w * h];
+    for y in 0..h {
+        for x in 0..w {
+            if rows[y * w + x] {
+                for ny in y.saturating_sub(reach)..=(y + reach).min(h - 1) {
+                    near[ny * w + x] = true;
+                }
+            }
+        }
+    }
+    near
 }
 
 /// One row or column of the world frame: `wall(i, off)` is whether a wall holds the cell at
@@ -382,6 +420,27 @@ mod tests {
         let c = RoomConfig { door_half_width: 3, ..c };
         let gaps = wall_gaps(&map, &c, 3);
         assert!((11..30).all(|y| gaps[y * 60 + 20]));
+    }
+
+    #[test]
+    fn a_wall_seen_in_pieces_is_one_wall() {
+        // A corridor's far wall (row 10) with unseen holes beside column 20, the end of its
+        // left piece; its middle piece is 8 cells, under `min_wall_len`. Joined through the
+        // holes it is one wall running on through column 20, so the stub below does not close
+        // onto it (it would cut the corridor).
+        let mut map = Grid::new(40, 40, Cell::Free);
+        fill(&mut map, 0..40, 10..11, Cell::Occupied);
+        fill(&mut map, 21..23, 10..11, Cell::Unknown);
+        fill(&mut map, 31..33, 10..11, Cell::Unknown);
+        fill(&mut map, 20..21, 25..40, Cell::Occupied);
+        let c = RoomConfig { min_wall_len: 12, ..config(20, 5) };
+        assert!(!wall_gaps(&map, &c, 3).iter().enumerate().any(|(i, &g)| g && i % 40 == 20));
+        // Holes wider than twice the reach part the wall: the pieces right of column 20 are
+        // too short to be walls, column 20 is a corner, and the stub closes onto it.
+        fill(&mut map, 21..27, 10..11, Cell::Unknown);
+        fill(&mut map, 31..37, 10..11, Cell::Unknown);
+        let gaps = wall_gaps(&map, &c, 3);
+        assert!((11..25).all(|y| gaps[y * 40 + 20]));
     }
 
     #[test]

@@ -74,7 +74,7 @@ fn pinned_synthetic() {
 
 #[test]
 fn pinned_cartesium() {
-    pin_dataset("radish/ubremen-cartesium.png", 0xc966_b35c_966e_a0ed);
+    pin_dataset("radish/ubremen-cartesium.png", 0x77ed_e822_ce13_dac5);
 }
 
 #[test]

@@ -19,7 +19,8 @@
 //! * a corridor passing between the walls of the rooms either side of it (walls cross the
 //!   line at both ends of the gap);
 //! * gaps onto chairs, the dots of a drawn table and specks: occupied parts less than
-//!   [`RoomConfig::min_wall_len`] long are no walls.
+//!   [`RoomConfig::min_wall_len`] long are no walls (a wall's parts join through the unseen
+//!   cells beside them, so a wall a scan saw in pieces is still one wall).
 //!
 //! The gaps are drawn into a copy of the map as occupied cells ([`close_wall_gaps`]), and the
 //! room layer splits a room whose cells the gaps part into two or more parts of a room core's

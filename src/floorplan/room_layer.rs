@@ -20,10 +20,9 @@
 
 use super::edits::Edits;
 use super::knowledge::{constant, Fact};
-use super::rooms::{join, labels_of_groups, open_pairs, OpenPair, RoomConfig};
+use super::rooms::{join, labels_of_groups, open_pairs, world_cell, OpenPair, RoomConfig};
 use super::topology::{touching, MIN_CONTACT_CELLS};
 use super::world::{Room, UnitType, World};
-use crate::geometry::Rotation;
 use crate::grid::{Cell, Grid};
 use crate::mln::{Database, Evidence, GroundConfig, InferenceConfig, Mln, MlnError, Network};
 use std::collections::{BTreeMap, BTreeSet};
@@ -259,18 +258,6 @@ struct Tally {
     units: BTreeMap<usize, u64>,
 }
 
-/// The world-frame cell under map cell `(mx, my)`, if inside the world; `rotation` is the
-/// world frame's ([`crate::geometry::Frame::rotation`]), worked out once for a loop over cells.
-fn world_cell(world: &World, rotation: &Rotation, mx: usize, my: usize) -> Option<(i32, i32)> {
-    let (wx, wy) = if world.frame.is_identity() {
-        (mx as f64 + 0.5, my as f64 + 0.5)
-    } else {
-        rotation.to_world(mx as f64 + 0.5, my as f64 + 0.5)
-    };
-    let [ww, wh] = world.frame.world_size;
-    (wx >= 0.0 && wy >= 0.0 && wx < ww as f64 && wy < wh as f64).then_some((wx as i32, wy as i32))
-}
-
 /// The map cell under world cell `(x, y)` (its centre), if inside the map.
 pub(crate) fn map_cell(world: &World, x: i32, y: i32, w: usize, h: usize) -> Option<(usize, usize)> {
     let (mx, my) = if world.frame.is_identity() {
@@ -305,6 +292,7 @@ pub fn rooms_of_labels(world: &World, labels: &Grid<u16>, resolution: f64) -> Ve
     let (owner, ww) = interior_owner(world);
     let mut tally: BTreeMap<u16, Tally> = BTreeMap::new();
     let rotation = world.frame.rotation();
+    let size = (world.frame.world_size[0] as usize, world.frame.world_size[1] as usize);
     for my in 0..h {
         for mx in 0..w {
             let l = *labels.at(mx, my);
@@ -313,8 +301,8 @@ pub fn rooms_of_labels(world: &World, labels: &Grid<u16>, resolution: f64) -> Ve
             }
             let t = tally.entry(l).or_default();
             t.cells += 1;
-            if let Some((x, y)) = world_cell(world, &rotation, mx, my) {
-                let k = owner[y as usize * ww + x as usize];
+            if let Some((x, y)) = world_cell(world, &rotation, mx, my, size) {
+                let k = owner[y * ww + x];
                 if k != usize::MAX {
                     *t.units.entry(k).or_default() += 1;
                 }

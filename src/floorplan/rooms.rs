@@ -8,6 +8,7 @@
 
 use super::state::{facing, Axis};
 use super::world::{Rect, World};
+use crate::geometry::Rotation;
 use crate::grid::{Cell, Grid};
 use std::collections::VecDeque;
 
@@ -306,9 +307,28 @@ fn room_owner(world: &World, rooms: &[u16], world_map: &Grid<Cell>) -> Vec<u16> 
     owner
 }
 
+/// The world-frame cell under map cell `(mx, my)`, if inside a world grid of `size`
+/// (width, height); `rotation` is the world frame's ([`crate::geometry::Frame::rotation`]),
+/// worked out once for a loop over cells.
+pub(crate) fn world_cell(
+    world: &World,
+    rotation: &Rotation,
+    mx: usize,
+    my: usize,
+    (ww, wh): (usize, usize),
+) -> Option<(usize, usize)> {
+    let (wx, wy) = if world.frame.is_identity() {
+        (mx as f64 + 0.5, my as f64 + 0.5)
+    } else {
+        rotation.to_world(mx as f64 + 0.5, my as f64 + 0.5)
+    };
+    (wx >= 0.0 && wy >= 0.0 && (wx as usize) < ww && (wy as usize) < wh).then_some((wx as usize, wy as usize))
+}
+
 /// Labels every free map cell whose world cell has an owner room, and queues those cells.
 fn label_unit_cells(world: &World, owner: &[u16], ww: usize, map: &Grid<Cell>) -> (Grid<u16>, VecDeque<u32>) {
     let wh = owner.len() / ww.max(1);
+    let rotation = world.frame.rotation();
     let mut labels = Grid::new(map.width(), map.height(), 0u16);
     let mut queue = VecDeque::new();
     for my in 0..map.height() {
@@ -316,13 +336,8 @@ fn label_unit_cells(world: &World, owner: &[u16], ww: usize, map: &Grid<Cell>) -
             if *map.at(mx, my) != Cell::Free {
                 continue;
             }
-            let (wx, wy) = if world.frame.is_identity() {
-                (mx as f64 + 0.5, my as f64 + 0.5)
-            } else {
-                world.frame.to_world(mx as f64 + 0.5, my as f64 + 0.5)
-            };
-            if wx >= 0.0 && wy >= 0.0 && (wx as usize) < ww && (wy as usize) < wh {
-                let room = owner[wy as usize * ww + wx as usize];
+            if let Some((wx, wy)) = world_cell(world, &rotation, mx, my, (ww, wh)) {
+                let room = owner[wy * ww + wx];
                 if room > 0 {
                     *labels.at_mut(mx, my) = room;
                     // Cell indices, not coordinate pairs: the queue holds most of the map's

@@ -28,7 +28,7 @@
 //! The gaps never reach the chain, its likelihood or K(W,M): they are a reading of the walls,
 //! not an observation.
 
-use super::rooms::RoomConfig;
+use super::rooms::{world_cell, RoomConfig};
 use super::world::World;
 use crate::grid::{Cell, Grid};
 
@@ -295,18 +295,10 @@ pub fn close_wall_gaps(world: &World, map: &Grid<Cell>, world_map: &Grid<Cell>, 
             if *map.at(mx, my) != Cell::Free {
                 continue;
             }
-            let (wx, wy) = if world.frame.is_identity() {
-                (mx as f64 + 0.5, my as f64 + 0.5)
-            } else {
-                rotation.to_world(mx as f64 + 0.5, my as f64 + 0.5)
-            };
-            if wx >= 0.0
-                && wy >= 0.0
-                && (wx as usize) < ww
-                && (wy as usize) < wh
-                && gaps[wy as usize * ww + wx as usize]
-            {
-                *closed.at_mut(mx, my) = Cell::Occupied;
+            if let Some((wx, wy)) = world_cell(world, &rotation, mx, my, (ww, wh)) {
+                if gaps[wy * ww + wx] {
+                    *closed.at_mut(mx, my) = Cell::Occupied;
+                }
             }
         }
     }

@@ -96,7 +96,8 @@ fn walls(map: &Grid<Cell>, min_len: usize) -> Vec<bool> {
     let cells = map.cells();
     let mut wall = vec![false; w * h];
     let mut seen = vec![false; w * h];
-    let near = near_occupied(map, HOLE_REACH);
+    // Unknown cells within the reach of an occupied one: the map grown by it.
+    let near = crate::vision::walls::dilate(map, HOLE_REACH as i32);
     let (mut stack, mut occupied) = (Vec::new(), Vec::new());
     for start in 0..w * h {
         if seen[start] || cells[start] != Cell::Occupied {
@@ -115,7 +116,8 @@ fn walls(map: &Grid<Cell>, min_len: usize) -> Vec<bool> {
             for ny in y.saturating_sub(1)..=(y + 1).min(h - 1) {
                 for nx in x.saturating_sub(1)..=(x + 1).min(w - 1) {
                     let j = ny * w + nx;
-                    let joins = cells[j] == Cell::Occupied || (cells[j] == Cell::Unknown && near[j]);
+                    let joins =
+                        cells[j] == Cell::Occupied || (cells[j] == Cell::Unknown && near.cells()[j] == Cell::Occupied);
                     if !seen[j] && joins {
                         seen[j] = true;
                         stack.push(j);
@@ -133,34 +135,6 @@ fn walls(map: &Grid<Cell>, min_len: usize) -> Vec<bool> {
 /// How far, in cells, an unknown cell may lie from an occupied one and still join the parts of
 /// a wall (a hole a scan left in it), without joining clutter to the unexplored space around.
 const HOLE_REACH: usize = 2;
-
-/// Cells within `reach` (Chebyshev distance) of an occupied cell.
-fn near_occupied(map: &Grid<Cell>, reach: usize) -> Vec<bool> {
-    let (w, h) = (map.width(), map.height());
-    let cells = map.cells();
-    // Rows first, then columns: a square dilation in two passes.
-    let mut rows = vec![false; w * h];
-    for y in 0..h {
-        for x in 0..w {
-            if cells[y * w + x] == Cell::Occupied {
-                for nx in x.saturating_sub(reach)..=(x + reach).min(w - 1) {
-                    rows[y * w + nx] = true;
-                }
-            }
-        }
-    }
-    let mut near = vec![false; w * h];
-    for y in 0..h {
-        for x in 0..w {
-            if rows[y * w + x] {
-                for ny in y.saturating_sub(reach)..=(y + reach).min(h - 1) {
-                    near[ny * w + x] = true;
-                }
-            }
-        }
-    }
-    near
-}
 
 /// One row or column of the world frame: `wall(i, off)` is whether a wall holds the cell at
 /// position `i` along the line and `off` cells across it, `free(i)` whether the line's own

@@ -212,6 +212,14 @@ impl<W: Fn(usize, isize) -> bool, F: Fn(usize) -> bool> Line<W, F> {
         false
     }
 
+    /// Whether walls cross the line at both ends of the gap between runs `p` and `next`
+    /// (within a stub's depth of it): a corridor passing between two walls.
+    fn passage(&self, p: (usize, usize), next: (usize, usize)) -> bool {
+        let d = self.depth;
+        (p.1.saturating_sub(d).max(p.0)..p.1).any(|k| self.crossed(k))
+            && (next.0..(next.0 + d).min(next.1)).any(|k| self.crossed(k))
+    }
+
     /// Marks every free run between two ends of walls of the line ([`Line::end`]), at least
     /// one of them a stub, that is short enough to be a gap, unless walls cross the line at
     /// both ends (a corridor passing between the walls of the rooms either side of it).
@@ -232,13 +240,10 @@ impl<W: Fn(usize, isize) -> bool, F: Fn(usize) -> bool> Line<W, F> {
             if let Some(p) = prev {
                 let gap = p.1..start;
                 let next = (start, i);
-                let d = self.depth;
-                let passage = (p.1.saturating_sub(d).max(p.0)..p.1).any(|k| self.crossed(k))
-                    && (start..(start + d).min(i)).any(|k| self.crossed(k));
                 if gap.len() <= max_gap
                     && gap.clone().all(|k| (self.free)(k))
                     && ((self.stub(p, c) && self.end(next, c, door)) || (self.end(p, c, door) && self.stub(next, c)))
-                    && !passage
+                    && !self.passage(p, next)
                 {
                     gap.for_each(&mut mark);
                 }

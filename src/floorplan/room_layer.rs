@@ -466,7 +466,9 @@ mod tests {
             unit(3, 100, 0, 50, 40, UnitType::Room),
         ];
         world.doors = vec![Door { id: 7, units: [2, 3], x0: 100, y0: 15, x1: 100, y1: 24 }];
-        let c = RoomConfig { door_half_width: 0, ..RoomConfig::default() };
+        // The wall's two pieces are 15 cells long, with nothing else in this small map to
+        // join them to: walls of 10 cells and more are walls here.
+        let c = RoomConfig { door_half_width: 0, min_wall_len: 10, ..RoomConfig::default() };
         explain_rooms(&mut world, &map, &map, &c, 0.1, Some(&RoomKnowledge::builtin())).unwrap();
         assert_eq!(world.rooms.len(), 2, "{:?}", world.rooms);
         let (a, b) = (&world.rooms[0], &world.rooms[1]);

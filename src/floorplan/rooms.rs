@@ -2,7 +2,7 @@
 //!
 //! A unit is a rectangle; a real room may be L-shaped or cut by furniture into several units.
 //! Going beyond the dissertation, units that touch along an *open* boundary (no wall cells in
-//! the band between them) are one room. Every free map cell inside a room's units gets the
+//! the band between them; chairs and other clutter are no walls) are one room. Every free map cell inside a room's units gets the
 //! room's id; free cells outside all units (door openings, corners the units miss, scan rays)
 //! join the nearest room by a wavefront through free space, as room-segmentation tools do.
 
@@ -58,9 +58,12 @@ pub struct RoomConfig {
     /// Shortest wall stub, in cells, on each side of such a gap along its line: a wall crossed
     /// at right angles (as thick as a wall) is no stub. The default is 0.3 m at 5 cm cells.
     pub min_wall_stub: u32,
-    /// Smallest extent, in cells, of a connected occupied part for a wall gap to close onto
-    /// it: chairs, the dots of a drawn table and the clutter of a SLAM map are no walls. The
-    /// default is 2 m at 5 cm cells, the side of a small room.
+    /// Smallest extent, in cells, of a connected occupied part that is a wall (its parts
+    /// joined through the unseen cells beside them, [`super::wall_gaps`]): chairs, the dots
+    /// of a drawn table and the clutter of a SLAM map are no walls. Wall gaps close onto
+    /// walls only, a doorway is a narrowing between walls ([`split_at_doorways`]), and only
+    /// walls close the boundary between two units ([`open_pairs`]). The default is 2 m at
+    /// 5 cm cells, the side of a small room.
     pub min_wall_len: u32,
 }
 
@@ -194,6 +197,7 @@ fn wide_door(world: &World, a: usize, b: usize, c: &RoomConfig) -> Option<bool> 
 pub fn open_pairs(world: &World, world_map: &Grid<Cell>, c: &RoomConfig) -> Vec<OpenPair> {
     let t = world.wall_thickness;
     let space: Vec<bool> = world.units.iter().map(|u| encloses_space(u, t, world_map)).collect();
+    let walls = without_clutter(world_map, c.min_wall_len);
     let mut pairs = Vec::new();
     for a in 0..world.units.len() {
         for b in a + 1..world.units.len() {
@@ -201,7 +205,7 @@ pub fn open_pairs(world: &World, world_map: &Grid<Cell>, c: &RoomConfig) -> Vec<
                 continue;
             }
             let (ra, rb) = (world.units[a].rect(), world.units[b].rect());
-            let open = open_boundary(ra, rb, t, world_map, c).or_else(|| wide_door(world, a, b, c));
+            let open = open_boundary(ra, rb, t, &walls, c).or_else(|| wide_door(world, a, b, c));
             if let Some(flush) = open {
                 pairs.push(OpenPair { a, b, flush });
             }
@@ -536,8 +540,9 @@ pub fn free_depth(map: &Grid<Cell>) -> Vec<u32> {
 /// al. 2016): a rectangle explains a room's walls, but where the walls are not rectangular (or
 /// stop short) one unit, or a group of units, can reach through doors into the rooms behind.
 ///
-/// A room's *cores* are its free cells farther than `door_half_width` from every non-free cell
-/// (a chamfer distance), split into 4-connected parts; a doorway narrower than twice that
+/// A room's *cores* are its free cells farther than `door_half_width` from every wall or
+/// unknown cell (a chamfer distance; clutter such as chairs counts as free,
+/// [`RoomConfig::min_wall_len`]), split into 4-connected parts; a doorway narrower than twice that
 /// leaves no core cells, so rooms joined by doors have separate cores while a room narrowed
 /// only a little keeps one. A room with two or more cores of `min_core_cells` or more is
 /// divided among them: each of its cells joins the core nearest to it through the room
@@ -548,10 +553,25 @@ pub fn split_at_doorways(labels: &mut Grid<u16>, map: &Grid<Cell>, c: &RoomConfi
     if c.door_half_width == 0 || w == 0 || h == 0 || (map.width(), map.height()) != (w, h) {
         return;
     }
-    let dist = free_depth(map);
+    let dist = free_depth(&without_clutter(map, c.min_wall_len));
     let core_min = c.door_half_width.saturating_mul(3);
     let (seed, cores) = find_cores(labels, |i| dist[i] > core_min);
     divide_among_cores(labels, &seed, &cores, c.min_core_cells);
+}
+
+/// `map` with the occupied parts that are no walls ([`super::wall_gaps::walls`]: shorter
+/// than `min_wall_len` cells) drawn free: chairs, the dots of a drawn table, a bin. A doorway
+/// is a narrowing between walls; the gaps between the chairs round a table are none, and
+/// the free space they ring is part of the room, not a room behind a door.
+fn without_clutter(map: &Grid<Cell>, min_wall_len: u32) -> Grid<Cell> {
+    let wall = super::wall_gaps::walls(map, min_wall_len as usize);
+    let mut out = map.clone();
+    for (cell, &is_wall) in out.cells_mut().iter_mut().zip(&wall) {
+        if *cell == Cell::Occupied && !is_wall {
+            *cell = Cell::Free;
+        }
+    }
+    out
 }
 
 /// Splits rooms along the wall gaps of `closed` (the map with every gap drawn as a wall,
@@ -732,10 +752,15 @@ mod tests {
     #[test]
     fn a_door_as_wide_as_the_shared_wall_is_an_opening() {
         // Two 41x40 units sharing the wall at column 40, which the map has only at its ends
-        // (rows 0..3 and 37..40): the chain explains the gap with a 34-cell door.
+        // (rows 0..3 and 37..40, stubs of the outer walls): the chain explains the gap with a
+        // 34-cell door.
         let mut map = Grid::new(81, 40, Cell::Free);
         for y in (0..3).chain(37..40) {
             *map.at_mut(40, y) = Cell::Occupied;
+        }
+        for x in 0..81 {
+            *map.at_mut(x, 0) = Cell::Occupied;
+            *map.at_mut(x, 39) = Cell::Occupied;
         }
         let mut world = World::empty(81, 40);
         world.units = vec![unit(1, 0, 0, 41, 40), unit(2, 40, 0, 41, 40)];
@@ -888,5 +913,70 @@ mod tests {
         let small = RoomConfig { min_core_cells: 50, ..doorways };
         let labels = room_labels(&world, &map, &map, &small);
         assert_ne!(*labels.at(50, 40), *labels.at(137, 60));
+    }
+
+    /// A 200 x 120 room walled all round.
+    fn walled_room(w: usize, h: usize) -> Grid<Cell> {
+        let mut map = Grid::new(w, h, Cell::Free);
+        for x in 0..w {
+            *map.at_mut(x, 0) = Cell::Occupied;
+            *map.at_mut(x, h - 1) = Cell::Occupied;
+        }
+        for y in 0..h {
+            *map.at_mut(0, y) = Cell::Occupied;
+            *map.at_mut(w - 1, y) = Cell::Occupied;
+        }
+        map
+    }
+
+    #[test]
+    fn a_table_ringed_by_chairs_is_no_room() {
+        // A drawn meeting table: 2 x 2 chairs every 6 cells round a 100 x 70 free area in the
+        // middle of a 300 x 200 room. The gaps between the chairs are far narrower than a
+        // door, so if chairs were walls the table would be a room behind doorways.
+        let mut map = walled_room(300, 200);
+        let (x0, y0, x1, y1) = (100, 65, 200, 135);
+        let mut chair = |x: usize, y: usize| {
+            for (cx, cy) in [(x, y), (x + 1, y), (x, y + 1), (x + 1, y + 1)] {
+                *map.at_mut(cx, cy) = Cell::Occupied;
+            }
+        };
+        for x in (x0..=x1).step_by(6) {
+            chair(x, y0);
+            chair(x, y1);
+        }
+        for y in (y0..=y1).step_by(6) {
+            chair(x0, y);
+            chair(x1, y);
+        }
+        let mut world = World::empty(300, 200);
+        world.units = vec![unit(1, 0, 0, 300, 200)];
+        let c = RoomConfig::default();
+        let labels = room_labels(&world, &map, &map, &c);
+        assert!(*labels.at(150, 100) > 0);
+        assert_eq!(*labels.at(150, 100), *labels.at(20, 20), "the table's middle is part of the room");
+        // Chairs counted as walls (no part too short to be one): the ring parts the room.
+        let chairs_are_walls = RoomConfig { min_wall_len: 1, ..c };
+        let labels = room_labels(&world, &map, &map, &chairs_are_walls);
+        assert_ne!(*labels.at(150, 100), *labels.at(20, 20));
+    }
+
+    #[test]
+    fn chairs_along_an_open_boundary_are_no_wall() {
+        // Two units side by side in one room, with a row of chairs (3 x 3, 2 apart) down the
+        // line between them, clear of the room's walls: over half of the band is occupied, but by
+        // no wall.
+        let mut map = walled_room(90, 40);
+        for y in (4..36).filter(|y| (y - 4) % 5 < 3) {
+            for x in 44..47 {
+                *map.at_mut(x, y) = Cell::Occupied;
+            }
+        }
+        let mut world = World::empty(90, 40);
+        world.units = vec![unit(1, 0, 0, 46, 40), unit(2, 45, 0, 45, 40)];
+        let c = RoomConfig::default();
+        assert_eq!(open_pairs(&world, &map, &c), vec![OpenPair { a: 0, b: 1, flush: true }]);
+        let chairs_are_walls = RoomConfig { min_wall_len: 1, ..c };
+        assert!(open_pairs(&world, &map, &chairs_are_walls).is_empty());
     }
 }

@@ -90,8 +90,9 @@ pub fn wall_gaps(world_map: &Grid<Cell>, c: &RoomConfig, depth: usize) -> Vec<bo
 /// wide. Parts are 8-connected through occupied cells and unknown cells next to them (within
 /// [`HOLE_REACH`]), so a wall that a scan saw in pieces, with unseen cells in it, is one part;
 /// smaller parts (chairs, the dots of a drawn table, specks amid free space) are no wall a gap
-/// could close onto.
-fn walls(map: &Grid<Cell>, min_len: usize) -> Vec<bool> {
+/// could close onto, no jamb of a doorway and no wall between two units (see
+/// [`RoomConfig::min_wall_len`]).
+pub(crate) fn walls(map: &Grid<Cell>, min_len: usize) -> Vec<bool> {
     let (w, h) = (map.width(), map.height());
     let cells = map.cells();
     let mut wall = vec![false; w * h];

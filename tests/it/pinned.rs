@@ -12,7 +12,7 @@
 //!
 //! and copy the printed constants here (with `KSMCMC_BLESS` set a mismatch is printed, not a
 //! failure). Re-pinned on purpose when the room layer joined `world.json` and the learned
-//! indoor knowledge base became the default (issue 10); again when the room layer began closing wall gaps (`floorplan::wall_gaps`). The real maps come from `../shared/datasets` (or `KSMCMC_DATASETS`); without them
+//! indoor knowledge base became the default (issue 10); again when the room layer began closing wall gaps (`floorplan::wall_gaps`), and when it began telling clutter from walls (`rooms::without_clutter`). The real maps come from `../shared/datasets` (or `KSMCMC_DATASETS`); without them
 //! those tests skip, and the synthetic pin still runs.
 
 use ksmcmc::floorplan::synth::{generate, SynthConfig};
@@ -74,7 +74,7 @@ fn pinned_synthetic() {
 
 #[test]
 fn pinned_cartesium() {
-    pin_dataset("radish/ubremen-cartesium.png", 0x77ed_e822_ce13_dac5);
+    pin_dataset("radish/ubremen-cartesium.png", 0x7a9a_fa84_9bc0_c910);
 }
 
 #[test]

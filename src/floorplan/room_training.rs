@@ -14,7 +14,7 @@
 //! room with no neighbour.
 
 use super::knowledge::{constant, Fact};
-use super::room_layer::{map_cell, room_evidence};
+use super::room_layer::{mark_closed, room_evidence, unit_rooms};
 use super::rooms::{open_pairs, RoomConfig};
 use super::world::World;
 use crate::grid::{Cell, Grid};
@@ -66,13 +66,14 @@ impl std::error::Error for RoomTrainingError {}
 /// for (id, x) in [(1, 0), (2, 40)] {
 ///     world.units.push(Unit { id, x, y: 0, w: 40, h: 40, kind: UnitType::Room });
 /// }
-/// let t = room_training(&world, &map, &truth, &RoomConfig::default())?;
+/// let t = room_training(&world, &map, &map, &truth, &RoomConfig::default())?;
 /// assert_eq!((t.open_pairs, t.same_room), (1, 1));
 /// assert!(t.facts.contains(&("SameRoom", vec!["U1".to_string(), "U2".to_string()], true)));
 /// # Ok::<(), ksmcmc::floorplan::room_training::RoomTrainingError>(())
 /// ```
 pub fn room_training(
     world: &World,
+    map: &Grid<Cell>,
     world_map: &Grid<Cell>,
     truth: &Grid<u16>,
     c: &RoomConfig,
@@ -97,8 +98,9 @@ pub fn room_training(
             world.frame.world_size[1]
         )));
     }
-    let pairs = open_pairs(world, world_map, c);
-    let truth_rooms = unit_truth_rooms(world, world_map, truth);
+    let mut pairs = open_pairs(world, world_map, c);
+    mark_closed(world, map, world_map, &mut pairs, c);
+    let truth_rooms = unit_rooms(world, world_map, truth);
     let mut facts = room_evidence(world, &pairs);
     let mut same = BTreeMap::new();
     for p in &pairs {
@@ -130,34 +132,6 @@ pub fn truth_labels_from_pgm(bytes: &[u8]) -> Result<Grid<u16>, RoomTrainingErro
     crate::grid::pgm::decode(bytes, &Default::default())
         .map(|r| r.gray)
         .map_err(|e| RoomTrainingError(format!("truth labels: {e} (expected a PGM such as truth_labels.pgm)")))
-}
-
-/// Per unit, the truth label holding most of its free interior cells (ties: the smaller
-/// label), `None` if none does.
-fn unit_truth_rooms(world: &World, world_map: &Grid<Cell>, truth: &Grid<u16>) -> Vec<Option<u16>> {
-    let t = world.wall_thickness;
-    let (w, h) = (truth.width(), truth.height());
-    let (ww, wh) = (world_map.width() as i32, world_map.height() as i32);
-    world
-        .units
-        .iter()
-        .map(|u| {
-            let mut votes: BTreeMap<u16, u64> = BTreeMap::new();
-            for y in (u.y + t).max(0)..(u.y + u.h - t).min(wh) {
-                for x in (u.x + t).max(0)..(u.x + u.w - t).min(ww) {
-                    if *world_map.at(x as usize, y as usize) != Cell::Free {
-                        continue;
-                    }
-                    let Some((mx, my)) = map_cell(world, x, y, w, h) else { continue };
-                    let label = *truth.at(mx, my);
-                    if label != 0 {
-                        *votes.entry(label).or_default() += 1;
-                    }
-                }
-            }
-            votes.into_iter().max_by_key(|&(label, n)| (n, std::cmp::Reverse(label))).map(|(label, _)| label)
-        })
-        .collect()
 }
 
 #[cfg(test)]
@@ -193,7 +167,7 @@ mod tests {
     fn two_units_of_one_truth_room_are_one_room_and_the_corridor_is_apart() {
         let (map, truth, world) = office_off_a_corridor();
         let c = RoomConfig { door_half_width: 0, ..RoomConfig::default() };
-        let t = room_training(&world, &map, &truth, &c).unwrap();
+        let t = room_training(&world, &map, &map, &truth, &c).unwrap();
         assert_eq!(t.truth_rooms, vec![Some(1), Some(2), Some(2)]);
         assert_eq!(t.open_pairs, 3, "{:?}", t.facts);
         assert_eq!(t.same_room, 1);
@@ -215,8 +189,8 @@ mod tests {
                 *truth.at_mut(x, y) = 0;
             }
         }
-        let t =
-            room_training(&world, &map, &truth, &RoomConfig { door_half_width: 0, ..RoomConfig::default() }).unwrap();
+        let t = room_training(&world, &map, &map, &truth, &RoomConfig { door_half_width: 0, ..RoomConfig::default() })
+            .unwrap();
         assert_eq!(t.truth_rooms[2], None);
         assert!(!same_room(&t, "U2", "U3"));
         assert_eq!(t.same_room, 0);
@@ -226,9 +200,10 @@ mod tests {
     fn grids_of_another_map_are_refused() {
         let (map, truth, world) = office_off_a_corridor();
         let small = Grid::new(100, 100, 1u16);
-        let e = room_training(&world, &map, &small, &RoomConfig::default()).unwrap_err();
+        let e = room_training(&world, &map, &map, &small, &RoomConfig::default()).unwrap_err();
         assert!(e.to_string().contains("truth labels are 100x100"), "{e}");
-        let e = room_training(&world, &Grid::new(20, 20, Cell::Free), &truth, &RoomConfig::default()).unwrap_err();
+        let e =
+            room_training(&world, &map, &Grid::new(20, 20, Cell::Free), &truth, &RoomConfig::default()).unwrap_err();
         assert!(e.to_string().contains("world-frame map is 20x20"), "{e}");
     }
 }

@@ -111,6 +111,10 @@ pub struct OpenPair {
     /// space cut in two by a unit seam, rather than a room opening off the side of a longer
     /// corridor or hall.
     pub flush: bool,
+    /// Whether the room layer's geometry parts the two units even when they are joined: a
+    /// wall gap or a doorway lies between them ([`super::room_layer::mark_closed`]; false
+    /// until marked).
+    pub closed: bool,
 }
 
 /// The share of both facing sides an open boundary must span to be [`OpenPair::flush`].
@@ -207,7 +211,7 @@ pub fn open_pairs(world: &World, world_map: &Grid<Cell>, c: &RoomConfig) -> Vec<
             let (ra, rb) = (world.units[a].rect(), world.units[b].rect());
             let open = open_boundary(ra, rb, t, &walls, c).or_else(|| wide_door(world, a, b, c));
             if let Some(flush) = open {
-                pairs.push(OpenPair { a, b, flush });
+                pairs.push(OpenPair { a, b, flush, closed: false });
             }
         }
     }
@@ -766,7 +770,7 @@ mod tests {
         world.units = vec![unit(1, 0, 0, 41, 40), unit(2, 40, 0, 41, 40)];
         world.doors = vec![crate::floorplan::Door { id: 1, units: [1, 2], x0: 40, y0: 3, x1: 40, y1: 36 }];
         let c = RoomConfig::default();
-        assert_eq!(open_pairs(&world, &map, &c), vec![OpenPair { a: 0, b: 1, flush: true }]);
+        assert_eq!(open_pairs(&world, &map, &c), vec![OpenPair { a: 0, b: 1, flush: true, closed: false }]);
         // Not when wide doors are doors (the wall band is 15 % occupied: no opening by itself).
         let doors = RoomConfig { wide_door_share: 2.0, ..c };
         assert!(open_pairs(&world, &map, &doors).is_empty());
@@ -975,7 +979,7 @@ mod tests {
         let mut world = World::empty(90, 40);
         world.units = vec![unit(1, 0, 0, 46, 40), unit(2, 45, 0, 45, 40)];
         let c = RoomConfig::default();
-        assert_eq!(open_pairs(&world, &map, &c), vec![OpenPair { a: 0, b: 1, flush: true }]);
+        assert_eq!(open_pairs(&world, &map, &c), vec![OpenPair { a: 0, b: 1, flush: true, closed: false }]);
         let chairs_are_walls = RoomConfig { min_wall_len: 1, ..c };
         assert!(open_pairs(&world, &map, &chairs_are_walls).is_empty());
     }

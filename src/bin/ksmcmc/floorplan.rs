@@ -46,7 +46,8 @@ Options:
                      world with the built-in rules)
   --room-rules FILE  the rules that decide which units are one room when knowledge is on
                      (Alchemy format, query SameRoom; default: the built-in
-                     samples/knowledge/rooms.mln)
+                     samples/knowledge/rooms.mln; rooms-learned.mln has its rules with
+                     weights learned from generated floors)
   --region FILE      an image the size of the map whose non-black cells are a region of
                      interest: report.json then also gives K(W,M) inside it
   --georef LAT,LON,BEARING

@@ -34,7 +34,7 @@ Usage:
       predicates that knowledge base declares (Tab. 3.5's indoor.mln has no Small)
   ksmcmc mln evidence --rooms --world world.json --map MAP [--truth-labels LABELS.pgm]
                       [--mln KB] [--out FILE]
-      the room layer's evidence (Open, Flush, Room/Corr/Hall/Other) of a chain's world.json
+      the room layer's evidence (Open, Flush, Closed, Room/Corr/Hall/Other) of a chain's world.json
       (from `ksmcmc floorplan MAP`) as the room rules (samples/knowledge/rooms.mln) are given
       it; with --truth-labels (the truth_labels.pgm of `ksmcmc synth`) also SameRoom for each
       open pair whose units lie mostly in the same truth room: a training world for

@@ -290,8 +290,75 @@ pub fn labels_of_groups(
     if let Some(closed) = super::wall_gaps::close_wall_gaps(world, map, world_map, c) {
         split_at_wall_gaps(&mut labels, &closed, c);
     }
-    merge_small_segments(&mut labels, c.min_segment_cells);
+    let fragment = split_disconnected(&mut labels, c.min_room_cells);
+    merge_segments(&mut labels, c.min_segment_cells, &fragment);
     labels
+}
+
+/// Gives the 4-connected parts of each segment ids of their own, and returns which new ids
+/// are *fragments* (indexed by id). A segment's largest part keeps its role. Its other parts
+/// that touch another segment are fragments: pieces the splits cut off from all the
+/// segment's cores (the strip of doorway cells along a corridor's wall, left in the
+/// corridor's label), which [`merge_segments`] joins to the room each lies in, whatever their
+/// size, instead of one scattered segment joined to one of them. Parts that touch no other
+/// segment are segments of their own if they have a quarter of `min_room_cells` or more (a
+/// closet walled off from the rest), and no part of any room otherwise (specks of free space
+/// walled in by clutter).
+fn split_disconnected(labels: &mut Grid<u16>, min_room_cells: usize) -> Vec<bool> {
+    let (w, h) = (labels.width(), labels.height());
+    // Each part: (label, cells, touches another segment); `part[i]` is cell i's part + 1.
+    let mut part = vec![0u32; w * h];
+    let mut parts: Vec<(u16, usize, bool)> = Vec::new();
+    let mut stack = Vec::new();
+    for start in 0..w * h {
+        let l = labels.cells()[start];
+        if l == 0 || part[start] != 0 {
+            continue;
+        }
+        let id = parts.len() as u32 + 1;
+        let (mut n, mut touches) = (0usize, false);
+        part[start] = id;
+        stack.push(start);
+        while let Some(i) = stack.pop() {
+            n += 1;
+            for (nx, ny) in neighbours4(i % w, i / w, w, h) {
+                let j = ny * w + nx;
+                let lj = labels.cells()[j];
+                touches |= lj != 0 && lj != l;
+                if part[j] == 0 && lj == l {
+                    part[j] = id;
+                    stack.push(j);
+                }
+            }
+        }
+        parts.push((l, n, touches));
+    }
+    let max_label = labels.cells().iter().copied().max().unwrap_or(0) as usize;
+    let mut biggest = vec![(0usize, usize::MAX); max_label + 1];
+    for (k, &(l, n, _)) in parts.iter().enumerate() {
+        if n > biggest[l as usize].0 {
+            biggest[l as usize] = (n, k);
+        }
+    }
+    let largest = |k: usize| biggest[parts[k].0 as usize].1 == k;
+    let kept = |k: usize| parts[k].2 || parts[k].1 >= min_room_cells / 4;
+    let mut id = vec![0u16; parts.len()];
+    let mut fragment = vec![false];
+    for (cell, &p) in labels.cells_mut().iter_mut().zip(&part) {
+        let k = p as usize;
+        if k == 0 || !kept(k - 1) {
+            *cell = 0;
+            continue;
+        }
+        if id[k - 1] == 0 {
+            id[k - 1] = fragment.len().min(u16::MAX as usize - 1) as u16;
+            if fragment.len() < u16::MAX as usize - 1 {
+                fragment.push(!largest(k - 1) && parts[k - 1].2);
+            }
+        }
+        *cell = id[k - 1];
+    }
+    fragment
 }
 
 /// Owner room of every world cell: the room of the first unit covering it (0 for none).
@@ -428,8 +495,14 @@ fn label_far_regions(labels: &mut Grid<u16>, map: &Grid<Cell>, last: u16, c: &Ro
 /// longest boundary with (4-neighbours), smallest first, then numbers the segments 1..=n in
 /// scan order. Segments with no labelled neighbour stay.
 pub fn merge_small_segments(labels: &mut Grid<u16>, min_cells: usize) {
+    merge_segments(labels, min_cells, &[]);
+}
+
+/// [`merge_small_segments`], joining also the segments `fragment` marks (indexed by label),
+/// whatever their size.
+fn merge_segments(labels: &mut Grid<u16>, min_cells: usize, fragment: &[bool]) {
     use std::collections::BTreeMap;
-    if min_cells == 0 {
+    if min_cells == 0 && !fragment.contains(&true) {
         return;
     }
     let n = labels.cells().iter().copied().max().unwrap_or(0) as usize;
@@ -455,7 +528,8 @@ pub fn merge_small_segments(labels: &mut Grid<u16>, min_cells: usize) {
     crate::sort::sort_by_key(&mut order, |&l| (size[l as usize], l));
     for l in order {
         let root = find(&to, l);
-        if root != l || size[l as usize] >= min_cells {
+        let small = size[l as usize] < min_cells || fragment.get(l as usize).copied().unwrap_or(false);
+        if root != l || !small {
             continue;
         }
         let mut best: BTreeMap<u16, usize> = BTreeMap::new();
@@ -982,5 +1056,39 @@ mod tests {
         assert_eq!(open_pairs(&world, &map, &c), vec![OpenPair { a: 0, b: 1, flush: true, closed: false }]);
         let chairs_are_walls = RoomConfig { min_wall_len: 1, ..c };
         assert!(open_pairs(&world, &map, &chairs_are_walls).is_empty());
+    }
+
+    #[test]
+    fn pieces_cut_off_from_a_segment_join_the_rooms_they_lie_in() {
+        // Label 1 is a corridor (rows 0..10) and, cut off from it by a wall (row 10), two
+        // strips of cells along the tops of rooms 2 and 3 (row 11): a scattered segment.
+        let (w, h) = (60, 40);
+        let mut labels = Grid::new(w, h, 0u16);
+        for y in 0..h {
+            for x in 0..w {
+                *labels.at_mut(x, y) = match (x, y) {
+                    (_, 10) => 0,
+                    (_, 0..=9) => 1,
+                    (_, 11) => 1,
+                    (0..=29, _) => 2,
+                    (30, _) => 0,
+                    _ => 3,
+                };
+            }
+        }
+        *labels.at_mut(30, 11) = 0;
+        let fragment = split_disconnected(&mut labels, 400);
+        assert_eq!(fragment.iter().filter(|&&f| f).count(), 2, "the two strips");
+        merge_segments(&mut labels, 0, &fragment); // fragments only, whatever their size
+        assert_eq!(*labels.at(5, 11), *labels.at(5, 20), "the left strip joins the left room");
+        assert_eq!(*labels.at(45, 11), *labels.at(45, 20), "the right strip joins the right room");
+        assert_ne!(*labels.at(5, 5), *labels.at(5, 11));
+        assert_eq!(labels.cells().iter().copied().max(), Some(3));
+        // A speck walled in on its own (no other segment beside it) is no room.
+        let mut specks = Grid::new(20, 20, 0u16);
+        *specks.at_mut(5, 5) = 1;
+        *specks.at_mut(15, 15) = 1;
+        split_disconnected(&mut specks, 400);
+        assert!(specks.cells().iter().all(|&l| l == 0));
     }
 }

@@ -638,18 +638,60 @@ pub fn split_at_doorways(labels: &mut Grid<u16>, map: &Grid<Cell>, c: &RoomConfi
 }
 
 /// `map` with the occupied parts that are no walls ([`super::wall_gaps::walls`]: shorter
-/// than `min_wall_len` cells) drawn free: chairs, the dots of a drawn table, a bin. A doorway
+/// than `min_wall_len` cells) and the unseen specks amid free space ([`unknown_specks`])
+/// drawn free: chairs, the dots of a drawn table, a bin, cells a scan missed. A doorway
 /// is a narrowing between walls; the gaps between the chairs round a table are none, and
 /// the free space they ring is part of the room, not a room behind a door.
 fn without_clutter(map: &Grid<Cell>, min_wall_len: u32) -> Grid<Cell> {
     let wall = super::wall_gaps::walls(map, min_wall_len as usize);
+    let specks = unknown_specks(map, min_wall_len as usize);
     let mut out = map.clone();
-    for (cell, &is_wall) in out.cells_mut().iter_mut().zip(&wall) {
-        if *cell == Cell::Occupied && !is_wall {
+    for ((cell, &is_wall), &speck) in out.cells_mut().iter_mut().zip(&wall).zip(&specks) {
+        if *cell == Cell::Occupied && !is_wall || speck {
             *cell = Cell::Free;
         }
     }
     out
+}
+
+/// Unknown cells of 8-connected unknown parts less than `min_len` cells long and wide that
+/// touch free space: the cells a scan missed amid a room (or the unseen holes in a chair),
+/// not the unexplored space around the building.
+fn unknown_specks(map: &Grid<Cell>, min_len: usize) -> Vec<bool> {
+    let (w, h) = (map.width(), map.height());
+    let cells = map.cells();
+    let mut speck = vec![false; w * h];
+    let mut seen = vec![false; w * h];
+    let (mut stack, mut part) = (Vec::new(), Vec::new());
+    for start in 0..w * h {
+        if seen[start] || cells[start] != Cell::Unknown {
+            continue;
+        }
+        seen[start] = true;
+        stack.push(start);
+        part.clear();
+        let (mut x0, mut y0, mut x1, mut y1) = (usize::MAX, usize::MAX, 0, 0);
+        let mut by_free = false;
+        while let Some(i) = stack.pop() {
+            part.push(i);
+            let (x, y) = (i % w, i / w);
+            (x0, y0, x1, y1) = (x0.min(x), y0.min(y), x1.max(x), y1.max(y));
+            for ny in y.saturating_sub(1)..=(y + 1).min(h - 1) {
+                for nx in x.saturating_sub(1)..=(x + 1).min(w - 1) {
+                    let j = ny * w + nx;
+                    by_free |= cells[j] == Cell::Free;
+                    if !seen[j] && cells[j] == Cell::Unknown {
+                        seen[j] = true;
+                        stack.push(j);
+                    }
+                }
+            }
+        }
+        if by_free && (x1 - x0 + 1).max(y1 - y0 + 1) < min_len {
+            part.iter().for_each(|&i| speck[i] = true);
+        }
+    }
+    speck
 }
 
 /// Splits rooms along the wall gaps of `closed` (the map with every gap drawn as a wall,
@@ -1090,5 +1132,25 @@ mod tests {
         *specks.at_mut(15, 15) = 1;
         split_disconnected(&mut specks, 400);
         assert!(specks.cells().iter().all(|&l| l == 0));
+    }
+
+    #[test]
+    fn cells_a_scan_missed_amid_a_room_part_nothing() {
+        // A line of unseen cells, one every 4 rows, across the middle of a 300 x 200 room
+        // (speckle in a SLAM map). The gaps between them are far narrower than a door.
+        let mut map = walled_room(300, 200);
+        for y in (2..198).step_by(4) {
+            *map.at_mut(150, y) = Cell::Unknown;
+        }
+        let mut world = World::empty(300, 200);
+        world.units = vec![unit(1, 0, 0, 300, 200)];
+        let c = RoomConfig::default();
+        let labels = room_labels(&world, &map, &map, &c);
+        assert_eq!(*labels.at(50, 100), *labels.at(250, 100), "one room");
+        // Unseen specks counted as the edge of the map (no part too short to be a wall): the
+        // line parts the room.
+        let specks_are_walls = RoomConfig { min_wall_len: 1, ..c };
+        let labels = room_labels(&world, &map, &map, &specks_are_walls);
+        assert_ne!(*labels.at(50, 100), *labels.at(250, 100));
     }
 }

@@ -660,37 +660,18 @@ fn without_clutter(map: &Grid<Cell>, min_wall_len: u32) -> Grid<Cell> {
 fn unknown_specks(map: &Grid<Cell>, min_len: usize) -> Vec<bool> {
     let (w, h) = (map.width(), map.height());
     let cells = map.cells();
+    let by_free = |i: usize| {
+        let (x, y) = (i % w, i / w);
+        (y.saturating_sub(1)..=(y + 1).min(h - 1))
+            .any(|ny| (x.saturating_sub(1)..=(x + 1).min(w - 1)).any(|nx| cells[ny * w + nx] == Cell::Free))
+    };
     let mut speck = vec![false; w * h];
-    let mut seen = vec![false; w * h];
-    let (mut stack, mut part) = (Vec::new(), Vec::new());
-    for start in 0..w * h {
-        if seen[start] || cells[start] != Cell::Unknown {
-            continue;
-        }
-        seen[start] = true;
-        stack.push(start);
-        part.clear();
-        let (mut x0, mut y0, mut x1, mut y1) = (usize::MAX, usize::MAX, 0, 0);
-        let mut by_free = false;
-        while let Some(i) = stack.pop() {
-            part.push(i);
-            let (x, y) = (i % w, i / w);
-            (x0, y0, x1, y1) = (x0.min(x), y0.min(y), x1.max(x), y1.max(y));
-            for ny in y.saturating_sub(1)..=(y + 1).min(h - 1) {
-                for nx in x.saturating_sub(1)..=(x + 1).min(w - 1) {
-                    let j = ny * w + nx;
-                    by_free |= cells[j] == Cell::Free;
-                    if !seen[j] && cells[j] == Cell::Unknown {
-                        seen[j] = true;
-                        stack.push(j);
-                    }
-                }
-            }
-        }
-        if by_free && (x1 - x0 + 1).max(y1 - y0 + 1) < min_len {
+    let unknown = |i: usize| cells[i] == Cell::Unknown;
+    super::wall_gaps::each_part(w, h, unknown, unknown, |part, extent| {
+        if extent < min_len && part.iter().any(|&i| by_free(i)) {
             part.iter().for_each(|&i| speck[i] = true);
         }
-    }
+    });
     speck
 }
 

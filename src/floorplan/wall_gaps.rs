@@ -96,41 +96,60 @@ pub(crate) fn walls(map: &Grid<Cell>, min_len: usize) -> Vec<bool> {
     let (w, h) = (map.width(), map.height());
     let cells = map.cells();
     let mut wall = vec![false; w * h];
-    let mut seen = vec![false; w * h];
     // Unknown cells within the reach of an occupied one: the map grown by it.
     let near = crate::vision::walls::dilate(map, HOLE_REACH as i32);
-    let (mut stack, mut occupied) = (Vec::new(), Vec::new());
-    for start in 0..w * h {
-        if seen[start] || cells[start] != Cell::Occupied {
+    let joins =
+        |j: usize| cells[j] == Cell::Occupied || (cells[j] == Cell::Unknown && near.cells()[j] == Cell::Occupied);
+    each_part(
+        w,
+        h,
+        |i| cells[i] == Cell::Occupied,
+        joins,
+        |part, extent| {
+            if extent >= min_len {
+                part.iter().filter(|&&i| cells[i] == Cell::Occupied).for_each(|&i| wall[i] = true);
+            }
+        },
+    );
+    wall
+}
+
+/// Calls `f(part, extent)` for every 8-connected part of the cells of a `w` x `h` grid that
+/// `member` holds (cell indices), each part found from a cell `start` holds (`start` implies
+/// `member`); `extent` is the longer side of the part's bounding box.
+pub(crate) fn each_part(
+    w: usize,
+    h: usize,
+    start: impl Fn(usize) -> bool,
+    member: impl Fn(usize) -> bool,
+    mut f: impl FnMut(&[usize], usize),
+) {
+    let mut seen = vec![false; w * h];
+    let (mut stack, mut part) = (Vec::new(), Vec::new());
+    for first in 0..w * h {
+        if seen[first] || !start(first) {
             continue;
         }
-        seen[start] = true;
-        stack.push(start);
-        occupied.clear();
+        seen[first] = true;
+        stack.push(first);
+        part.clear();
         let (mut x0, mut y0, mut x1, mut y1) = (usize::MAX, usize::MAX, 0, 0);
         while let Some(i) = stack.pop() {
-            if cells[i] == Cell::Occupied {
-                occupied.push(i);
-            }
+            part.push(i);
             let (x, y) = (i % w, i / w);
             (x0, y0, x1, y1) = (x0.min(x), y0.min(y), x1.max(x), y1.max(y));
             for ny in y.saturating_sub(1)..=(y + 1).min(h - 1) {
                 for nx in x.saturating_sub(1)..=(x + 1).min(w - 1) {
                     let j = ny * w + nx;
-                    let joins =
-                        cells[j] == Cell::Occupied || (cells[j] == Cell::Unknown && near.cells()[j] == Cell::Occupied);
-                    if !seen[j] && joins {
+                    if !seen[j] && member(j) {
                         seen[j] = true;
                         stack.push(j);
                     }
                 }
             }
         }
-        if (x1 - x0 + 1).max(y1 - y0 + 1) >= min_len {
-            occupied.iter().for_each(|&i| wall[i] = true);
-        }
+        f(&part, (x1 - x0 + 1).max(y1 - y0 + 1));
     }
-    wall
 }
 
 /// How far, in cells, an unknown cell may lie from an occupied one and still join the parts of

@@ -444,11 +444,24 @@ pub fn rooms_of_labels(world: &World, labels: &Grid<u16>, resolution: f64) -> Ve
         .collect()
 }
 
-/// A room's type: the type of the units covering most of its cells among its own units, or
-/// `Unknown` when none of its units is typed (or it has none).
+/// A room's type: the type of the units covering most of its cells among its own units. A
+/// room with no typed unit of its own (a piece the walls part from the room whose unit
+/// covers it: a corridor's end beyond a junction) takes the type of the units covering most
+/// of its cells; `Unknown` when no typed unit covers it (free space the chain left
+/// unexplained).
 fn room_type(world: &World, t: &Tally, units: &[usize]) -> UnitType {
+    let own = vote_type(world, t, units.iter().copied());
+    if own != UnitType::Unknown {
+        return own;
+    }
+    vote_type(world, t, t.units.keys().copied())
+}
+
+/// The type of the units among `units` covering most of the room's cells (`t`), ignoring
+/// untyped units; `Unknown` when none is typed.
+fn vote_type(world: &World, t: &Tally, units: impl Iterator<Item = usize>) -> UnitType {
     let mut votes: BTreeMap<UnitType, u64> = BTreeMap::new();
-    for &k in units {
+    for k in units {
         let kind = world.units[k].kind;
         if kind != UnitType::Unknown {
             *votes.entry(kind).or_default() += t.units.get(&k).copied().unwrap_or(0);
@@ -616,5 +629,23 @@ mod tests {
     fn room_rules_must_declare_the_query() {
         let e = RoomKnowledge::parse("Open(unit, unit)\n").unwrap_err();
         assert!(e.to_string().contains("SameRoom"), "{e}");
+    }
+
+    #[test]
+    fn a_piece_parted_from_its_units_room_takes_their_type() {
+        // One corridor unit over a 100 x 20 strip; the labels part its last 20 columns off
+        // as a room of their own (as a wall gap at a junction does). That room has no unit
+        // of its own (the unit's home is the larger room) but the corridor's type.
+        let mut world = World::empty(100, 20);
+        world.units = vec![unit(1, 0, 0, 100, 20, UnitType::Corridor)];
+        let labels = Grid::from_vec(100, 20, (0..2000).map(|i| if i % 100 < 80 { 1 } else { 2 }).collect()).unwrap();
+        let rooms = rooms_of_labels(&world, &labels, 0.05);
+        assert_eq!(
+            rooms.iter().map(|r| (r.units.clone(), r.kind)).collect::<Vec<_>>(),
+            [(vec![1], UnitType::Corridor), (vec![], UnitType::Corridor)]
+        );
+        // Free space no unit covers stays of unknown type.
+        world.units.clear();
+        assert!(rooms_of_labels(&world, &labels, 0.05).iter().all(|r| r.kind == UnitType::Unknown));
     }
 }

@@ -86,6 +86,61 @@ impl Default for RoomConfig {
     }
 }
 
+/// Why room-layer settings ([`RoomConfig`]) cannot be read.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RoomConfigError(pub String);
+
+impl std::fmt::Display for RoomConfigError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for RoomConfigError {}
+
+/// The longest room-layer settings text read ([`RoomConfig::from_json`]): a dozen fields.
+pub const MAX_ROOM_CONFIG_JSON_BYTES: usize = 64 * 1024;
+
+impl RoomConfig {
+    /// Room-layer settings from JSON: any subset of the fields (the rest keep their
+    /// defaults). Unknown fields, text over [`MAX_ROOM_CONFIG_JSON_BYTES`] and shares outside
+    /// their range are refused with a message that names them.
+    ///
+    /// ```
+    /// use ksmcmc::floorplan::rooms::RoomConfig;
+    ///
+    /// let c = RoomConfig::from_json(r#"{"max_wall_gap": 0}"#).unwrap();
+    /// assert_eq!((c.max_wall_gap, c.min_wall_len), (0, RoomConfig::default().min_wall_len));
+    /// let e = RoomConfig::from_json(r#"{"max_wall_gaps": 0}"#).unwrap_err();
+    /// assert!(e.to_string().contains("unknown field `max_wall_gaps`"), "{e}");
+    /// let e = RoomConfig::from_json(r#"{"max_wall_share": 1.5}"#).unwrap_err();
+    /// assert!(e.to_string().contains("max_wall_share"), "{e}");
+    /// ```
+    pub fn from_json(text: &str) -> Result<RoomConfig, RoomConfigError> {
+        if text.len() > MAX_ROOM_CONFIG_JSON_BYTES {
+            return Err(RoomConfigError(format!(
+                "the room-layer settings are {} bytes, over the limit of {MAX_ROOM_CONFIG_JSON_BYTES} bytes; \
+                 they are a dozen fields",
+                text.len()
+            )));
+        }
+        let c: RoomConfig = serde_json::from_str(text).map_err(|e| RoomConfigError(e.to_string()))?;
+        if !(0.0..=1.0).contains(&c.max_wall_share) {
+            return Err(RoomConfigError(format!(
+                "max_wall_share is {}: it is a share of the band between two units, from 0 to 1",
+                c.max_wall_share
+            )));
+        }
+        if !(c.wide_door_share.is_finite() && c.wide_door_share >= 0.0) {
+            return Err(RoomConfigError(format!(
+                "wide_door_share is {}: give a share of 0 or more (above 1, no door is an opening)",
+                c.wide_door_share
+            )));
+        }
+        Ok(c)
+    }
+}
+
 /// Whether a unit encloses space: at least half of its interior (inside the wall ring) is free
 /// in the map. Units lying on thick walls or over unexplored space are not rooms.
 pub fn encloses_space(u: &super::world::Unit, t: i32, world_map: &Grid<Cell>) -> bool {

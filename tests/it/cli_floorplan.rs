@@ -304,6 +304,11 @@ fn evaluate_reads_room_layer_settings_and_says_what_is_wrong_with_them() {
     assert_eq!(out.status.code(), Some(1));
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("bad.json") && err.contains("room-layer settings") && err.contains("max_wal_gap"), "{err}");
+    std::fs::write(&bad, r#"{"max_wall_share": 2}"#).unwrap();
+    let out = run(&["evaluate", "--only", "bormann", "--room-config", bad.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("bad.json") && err.contains("max_wall_share is 2"), "{err}");
 }
 
 #[test]

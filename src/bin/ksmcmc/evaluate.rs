@@ -592,7 +592,7 @@ fn cartesium(dir: &Path, o: &Opts) -> Result<(), CliError> {
 /// Room-layer settings from a JSON file (missing fields take their defaults).
 fn room_config(path: &Path) -> Result<RoomConfig, CliError> {
     let text = std::fs::read_to_string(path).map_err(|e| args::failed(path.display(), e))?;
-    serde_json::from_str(&text).map_err(|e| args::failed(format!("{} (room-layer settings)", path.display()), e))
+    RoomConfig::from_json(&text).map_err(|e| args::failed(format!("{} (room-layer settings)", path.display()), e))
 }
 
 pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {

@@ -265,7 +265,7 @@ pub fn explain_world_rooms_by(
 /// open pair joined, the doorway split and the wall gaps ([`labels_of_groups`]) still leave
 /// the two units mostly in different segments ([`unit_rooms`]). It is evidence for the room
 /// rules (`Closed`): on the chain's worlds of the benchmark floors, nine in ten open pairs
-/// that geometry does not part lie in one drawn room, and three in four that it parts do not.
+/// that geometry does not part lie in one drawn room, and four in five that it parts do not.
 ///
 /// ```
 /// use ksmcmc::floorplan::room_layer::mark_closed;

@@ -361,33 +361,20 @@ pub fn labels_of_groups(
 /// walled in by clutter).
 fn split_disconnected(labels: &mut Grid<u16>, min_room_cells: usize) -> Vec<bool> {
     let (w, h) = (labels.width(), labels.height());
-    // Each part: (label, cells, touches another segment); `part[i]` is cell i's part + 1.
-    let mut part = vec![0u32; w * h];
-    let mut parts: Vec<(u16, usize, bool)> = Vec::new();
-    let mut stack = Vec::new();
-    for start in 0..w * h {
-        let l = labels.cells()[start];
-        if l == 0 || part[start] != 0 {
-            continue;
+    // `part[i]` is cell i's part (1-based, 0 for none); `found[k]` is part k's (label, cells).
+    let (part, found) = find_cores(labels, |_| true);
+    let mut touches = vec![false; found.len()];
+    for (i, &l) in labels.cells().iter().enumerate() {
+        if l != 0 {
+            let other = |(nx, ny): (usize, usize)| {
+                let lj = labels.cells()[ny * w + nx];
+                lj != 0 && lj != l
+            };
+            touches[part[i] as usize] |= neighbours4(i % w, i / w, w, h).any(other);
         }
-        let id = parts.len() as u32 + 1;
-        let (mut n, mut touches) = (0usize, false);
-        part[start] = id;
-        stack.push(start);
-        while let Some(i) = stack.pop() {
-            n += 1;
-            for (nx, ny) in neighbours4(i % w, i / w, w, h) {
-                let j = ny * w + nx;
-                let lj = labels.cells()[j];
-                touches |= lj != 0 && lj != l;
-                if part[j] == 0 && lj == l {
-                    part[j] = id;
-                    stack.push(j);
-                }
-            }
-        }
-        parts.push((l, n, touches));
     }
+    // Each part: (label, cells, touches another segment), numbered from 0.
+    let parts: Vec<(u16, usize, bool)> = found.iter().zip(&touches).skip(1).map(|(&(l, n), &t)| (l, n, t)).collect();
     let max_label = labels.cells().iter().copied().max().unwrap_or(0) as usize;
     let mut biggest = vec![(0usize, usize::MAX); max_label + 1];
     for (k, &(l, n, _)) in parts.iter().enumerate() {

@@ -65,6 +65,12 @@ pub struct RoomConfig {
     /// walls close the boundary between two units ([`open_pairs`]). The default is 2 m at
     /// 5 cm cells, the side of a small room.
     pub min_wall_len: u32,
+    /// Whether the clutter inside a room (occupied parts that are no walls, and unseen specks:
+    /// [`RoomConfig::min_wall_len`]) gets the room's label, as a person colours a room on a
+    /// floor plan under its furniture. Only parts that one room's cells enclose are labelled,
+    /// so no two rooms come to touch through clutter. Off, only free cells
+    /// are labelled, as the room-segmentation tools of Bormann et al. (2016) do.
+    pub clutter_in_rooms: bool,
 }
 
 impl Default for RoomConfig {
@@ -82,6 +88,7 @@ impl Default for RoomConfig {
             max_wall_gap: 50,
             min_wall_stub: 6,
             min_wall_len: 40,
+            clutter_in_rooms: true,
         }
     }
 }
@@ -341,13 +348,54 @@ pub fn labels_of_groups(
     let (mut labels, queue) = label_unit_cells(world, &owner, world_map.width(), map);
     spread_labels(&mut labels, map, queue, c.max_reach);
     label_far_regions(&mut labels, map, rooms.iter().copied().max().unwrap_or(0), c);
-    split_at_doorways(&mut labels, map, c);
+    let open = without_clutter(map, c.min_wall_len);
+    split_open_at_doorways(&mut labels, &open, c);
     if let Some(closed) = super::wall_gaps::close_wall_gaps(world, map, world_map, c) {
         split_at_wall_gaps(&mut labels, &closed, c);
     }
     let fragment = split_disconnected(&mut labels, c.min_room_cells);
     merge_segments(&mut labels, c.min_segment_cells, &fragment);
+    if c.clutter_in_rooms {
+        label_clutter(&mut labels, map, &open);
+    }
     labels
+}
+
+/// Gives each 8-connected part of clutter (cells free in `open`, [`without_clutter`], but not
+/// in `map`: furniture, unseen specks) the label of the room around it: the one room among its
+/// labelled 8-neighbours, when those make at least half of its neighbours. A part beside two
+/// rooms (a chair in a doorway) or mostly beside unlabelled cells stays unlabelled.
+fn label_clutter(labels: &mut Grid<u16>, map: &Grid<Cell>, open: &Grid<Cell>) {
+    let (w, h) = (labels.width(), labels.height());
+    if w == 0 || h == 0 || (map.width(), map.height()) != (w, h) || (open.width(), open.height()) != (w, h) {
+        return;
+    }
+    let (cells, opened) = (map.cells(), open.cells());
+    let clutter = |i: usize| opened[i] == Cell::Free && cells[i] != Cell::Free;
+    let mut assign: Vec<(usize, u16)> = Vec::new();
+    let mut around: Vec<u16> = Vec::new();
+    super::wall_gaps::each_part(w, h, clutter, clutter, |part, _| {
+        around.clear();
+        for &i in part {
+            let (x, y) = (i % w, i / w);
+            for ny in y.saturating_sub(1)..=(y + 1).min(h - 1) {
+                for nx in x.saturating_sub(1)..=(x + 1).min(w - 1) {
+                    let j = ny * w + nx;
+                    if !clutter(j) {
+                        around.push(labels.cells()[j]);
+                    }
+                }
+            }
+        }
+        let room = around.first().copied().unwrap_or(0);
+        if room != 0 && around.iter().all(|&l| l == room) {
+            assign.extend(part.iter().map(|&i| (i, room)));
+        }
+    });
+    let out = labels.cells_mut();
+    for (i, room) in assign {
+        out[i] = room;
+    }
 }
 
 /// Gives the 4-connected parts of each segment ids of their own, and returns which new ids
@@ -673,7 +721,16 @@ pub fn split_at_doorways(labels: &mut Grid<u16>, map: &Grid<Cell>, c: &RoomConfi
     if c.door_half_width == 0 || w == 0 || h == 0 || (map.width(), map.height()) != (w, h) {
         return;
     }
-    let dist = free_depth(&without_clutter(map, c.min_wall_len));
+    split_open_at_doorways(labels, &without_clutter(map, c.min_wall_len), c);
+}
+
+/// [`split_at_doorways`] on `open`, the map with its clutter drawn free ([`without_clutter`]).
+fn split_open_at_doorways(labels: &mut Grid<u16>, open: &Grid<Cell>, c: &RoomConfig) {
+    let (w, h) = (labels.width(), labels.height());
+    if c.door_half_width == 0 || w == 0 || h == 0 || (open.width(), open.height()) != (w, h) {
+        return;
+    }
+    let dist = free_depth(open);
     let core_min = c.door_half_width.saturating_mul(3);
     let (seed, cores) = find_cores(labels, |i| dist[i] > core_min);
     divide_among_cores(labels, &seed, &cores, c.min_core_cells);
@@ -1102,6 +1159,40 @@ mod tests {
         let chairs_are_walls = RoomConfig { min_wall_len: 1, ..c };
         let labels = room_labels(&world, &map, &map, &chairs_are_walls);
         assert_ne!(*labels.at(150, 100), *labels.at(20, 20));
+    }
+
+    #[test]
+    fn furniture_inside_a_room_is_part_of_it_but_a_block_between_two_rooms_is_not() {
+        // Two rooms (0..60 and 61..120) parted by a wall at column 60 with a doorway at rows
+        // 15..25; a desk (10 x 6) in the middle of the left room, a cupboard (4 x 4) against
+        // in the doorway, clear of the wall, in both rooms.
+        let mut map = walled_room(121, 40);
+        for y in (0..40).filter(|y| !(15..25).contains(y)) {
+            *map.at_mut(60, y) = Cell::Occupied;
+        }
+        let mut block = |x0: usize, y0: usize, w: usize, h: usize| {
+            for y in y0..y0 + h {
+                for x in x0..x0 + w {
+                    *map.at_mut(x, y) = Cell::Occupied;
+                }
+            }
+        };
+        block(20, 17, 10, 6);
+        block(58, 18, 5, 4);
+        let mut world = World::empty(121, 40);
+        world.units = vec![unit(1, 0, 0, 61, 40), unit(2, 60, 0, 61, 40)];
+        let c = RoomConfig { door_half_width: 0, max_wall_gap: 0, ..RoomConfig::default() };
+        let labels = room_labels(&world, &map, &map, &c);
+        let (left, right) = (*labels.at(5, 5), *labels.at(100, 5));
+        assert!(left != 0 && right != 0 && left != right, "two rooms: {left}, {right}");
+        assert_eq!(*labels.at(25, 20), left, "the desk is in the left room");
+        assert_eq!((*labels.at(57, 20), *labels.at(63, 20)), (left, right), "the block touches both rooms");
+        assert_eq!(*labels.at(60, 20), 0, "the block in the doorway belongs to no room");
+        assert_eq!(*labels.at(60, 5), 0, "walls belong to no room");
+        let free_only = room_labels(&world, &map, &map, &RoomConfig { clutter_in_rooms: false, ..c });
+        assert_eq!(*free_only.at(25, 20), 0, "off, only free cells are labelled");
+        let counted = |l: &Grid<u16>| l.cells().iter().filter(|&&v| v == left).count();
+        assert_eq!(counted(&labels), counted(&free_only) + 60, "the desk's 60 cells, no more");
     }
 
     #[test]

@@ -294,6 +294,11 @@ impl RoutePlanner {
         &self.labels
     }
 
+    /// The map the planner routes on.
+    pub fn map(&self) -> &Grid<Cell> {
+        &self.map
+    }
+
     /// The route from cell `from` to cell `to` (column, row).
     pub fn route(&mut self, from: (i64, i64), to: (i64, i64)) -> Result<Route, RouteError> {
         let s = self.check(End::Start, from)?;

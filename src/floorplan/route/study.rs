@@ -8,6 +8,7 @@
 //! path's; [`stretch`] measures it over pairs of free cells in different rooms.
 
 use super::{Planned, RouteError, RoutePlanner};
+use crate::grid::Cell;
 use crate::mcmc::Rng;
 
 /// The stretch of routes over many pairs of cells.
@@ -46,7 +47,9 @@ pub struct Stretch {
 pub fn stretch(planner: &mut RoutePlanner, pairs: usize, seed: u64) -> Stretch {
     let labels = planner.labels().clone();
     let (w, _) = planner.size();
-    let cells: Vec<usize> = (0..labels.len()).filter(|&i| labels.cells()[i] != 0).collect();
+    // Free cells of rooms: a room's label also covers the furniture inside it.
+    let free = |i: usize| planner.map().cells()[i] == Cell::Free;
+    let cells: Vec<usize> = (0..labels.len()).filter(|&i| labels.cells()[i] != 0 && free(i)).collect();
     let mut out = Stretch { pairs: 0, mean: 0.0, max: 0.0, worst: [[0; 2]; 2], on_cells: 0, unreachable: 0 };
     let first = cells.first().map(|&i| labels.cells()[i]);
     if cells.is_empty() || cells.iter().all(|&i| Some(labels.cells()[i]) == first) {

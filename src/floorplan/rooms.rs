@@ -355,10 +355,39 @@ pub fn labels_of_groups(
     }
     let fragment = split_disconnected(&mut labels, c.min_room_cells);
     merge_segments(&mut labels, c.min_segment_cells, &fragment);
+    drop_small_segments(&mut labels, c.min_room_cells / 4);
     if c.clutter_in_rooms {
         label_clutter(&mut labels, map, &open);
     }
     labels
+}
+
+/// Unlabels the segments of fewer than `min_cells` cells and numbers the others 1..=n again
+/// in scan order. [`merge_segments`] has joined every small segment with a neighbour, so
+/// these touch none: two slivers that only touched each other, left over from the splits.
+/// [`split_disconnected`] keeps no lone part that small either, so no room is.
+fn drop_small_segments(labels: &mut Grid<u16>, min_cells: usize) {
+    let n = labels.cells().iter().copied().max().unwrap_or(0) as usize;
+    let mut size = vec![0usize; n + 1];
+    for &l in labels.cells() {
+        size[l as usize] += 1;
+    }
+    let mut id = vec![0u16; n + 1];
+    let mut next = 0u16;
+    for l in labels.cells_mut() {
+        if *l == 0 {
+            continue;
+        }
+        if size[*l as usize] < min_cells {
+            *l = 0;
+            continue;
+        }
+        if id[*l as usize] == 0 {
+            next += 1;
+            id[*l as usize] = next;
+        }
+        *l = id[*l as usize];
+    }
 }
 
 /// Gives each 8-connected part of clutter (cells free in `open`, [`without_clutter`], but not
@@ -1193,6 +1222,30 @@ mod tests {
         assert_eq!(*free_only.at(25, 20), 0, "off, only free cells are labelled");
         let counted = |l: &Grid<u16>| l.cells().iter().filter(|&&v| v == left).count();
         assert_eq!(counted(&labels), counted(&free_only) + 60, "the desk's 60 cells, no more");
+    }
+
+    #[test]
+    fn slivers_that_only_touch_each_other_are_no_room() {
+        // A room (label 1, 30 x 30) and, far from it, two one-cell slivers of labels 2 and 3
+        // side by side: each touches another segment, so the part split keeps both and the
+        // merge joins them into one segment of two cells, which is then dropped.
+        let mut labels = Grid::new(60, 40, 0u16);
+        for y in 0..30 {
+            for x in 0..30 {
+                *labels.at_mut(x, y) = 1;
+            }
+        }
+        *labels.at_mut(50, 35) = 2;
+        *labels.at_mut(51, 35) = 3;
+        let c = RoomConfig::default();
+        let fragment = split_disconnected(&mut labels, c.min_room_cells);
+        merge_segments(&mut labels, c.min_segment_cells, &fragment);
+        let seg = *labels.at(50, 35);
+        assert!(seg != 0 && seg == *labels.at(51, 35), "merged into one segment of two cells");
+        drop_small_segments(&mut labels, c.min_room_cells / 4);
+        assert_eq!((*labels.at(50, 35), *labels.at(51, 35)), (0, 0));
+        assert_eq!(*labels.at(10, 10), 1);
+        assert_eq!(labels.cells().iter().filter(|&&l| l == 1).count(), 900);
     }
 
     #[test]

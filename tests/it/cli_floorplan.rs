@@ -42,7 +42,7 @@ fn floorplan_writes_every_output_and_scores_its_labels() {
     let n_cells: u64 = world.unexplained.iter().map(|a| a.cells as u64).sum();
     assert_eq!(report["unexplained_cells"].as_u64(), Some(n_cells));
     assert!(report["cell_prediction_rate"].as_f64().unwrap() > 0.9);
-    // labels.pgm: 16-bit, map-sized, rooms numbered 1..=n on free cells only.
+    // labels.pgm: 16-bit, map-sized, rooms numbered 1..=n.
     let labels = std::fs::read(d.join("labels.pgm")).unwrap();
     let header = format!("P5\n{} {}\n65535\n", m.width(), m.height());
     assert!(labels.starts_with(header.as_bytes()));
@@ -50,9 +50,21 @@ fn floorplan_writes_every_output_and_scores_its_labels() {
     assert_eq!(ids.len(), m.width() * m.height());
     let n = report["rooms"].as_u64().unwrap() as u16;
     assert_eq!(*ids.iter().max().unwrap(), n);
+    // A label on a non-free cell is clutter the room encloses (RoomConfig::clutter_in_rooms):
+    // every cell around it carries the same label, so no wall and no other room is beside it.
+    let (w, h) = (m.width(), m.height());
     for (i, &id) in ids.iter().enumerate() {
-        if id != 0 {
-            assert_eq!(m.classified().cells()[i], ksmcmc::grid::Cell::Free, "label on a non-free cell");
+        if id != 0 && m.classified().cells()[i] != ksmcmc::grid::Cell::Free {
+            let (x, y) = (i % w, i / w);
+            for ny in y.saturating_sub(1)..=(y + 1).min(h - 1) {
+                for nx in x.saturating_sub(1)..=(x + 1).min(w - 1) {
+                    assert_eq!(
+                        ids[ny * w + nx],
+                        id,
+                        "label {id} on a non-free cell ({x}, {y}) not enclosed by its room"
+                    );
+                }
+            }
         }
     }
     let trace = std::fs::read_to_string(d.join("trace.csv")).unwrap();

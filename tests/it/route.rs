@@ -187,7 +187,9 @@ fn check_routes(
 ) -> (f64, f64) {
     let mut planner = RoutePlanner::new(map.clone(), labels.clone(), world, resolution).unwrap();
     let w = map.width();
-    let cells: Vec<usize> = (0..labels.len()).filter(|&i| labels.cells()[i] != 0).collect();
+    // Free cells of rooms: a room's label also covers the clutter it encloses.
+    let cells: Vec<usize> =
+        (0..labels.len()).filter(|&i| labels.cells()[i] != 0 && map.cells()[i] == Cell::Free).collect();
     let mut rng = Rng::seed(seed);
     let (mut sum, mut max, mut n) = (0.0, 0.0f64, 0);
     while n < pairs {

@@ -16,7 +16,9 @@
 //!
 //! The grouping then becomes the label image ([`labels_of_groups`], one id per room, split at
 //! doorways), and [`rooms_of_labels`] reads the rooms off it: each unit belongs to the room
-//! that holds most of its free cells, a room's type is the type covering most of its cells,
+//! that holds most of its free cells, a room's type is the type covering most of its cells
+//! (with knowledge supervision, the indoor rules applied to the room as one space:
+//! [`super::room_types::type_rooms`]),
 //! its doors are those whose cells it touches, and it opens to every room it touches along a
 //! passable stretch ([`MIN_CONTACT_CELLS`]) or through a door.
 
@@ -40,6 +42,9 @@ const TYPES: [(&str, UnitType); 4] = super::knowledge::TYPE_PREDICATES;
 #[derive(Debug, Clone)]
 pub struct RoomKnowledge {
     mln: Mln,
+    /// The indoor rules and geometry classifier that type the rooms
+    /// ([`super::room_types::type_rooms`]).
+    types: super::knowledge::KnowledgeConfig,
 }
 
 impl RoomKnowledge {
@@ -48,19 +53,23 @@ impl RoomKnowledge {
         RoomKnowledge::parse(BUILTIN_ROOM_RULES).expect("the built-in room rules parse")
     }
 
-    /// The rules of a knowledge configuration: its `room_kb`, or the built-in ones.
+    /// The rules of a knowledge configuration: its `room_kb`, or the built-in ones; its
+    /// indoor knowledge base and geometry classifier type the rooms.
     pub fn configured(config: &super::knowledge::KnowledgeConfig) -> Result<RoomKnowledge, MlnError> {
-        RoomKnowledge::parse(config.room_kb.as_deref().unwrap_or(BUILTIN_ROOM_RULES))
+        let mut k = RoomKnowledge::parse(config.room_kb.as_deref().unwrap_or(BUILTIN_ROOM_RULES))?;
+        k.types = config.clone();
+        Ok(k)
     }
 
     /// Rules from text: they must declare `SameRoom(unit, unit)`; they may use the evidence
-    /// predicates `Open`, `Flush`, `Room`, `Corr`, `Hall` and `Other`.
+    /// predicates `Open`, `Flush`, `Closed`, `Room`, `Corr`, `Hall` and `Other`. The built-in
+    /// indoor rules type the rooms.
     pub fn parse(text: &str) -> Result<RoomKnowledge, MlnError> {
         let mln = Mln::parse(text)?;
         if mln.predicate("SameRoom").is_none() {
             return Err(MlnError::config("the room rules must declare the query SameRoom(unit, unit)"));
         }
-        Ok(RoomKnowledge { mln })
+        Ok(RoomKnowledge { mln, types: Default::default() })
     }
 
     /// `P(SameRoom)` of every pair in `pairs` (unit indices into `world.units`), in order.
@@ -225,6 +234,9 @@ pub fn explain_rooms_edited(
     let mut labels = labels_of_groups(world, &groups, map, world_map, c);
     edits.apply_to_labels(&mut labels, map);
     world.rooms = rooms_of_labels(world, &labels, resolution);
+    if let Some(k) = knowledge {
+        super::room_types::type_rooms(world, &labels, resolution, &k.types)?;
+    }
     edits.apply_to_rooms(&mut world.rooms, &labels);
     Ok(labels)
 }
@@ -647,5 +659,31 @@ mod tests {
         // Free space no unit covers stays of unknown type.
         world.units.clear();
         assert!(rooms_of_labels(&world, &labels, 0.05).iter().all(|r| r.kind == UnitType::Unknown));
+    }
+
+    #[test]
+    fn a_room_of_small_other_units_is_typed_as_the_one_space_it_is() {
+        // A 10 x 10 m foyer at 5 cm cells, walled round, explained by four units of 5 x 5 m
+        // typed Other (as fragments with doors come out), with nothing between them.
+        let mut map = Grid::new(200, 200, Cell::Free);
+        for i in 0..200 {
+            for (x, y) in [(i, 0), (i, 199), (0, i), (199, i)] {
+                *map.at_mut(x, y) = Cell::Occupied;
+            }
+        }
+        let mut world = World::empty(200, 200);
+        world.units = vec![
+            unit(1, 0, 0, 101, 101, UnitType::Other),
+            unit(2, 100, 0, 100, 101, UnitType::Other),
+            unit(3, 0, 100, 101, 100, UnitType::Other),
+            unit(4, 100, 100, 100, 100, UnitType::Other),
+        ];
+        let c = RoomConfig::default();
+        explain_rooms(&mut world, &map, &map, &c, 0.05, Some(&RoomKnowledge::builtin())).unwrap();
+        assert_eq!(world.rooms.len(), 1);
+        assert_eq!(world.rooms[0].kind, UnitType::Hall, "typed by its own area, 100 m2");
+        // Without the rules the room takes its units' type.
+        explain_rooms(&mut world, &map, &map, &c, 0.05, None).unwrap();
+        assert_eq!((world.rooms.len(), world.rooms[0].kind), (1, UnitType::Other));
     }
 }

@@ -1,22 +1,24 @@
-//! What the knowledge base believes about each room's type: its units' type marginals,
-//! averaged over the room.
+//! What the knowledge base believes about each room's type.
 //!
-//! Markov logic types units, not rooms: inference gives every unit four marginals,
-//! `P(Room)`, `P(Corr)`, `P(Hall)` and `P(Other)` ([`Inferred`]), and the unit's type is the
-//! most probable. A room of the room layer is one or more units ([`super::room_layer`]), and
-//! its type is the type covering most of its cells. A reader who hovers a room wants to know
-//! how sure that type is; this module answers with the room's marginals as the mean of its
-//! units' marginals weighted by each unit's interior (its free area inside the walls), the
-//! same weighting that makes the room's type, so that a small cupboard merged into an office
-//! does not count as much as the office.
+//! Markov logic types units: inference gives every unit four marginals, `P(Room)`,
+//! `P(Corr)`, `P(Hall)` and `P(Other)` ([`Inferred`]), and the unit's type is the most
+//! probable. A room of the room layer is one or more units ([`super::room_layer`]). A person
+//! types the room as one space, so with knowledge supervision the same rules are applied to
+//! the rooms themselves ([`room_marginals`], [`type_rooms`]): a foyer of many small units is a
+//! hall, not a room of "other" pieces. Without it (or for a room the rules were not applied
+//! to) a room's marginals are the mean of its units' weighted by each unit's interior (its
+//! free area inside the walls), so that a small cupboard merged into an office does not
+//! count as much as the office.
 //!
 //! The four predicates of the knowledge base are separate atoms, not one variable with four
 //! values: the rules make them exclude each other only softly, so the four numbers need not
 //! add up to 1. They are given as inferred, not normalised.
 
-use super::knowledge::Inferred;
-use super::world::{UnitType, World};
+use super::knowledge::{Inferred, Knowledge, KnowledgeConfig};
+use super::world::{Room, Unit, UnitType, World};
+use crate::grid::Grid;
 use serde::Serialize;
+use std::collections::{BTreeMap, BTreeSet};
 
 /// A room's type marginals and its units with their types.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -62,8 +64,9 @@ impl TypeMarginals {
 }
 
 /// The type marginals of every room of `world` (whose room layer is filled in, as
-/// [`super::Chain::best_world_with_rooms`] gives it) from the inference `inferred` on the same
-/// units, in the order of `world.rooms`.
+/// [`super::Chain::best_world_with_rooms`] gives it), in the order of `world.rooms`: those
+/// in `rooms` (room ids to the room-level marginals of [`room_marginals`]) where given, else
+/// from the inference `inferred` on its units. Its units come with their own marginals.
 ///
 /// ```
 /// use ksmcmc::floorplan::knowledge::Inferred;
@@ -80,12 +83,15 @@ impl TypeMarginals {
 /// inferred.types.insert(1, (UnitType::Room, [1.0, 0.0, 0.0, 0.0]));
 /// inferred.types.insert(2, (UnitType::Other, [0.0, 0.0, 0.0, 1.0]));
 ///
-/// let rooms = room_types(&world, &inferred);
+/// let rooms = room_types(&world, &inferred, &Default::default());
 /// let p = rooms[0].marginals.unwrap();
 /// assert!((p.room - 58.0 / 96.0).abs() < 1e-12 && (p.other - 38.0 / 96.0).abs() < 1e-12);
 /// assert_eq!(rooms[0].units[1].kind, UnitType::Other);
+/// // The room's own marginals, where the rules were applied to it, come first.
+/// let own = [(1, [0.9, 0.0, 0.1, 0.0])].into_iter().collect();
+/// assert_eq!(room_types(&world, &inferred, &own)[0].marginals.unwrap().room, 0.9);
 /// ```
-pub fn room_types(world: &World, inferred: &Inferred) -> Vec<RoomTypes> {
+pub fn room_types(world: &World, inferred: &Inferred, rooms: &BTreeMap<u32, [f64; 4]>) -> Vec<RoomTypes> {
     let t = world.wall_thickness.max(0);
     world
         .rooms
@@ -105,10 +111,116 @@ pub fn room_types(world: &World, inferred: &Inferred) -> Vec<RoomTypes> {
                 }
                 units.push(UnitTypes { id: u.id, kind: u.kind, marginals: p.map(TypeMarginals::of) });
             }
-            let marginals = (weight > 0.0).then(|| TypeMarginals::of(sum.map(|s| s / weight)));
+            let marginals = match rooms.get(&room.id) {
+                Some(&p) => Some(TypeMarginals::of(p)),
+                None => (weight > 0.0).then(|| TypeMarginals::of(sum.map(|s| s / weight))),
+            };
             RoomTypes { id: room.id, marginals, units }
         })
         .collect()
+}
+
+/// Each room's cells and the longer side of its bounding box in the world frame (cells), by
+/// room id: a room as long as its box and as wide as its area allows, which clutter along
+/// its walls or a ragged scanned edge changes little.
+fn room_extents(world: &World, labels: &Grid<u16>) -> BTreeMap<u16, (usize, f64)> {
+    let rotation = world.frame.rotation();
+    let mut boxes: BTreeMap<u16, (usize, [f64; 4])> = BTreeMap::new();
+    for y in 0..labels.height() {
+        for x in 0..labels.width() {
+            let l = *labels.at(x, y);
+            if l == 0 {
+                continue;
+            }
+            let (wx, wy) = rotation.to_world(x as f64 + 0.5, y as f64 + 0.5);
+            let e = boxes.entry(l).or_insert((0, [wx, wy, wx, wy]));
+            e.0 += 1;
+            e.1 = [e.1[0].min(wx), e.1[1].min(wy), e.1[2].max(wx), e.1[3].max(wy)];
+        }
+    }
+    boxes.into_iter().map(|(l, (n, b))| (l, (n, (b[2] - b[0]).max(b[3] - b[1]) + 1.0))).collect()
+}
+
+/// The type marginals of each room (by id) from the indoor rules (`config`'s knowledge base)
+/// applied to rooms rather than units. A room's geometry evidence (`RoLi`, `CoLi`, `HaLi`,
+/// `Small`, `Narrow`: the classifier of Tab. 3.6) is that of a rectangle as long as the
+/// room's bounding box in the world frame and as wide as its area allows; `MulDoor` holds
+/// when its doors lead to two rooms or more. A room of several small units is typed as the one
+/// space it is: on Cartesium the open foyers of many units become halls, not rooms made of
+/// "other" pieces.
+///
+/// ```
+/// use ksmcmc::floorplan::knowledge::KnowledgeConfig;
+/// use ksmcmc::floorplan::room_types::room_marginals;
+/// use ksmcmc::floorplan::{Room, World};
+/// use ksmcmc::grid::Grid;
+///
+/// // At 5 cm cells: room 1 is 10 x 10 m (a hall by its area), room 2 is 2 x 12 m with doors
+/// // to two rooms (a corridor).
+/// let mut labels = Grid::new(440, 240, 0u16);
+/// for y in 0..200 { for x in 0..200 { *labels.at_mut(x, y) = 1; } }
+/// for y in 0..240 { for x in 400..440 { *labels.at_mut(x, y) = 2; } }
+/// let world = World::empty(440, 240);
+/// let room = |id, doors| Room { id, kind: Default::default(), units: vec![], area_m2: 0.0, doors, opens_to: vec![], name: None };
+/// // Door 1 joins rooms 1 and 2, door 2 rooms 2 and 3 (a room beyond the labels here).
+/// let rooms = vec![room(1, vec![1]), room(2, vec![1, 2]), room(3, vec![2])];
+/// let p = room_marginals(&world, &rooms, &labels, 0.05, &KnowledgeConfig::default())?;
+/// assert!(p[&1][2] > 0.5, "hall: {:?}", p[&1]);
+/// assert!(p[&2][1] > 0.5, "corridor: {:?}", p[&2]);
+/// # Ok::<(), ksmcmc::mln::MlnError>(())
+/// ```
+pub fn room_marginals(
+    world: &World,
+    rooms: &[Room],
+    labels: &Grid<u16>,
+    resolution: f64,
+    config: &KnowledgeConfig,
+) -> Result<BTreeMap<u32, [f64; 4]>, crate::mln::MlnError> {
+    let extents = room_extents(world, labels);
+    let mut pseudo = World::empty(1, 1);
+    pseudo.wall_thickness = 0;
+    let mut x = 0;
+    for r in rooms {
+        let Some(&(n, long)) = u16::try_from(r.id).ok().and_then(|l| extents.get(&l)) else { continue };
+        let h = (long.round() as i32).max(1);
+        let w = ((n as f64 / h as f64).round() as i32).clamp(1, h);
+        // Far apart: rooms are typed each by its own evidence, with no `Adj` between them.
+        pseudo.units.push(Unit { id: r.id, x, y: 0, w, h, kind: UnitType::Unknown });
+        x = x.saturating_add(w.saturating_add(1000));
+        for b in through_doors(rooms, r).into_iter().filter(|&b| b > r.id) {
+            let id = pseudo.doors.len() as u32 + 1;
+            pseudo.doors.push(super::world::Door { id, units: [r.id, b], x0: 0, y0: 0, x1: 0, y1: 0 });
+        }
+    }
+    let inferred = Knowledge::new(config)?.infer(&pseudo, resolution)?;
+    Ok(inferred.types.into_iter().map(|(id, (_, p))| (id, p)).collect())
+}
+
+/// The rooms `r` shares a door with (a door both list): where `r` leads. A door between two
+/// units of one room leads nowhere, and an open contact with a neighbour (a doorway the
+/// splits drew, two rooms touching at a corner) is no door.
+fn through_doors(rooms: &[Room], r: &Room) -> BTreeSet<u32> {
+    rooms.iter().filter(|o| o.id != r.id && o.doors.iter().any(|d| r.doors.contains(d))).map(|o| o.id).collect()
+}
+
+/// Types the rooms (`world.rooms`, read off `labels`) by [`room_marginals`]: each takes its
+/// most probable type; a room the rules give no type keeps its own.
+pub fn type_rooms(
+    world: &mut World,
+    labels: &Grid<u16>,
+    resolution: f64,
+    config: &KnowledgeConfig,
+) -> Result<(), crate::mln::MlnError> {
+    let p = room_marginals(world, &world.rooms, labels, resolution, config)?;
+    for r in &mut world.rooms {
+        if let Some(m) = p.get(&r.id) {
+            let best = (0..4).max_by(|&a, &b| m[a].total_cmp(&m[b])).unwrap_or(0);
+            if m[best] > 0.0 {
+                r.kind = super::knowledge::TYPE_PREDICATES[best].1;
+            }
+        }
+    }
+    Ok(())
 }
 
 #[cfg(test)]
@@ -131,7 +243,7 @@ mod tests {
                 name: None,
             });
         }
-        let rooms = room_types(&world, &Inferred::default());
+        let rooms = room_types(&world, &Inferred::default(), &Default::default());
         assert_eq!(rooms.len(), 2);
         assert!(rooms.iter().all(|r| r.marginals.is_none()));
         assert_eq!(rooms[1].units, vec![UnitTypes { id: 4, kind: UnitType::Unknown, marginals: None }]);
@@ -152,7 +264,7 @@ mod tests {
         });
         let mut inferred = Inferred::default();
         inferred.types.insert(3, (UnitType::Corridor, [0.1, 0.8, 0.05, 0.2]));
-        let rooms = room_types(&world, &inferred);
+        let rooms = room_types(&world, &inferred, &Default::default());
         let p = rooms[0].marginals.unwrap();
         assert_eq!([p.room, p.corridor, p.hall, p.other], [0.1, 0.8, 0.05, 0.2]);
         assert_eq!(rooms[0].id, 7);

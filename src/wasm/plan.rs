@@ -26,7 +26,7 @@ use super::route::ends;
 use crate::floorplan::geojson::world_geojson;
 use crate::floorplan::georef::Georef;
 use crate::floorplan::plan_input::PlanInput;
-use crate::floorplan::room_types::room_types;
+use crate::floorplan::room_types::{room_marginals, room_types};
 use crate::floorplan::route::RoutePlanner;
 use crate::floorplan::{export, World};
 use crate::grid::{Grid, Limits, OccupancyMap};
@@ -110,12 +110,21 @@ impl Plan {
 
     /// What the knowledge base believes about each room's type, as JSON text: per room of
     /// `roomsJson` (same order), `{"id", "marginals": {"room", "corridor", "hall", "other"} |
-    /// null, "units": [{"id", "type", "marginals"}]}`. A room's marginals are its units'
-    /// `P(Room)`, `P(Corr)`, `P(Hall)` and `P(Other)` averaged by their interiors' areas; the
-    /// four are separate atoms of the knowledge base and need not add up to 1.
+    /// null, "units": [{"id", "type", "marginals"}]}`. With knowledge supervision a room's
+    /// marginals are `P(Room)`, `P(Corr)`, `P(Hall)` and `P(Other)` of the indoor rules applied
+    /// to the room as one space (which make its type); without, its units' averaged by their
+    /// interiors' areas. The four are separate atoms of the knowledge base and need not add up
+    /// to 1.
     #[wasm_bindgen(js_name = roomTypesJson)]
     pub fn room_types_json(&self) -> String {
-        export::room_types_json(&room_types(&self.world, &self.input.inferred().unwrap_or_default()))
+        let resolution = self.map.yaml().resolution;
+        let own = if self.input.knowledge {
+            room_marginals(&self.world, &self.world.rooms, &self.labels, resolution, &Default::default())
+                .unwrap_or_default()
+        } else {
+            Default::default()
+        };
+        export::room_types_json(&room_types(&self.world, &self.input.inferred().unwrap_or_default(), &own))
     }
 
     /// The scene graph as `graph.json` text: `{"nodes": [{"id", "type"}], "edges": [{"from",

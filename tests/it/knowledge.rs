@@ -66,19 +66,20 @@ fn knowledge_is_on_by_default_and_inference_keeps_to_its_time_share() {
 }
 
 /// The rooms' type marginals on a real run: one row per room of the room layer, in its order,
-/// each unit typed by its most probable marginal, and a one-unit room carrying exactly its
-/// unit's marginals. The same inference typed the world, so asking for it changes nothing.
+/// each unit typed by its most probable marginal, and (from the units) a one-unit room
+/// carrying exactly its unit's marginals. The same inference typed the world, so asking for
+/// it changes nothing. The rules applied to the rooms themselves give each room its type.
 #[test]
 fn room_type_marginals_follow_the_units_inference() {
-    use ksmcmc::floorplan::room_types::room_types;
+    use ksmcmc::floorplan::room_types::{room_marginals, room_types};
     let s = generate(&SynthConfig::default(), 201).unwrap();
     let mut chain = Chain::new(&s.map, ChainConfig::default(), 2).unwrap();
     chain.step(20_000);
-    let (world, _) = chain.best_world_with_rooms(&Default::default());
+    let (world, labels) = chain.best_world_with_rooms(&Default::default());
     let (typed, inferred) = chain.best_world_inferred();
     let inferred = inferred.expect("the built-in rules infer");
     assert_eq!(typed.units, world.units, "the rooms' world is the inferred one");
-    let rooms = room_types(&world, &inferred);
+    let rooms = room_types(&world, &inferred, &Default::default());
     assert_eq!(rooms.iter().map(|r| r.id).collect::<Vec<_>>(), world.rooms.iter().map(|r| r.id).collect::<Vec<_>>());
     let order = [UnitType::Room, UnitType::Corridor, UnitType::Hall, UnitType::Other];
     let mut single = 0;
@@ -99,4 +100,11 @@ fn room_type_marginals_follow_the_units_inference() {
         }
     }
     assert!(single >= 1, "a run of office 201 has one-unit rooms: {rooms:?}");
+    let own = room_marginals(&world, &world.rooms, &labels, s.map.yaml().resolution, &Default::default()).unwrap();
+    for (room, row) in world.rooms.iter().zip(room_types(&world, &inferred, &own)) {
+        let p = row.marginals.expect("every room of the labels was inferred");
+        let p = [p.room, p.corridor, p.hall, p.other];
+        let top = (0..4).max_by(|&a, &b| p[a].total_cmp(&p[b])).unwrap();
+        assert_eq!(room.kind, order[top], "room {} typed by its own most probable marginal {p:?}", room.id);
+    }
 }

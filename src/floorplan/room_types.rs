@@ -18,7 +18,7 @@ use super::knowledge::{Inferred, Knowledge, KnowledgeConfig};
 use super::world::{Room, Unit, UnitType, World};
 use crate::grid::Grid;
 use serde::Serialize;
-use std::collections::{BTreeMap, BTreeSet};
+use std::collections::BTreeMap;
 
 /// A room's type marginals and its units with their types.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -145,7 +145,7 @@ fn room_extents(world: &World, labels: &Grid<u16>) -> BTreeMap<u16, (usize, f64)
 /// applied to rooms rather than units. A room's geometry evidence (`RoLi`, `CoLi`, `HaLi`,
 /// `Small`, `Narrow`: the classifier of Tab. 3.6) is that of a rectangle as long as the
 /// room's bounding box in the world frame and as wide as its area allows; `MulDoor` holds
-/// when its doors lead to two rooms or more. A room of several small units is typed as the one
+/// when it opens to two rooms or more (`opens_to`: through doors or openings). A room of several small units is typed as the one
 /// space it is: on Cartesium the open foyers of many units become halls, not rooms made of
 /// "other" pieces.
 ///
@@ -155,15 +155,15 @@ fn room_extents(world: &World, labels: &Grid<u16>) -> BTreeMap<u16, (usize, f64)
 /// use ksmcmc::floorplan::{Room, World};
 /// use ksmcmc::grid::Grid;
 ///
-/// // At 5 cm cells: room 1 is 10 x 10 m (a hall by its area), room 2 is 2 x 12 m with doors
+/// // At 5 cm cells: room 1 is 10 x 10 m (a hall by its area), room 2 is 2 x 12 m and opens
 /// // to two rooms (a corridor).
 /// let mut labels = Grid::new(440, 240, 0u16);
 /// for y in 0..200 { for x in 0..200 { *labels.at_mut(x, y) = 1; } }
 /// for y in 0..240 { for x in 400..440 { *labels.at_mut(x, y) = 2; } }
 /// let world = World::empty(440, 240);
-/// let room = |id, doors| Room { id, kind: Default::default(), units: vec![], area_m2: 0.0, doors, opens_to: vec![], name: None };
-/// // Door 1 joins rooms 1 and 2, door 2 rooms 2 and 3 (a room beyond the labels here).
-/// let rooms = vec![room(1, vec![1]), room(2, vec![1, 2]), room(3, vec![2])];
+/// let room = |id, opens_to| Room { id, kind: Default::default(), units: vec![], area_m2: 0.0, doors: vec![], opens_to, name: None };
+/// // Room 2 opens to room 1 and to room 3 (beyond the labels here).
+/// let rooms = vec![room(1, vec![2]), room(2, vec![1, 3])];
 /// let p = room_marginals(&world, &rooms, &labels, 0.05, &KnowledgeConfig::default())?;
 /// assert!(p[&1][2] > 0.5, "hall: {:?}", p[&1]);
 /// assert!(p[&2][1] > 0.5, "corridor: {:?}", p[&2]);
@@ -187,20 +187,13 @@ pub fn room_marginals(
         // Far apart: rooms are typed each by its own evidence, with no `Adj` between them.
         pseudo.units.push(Unit { id: r.id, x, y: 0, w, h, kind: UnitType::Unknown });
         x = x.saturating_add(w.saturating_add(1000));
-        for b in through_doors(rooms, r).into_iter().filter(|&b| b > r.id) {
+        for &b in r.opens_to.iter().filter(|&&b| b > r.id) {
             let id = pseudo.doors.len() as u32 + 1;
             pseudo.doors.push(super::world::Door { id, units: [r.id, b], x0: 0, y0: 0, x1: 0, y1: 0 });
         }
     }
     let inferred = Knowledge::new(config)?.infer(&pseudo, resolution)?;
     Ok(inferred.types.into_iter().map(|(id, (_, p))| (id, p)).collect())
-}
-
-/// The rooms `r` shares a door with (a door both list): where `r` leads. A door between two
-/// units of one room leads nowhere, and an open contact with a neighbour (a doorway the
-/// splits drew, two rooms touching at a corner) is no door.
-fn through_doors(rooms: &[Room], r: &Room) -> BTreeSet<u32> {
-    rooms.iter().filter(|o| o.id != r.id && o.doors.iter().any(|d| r.doors.contains(d))).map(|o| o.id).collect()
 }
 
 /// Types the rooms (`world.rooms`, read off `labels`) by [`room_marginals`]: each takes its

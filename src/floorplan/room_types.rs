@@ -145,7 +145,9 @@ fn room_extents(world: &World, labels: &Grid<u16>) -> BTreeMap<u16, (usize, f64)
 /// applied to rooms rather than units. A room's geometry evidence (`RoLi`, `CoLi`, `HaLi`,
 /// `Small`, `Narrow`: the classifier of Tab. 3.6) is that of a rectangle as long as the
 /// room's bounding box in the world frame and as wide as its area allows; `MulDoor` holds
-/// when it opens to two rooms or more (`opens_to`: through doors or openings). A room of several small units is typed as the one
+/// when it opens to two rooms or more (`opens_to`: through doors or openings). Only rooms with
+/// units are typed: free space the chain left unexplained (or a piece the splits parted from
+/// its units' room) is not a space the chain has explained. A room of several small units is typed as the one
 /// space it is: on Cartesium the open foyers of many units become halls, not rooms made of
 /// "other" pieces.
 ///
@@ -161,12 +163,15 @@ fn room_extents(world: &World, labels: &Grid<u16>) -> BTreeMap<u16, (usize, f64)
 /// for y in 0..200 { for x in 0..200 { *labels.at_mut(x, y) = 1; } }
 /// for y in 0..240 { for x in 400..440 { *labels.at_mut(x, y) = 2; } }
 /// let world = World::empty(440, 240);
-/// let room = |id, opens_to| Room { id, kind: Default::default(), units: vec![], area_m2: 0.0, doors: vec![], opens_to, name: None };
+/// let room = |id, opens_to| Room { id, kind: Default::default(), units: vec![id], area_m2: 0.0, doors: vec![], opens_to, name: None };
 /// // Room 2 opens to room 1 and to room 3 (beyond the labels here).
 /// let rooms = vec![room(1, vec![2]), room(2, vec![1, 3])];
 /// let p = room_marginals(&world, &rooms, &labels, 0.05, &KnowledgeConfig::default())?;
 /// assert!(p[&1][2] > 0.5, "hall: {:?}", p[&1]);
 /// assert!(p[&2][1] > 0.5, "corridor: {:?}", p[&2]);
+/// // A room with no units (space the chain left unexplained) is not typed.
+/// let bare = Room { units: vec![], ..rooms[0].clone() };
+/// assert!(room_marginals(&world, &[bare], &labels, 0.05, &KnowledgeConfig::default())?.is_empty());
 /// # Ok::<(), ksmcmc::mln::MlnError>(())
 /// ```
 pub fn room_marginals(
@@ -180,7 +185,7 @@ pub fn room_marginals(
     let mut pseudo = World::empty(1, 1);
     pseudo.wall_thickness = 0;
     let mut x = 0;
-    for r in rooms {
+    for r in rooms.iter().filter(|r| !r.units.is_empty()) {
         let Some(&(n, long)) = u16::try_from(r.id).ok().and_then(|l| extents.get(&l)) else { continue };
         let h = (long.round() as i32).max(1);
         let w = ((n as f64 / h as f64).round() as i32).clamp(1, h);
@@ -197,7 +202,7 @@ pub fn room_marginals(
 }
 
 /// Types the rooms (`world.rooms`, read off `labels`) by [`room_marginals`]: each takes its
-/// most probable type; a room the rules give no type keeps its own.
+/// most probable type; a room the rules give no type (one without units) keeps its own.
 pub fn type_rooms(
     world: &mut World,
     labels: &Grid<u16>,

@@ -101,8 +101,10 @@ fn room_type_marginals_follow_the_units_inference() {
     }
     assert!(single >= 1, "a run of office 201 has one-unit rooms: {rooms:?}");
     let own = room_marginals(&world, &world.rooms, &labels, s.map.yaml().resolution, &Default::default()).unwrap();
-    for (room, row) in world.rooms.iter().zip(room_types(&world, &inferred, &own)) {
-        let p = row.marginals.expect("every room of the labels was inferred");
+    assert!(!own.is_empty());
+    for (room, row) in world.rooms.iter().zip(room_types(&world, &inferred, &own)).filter(|(r, _)| !r.units.is_empty())
+    {
+        let p = row.marginals.expect("every room with units was inferred");
         let p = [p.room, p.corridor, p.hall, p.other];
         let top = (0..4).max_by(|&a, &b| p[a].total_cmp(&p[b])).unwrap();
         assert_eq!(room.kind, order[top], "room {} typed by its own most probable marginal {p:?}", room.id);

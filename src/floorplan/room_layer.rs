@@ -665,12 +665,7 @@ mod tests {
     fn a_room_of_small_other_units_is_typed_as_the_one_space_it_is() {
         // A 10 x 10 m foyer at 5 cm cells, walled round, explained by four units of 5 x 5 m
         // typed Other (as fragments with doors come out), with nothing between them.
-        let mut map = Grid::new(200, 200, Cell::Free);
-        for i in 0..200 {
-            for (x, y) in [(i, 0), (i, 199), (0, i), (199, i)] {
-                *map.at_mut(x, y) = Cell::Occupied;
-            }
-        }
+        let map = crate::floorplan::rooms::tests::walled_room(200, 200);
         let mut world = World::empty(200, 200);
         world.units = vec![
             unit(1, 0, 0, 101, 101, UnitType::Other),

@@ -181,6 +181,17 @@ pub fn room_marginals(
     resolution: f64,
     config: &KnowledgeConfig,
 ) -> Result<BTreeMap<u32, [f64; 4]>, crate::mln::MlnError> {
+    Ok(infer_rooms(world, rooms, labels, resolution, config)?.into_iter().map(|(id, (_, p))| (id, p)).collect())
+}
+
+/// [`room_marginals`] with each room's most probable type ([`Inferred::types`]).
+fn infer_rooms(
+    world: &World,
+    rooms: &[Room],
+    labels: &Grid<u16>,
+    resolution: f64,
+    config: &KnowledgeConfig,
+) -> Result<BTreeMap<u32, (UnitType, [f64; 4])>, crate::mln::MlnError> {
     let extents = room_extents(world, labels);
     let mut pseudo = World::empty(1, 1);
     pseudo.wall_thickness = 0;
@@ -197,8 +208,7 @@ pub fn room_marginals(
             pseudo.doors.push(super::world::Door { id, units: [r.id, b], x0: 0, y0: 0, x1: 0, y1: 0 });
         }
     }
-    let inferred = Knowledge::new(config)?.infer(&pseudo, resolution)?;
-    Ok(inferred.types.into_iter().map(|(id, (_, p))| (id, p)).collect())
+    Ok(Knowledge::new(config)?.infer(&pseudo, resolution)?.types)
 }
 
 /// Types the rooms (`world.rooms`, read off `labels`) by [`room_marginals`]: each takes its
@@ -209,13 +219,11 @@ pub fn type_rooms(
     resolution: f64,
     config: &KnowledgeConfig,
 ) -> Result<(), crate::mln::MlnError> {
-    let p = room_marginals(world, &world.rooms, labels, resolution, config)?;
+    let types = infer_rooms(world, &world.rooms, labels, resolution, config)?;
     for r in &mut world.rooms {
-        if let Some(m) = p.get(&r.id) {
-            let best = (0..4).max_by(|&a, &b| m[a].total_cmp(&m[b])).unwrap_or(0);
-            if m[best] > 0.0 {
-                r.kind = super::knowledge::TYPE_PREDICATES[best].1;
-            }
+        match types.get(&r.id) {
+            Some(&(kind, _)) if kind != UnitType::Unknown => r.kind = kind,
+            _ => {}
         }
     }
     Ok(())

@@ -354,46 +354,17 @@ pub fn labels_of_groups(
         split_at_wall_gaps(&mut labels, &closed, c);
     }
     let fragment = split_disconnected(&mut labels, c.min_room_cells);
-    merge_segments(&mut labels, c.min_segment_cells, &fragment);
-    drop_small_segments(&mut labels, c.min_room_cells / 4);
+    merge_segments(&mut labels, c.min_segment_cells, &fragment, c.min_room_cells / 4);
     if c.clutter_in_rooms {
         label_clutter(&mut labels, map, &open);
     }
     labels
 }
 
-/// Unlabels the segments of fewer than `min_cells` cells and numbers the others 1..=n again
-/// in scan order. [`merge_segments`] has joined every small segment with a neighbour, so
-/// these touch none: two slivers that only touched each other, left over from the splits.
-/// [`split_disconnected`] keeps no lone part that small either, so no room is.
-fn drop_small_segments(labels: &mut Grid<u16>, min_cells: usize) {
-    let n = labels.cells().iter().copied().max().unwrap_or(0) as usize;
-    let mut size = vec![0usize; n + 1];
-    for &l in labels.cells() {
-        size[l as usize] += 1;
-    }
-    let mut id = vec![0u16; n + 1];
-    let mut next = 0u16;
-    for l in labels.cells_mut() {
-        if *l == 0 {
-            continue;
-        }
-        if size[*l as usize] < min_cells {
-            *l = 0;
-            continue;
-        }
-        if id[*l as usize] == 0 {
-            next += 1;
-            id[*l as usize] = next;
-        }
-        *l = id[*l as usize];
-    }
-}
-
 /// Gives each 8-connected part of clutter (cells free in `open`, [`without_clutter`], but not
-/// in `map`: furniture, unseen specks) the label of the room around it: the one room among its
-/// labelled 8-neighbours, when those make at least half of its neighbours. A part beside two
-/// rooms (a chair in a doorway) or mostly beside unlabelled cells stays unlabelled.
+/// in `map`: furniture, unseen specks) the label of the room around it, when all its
+/// 8-neighbours belong to that one room. A part beside two rooms (a chair in a doorway) or
+/// beside cells of no room (a wall's stub in its line, the outside) stays unlabelled.
 fn label_clutter(labels: &mut Grid<u16>, map: &Grid<Cell>, open: &Grid<Cell>) {
     let (w, h) = (labels.width(), labels.height());
     if w == 0 || h == 0 || (map.width(), map.height()) != (w, h) || (open.width(), open.height()) != (w, h) {
@@ -614,14 +585,17 @@ fn label_far_regions(labels: &mut Grid<u16>, map: &Grid<Cell>, last: u16, c: &Ro
 /// longest boundary with (4-neighbours), smallest first, then numbers the segments 1..=n in
 /// scan order. Segments with no labelled neighbour stay.
 pub fn merge_small_segments(labels: &mut Grid<u16>, min_cells: usize) {
-    merge_segments(labels, min_cells, &[]);
+    merge_segments(labels, min_cells, &[], 0);
 }
 
 /// [`merge_small_segments`], joining also the segments `fragment` marks (indexed by label),
-/// whatever their size.
-fn merge_segments(labels: &mut Grid<u16>, min_cells: usize, fragment: &[bool]) {
+/// whatever their size, and unlabelling the segments still under `min_room` cells after the
+/// merge. Those touch no other segment: two slivers that only touched each other, left over
+/// from the splits ([`split_disconnected`] keeps no lone part that small either), so no room
+/// is.
+fn merge_segments(labels: &mut Grid<u16>, min_cells: usize, fragment: &[bool], min_room: usize) {
     use std::collections::BTreeMap;
-    if min_cells == 0 && !fragment.contains(&true) {
+    if min_cells == 0 && min_room == 0 && !fragment.contains(&true) {
         return;
     }
     let n = labels.cells().iter().copied().max().unwrap_or(0) as usize;
@@ -677,6 +651,10 @@ fn merge_segments(labels: &mut Grid<u16>, min_cells: usize, fragment: &[bool]) {
             continue;
         }
         let r = find(&to, *l) as usize;
+        if size[r] < min_room {
+            *l = 0;
+            continue;
+        }
         if id[r] == 0 {
             next += 1;
             id[r] = next;
@@ -914,7 +892,7 @@ fn divide_among_cores(labels: &mut Grid<u16>, seed: &[u32], cores: &[(u16, usize
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::floorplan::{Unit, UnitType};
 
@@ -1145,7 +1123,8 @@ mod tests {
     }
 
     /// A 200 x 120 room walled all round.
-    fn walled_room(w: usize, h: usize) -> Grid<Cell> {
+    /// A `w` x `h` map of free cells with a one-cell wall round it.
+    pub(crate) fn walled_room(w: usize, h: usize) -> Grid<Cell> {
         let mut map = Grid::new(w, h, Cell::Free);
         for x in 0..w {
             *map.at_mut(x, 0) = Cell::Occupied;
@@ -1239,10 +1218,11 @@ mod tests {
         *labels.at_mut(51, 35) = 3;
         let c = RoomConfig::default();
         let fragment = split_disconnected(&mut labels, c.min_room_cells);
-        merge_segments(&mut labels, c.min_segment_cells, &fragment);
-        let seg = *labels.at(50, 35);
-        assert!(seg != 0 && seg == *labels.at(51, 35), "merged into one segment of two cells");
-        drop_small_segments(&mut labels, c.min_room_cells / 4);
+        let mut kept = labels.clone();
+        merge_segments(&mut kept, c.min_segment_cells, &fragment, 0);
+        let seg = *kept.at(50, 35);
+        assert!(seg != 0 && seg == *kept.at(51, 35), "merged into one segment of two cells");
+        merge_segments(&mut labels, c.min_segment_cells, &fragment, c.min_room_cells / 4);
         assert_eq!((*labels.at(50, 35), *labels.at(51, 35)), (0, 0));
         assert_eq!(*labels.at(10, 10), 1);
         assert_eq!(labels.cells().iter().filter(|&&l| l == 1).count(), 900);
@@ -1288,7 +1268,7 @@ mod tests {
         *labels.at_mut(30, 11) = 0;
         let fragment = split_disconnected(&mut labels, 400);
         assert_eq!(fragment.iter().filter(|&&f| f).count(), 2, "the two strips");
-        merge_segments(&mut labels, 0, &fragment); // fragments only, whatever their size
+        merge_segments(&mut labels, 0, &fragment, 0); // fragments only, whatever their size
         assert_eq!(*labels.at(5, 11), *labels.at(5, 20), "the left strip joins the left room");
         assert_eq!(*labels.at(45, 11), *labels.at(45, 20), "the right strip joins the right room");
         assert_ne!(*labels.at(5, 5), *labels.at(5, 11));

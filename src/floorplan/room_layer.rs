@@ -237,8 +237,63 @@ pub fn explain_rooms_edited(
     if let Some(k) = knowledge {
         super::room_types::type_rooms(world, &labels, resolution, &k.types)?;
     }
+    mark_unexplored(&mut world.rooms, &labels, map, resolution);
     edits.apply_to_rooms(&mut world.rooms, &labels);
     Ok(labels)
+}
+
+/// How far (m) from every wall, object or unseen cell a cell must be for a person (or a
+/// robot) to stand there: [`mark_unexplored`].
+pub const STANDING_CLEARANCE_M: f64 = 0.2;
+
+/// Types `unknown` the rooms that are mostly rays, not floor: fewer than a third of their
+/// free cells lie [`STANDING_CLEARANCE_M`] or more from every non-free cell of `map` (at
+/// `resolution` m per cell). A range sensor looking through a window or an open door into
+/// space nobody entered leaves a fan of one-cell rays with unseen cells between them; the
+/// room layer labels the fan (a segmentation labels every free cell, and the benchmark's
+/// truth draws such fans as regions too), but a person draws no room there and cannot say
+/// what it is. The dissertation marks the same places as unexplored (Fig. 3.32-d). Rooms of
+/// floor, furnished or not, keep far more than a third: on Cartesium 0.39 and over, the fans
+/// 0.23 and under.
+///
+/// ```
+/// use ksmcmc::floorplan::room_layer::mark_unexplored;
+/// use ksmcmc::floorplan::{Room, UnitType};
+/// use ksmcmc::grid::{Cell, Grid};
+///
+/// // Room 1: 2 x 2 m of floor. Room 2: rays, every other column free, unseen between.
+/// let mut map = Grid::new(80, 40, Cell::Unknown);
+/// let mut labels = Grid::new(80, 40, 0u16);
+/// for y in 0..40 {
+///     for x in 0..40 { *map.at_mut(x, y) = Cell::Free; *labels.at_mut(x, y) = 1; }
+///     for x in (41..80).step_by(2) { *map.at_mut(x, y) = Cell::Free; *labels.at_mut(x, y) = 2; }
+/// }
+/// let room = |id| Room { id, kind: UnitType::Other, units: vec![], area_m2: 0.0, doors: vec![], opens_to: vec![], name: None };
+/// let mut rooms = vec![room(1), room(2)];
+/// mark_unexplored(&mut rooms, &labels, &map, 0.05);
+/// assert_eq!((rooms[0].kind, rooms[1].kind), (UnitType::Other, UnitType::Unknown));
+/// ```
+pub fn mark_unexplored(rooms: &mut [Room], labels: &Grid<u16>, map: &Grid<Cell>, resolution: f64) {
+    if (labels.width(), labels.height()) != (map.width(), map.height()) || resolution.is_nan() || resolution <= 0.0 {
+        return;
+    }
+    // Chamfer units: 3 per cell.
+    let clearance = (3.0 * (STANDING_CLEARANCE_M / resolution).round()).min(u32::MAX as f64) as u32;
+    let depth = super::rooms::free_depth(map);
+    let mut counts = vec![(0u64, 0u64); usize::from(u16::MAX) + 1];
+    for (i, (&l, c)) in labels.cells().iter().zip(map.cells()).enumerate() {
+        if l != 0 && *c == Cell::Free {
+            let e = &mut counts[usize::from(l)];
+            e.0 += 1;
+            e.1 += u64::from(depth[i] >= clearance);
+        }
+    }
+    for r in rooms.iter_mut() {
+        let Some(&(free, standing)) = usize::try_from(r.id).ok().and_then(|i| counts.get(i)) else { continue };
+        if free > 0 && 3 * standing < free {
+            r.kind = UnitType::Unknown;
+        }
+    }
 }
 
 /// [`explain_rooms`] with the built-in room rules when `knowledge` is on, and without them

@@ -120,12 +120,16 @@ pub fn room_types(world: &World, inferred: &Inferred, rooms: &BTreeMap<u32, [f64
         .collect()
 }
 
-/// Each room's cells and the longer side of its bounding box in the world frame (cells), by
-/// room id: a room as long as its box and as wide as its area allows, which clutter along
-/// its walls or a ragged scanned edge changes little.
+/// Each room's cells and its length (cells) in the world frame, by room id: the length of
+/// the rectangle with the same spread along the room's longer world axis (a run of `L` cells
+/// has variance `(L² - 1) / 12`). A room is then a rectangle as long as that and as wide as
+/// its area allows. The few cells a room reaches into its doorways through thick walls, or
+/// a ragged scanned edge, move its spread far less than its bounding box: office_c's
+/// 15 m2 offices, 2.65 m wide, were "narrow" (and so "other") by their box.
 fn room_extents(world: &World, labels: &Grid<u16>) -> BTreeMap<u16, (usize, f64)> {
     let rotation = world.frame.rotation();
-    let mut boxes: BTreeMap<u16, (usize, [f64; 4])> = BTreeMap::new();
+    // Cells, and the sums of x, y, x² and y² in the world frame (about the room's first cell).
+    let mut sums: BTreeMap<u16, (usize, [f64; 2], [f64; 4])> = BTreeMap::new();
     for y in 0..labels.height() {
         for x in 0..labels.width() {
             let l = *labels.at(x, y);
@@ -133,18 +137,26 @@ fn room_extents(world: &World, labels: &Grid<u16>) -> BTreeMap<u16, (usize, f64)
                 continue;
             }
             let (wx, wy) = rotation.to_world(x as f64 + 0.5, y as f64 + 0.5);
-            let e = boxes.entry(l).or_insert((0, [wx, wy, wx, wy]));
+            let e = sums.entry(l).or_insert((0, [wx, wy], [0.0; 4]));
+            let (dx, dy) = (wx - e.1[0], wy - e.1[1]);
             e.0 += 1;
-            e.1 = [e.1[0].min(wx), e.1[1].min(wy), e.1[2].max(wx), e.1[3].max(wy)];
+            e.2 = [e.2[0] + dx, e.2[1] + dy, e.2[2] + dx * dx, e.2[3] + dy * dy];
         }
     }
-    boxes.into_iter().map(|(l, (n, b))| (l, (n, (b[2] - b[0]).max(b[3] - b[1]) + 1.0))).collect()
+    sums.into_iter()
+        .map(|(l, (n, _, s))| {
+            let k = n as f64;
+            let var = |sum: f64, sq: f64| (sq / k - (sum / k) * (sum / k)).max(0.0);
+            let spread = var(s[0], s[2]).max(var(s[1], s[3]));
+            (l, (n, libm::sqrt(12.0 * spread + 1.0)))
+        })
+        .collect()
 }
 
 /// The type marginals of each room (by id) from the indoor rules (`config`'s knowledge base)
 /// applied to rooms rather than units. A room's geometry evidence (`RoLi`, `CoLi`, `HaLi`,
-/// `Small`, `Narrow`: the classifier of Tab. 3.6) is that of a rectangle as long as the
-/// room's bounding box in the world frame and as wide as its area allows; `MulDoor` holds
+/// `Small`, `Narrow`: the classifier of Tab. 3.6) is that of a rectangle with the room's
+/// spread along its longer world axis and as wide as its area allows; `MulDoor` holds
 /// when it opens to two rooms or more (`opens_to`: through doors or openings). Only rooms with
 /// units are typed: free space the chain left unexplained (or a piece the splits parted from
 /// its units' room) is not a space the chain has explained. A room of several small units is typed as the one
@@ -233,6 +245,36 @@ pub fn type_rooms(
 mod tests {
     use super::*;
     use crate::floorplan::{Room, Unit};
+
+    #[test]
+    fn a_room_is_as_long_as_its_spread_not_its_doorway() {
+        // A 110 x 53 cell office (room 1) reaching 18 cells into its doorway through a thick
+        // wall at its right end; room 2 is a bare 40 x 10 strip.
+        let mut labels = Grid::new(200, 100, 0u16);
+        for y in 10..63 {
+            for x in 10..120 {
+                *labels.at_mut(x, y) = 1;
+            }
+        }
+        for y in 30..50 {
+            for x in 120..138 {
+                *labels.at_mut(x, y) = 1;
+            }
+        }
+        for y in 80..90 {
+            for x in 10..50 {
+                *labels.at_mut(x, y) = 2;
+            }
+        }
+        let extents = room_extents(&World::empty(200, 100), &labels);
+        let (n, long) = extents[&1];
+        assert_eq!(n, 110 * 53 + 18 * 20);
+        // Its bounding box is 128 long, which would make it 6190 / 128 = 48 cells wide: under
+        // 2.5 m at 5 cm cells, narrow as a store. By its spread it is 119 long and 52 wide.
+        assert!((110.0..120.0).contains(&long), "{long}");
+        assert!(n as f64 / long > 50.0);
+        assert!((extents[&2].1 - 40.0).abs() < 1e-9, "{:?}", extents[&2]);
+    }
 
     #[test]
     fn a_room_without_inferred_units_has_no_marginals() {

@@ -157,16 +157,18 @@ fn room_extents(world: &World, labels: &Grid<u16>) -> BTreeMap<u16, (usize, f64)
 /// applied to rooms rather than units. A room's geometry evidence (`RoLi`, `CoLi`, `HaLi`,
 /// `Small`, `Narrow`: the classifier of Tab. 3.6) is that of a rectangle with the room's
 /// spread along its longer world axis and as wide as its area allows; `MulDoor` holds
-/// when it opens to two rooms or more (`opens_to`: through doors or openings). Only rooms with
-/// units are typed: free space the chain left unexplained (or a piece the splits parted from
-/// its units' room) is not a space the chain has explained. A room of several small units is typed as the one
-/// space it is: on Cartesium the open foyers of many units become halls, not rooms made of
-/// "other" pieces.
+/// when it opens to two rooms or more (`opens_to`: through doors or openings). Rooms with
+/// units are typed, and so are pieces the room layer parted from their units' room (a room
+/// with no unit of its own but a type, [`super::room_layer::rooms_of_labels`]: a small
+/// office the walls part from the big unit that spans it is an office, not a piece of a
+/// hall). Free space no unit covers (type `unknown`) is not a space the chain has explained,
+/// and is not typed. A room of several small units is typed as the one space it is: on
+/// Cartesium the open foyers of many units become halls, not rooms made of "other" pieces.
 ///
 /// ```
 /// use ksmcmc::floorplan::knowledge::KnowledgeConfig;
 /// use ksmcmc::floorplan::room_types::room_marginals;
-/// use ksmcmc::floorplan::{Room, World};
+/// use ksmcmc::floorplan::{Room, UnitType, World};
 /// use ksmcmc::grid::Grid;
 ///
 /// // At 5 cm cells: room 1 is 10 x 10 m (a hall by its area), room 2 is 2 x 12 m and opens
@@ -181,9 +183,12 @@ fn room_extents(world: &World, labels: &Grid<u16>) -> BTreeMap<u16, (usize, f64)
 /// let p = room_marginals(&world, &rooms, &labels, 0.05, &KnowledgeConfig::default())?;
 /// assert!(p[&1][2] > 0.5, "hall: {:?}", p[&1]);
 /// assert!(p[&2][1] > 0.5, "corridor: {:?}", p[&2]);
-/// // A room with no units (space the chain left unexplained) is not typed.
+/// // A room no unit covers (space the chain left unexplained, type unknown) is not typed;
+/// // a piece parted from its units' room (no unit of its own, but their type) is.
 /// let bare = Room { units: vec![], ..rooms[0].clone() };
-/// assert!(room_marginals(&world, &[bare], &labels, 0.05, &KnowledgeConfig::default())?.is_empty());
+/// assert!(room_marginals(&world, &[bare.clone()], &labels, 0.05, &KnowledgeConfig::default())?.is_empty());
+/// let piece = Room { kind: UnitType::Room, ..bare };
+/// assert!(room_marginals(&world, &[piece], &labels, 0.05, &KnowledgeConfig::default())?[&1][2] > 0.5);
 /// # Ok::<(), ksmcmc::mln::MlnError>(())
 /// ```
 pub fn room_marginals(
@@ -208,7 +213,7 @@ fn infer_rooms(
     let mut pseudo = World::empty(1, 1);
     pseudo.wall_thickness = 0;
     let mut x = 0;
-    for r in rooms.iter().filter(|r| !r.units.is_empty()) {
+    for r in rooms.iter().filter(|r| !r.units.is_empty() || r.kind != UnitType::Unknown) {
         let Some(&(n, long)) = u16::try_from(r.id).ok().and_then(|l| extents.get(&l)) else { continue };
         let h = (long.round() as i32).max(1);
         let w = ((n as f64 / h as f64).round() as i32).clamp(1, h);
@@ -224,7 +229,8 @@ fn infer_rooms(
 }
 
 /// Types the rooms (`world.rooms`, read off `labels`) by [`room_marginals`]: each takes its
-/// most probable type; a room the rules give no type (one without units) keeps its own.
+/// most probable type; a room the rules give no type (free space no unit covers) keeps its
+/// own.
 pub fn type_rooms(
     world: &mut World,
     labels: &Grid<u16>,

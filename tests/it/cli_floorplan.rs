@@ -303,6 +303,34 @@ fn evaluate_pairs_knowledge_with_the_weak_prior_and_refuses_unknown_sets() {
 }
 
 #[test]
+fn evaluate_counts_cartesiums_rooms_and_their_types_per_seed() {
+    let Some(dir) = crate::common::datasets("evaluate_counts_cartesiums_rooms_and_their_types_per_seed") else {
+        return;
+    };
+    let dir = dir.to_str().unwrap();
+    let out = run(&["evaluate", "--datasets", dir, "--only", "cartesium", "--seeds", "2", "--iterations", "1500"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = String::from_utf8_lossy(&out.stdout);
+    let rows: Vec<Vec<&str>> = text
+        .lines()
+        .skip_while(|l| !l.starts_with("| seed"))
+        .filter(|l| l.starts_with("| ") && !l.starts_with("| seed"))
+        .map(|l| l.split('|').map(str::trim).filter(|c| !c.is_empty()).collect())
+        .collect();
+    assert_eq!(rows.len(), 2, "one row per seed:\n{text}");
+    for (seed, r) in rows.iter().enumerate() {
+        assert_eq!(r[0], (seed + 1).to_string());
+        let k: f64 = r[1].parse().unwrap();
+        assert!((0.5..=1.0).contains(&k), "{r:?}");
+        let n: usize = r[2].parse().unwrap();
+        let types: Vec<usize> = r[3..8].iter().map(|c| c.parse().unwrap()).collect();
+        assert!(n > 0 && types.iter().sum::<usize>() == n, "the types count every room: {r:?}");
+        let share: f64 = r[8].parse().unwrap();
+        assert!((share - types[3] as f64 / n as f64).abs() <= 0.005 + 1e-9, "{r:?}");
+    }
+}
+
+#[test]
 fn evaluate_reads_room_layer_settings_and_says_what_is_wrong_with_them() {
     let d = tmp("room-config");
     let missing = d.join("missing.json");

@@ -140,10 +140,14 @@ export function fillRoomInfo(box, room, types) {
   const units = el('p', 'room-info-units',
     `units: ${types?.units?.length ? types.units.map(unitLabel).join(', ') : list(room.units)}`);
   const parts = [head, facts, units];
+  if (room.type === 'unknown') {
+    parts.push(el('p', 'room-info-unknown',
+      'Unexplored: space the sensor saw only as rays (through a window or an open door), or free space no unit explains.'));
+  }
   const m = types?.marginals;
   if (m) {
     const table = el('table', 'room-info-marginals');
-    table.append(el('caption', '', 'Type marginals (its units, by area)'));
+    table.append(el('caption', '', 'Type marginals'));
     for (const [key, name] of MARGINALS) {
       const tr = el('tr');
       tr.dataset.type = key;

@@ -113,8 +113,8 @@ impl Plan {
     /// null, "units": [{"id", "type", "marginals"}]}`. With knowledge supervision a room's
     /// marginals are `P(Room)`, `P(Corr)`, `P(Hall)` and `P(Other)` of the indoor rules applied
     /// to the room as one space (which make its type, but for a room of rays, typed unknown
-    /// whatever they say); without, its units' averaged by their interiors' areas. The four are separate atoms of the knowledge base and need not add up
-    /// to 1.
+    /// whatever they say); without, its units' averaged by their interiors' areas. The four
+    /// are separate atoms of the knowledge base and need not add up to 1.
     #[wasm_bindgen(js_name = roomTypesJson)]
     pub fn room_types_json(&self) -> String {
         let resolution = self.map.yaml().resolution;

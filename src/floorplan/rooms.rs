@@ -244,12 +244,16 @@ fn open_boundary(a: Rect, b: Rect, t: i32, world_map: &Grid<Cell>, c: &RoomConfi
 fn wide_door(world: &World, a: usize, b: usize, c: &RoomConfig) -> Option<bool> {
     let t = world.wall_thickness;
     let (ua, ub) = (&world.units[a], &world.units[b]);
-    let door =
-        world.doors.iter().filter(|d| d.units.contains(&ua.id) && d.units.contains(&ub.id)).map(|d| d.len()).max()?;
+    let (door, across) = world
+        .doors
+        .iter()
+        .filter(|d| d.units.contains(&ua.id) && d.units.contains(&ub.id))
+        .map(|d| (d.len(), d.rect().w.min(d.rect().h)))
+        .max()?;
     for (lo, hi) in [(ua.rect(), ub.rect()), (ub.rect(), ua.rect())] {
         for axis in [Axis::Horizontal, Axis::Vertical] {
-            // Facing across a door: walls up to two wall depths apart (as doors allow).
-            let Some((s, e)) = facing(lo, hi, axis, 2 * t, t) else { continue };
+            // Facing across the door: the walls as far apart as the door is deep.
+            let Some((s, e)) = facing(lo, hi, axis, across.max(2 * t), t) else { continue };
             if (door as f64) >= c.wide_door_share * (e - s + 1) as f64 {
                 return Some(is_flush(lo, hi, axis, (s, e), t));
             }
@@ -979,6 +983,33 @@ pub(crate) mod tests {
         assert!(open_pairs(&world, &map, &doors).is_empty());
         // A narrow door stays a door.
         world.doors[0].y1 = 12;
+        assert!(open_pairs(&world, &map, &c).is_empty());
+    }
+
+    #[test]
+    fn a_wide_door_through_a_thick_wall_is_an_opening_too() {
+        // Walls 3 cells deep; the two units' walls are 8 cells apart (a door may cross up to
+        // 10), and a door 8 cells deep spans the whole stretch they face each other along: a
+        // corridor the chain cut in two where a thick wall's ends narrow it.
+        let mut map = Grid::new(90, 40, Cell::Free);
+        for x in 0..90 {
+            for y in (0..3).chain(37..40) {
+                *map.at_mut(x, y) = Cell::Occupied;
+            }
+        }
+        for x in 41..49 {
+            for y in (3..5).chain(35..37) {
+                *map.at_mut(x, y) = Cell::Occupied;
+            }
+        }
+        let mut world = World::empty(90, 40);
+        world.wall_thickness = 3;
+        world.units = vec![unit(1, 0, 0, 41, 40), unit(2, 49, 0, 41, 40)];
+        world.doors = vec![crate::floorplan::Door { id: 1, units: [1, 2], x0: 38, y0: 3, x1: 51, y1: 36 }];
+        let c = RoomConfig::default();
+        assert_eq!(open_pairs(&world, &map, &c), vec![OpenPair { a: 0, b: 1, flush: true, closed: false }]);
+        // A narrow door through the same wall stays a door.
+        world.doors[0].y1 = 14;
         assert!(open_pairs(&world, &map, &c).is_empty());
     }
 

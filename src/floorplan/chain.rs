@@ -166,6 +166,32 @@ impl ChainConfig {
     /// assert!(e.to_string().contains("unknown field `posterior.temprature`; the fields here are"));
     /// ```
     pub fn from_json(text: &str) -> Result<ChainConfig, ChainError> {
+        ChainConfig::from_json_over(&ChainConfig::default(), text)
+    }
+
+    /// The defaults for a chain that follows a robot's growing map (`ksmcmc explore`, the
+    /// Exploration page): [`ChainConfig::default`] with the range-sensor table
+    /// ([`super::posterior::SensorModel::range_sensor`]), under which a wall's ring lies in the wall
+    /// behind the face the robot saw, not in the floor before it.
+    ///
+    /// ```
+    /// use ksmcmc::floorplan::{posterior::SensorModel, ChainConfig};
+    ///
+    /// let online = ChainConfig::online();
+    /// assert_eq!(online.posterior.sensor, SensorModel::range_sensor());
+    /// // Fields a configuration does not give keep these defaults.
+    /// let c = ChainConfig::from_json_over(&online, r#"{"posterior": {"temperature": 2}}"#).unwrap();
+    /// assert_eq!((c.posterior.temperature, c.posterior.sensor), (2.0, SensorModel::range_sensor()));
+    /// ```
+    pub fn online() -> ChainConfig {
+        let mut c = ChainConfig::default();
+        c.posterior.sensor = super::posterior::SensorModel::range_sensor();
+        c
+    }
+
+    /// [`ChainConfig::from_json`] with the fields the text does not give taken from `base`
+    /// instead of the defaults.
+    pub fn from_json_over(base: &ChainConfig, text: &str) -> Result<ChainConfig, ChainError> {
         if text.len() > MAX_CONFIG_JSON_BYTES {
             return Err(ChainError::Json(format!(
                 "the configuration is {} bytes, over the limit of {MAX_CONFIG_JSON_BYTES} bytes \
@@ -174,7 +200,7 @@ impl ChainConfig {
             )));
         }
         if text.trim().is_empty() {
-            return Ok(ChainConfig::default());
+            return Ok(base.clone());
         }
         let given: serde_json::Value = serde_json::from_str(text).map_err(|e| {
             let hint = if text.contains("NaN") || text.contains("Infinity") {
@@ -189,11 +215,29 @@ impl ChainConfig {
                 "expected a JSON object such as {\"posterior\": {\"temperature\": 2}}".into(),
             ));
         }
-        let defaults = serde_json::to_value(ChainConfig::default()).expect("the defaults serialise");
-        unknown_fields(&given, &defaults, "")?;
-        let config: ChainConfig = serde_json::from_value(given).map_err(|e| ChainError::Json(e.to_string()))?;
+        let mut merged = serde_json::to_value(base).expect("a configuration serialises");
+        unknown_fields(&given, &merged, "")?;
+        overlay(&mut merged, given);
+        let config: ChainConfig = serde_json::from_value(merged).map_err(|e| ChainError::Json(e.to_string()))?;
         config.validate()?;
         Ok(config)
+    }
+}
+
+/// Writes `given`'s fields over `base`'s, object by object (other values replace).
+fn overlay(base: &mut serde_json::Value, given: serde_json::Value) {
+    match (base, given) {
+        (serde_json::Value::Object(b), serde_json::Value::Object(g)) => {
+            for (key, value) in g {
+                match b.get_mut(&key) {
+                    Some(slot) => overlay(slot, value),
+                    None => {
+                        b.insert(key, value);
+                    }
+                }
+            }
+        }
+        (slot, value) => *slot = value,
     }
 }
 

@@ -301,6 +301,16 @@ impl Proposer {
         self.doors.generation = None;
     }
 
+    /// Proposes for units with wall rings `wall` deep from now on (on a `width` x `height`
+    /// world-frame grid), as [`Proposer::new`] would have.
+    pub fn set_wall(&mut self, wall: i32, width: i32, height: i32) {
+        self.wall = wall;
+        self.min_side = self.config.min_side.max(2 * wall + 1);
+        let n = self.min_side as i64;
+        self.uniform_count = (interval_count(width as i64, n) * interval_count(height as i64, n)) as f64;
+        self.forget_doors();
+    }
+
     pub fn new(config: KernelConfig, candidates: Candidates, width: i32, height: i32, wall: i32) -> Self {
         let min_side = config.min_side.max(2 * wall + 1);
         let m = libm::ceil(4.0 * config.shift_sigma).max(1.0) as i32;

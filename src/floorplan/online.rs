@@ -214,7 +214,10 @@ fn update(
     let change = chain.update_map(&snapshot).map_err(OnlineError::Chain)?;
     let warm = climb(chain, config.iterations);
     let cold = if config.measure_cold {
-        let mut c = Chain::new(&snapshot, chain_config.clone(), seed).map_err(OnlineError::Chain)?;
+        // The same model as the warm chain's: its walls as thick as the warm chain's rings
+        // (a cold chain would measure them on this snapshot as seen from one side).
+        let same = ChainConfig { wall_thickness: Some(chain.wall_thickness()), ..chain_config.clone() };
+        let mut c = Chain::new(&snapshot, same, seed).map_err(OnlineError::Chain)?;
         Some(climb(&mut c, config.iterations))
     } else {
         None

@@ -32,6 +32,34 @@ impl Default for SensorModel {
 }
 
 impl SensorModel {
+    /// Tab. 3.1 with its wall row as a range sensor reads walls: a wall cell reads occupied
+    /// (its face) or unknown (behind the face, where no ray reaches), and seldom free:
+    /// `p(free | wall)` 0.05 and `p(unknown | wall)` 0.15 instead of 0.1 and 0.1. The other rows
+    /// are Tab. 3.1's. The dissertation gives its table as "an example" that "could be learned".
+    ///
+    /// Why it matters for a robot's own map: an outer wall is seen from inside only, a face and
+    /// unknown cells behind it. Under the symmetric table a ring `t` deep on the face and the
+    /// unseen cells behind it (`p(unknown | wall)`, free cells inside predicted free) costs per
+    /// cell exactly what a ring on the face and the free cells in front of it costs
+    /// (`p(free | wall)`, the unseen cells predicted unknown), and the inward ring is shorter
+    /// around the corners: the chain eats floor along every outer wall. `ksmcmc explore` uses this table
+    /// ([`super::ChainConfig::online`]).
+    ///
+    /// ```
+    /// use ksmcmc::floorplan::posterior::SensorModel;
+    ///
+    /// let (sym, range) = (SensorModel::default().table, SensorModel::range_sensor().table);
+    /// // Rows are the world's class (free, unknown, wall), columns the map's; each sums to 1.
+    /// assert!(range.iter().all(|row| (row.iter().sum::<f64>() - 1.0).abs() < 1e-12));
+    /// assert_eq!(sym[2][0], sym[2][1]);
+    /// assert!(range[2][0] < range[2][1]);
+    /// ```
+    pub fn range_sensor() -> Self {
+        let mut table = SensorModel::default().table;
+        table[2] = [0.05, 0.15, 0.8];
+        SensorModel { table }
+    }
+
     /// `log p(C_M = m | C_W = w)` as `[m][w]`, the layout of [`Explanation::confusion`].
     pub fn log_table(&self) -> [[f64; 3]; 3] {
         let mut l = [[0.0; 3]; 3];
@@ -133,5 +161,46 @@ impl Posterior {
     /// `1 / T`.
     pub fn inv_temperature(&self) -> f64 {
         self.inv_temperature
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::Rect;
+    use crate::grid::{Cell, Grid};
+
+    /// A room seen from inside: 20 x 20 free cells, its walls' faces occupied one cell deep,
+    /// unknown beyond. With rings 3 deep, a unit can lay its ring on the face and the 2-cell
+    /// band of unseen cells behind it (outward: 192 cells) or on the face and the 2-cell band
+    /// of floor in front of it (inward: 144 cells). Under Tab. 3.1 both bands cost the same
+    /// per cell (0.1 against 0.8), so the inward ring wins by its shorter band, and on a long
+    /// wall the two tie; under the range-sensor table a ring cell read unknown costs less than
+    /// one read free, and the outward ring wins.
+    #[test]
+    fn the_range_sensor_table_puts_a_ring_behind_the_face_it_saw() {
+        let mut map = Grid::new(40, 40, Cell::Unknown);
+        for y in 10..32 {
+            for x in 10..32 {
+                let face = x == 10 || x == 31 || y == 10 || y == 31;
+                *map.at_mut(x, y) = if face { Cell::Occupied } else { Cell::Free };
+            }
+        }
+        let (outward, inward) = (Rect::new(8, 8, 26, 26), Rect::new(10, 10, 22, 22));
+        let score = |sensor: SensorModel, r: Rect| {
+            let p = Posterior::new(&PosteriorConfig { sensor, ..Default::default() });
+            p.log_posterior(&Explanation::recompute(&map, &[r], 3, &[]), 1)
+        };
+        let band = |r: Rect| (r.area() - Rect::new(r.x + 2, r.y + 2, r.w - 4, r.h - 4).area()) as f64;
+        let (unseen, floor) = (band(outward), band(Rect::new(11, 11, 20, 20)));
+        assert_eq!((unseen, floor), (192.0, 144.0));
+        let ln = f64::ln;
+        let sym = score(SensorModel::default(), outward) - score(SensorModel::default(), inward);
+        let sym_expected = (unseen - floor) * (ln(0.1) - ln(0.8));
+        assert!((sym - sym_expected).abs() < 1e-6, "Tab. 3.1: outward - inward = {sym}, expected {sym_expected}");
+        let range = score(SensorModel::range_sensor(), outward) - score(SensorModel::range_sensor(), inward);
+        let expected = unseen * (ln(0.15) - ln(0.8)) - floor * (ln(0.05) - ln(0.8));
+        assert!((range - expected).abs() < 1e-6, "range sensor: outward - inward = {range}, expected {expected}");
+        assert!(range > 0.0 && sym < 0.0);
     }
 }

@@ -247,6 +247,15 @@ impl State {
         self.forbidden.as_ref().is_some_and(|f| f.count(inner) > 0)
     }
 
+    /// Sets the depth of every unit's wall ring, `wall` cells (at least 1), in a world with no
+    /// units: the explanation of an empty world does not depend on it.
+    pub fn set_wall(&mut self, wall: i32) {
+        debug_assert!(self.units.is_empty() && self.doors.is_empty());
+        if self.units.is_empty() && self.doors.is_empty() {
+            self.wall = wall.max(1);
+        }
+    }
+
     /// Takes a changed world-frame map: the cells listed in `changed` (row-major indices) now
     /// have the classes `map` gives them. The explanation changes only there; the cell counts
     /// are counted again.

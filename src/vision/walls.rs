@@ -271,20 +271,81 @@ pub fn dilate(grid: &Grid<Cell>, r: i32) -> Grid<Cell> {
 /// frame, so that resampling does not double thin walls. On our maps this rule picked the
 /// best or nearly the best depth for K(W, M) (see BENCHMARKS.md).
 pub fn ring_depth(grid: &Grid<Cell>, angle: f64) -> i32 {
+    depth_bridging(grid, angle, 0)
+}
+
+/// [`ring_depth`] of a map whose walls a robot saw from inside the rooms either side of them
+/// (a map growing while it explores): a range sensor sees only a wall's two faces, and the
+/// cells between them stay unknown. A run of occupied cells here goes on across up to
+/// [`MAX_UNSEEN_WALL_CORE`] unknown cells to occupied cells beyond, so a wall seen from both
+/// sides (face, unseen core, face) counts as one wall as thick as all three. Walls seen from
+/// one side only (outer walls, walls of rooms not yet entered) still count as their face.
+///
+/// ```
+/// use ksmcmc::grid::{Cell, Grid};
+/// use ksmcmc::vision::walls::{ring_depth, ring_depth_seen_from_both_sides};
+///
+/// // Walls along columns: faces at x and x + 2 with an unseen core between, rooms either side.
+/// let mut g = Grid::new(60, 40, Cell::Free);
+/// for y in 0..40 {
+///     for x in [10, 30, 50] {
+///         *g.at_mut(x, y) = Cell::Occupied;
+///         *g.at_mut(x + 1, y) = Cell::Unknown;
+///         *g.at_mut(x + 2, y) = Cell::Occupied;
+///     }
+/// }
+/// assert_eq!(ring_depth(&g, 0.0), 1);
+/// assert_eq!(ring_depth_seen_from_both_sides(&g, 0.0), 3);
+/// ```
+pub fn ring_depth_seen_from_both_sides(grid: &Grid<Cell>, angle: f64) -> i32 {
+    depth_bridging(grid, angle, MAX_UNSEEN_WALL_CORE)
+}
+
+/// The most unknown cells between two occupied faces that [`ring_depth_seen_from_both_sides`]
+/// takes for the unseen core of one wall (the thickest wall ring is 10 cells).
+pub const MAX_UNSEEN_WALL_CORE: usize = 8;
+
+/// [`ring_depth`], with runs of occupied cells going on across up to `bridge` unknown cells to
+/// an occupied one.
+fn depth_bridging(grid: &Grid<Cell>, angle: f64, bridge: usize) -> i32 {
     let (w, h) = (grid.width() as i64, grid.height() as i64);
-    let occ = |x: f64, y: f64| {
+    let class = |x: f64, y: f64| {
         let (cx, cy) = (libm::floor(x) as i64, libm::floor(y) as i64);
-        cx >= 0 && cy >= 0 && cx < w && cy < h && *grid.at(cx as usize, cy as usize) == Cell::Occupied
+        (cx >= 0 && cy >= 0 && cx < w && cy < h).then(|| *grid.at(cx as usize, cy as usize))
     };
+    let occ = |x: f64, y: f64| class(x, y) == Some(Cell::Occupied);
     let (s, c) = (libm::sin(angle), libm::cos(angle));
     let axes = [(c, s), (-s, c)];
+    // Unknown cells from step k on, then an occupied one: how many unknown ones (0: none).
+    let unseen_core = |x: f64, y: f64, (dx, dy): (f64, f64), sign: f64, k: f64| -> usize {
+        let mut j = 0;
+        while j < bridge && class(x + sign * (k + j as f64) * dx, y + sign * (k + j as f64) * dy) == Some(Cell::Unknown)
+        {
+            j += 1;
+        }
+        let beyond = k + j as f64;
+        if j > 0 && occ(x + sign * beyond * dx, y + sign * beyond * dy) {
+            j
+        } else {
+            0
+        }
+    };
     let run = |x: f64, y: f64, (dx, dy): (f64, f64)| -> usize {
         let mut n = 1;
         for sign in [1.0, -1.0] {
             let mut k = 1.0;
-            while n < 16 && occ(x + sign * k * dx, y + sign * k * dy) {
-                n += 1;
-                k += 1.0;
+            while n < 16 {
+                if occ(x + sign * k * dx, y + sign * k * dy) {
+                    n += 1;
+                    k += 1.0;
+                    continue;
+                }
+                let core = unseen_core(x, y, (dx, dy), sign, k);
+                if core == 0 {
+                    break;
+                }
+                n += core;
+                k += core as f64;
             }
         }
         n

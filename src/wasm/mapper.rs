@@ -693,6 +693,14 @@ pub fn chain_config_defaults() -> String {
     serde_json::to_string_pretty(&ChainConfig::default()).unwrap_or_default()
 }
 
+/// The settings of a chain that follows a robot's growing map, as pretty JSON text
+/// ([`ChainConfig::online`]: the defaults with the range-sensor table); a `configJson` for
+/// `new Mapper` on the robot's first map, as the Exploration page and `ksmcmc explore` use.
+#[wasm_bindgen(js_name = chainConfigOnline)]
+pub fn chain_config_online() -> String {
+    serde_json::to_string_pretty(&ChainConfig::online()).unwrap_or_default()
+}
+
 /// Parses a chain configuration: a JSON object whose fields override the defaults (see
 /// [`ChainConfig::from_json`]).
 pub fn chain_config(json: Option<&str>) -> Result<ChainConfig, JsError> {

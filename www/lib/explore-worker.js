@@ -19,7 +19,7 @@
 // `Plan` (ksmcmc_plan.js), imported when first asked for and made again after the chain's map
 // or best world changed.
 
-import init, { Explorer, Mapper, renderMapperRgba, renderRgba, wasmHeapBytes } from '../pkg/ksmcmc.js';
+import init, { chainConfigOnline, Explorer, Mapper, renderMapperRgba, renderRgba, wasmHeapBytes } from '../pkg/ksmcmc.js';
 import { buildMap } from './map-source.js';
 import { loadModule } from './modules.js';
 
@@ -240,7 +240,9 @@ function update() {
   const t0 = performance.now();
   try {
     if (!state.mapper) {
-      state.mapper = new Mapper(snapshot, undefined, state.args.seed);
+      // The online settings, as `ksmcmc explore` uses: a wall's ring lies behind the face the
+      // robot saw (the range-sensor table).
+      state.mapper = new Mapper(snapshot, chainConfigOnline(), state.args.seed);
     } else {
       state.lastChanged = state.mapper.updateMap(snapshot);
       state.updates++;

@@ -4,7 +4,7 @@ use crate::args::{self, CliError};
 use crate::floorplan::chain_config_from;
 use ksmcmc::floorplan::online::{self, OnlineConfig};
 use ksmcmc::floorplan::rooms::RoomConfig;
-use ksmcmc::floorplan::{export, metrics, Chain};
+use ksmcmc::floorplan::{export, metrics, Chain, ChainConfig};
 use ksmcmc::grid::Cell;
 use std::ffi::OsString;
 use std::path::PathBuf;
@@ -35,7 +35,10 @@ Options:
   --start X,Y        the start cell (column, row); default: a free cell drawn from the seed
   --no-cold          do not run the cold chains (cold_iterations is then null)
   --seed S           random seed (default 1); same seed, same result
-  --config FILE      chain configuration JSON, as for ksmcmc floorplan
+  --config FILE      chain configuration JSON, as for ksmcmc floorplan; the fields it does
+                     not give keep the online defaults (ChainConfig::online: the floorplan
+                     defaults with the range-sensor table, under which a wall's ring lies in
+                     the wall behind the face the robot saw)
   --knowledge KB     builtin (default), handset, a knowledge base file, or none
   --rotation DEG     map rotation in degrees instead of estimating it from the first map
   --classify RULE    auto (default) or fixed, as for ksmcmc floorplan
@@ -54,7 +57,7 @@ struct Opts {
 
 pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     let Some(o) = parse(argv)? else { return Ok(()) };
-    let config = chain_config_from(o.config.as_deref(), o.rotation, o.knowledge.as_deref())?;
+    let config = chain_config_from(ChainConfig::online(), o.config.as_deref(), o.rotation, o.knowledge.as_deref())?;
     let truth = args::load_classified(&o.map, &o.classify)?;
     let t0 = Instant::now();
     let mut log = |r: &online::UpdateRecord| {

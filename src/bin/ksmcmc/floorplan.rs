@@ -231,7 +231,8 @@ fn load_edits(path: &std::path::Path) -> Result<ksmcmc::floorplan::edits::Edits,
 
 /// The chain configuration: `--config`, then `--rotation` and `--knowledge` over it.
 fn chain_config(o: &Opts) -> Result<ChainConfig, CliError> {
-    let mut config = chain_config_from(o.config.as_deref(), o.rotation, o.knowledge.as_deref())?;
+    let mut config =
+        chain_config_from(ChainConfig::default(), o.config.as_deref(), o.rotation, o.knowledge.as_deref())?;
     if let Some(p) = &o.room_rules {
         config.knowledge.room_kb = Some(room_rules(p)?);
     }
@@ -248,6 +249,7 @@ pub fn room_rules(path: &std::path::Path) -> Result<String, CliError> {
 /// The chain configuration from a `--config` file, then `--rotation` and `--knowledge` over
 /// it (`ksmcmc explore` takes the same options).
 pub fn chain_config_from(
+    base: ChainConfig,
     path: Option<&std::path::Path>,
     rotation: Option<f64>,
     knowledge: Option<&str>,
@@ -255,9 +257,9 @@ pub fn chain_config_from(
     let mut config = match path {
         Some(p) => {
             let text = std::fs::read_to_string(p).map_err(|e| args::failed(p.display(), e))?;
-            ChainConfig::from_json(&text).map_err(|e| args::failed(p.display(), e))?
+            ChainConfig::from_json_over(&base, &text).map_err(|e| args::failed(p.display(), e))?
         }
-        None => ChainConfig::default(),
+        None => base,
     };
     if rotation.is_some() {
         config.detectors.rotation_deg = rotation;

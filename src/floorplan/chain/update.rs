@@ -23,8 +23,10 @@
 //!   before stay as they were.
 //!
 //! The summed-area tables of the map's cell classes and of its object cells are counted again
-//! (a linear pass each). The map's rotation, wall thickness and resolution stay those of the
-//! first map, so a map that changes its size is refused: start a new chain for it.
+//! (a linear pass each). The map's rotation and resolution stay those of the first map, so a
+//! map that changes its size is refused: start a new chain for it. The wall rings deepen when
+//! the robot has seen walls from both sides (`thicken_walls`), unless the configuration sets
+//! the wall thickness.
 
 use super::{Chain, ChainError, Explanation};
 use crate::geometry::Rect;
@@ -77,11 +79,14 @@ impl Chain {
         }
         let (world_map, _) = vision::orientation::to_world_frame(map.classified(), self.frame.angle);
         let changed = changed_cells(&self.world_map, &world_map);
+        let both_sides = |m: &Grid<Cell>| vision::walls::ring_depth_seen_from_both_sides(m, self.frame.angle);
+        let walls_before = self.config.wall_thickness.is_none().then(|| both_sides(&self.map));
         self.map = map.classified().clone();
         let Some(window) = bounds(&changed, world_map.width()) else { return Ok(MapUpdate::default()) };
         self.go_to_best();
         self.state.set_map(&world_map, &changed);
         self.world_map = world_map;
+        let thickened = walls_before.is_some_and(|before| self.thicken_walls(before));
         if self.objects.is_some() {
             self.objects = Some(super::object_cells(&self.world_map, self.resolution, &self.config, self.object_gain));
         }
@@ -91,7 +96,13 @@ impl Chain {
         if self.iteration >= self.config.detectors.free_space_start {
             self.refresh_free_space();
         }
-        self.rescore_best();
+        if thickened {
+            let lp = self.full_log_posterior();
+            self.log_target = lp * self.posterior.inv_temperature();
+            self.keep_as_best(lp);
+        } else {
+            self.rescore_best();
+        }
         // New space needs units: the schedule's phases, ADD first, run again from here.
         self.schedule_origin = self.iteration;
         self.phase_index = 0;
@@ -140,6 +151,35 @@ impl Chain {
         while let Some(i) = self.state.units.iter().position(|u| ids.contains(&u.id)) {
             self.remove_unit_with_doors(i);
         }
+    }
+
+    /// When the walls of the new map, measured as seen from both sides
+    /// ([`vision::walls::ring_depth_seen_from_both_sides`]), are thicker than on the last map
+    /// (`before`) and than the chain's rings: the rings take the new depth, and the world is
+    /// explained again from the detectors' candidates, as a cold chain would, while the chain
+    /// keeps its candidates, trace and random state. Returns whether it did.
+    ///
+    /// Why: a robot's first map shows every wall from one side, a face one cell deep, and the
+    /// rings are measured on it. Once the robot has been in the rooms either side of a wall it
+    /// has seen both faces and the unseen core between them. Rings kept one cell deep leave
+    /// every core and every outer wall's far cells unexplained; grown in place, the rings of
+    /// units fitted to faces lie wrong, and the chain's moves seldom undo units with doors. A
+    /// person's paint stroke on a whole map does not change how thick its walls look, so the
+    /// live mapper's strokes leave the rings alone.
+    fn thicken_walls(&mut self, before: i32) -> bool {
+        let measured = vision::walls::ring_depth_seen_from_both_sides(&self.map, self.frame.angle);
+        if measured <= before || measured <= self.state.wall {
+            return false;
+        }
+        while !self.state.doors.is_empty() {
+            self.state.apply(&super::Move::Delete(self.state.doors.len() - 1));
+        }
+        while !self.state.units.is_empty() {
+            self.state.apply(&super::Move::Remove(self.state.units.len() - 1));
+        }
+        self.state.set_wall(measured);
+        self.proposer.set_wall(self.state.wall, self.state.width(), self.state.height());
+        true
     }
 
     /// Makes the best world the current one (on the map it was found on): the chain goes on
@@ -243,6 +283,59 @@ fn symmetric_difference(a: &[i32], b: &[i32]) -> Vec<i32> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Rooms of 30 x 30 cells in a 3 x 3 grid, walls 3 cells thick. `seen[r]` says whether
+    /// the robot has been in room `r` (row-major): its floor reads free and its walls' faces
+    /// occupied; a wall's core, and every wall face of rooms not seen, read unknown.
+    fn rooms_seen(seen: [bool; 9]) -> Grid<Cell> {
+        let mut g = Grid::new(110, 110, Cell::Unknown);
+        for (r, _) in seen.iter().enumerate().filter(|&(_, &s)| s) {
+            let (x0, y0) = (4 + 33 * (r % 3), 4 + 33 * (r / 3));
+            for y in y0..y0 + 32 {
+                for x in x0..x0 + 32 {
+                    let face = x == x0 || y == y0 || x == x0 + 31 || y == y0 + 31;
+                    *g.at_mut(x, y) = if face { Cell::Occupied } else { Cell::Free };
+                }
+            }
+        }
+        g
+    }
+
+    #[test]
+    fn rings_deepen_once_the_robot_has_seen_walls_from_both_sides() {
+        let first =
+            OccupancyMap::from_classified(rooms_seen([false, false, false, false, true, false, false, false, false]));
+        let all = OccupancyMap::from_classified(rooms_seen([true; 9]));
+        let config = crate::floorplan::ChainConfig::online();
+        let mut chain = Chain::new(&first, config.clone(), 1).unwrap();
+        assert_eq!(chain.wall_thickness(), 1, "one room: every wall seen from one side");
+        chain.step(2000);
+        chain.update_map(&all).unwrap();
+        assert_eq!(chain.wall_thickness(), 3, "face, unseen core, face");
+        assert!(chain.check_consistency());
+        chain.step(4000);
+        assert!(chain.check_consistency());
+        // The rings now cover both faces of the inner walls: on the robot's map every wall face
+        // is explained as wall.
+        let best = chain.best_world();
+        assert!(best.units.len() >= 6, "{} units", best.units.len());
+        // A configured thickness stays.
+        let fixed = crate::floorplan::ChainConfig { wall_thickness: Some(1), ..config.clone() };
+        let mut chain = Chain::new(&first, fixed, 1).unwrap();
+        chain.step(500);
+        chain.update_map(&all).unwrap();
+        assert_eq!(chain.wall_thickness(), 1);
+        // A change that leaves the walls' look alone (a paint stroke on the whole map) too.
+        let mut chain = Chain::new(&all, config, 1).unwrap();
+        let t = chain.wall_thickness();
+        chain.step(500);
+        let mut stroke = all.classified().clone();
+        for x in 10..20 {
+            *stroke.at_mut(x, 20) = Cell::Occupied;
+        }
+        chain.update_map(&OccupancyMap::from_classified(stroke)).unwrap();
+        assert_eq!(chain.wall_thickness(), t);
+    }
 
     #[test]
     fn bounds_and_differences() {

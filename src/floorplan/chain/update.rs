@@ -179,6 +179,14 @@ impl Chain {
         }
         self.state.set_wall(measured);
         self.proposer.set_wall(self.state.wall, self.state.width(), self.state.height());
+        // The wall detector's candidates afresh, for rings of the new depth, as a new chain
+        // finds them.
+        let (c, min_side, wall) = (self.config.detectors.walls, self.config.kernels.min_side, self.state.wall);
+        let found = vision::walls::candidates(&self.world_map, min_side, &c);
+        self.proposer.candidates = super::super::kernels::Candidates::new(
+            found.into_iter().filter(|&(r, _)| crate::floorplan::state::fits_unit(r, min_side, wall)),
+        );
+        self.faces = Some(vision::walls::faces_of(&self.world_map, &c));
         true
     }
 

@@ -7,7 +7,12 @@
 //! snapshot, with the same seed and as many iterations, and notes for each how many
 //! iterations it took to come within 0.1 % of the better of the two best log posteriors (the
 //! reference). A warm chain that keeps most of its world needs few; a cold one climbs from the
-//! empty world every time.
+//! empty world every time. The cold chain's walls are as thick as the warm chain's rings at
+//! that update (measured on walls seen from both sides, which the cold chain alone would
+//! measure on the snapshot as seen from one), so that both climb the same posterior.
+//!
+//! Pass [`ChainConfig::online`] for a robot's map, as `ksmcmc explore` does: its range-sensor
+//! table lays a wall's ring behind the face the robot saw.
 
 use super::{metrics, Chain, ChainConfig, ChainError};
 use crate::explore::{ExploreConfig, ExploreError, Explorer};

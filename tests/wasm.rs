@@ -801,6 +801,13 @@ fn chain_config_defaults_parse_back() {
 }
 
 #[wasm_bindgen_test]
+fn chain_config_online_parses_back_with_the_range_sensor_table() {
+    let config = wasm::chain_config(Some(&wasm::chain_config_online())).unwrap();
+    assert_eq!(config, ChainConfig::online());
+    assert_ne!(config.posterior.sensor, ChainConfig::default().posterior.sensor);
+}
+
+#[wasm_bindgen_test]
 fn tabletop_bad_scene_is_an_error() {
     use ksmcmc::wasm::tabletop::Tabletop;
     err_contains(Tabletop::new("{", None, None, None).map(|_| ()), "");

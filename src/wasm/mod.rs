@@ -68,8 +68,8 @@ pub use explore::Explorer;
 pub use map::{draw_to_canvas, render_rgba, Counts, Map, Rendered};
 #[cfg(feature = "wasm-mapper")]
 pub use mapper::{
-    chain_config, chain_config_defaults, draw_mapper, draw_scene_graph, render_mapper_rgba, render_scene_graph_rgba,
-    DrawOptions, GraphOptions, Mapper, Show, MAX_BUDGET_MS, MAX_MAPPER_CELLS, MAX_STEP,
+    chain_config, chain_config_defaults, chain_config_online, draw_mapper, draw_scene_graph, render_mapper_rgba,
+    render_scene_graph_rgba, DrawOptions, GraphOptions, Mapper, Show, MAX_BUDGET_MS, MAX_MAPPER_CELLS, MAX_STEP,
 };
 #[cfg(feature = "wasm-plan")]
 pub use model3d::world_glb;

@@ -224,6 +224,14 @@ impl ChainConfig {
     }
 }
 
+/// The wall detector's unit candidates on a world-frame map, those that fit a unit with rings
+/// `wall` deep ([`super::state::fits_unit`]).
+fn wall_candidates(world_map: &Grid<Cell>, config: &ChainConfig, wall: i32) -> Candidates {
+    let min_side = config.kernels.min_side;
+    let found = vision::walls::candidates(world_map, min_side, &config.detectors.walls);
+    Candidates::new(found.into_iter().filter(|&(r, _)| super::state::fits_unit(r, min_side, wall)))
+}
+
 /// Writes `given`'s fields over `base`'s, object by object (other values replace).
 fn overlay(base: &mut serde_json::Value, given: serde_json::Value) {
     match (base, given) {
@@ -393,11 +401,8 @@ impl Chain {
             }
         };
         let (world_map, frame) = vision::orientation::to_world_frame(classified, angle);
-        let found = vision::walls::candidates(&world_map, config.kernels.min_side, &config.detectors.walls);
         let wall = config.wall_thickness.unwrap_or_else(|| vision::walls::ring_depth(classified, angle));
-        let min_side = config.kernels.min_side;
-        let candidates =
-            Candidates::new(found.into_iter().filter(|&(r, _)| super::state::fits_unit(r, min_side, wall)));
+        let candidates = wall_candidates(&world_map, &config, wall);
         let resolution = map.yaml().resolution;
         let faces = vision::walls::faces_of(&world_map, &config.detectors.walls);
         let mut chain =

@@ -79,10 +79,13 @@ impl Chain {
         }
         let (world_map, _) = vision::orientation::to_world_frame(map.classified(), self.frame.angle);
         let changed = changed_cells(&self.world_map, &world_map);
+        let Some(window) = bounds(&changed, world_map.width()) else {
+            self.map = map.classified().clone();
+            return Ok(MapUpdate::default());
+        };
         let both_sides = |m: &Grid<Cell>| vision::walls::ring_depth_seen_from_both_sides(m, self.frame.angle);
         let walls_before = self.config.wall_thickness.is_none().then(|| both_sides(&self.map));
         self.map = map.classified().clone();
-        let Some(window) = bounds(&changed, world_map.width()) else { return Ok(MapUpdate::default()) };
         self.go_to_best();
         self.state.set_map(&world_map, &changed);
         self.world_map = world_map;
@@ -171,23 +174,24 @@ impl Chain {
         if measured <= before || measured <= self.state.wall {
             return false;
         }
+        self.clear_world();
+        self.state.set_wall(measured);
+        self.proposer.set_wall(self.state.wall, self.state.width(), self.state.height());
+        // The wall detector's candidates afresh, for rings of the new depth, as a new chain
+        // finds them.
+        self.proposer.candidates = super::wall_candidates(&self.world_map, &self.config, self.state.wall);
+        self.faces = Some(vision::walls::faces_of(&self.world_map, &self.config.detectors.walls));
+        true
+    }
+
+    /// Removes every door and unit of the current world.
+    fn clear_world(&mut self) {
         while !self.state.doors.is_empty() {
             self.state.apply(&super::Move::Delete(self.state.doors.len() - 1));
         }
         while !self.state.units.is_empty() {
             self.state.apply(&super::Move::Remove(self.state.units.len() - 1));
         }
-        self.state.set_wall(measured);
-        self.proposer.set_wall(self.state.wall, self.state.width(), self.state.height());
-        // The wall detector's candidates afresh, for rings of the new depth, as a new chain
-        // finds them.
-        let (c, min_side, wall) = (self.config.detectors.walls, self.config.kernels.min_side, self.state.wall);
-        let found = vision::walls::candidates(&self.world_map, min_side, &c);
-        self.proposer.candidates = super::super::kernels::Candidates::new(
-            found.into_iter().filter(|&(r, _)| crate::floorplan::state::fits_unit(r, min_side, wall)),
-        );
-        self.faces = Some(vision::walls::faces_of(&self.world_map, &c));
-        true
     }
 
     /// Makes the best world the current one (on the map it was found on): the chain goes on
@@ -196,12 +200,7 @@ impl Chain {
         if self.best.units.is_empty() || self.best_log_posterior <= self.full_log_posterior() {
             return;
         }
-        while !self.state.doors.is_empty() {
-            self.state.apply(&super::Move::Delete(self.state.doors.len() - 1));
-        }
-        while !self.state.units.is_empty() {
-            self.state.apply(&super::Move::Remove(self.state.units.len() - 1));
-        }
+        self.clear_world();
         let best = self.best.clone();
         let mut ids = std::collections::HashMap::new();
         for u in &best.units {
@@ -323,8 +322,7 @@ mod tests {
         assert!(chain.check_consistency());
         chain.step(4000);
         assert!(chain.check_consistency());
-        // The rings now cover both faces of the inner walls: on the robot's map every wall face
-        // is explained as wall.
+        // The world was explained again, with the new rings: the nine rooms by units again.
         let best = chain.best_world();
         assert!(best.units.len() >= 6, "{} units", best.units.len());
         // A configured thickness stays.

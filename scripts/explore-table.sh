@@ -3,15 +3,18 @@
 # prints the BENCHMARKS table: updates, warm and cold iterations, their ratio, and K(W,M) of
 # the final world on the full map against a cold run on the full map.
 #
-#   scripts/explore-table.sh [KSMCMC] [OUT_DIR]
+#   scripts/explore-table.sh [KSMCMC] [OUT_DIR] [SYNTH_OPTIONS...]
+#
+# SYNTH_OPTIONS go to every `ksmcmc synth`, e.g. `--wall-thickness 1` for the 1-cell-wall table.
 set -euo pipefail
 bin=${1:-target/release/ksmcmc}
 out=${2:-target/explore-table}
+synth_options=("${@:3}")
 mkdir -p "$out"
 echo "| floor | explore seed | updates | warm | cold | warm/cold | K final (full map) | K cold (full map) |"
 echo "|---|---|---|---|---|---|---|---|"
 for floor in 1 2 3 4 5; do
-  "$bin" synth --seed "$floor" --out "$out/synth$floor" >/dev/null
+  "$bin" synth --seed "$floor" "${synth_options[@]}" --out "$out/synth$floor" >/dev/null
   for seed in 1 2; do
     d="$out/explore$floor-$seed"
     "$bin" explore "$out/synth$floor/map.yaml" --out "$d" --seed "$seed" >/dev/null 2>&1

@@ -294,6 +294,15 @@ pub fn shifted(r: Rect, side: usize, d: i32) -> Rect {
     }
 }
 
+/// The smallest unit side for rings `wall` deep (two rings and a free cell at least), and how
+/// many rectangles with sides of at least that fit a `width` x `height` grid (the uniform ADD
+/// proposal's count).
+fn sizes(config: &KernelConfig, wall: i32, width: i32, height: i32) -> (i32, f64) {
+    let min_side = config.min_side.max(2 * wall + 1);
+    let n = min_side as i64;
+    (min_side, (interval_count(width as i64, n) * interval_count(height as i64, n)) as f64)
+}
+
 impl Proposer {
     /// A proposer for a `width` x `height` world with the given ADD candidates.
     /// Forgets the doors detected so far: they were found on a map that has since changed.
@@ -305,19 +314,15 @@ impl Proposer {
     /// world-frame grid), as [`Proposer::new`] would have.
     pub fn set_wall(&mut self, wall: i32, width: i32, height: i32) {
         self.wall = wall;
-        self.min_side = self.config.min_side.max(2 * wall + 1);
-        let n = self.min_side as i64;
-        self.uniform_count = (interval_count(width as i64, n) * interval_count(height as i64, n)) as f64;
+        (self.min_side, self.uniform_count) = sizes(&self.config, wall, width, height);
         self.forget_doors();
     }
 
     pub fn new(config: KernelConfig, candidates: Candidates, width: i32, height: i32, wall: i32) -> Self {
-        let min_side = config.min_side.max(2 * wall + 1);
+        let (min_side, uniform_count) = sizes(&config, wall, width, height);
         let m = libm::ceil(4.0 * config.shift_sigma).max(1.0) as i32;
         let s2 = 2.0 * config.shift_sigma * config.shift_sigma;
         let shift = Cumulative::new((1..=m).map(|d| libm::exp(-((d * d) as f64) / s2)));
-        let n = min_side as i64;
-        let uniform_count = (interval_count(width as i64, n) * interval_count(height as i64, n)) as f64;
         Proposer {
             config,
             candidates,

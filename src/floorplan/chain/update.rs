@@ -83,8 +83,11 @@ impl Chain {
             self.map = map.classified().clone();
             return Ok(MapUpdate::default());
         };
-        let both_sides = |m: &Grid<Cell>| vision::walls::ring_depth_seen_from_both_sides(m, self.frame.angle);
-        let walls_before = self.config.wall_thickness.is_none().then(|| both_sides(&self.map));
+        let walls_before = self
+            .config
+            .wall_thickness
+            .is_none()
+            .then(|| vision::walls::ring_depth_seen_from_both_sides(&self.map, self.frame.angle));
         self.map = map.classified().clone();
         self.go_to_best();
         self.state.set_map(&world_map, &changed);

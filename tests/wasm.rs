@@ -684,7 +684,7 @@ fn mapper_reference_worlds_are_checked() {
     let mut other = World::empty(100, 100);
     err_contains(m.set_reference(Some(other.to_json())), "explains a 100x100 map, but the map is 64x40");
     other = World::empty(64, 40);
-    other.units.push(ksmcmc::floorplan::Unit { id: 1, x: 60, y: 0, w: 10, h: 10, kind: Default::default() });
+    other.units.push(ksmcmc::floorplan::Unit::new(1, 60, 0, 10, 10, Default::default()));
     err_contains(m.set_reference(Some(other.to_json())), "outside");
     assert!(!m.has_reference());
     other.units[0].x = 0;

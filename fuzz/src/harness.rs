@@ -166,7 +166,7 @@ pub fn world_arbitrary(data: &[u8]) {
     for id in 1..=(b.u8() % 24) as u32 {
         let (x, y) = (b.coord(ww), b.coord(wh));
         let (w, h) = (1 + b.u8() as i32 % 64, 1 + b.u8() as i32 % 64);
-        world.units.push(Unit { id, x, y, w, h, kind: types[b.u8() as usize % types.len()] });
+        world.units.push(Unit::new(id, x, y, w, h, types[b.u8() as usize % types.len()]));
     }
     let n = world.units.len() as u32;
     for id in 1..=(b.u8() % 16) as u32 {
@@ -234,7 +234,7 @@ pub fn edits(data: &[u8]) {
     let mut world = World::empty(w as u32, h as u32);
     world.frame = Frame { angle: 0.3, world_size: [w as u32 + 20, h as u32 + 20], map_size: [w as u32, h as u32] };
     let _ = e.world_wall_cells(&map, &world.frame);
-    world.units.push(Unit { id: 1, x: 2, y: 2, w: 30, h: 20, kind: UnitType::Room });
+    world.units.push(Unit::new(1, 2, 2, 30, 20, UnitType::Room));
     let _ = e.type_facts(&world);
     let _ = e.merged_units(&world);
     let _ = e.respected_by(&world, &labels, &map);

@@ -88,6 +88,7 @@ impl RoomInput {
         edits: super::edits::Edits,
     ) -> Result<RoomInput, WorldError> {
         world.fits(map.width(), map.height())?;
+        world.require_one_direction("finding rooms")?;
         let resolution = map.yaml().resolution;
         let (world_map, frame) = crate::vision::orientation::to_world_frame(map.classified(), world.frame.angle);
         if frame.world_size != world.frame.world_size {

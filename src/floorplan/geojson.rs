@@ -42,7 +42,7 @@ use serde_json::{json, Value};
 ///
 /// let map = OccupancyMap::from_classified(Grid::new(21, 11, Cell::Free));
 /// let mut world = World::empty(21, 11);
-/// world.units.push(Unit { id: 1, x: 0, y: 0, w: 21, h: 11, kind: UnitType::Corridor });
+/// world.units.push(Unit::new(1, 0, 0, 21, 11, UnitType::Corridor));
 /// world.rooms.push(Room { id: 1, kind: UnitType::Corridor, units: vec![1], area_m2: 0.4, doors: vec![], opens_to: vec![], name: None });
 /// let text = world_geojson(&world, &Grid::new(21, 11, 1), &map, None)?;
 /// let fc: serde_json::Value = serde_json::from_str(&text).unwrap();

@@ -38,8 +38,8 @@ pub type SceneGraph = UnGraph<UnitNode, Link>;
 /// ```
 /// use ksmcmc::floorplan::{graph::scene_graph, Unit, UnitType, World};
 /// let mut w = World::empty(40, 20);
-/// w.units.push(Unit { id: 1, x: 0, y: 0, w: 20, h: 20, kind: UnitType::Room });
-/// w.units.push(Unit { id: 2, x: 20, y: 0, w: 20, h: 20, kind: UnitType::Corridor });
+/// w.units.push(Unit::new(1, 0, 0, 20, 20, UnitType::Room));
+/// w.units.push(Unit::new(2, 20, 0, 20, 20, UnitType::Corridor));
 /// let g = scene_graph(&w);
 /// assert_eq!((g.node_count(), g.edge_count()), (2, 1));
 /// ```
@@ -58,7 +58,8 @@ pub fn scene_graph(world: &World) -> SceneGraph {
     for (i, a) in world.units.iter().enumerate() {
         for (j, b) in world.units.iter().enumerate() {
             let key = (i.min(j), i.max(j));
-            if i == j || linked.contains(&key) {
+            // Walls are shared by units of one frame only (units at their own angle, issue 13).
+            if i == j || linked.contains(&key) || world.unit_frame(a) != world.unit_frame(b) {
                 continue;
             }
             let touching = [Axis::Horizontal, Axis::Vertical]

@@ -148,9 +148,10 @@ pub fn evidence(world: &World, resolution: f64, classifier: &GeometryClassifier)
     // Only the true Adj atoms: Adj is closed world (Knowledge::infer), so the false ones add
     // nothing, and listing them made the evidence quadratic in units (two strings per ordered
     // pair, which a large world turned into gigabytes in wasm).
+    // Units at different angles (issue 13) are compared in no common frame: not adjacent here.
     for a in &world.units {
         for b in &world.units {
-            if a.id != b.id && adjacent(a, b, t) {
+            if a.id != b.id && world.unit_frame(a) == world.unit_frame(b) && adjacent(a, b, t) {
                 facts.push(("Adj", vec![constant(a.id), constant(b.id)], true));
             }
         }
@@ -182,7 +183,8 @@ pub fn training_facts(world: &World, resolution: f64, classifier: &GeometryClass
     }
     for a in &world.units {
         for b in world.units.iter().filter(|b| b.id != a.id) {
-            facts.push(("SaLe", vec![constant(a.id), constant(b.id)], same_length(a, b, t)));
+            let same = world.unit_frame(a) == world.unit_frame(b) && same_length(a, b, t);
+            facts.push(("SaLe", vec![constant(a.id), constant(b.id)], same));
         }
     }
     facts
@@ -254,7 +256,7 @@ mod tests {
     use crate::floorplan::metrics::{defect_pairs, defects};
 
     fn unit(id: u32, x: i32, y: i32, w: i32, h: i32, kind: UnitType) -> Unit {
-        Unit { id, x, y, w, h, kind }
+        Unit::new(id, x, y, w, h, kind)
     }
 
     #[test]
@@ -677,7 +679,7 @@ impl Knowledge {
 /// use ksmcmc::floorplan::knowledge::{WorldInference, BUILTIN_INDOOR};
 /// use ksmcmc::floorplan::{Unit, World};
 /// let mut w = World::empty(100, 60);
-/// w.units.push(Unit { id: 1, x: 2, y: 2, w: 80, h: 12, kind: Default::default() });
+/// w.units.push(Unit::new(1, 2, 2, 80, 12, Default::default()));
 /// let inf = WorldInference::new(BUILTIN_INDOOR, &w, 0.05).unwrap();
 /// assert!(inf.types.contains_key("U1"));
 /// assert!(inf.to_json().starts_with(r#"{"evidence":["#));

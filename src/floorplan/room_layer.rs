@@ -137,7 +137,7 @@ impl RoomKnowledge {
 /// use ksmcmc::floorplan::{Unit, UnitType, World};
 /// let mut world = World::empty(80, 40);
 /// for (id, x) in [(1, 0), (2, 40)] {
-///     world.units.push(Unit { id, x, y: 0, w: 40, h: 40, kind: UnitType::Room });
+///     world.units.push(Unit::new(id, x, 0, 40, 40, UnitType::Room));
 /// }
 /// let facts = room_evidence(&world, &[OpenPair { a: 0, b: 1, flush: true, closed: false }]);
 /// let text: Vec<String> = facts.iter().map(|(p, a, _)| format!("{p}({})", a.join(","))).collect();
@@ -180,7 +180,7 @@ pub fn room_evidence(world: &World, pairs: &[OpenPair]) -> Vec<Fact> {
 /// let map = Grid::new(80, 40, Cell::Free);
 /// let mut world = World::empty(80, 40);
 /// for (id, x) in [(1, 0), (2, 40)] {
-///     world.units.push(Unit { id, x, y: 0, w: 40, h: 40, kind: UnitType::Room });
+///     world.units.push(Unit::new(id, x, 0, 40, 40, UnitType::Room));
 /// }
 /// let labels = explain_rooms(&mut world, &map, &map, &RoomConfig::default(), 0.05, Some(&RoomKnowledge::builtin()))?;
 /// assert_eq!(world.rooms.len(), 1);
@@ -355,8 +355,8 @@ pub fn explain_world_rooms_by(
 /// }
 /// let mut world = World::empty(200, 100);
 /// world.units = vec![
-///     Unit { id: 1, x: 0, y: 0, w: 200, h: 41, kind: UnitType::Corridor },
-///     Unit { id: 2, x: 75, y: 40, w: 51, h: 60, kind: UnitType::Room },
+///     Unit::new(1, 0, 0, 200, 41, UnitType::Corridor),
+///     Unit::new(2, 75, 40, 51, 60, UnitType::Room),
 /// ];
 /// let c = RoomConfig::default();
 /// let mut pairs = open_pairs(&world, &map, &c);
@@ -568,7 +568,7 @@ mod tests {
     use crate::floorplan::{Door, Unit};
 
     fn unit(id: u32, x: i32, y: i32, w: i32, h: i32, kind: UnitType) -> Unit {
-        Unit { id, x, y, w, h, kind }
+        Unit::new(id, x, y, w, h, kind)
     }
 
     /// A 300 x 100 floor: a corridor along the top (rows 0..40), and below it three rooms

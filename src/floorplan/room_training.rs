@@ -64,7 +64,7 @@ impl std::error::Error for RoomTrainingError {}
 /// let truth = Grid::new(80, 40, 1u16);
 /// let mut world = World::empty(80, 40);
 /// for (id, x) in [(1, 0), (2, 40)] {
-///     world.units.push(Unit { id, x, y: 0, w: 40, h: 40, kind: UnitType::Room });
+///     world.units.push(Unit::new(id, x, 0, 40, 40, UnitType::Room));
 /// }
 /// let t = room_training(&world, &map, &map, &truth, &RoomConfig::default())?;
 /// assert_eq!((t.open_pairs, t.same_room), (1, 1));
@@ -78,6 +78,7 @@ pub fn room_training(
     truth: &Grid<u16>,
     c: &RoomConfig,
 ) -> Result<RoomTraining, RoomTrainingError> {
+    world.require_one_direction("learning which units are one room").map_err(|e| RoomTrainingError(e.to_string()))?;
     let size = |g: (usize, usize)| [g.0 as u32, g.1 as u32];
     if size((truth.width(), truth.height())) != world.frame.map_size {
         return Err(RoomTrainingError(format!(
@@ -140,7 +141,7 @@ mod tests {
     use crate::floorplan::{Unit, UnitType};
 
     fn unit(id: u32, x: i32, y: i32, w: i32, h: i32, kind: UnitType) -> Unit {
-        Unit { id, x, y, w, h, kind }
+        Unit::new(id, x, y, w, h, kind)
     }
 
     /// A 200 x 100 floor: a corridor along the top (rows 0..40, truth room 1), and below it

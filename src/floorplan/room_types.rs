@@ -76,8 +76,8 @@ impl TypeMarginals {
 /// let mut world = World::empty(100, 40);
 /// world.wall_thickness = 1;
 /// // Unit 1's interior is 58 x 38 cells, unit 2's 38 x 38.
-/// world.units.push(Unit { id: 1, x: 0, y: 0, w: 60, h: 40, kind: UnitType::Room });
-/// world.units.push(Unit { id: 2, x: 60, y: 0, w: 40, h: 40, kind: UnitType::Other });
+/// world.units.push(Unit::new(1, 0, 0, 60, 40, UnitType::Room));
+/// world.units.push(Unit::new(2, 60, 0, 40, 40, UnitType::Other));
 /// world.rooms.push(Room { id: 1, kind: UnitType::Room, units: vec![1, 2], area_m2: 10.0, doors: vec![], opens_to: vec![], name: None });
 /// let mut inferred = Inferred::default();
 /// inferred.types.insert(1, (UnitType::Room, [1.0, 0.0, 0.0, 0.0]));
@@ -218,7 +218,7 @@ fn infer_rooms(
         let h = (long.round() as i32).max(1);
         let w = ((n as f64 / h as f64).round() as i32).clamp(1, h);
         // Far apart: rooms are typed each by its own evidence, with no `Adj` between them.
-        pseudo.units.push(Unit { id: r.id, x, y: 0, w, h, kind: UnitType::Unknown });
+        pseudo.units.push(Unit::new(r.id, x, 0, w, h, UnitType::Unknown));
         x = x.saturating_add(w.saturating_add(1000));
         for &b in r.opens_to.iter().filter(|&&b| b > r.id) {
             let id = pseudo.doors.len() as u32 + 1;
@@ -285,7 +285,7 @@ mod tests {
     #[test]
     fn a_room_without_inferred_units_has_no_marginals() {
         let mut world = World::empty(50, 50);
-        world.units.push(Unit { id: 4, x: 0, y: 0, w: 20, h: 20, kind: UnitType::Unknown });
+        world.units.push(Unit::new(4, 0, 0, 20, 20, UnitType::Unknown));
         for (id, units) in [(1, vec![]), (2, vec![4])] {
             world.rooms.push(Room {
                 id,
@@ -306,7 +306,7 @@ mod tests {
     #[test]
     fn one_unit_rooms_carry_their_units_marginals() {
         let mut world = World::empty(50, 50);
-        world.units.push(Unit { id: 3, x: 0, y: 0, w: 30, h: 8, kind: UnitType::Corridor });
+        world.units.push(Unit::new(3, 0, 0, 30, 8, UnitType::Corridor));
         world.rooms.push(Room {
             id: 7,
             kind: UnitType::Corridor,

@@ -901,7 +901,7 @@ pub(crate) mod tests {
     use crate::floorplan::{Unit, UnitType};
 
     fn unit(id: u32, x: i32, y: i32, w: i32, h: i32) -> Unit {
-        Unit { id, x, y, w, h, kind: UnitType::Unknown }
+        Unit::new(id, x, y, w, h, UnitType::Unknown)
     }
 
     #[test]

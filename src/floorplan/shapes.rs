@@ -147,7 +147,7 @@ impl std::error::Error for ShapeError {}
 /// // Two units sharing the wall column 10 (walls 1 cell deep), one room each.
 /// let mut world = World::empty(21, 8);
 /// for (id, x) in [(1, 0), (2, 10)] {
-///     world.units.push(Unit { id, x, y: 0, w: 11, h: 8, kind: UnitType::Room });
+///     world.units.push(Unit::new(id, x, 0, 11, 8, UnitType::Room));
 ///     world.rooms.push(Room { id, kind: UnitType::Room, units: vec![id], area_m2: 1.0, doors: vec![], opens_to: vec![], name: None });
 /// }
 /// let shapes = floor_shapes(&world, &Grid::new(21, 8, 0)).unwrap();
@@ -157,6 +157,7 @@ impl std::error::Error for ShapeError {}
 /// ```
 pub fn floor_shapes(world: &World, labels: &Grid<u16>) -> Result<FloorShapes, ShapeError> {
     world.validate().map_err(ShapeError::World)?;
+    world.require_one_direction("the floor shapes (SVG, GeoJSON)").map_err(ShapeError::World)?;
     let map = world.frame.map_size;
     if [labels.width(), labels.height()] != [map[0] as usize, map[1] as usize] {
         return Err(ShapeError::Labels { labels: [labels.width(), labels.height()], map });
@@ -396,7 +397,7 @@ mod tests {
     use crate::floorplan::Unit;
 
     fn unit(id: u32, x: i32, y: i32, w: i32, h: i32) -> Unit {
-        Unit { id, x, y, w, h, kind: UnitType::Room }
+        Unit::new(id, x, y, w, h, UnitType::Room)
     }
 
     fn room(id: u32, units: &[u32]) -> Room {

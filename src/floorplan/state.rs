@@ -397,7 +397,7 @@ impl State {
     }
 
     fn new_unit(&mut self, r: Rect) -> Unit {
-        let u = Unit { id: self.next_id, x: r.x, y: r.y, w: r.w, h: r.h, kind: UnitType::Unknown };
+        let u = Unit::new(self.next_id, r.x, r.y, r.w, r.h, UnitType::Unknown);
         self.next_id += 1;
         u
     }

@@ -52,6 +52,7 @@
 mod config;
 mod layout;
 mod scan;
+mod wings;
 
 pub use config::SynthConfig;
 
@@ -125,16 +126,12 @@ impl Synthetic {
 pub fn generate(config: &SynthConfig, seed: u64) -> Result<Synthetic, SynthError> {
     let cells = config.cells()?;
     let mut rng = Rng::seed(seed);
+    let noise = noise_of(config);
+    if let Some(second) = config.wing_angle() {
+        return generate_wings(config, &cells, &noise, second, &mut rng);
+    }
     let plan = layout::plan(&cells, config.extra_doors, &mut rng)?;
     let explored = choose_explored(&plan.spaces, config.unexplored, &mut rng);
-    let noise = scan::Noise {
-        speckle_occupied: config.speckle_occupied,
-        speckle_unknown: config.speckle_unknown,
-        wall_roughness: config.wall_roughness,
-        wall_gaps: config.wall_gaps,
-        clutter: config.clutter,
-        peek: config.peek,
-    };
     let observed = scan::observe(&plan, &explored, &cells, &noise, &mut rng);
     let (map_cells, labels) = scan::to_map(&observed, &cells, &noise, &mut rng);
 
@@ -142,14 +139,7 @@ pub fn generate(config: &SynthConfig, seed: u64) -> Result<Synthetic, SynthError
         .spaces
         .iter()
         .enumerate()
-        .map(|(i, s)| Unit {
-            id: i as u32 + 1,
-            x: s.inner.x - 1,
-            y: s.inner.y - 1,
-            w: s.inner.w + 2,
-            h: s.inner.h + 2,
-            kind: s.kind,
-        })
+        .map(|(i, s)| Unit::new(i as u32 + 1, s.inner.x - 1, s.inner.y - 1, s.inner.w + 2, s.inner.h + 2, s.kind))
         .collect();
     let doors = plan.openings.iter().enumerate().map(|(i, o)| o.door(i as u32 + 1, cells.wall)).collect();
     // -0 degrees would otherwise be written as an angle of -0.0.
@@ -172,6 +162,105 @@ pub fn generate(config: &SynthConfig, seed: u64) -> Result<Synthetic, SynthError
         unexplained: Vec::new(),
     };
     Ok(Synthetic { map: occupancy_map(map_cells, config.resolution), truth, labels, explored })
+}
+
+/// The scan's noise settings of a configuration.
+fn noise_of(config: &SynthConfig) -> scan::Noise {
+    scan::Noise {
+        speckle_occupied: config.speckle_occupied,
+        speckle_unknown: config.speckle_unknown,
+        wall_roughness: config.wall_roughness,
+        wall_gaps: config.wall_gaps,
+        clutter: config.clutter,
+        peek: config.peek,
+    }
+}
+
+/// Two buildings of `config`, the second turned to `second` radians, side by side on one map
+/// and joined by a passage ([`wings`]). The truth's frame is the first wing's; the second
+/// wing's units and doors lie in the frame [`Frame::turned`] gives for its angle, and its
+/// units carry that angle. The passage is not a door of the truth (doors join units of one
+/// frame), and the second wing's furniture cells are given in the first wing's frame.
+fn generate_wings(
+    config: &SynthConfig,
+    cells: &config::Cells,
+    noise: &scan::Noise,
+    second: f64,
+    rng: &mut Rng,
+) -> Result<Synthetic, SynthError> {
+    let mut plans = Vec::new();
+    let mut observed = Vec::new();
+    let mut explored = Vec::new();
+    for _ in 0..2 {
+        let plan = layout::plan(cells, config.extra_doors, rng)?;
+        let seen = choose_explored(&plan.spaces, config.unexplored, rng);
+        observed.push(scan::observe(&plan, &seen, cells, noise, rng));
+        explored.extend(seen);
+        plans.push(plan);
+    }
+    let first_units = plans[0].spaces.len();
+    let angles = [cells.angle, second];
+    let door = (cells.door.lo + cells.door.hi) / 2;
+    let composed = wings::compose([&observed[0], &observed[1]], angles, first_units as u16, cells, door);
+    let (mw, mh) = (cells.map_size.0 as usize, cells.map_size.1 as usize);
+    let mut map_cells = composed.cells.cells().to_vec();
+    scan::degrade(&mut map_cells, mw, mh, noise, rng);
+    let mut units = Vec::new();
+    let mut doors = Vec::new();
+    for (k, plan) in plans.iter().enumerate() {
+        let (ox, oy) = composed.offsets[k];
+        let first_id = units.len() as u32;
+        units.extend(plan.spaces.iter().enumerate().map(|(i, s)| {
+            let (x, y, w, h) = (s.inner.x - 1 + ox, s.inner.y - 1 + oy, s.inner.w + 2, s.inner.h + 2);
+            Unit { angle: (k == 1).then_some(second), ..Unit::new(first_id + i as u32 + 1, x, y, w, h, s.kind) }
+        }));
+        for o in &plan.openings {
+            let d = o.door(doors.len() as u32 + 1, cells.wall);
+            let [a, b] = d.units;
+            doors.push(super::Door {
+                units: [a + first_id, b + first_id],
+                x0: d.x0 + ox,
+                y0: d.y0 + oy,
+                x1: d.x1 + ox,
+                y1: d.y1 + oy,
+                ..d
+            });
+        }
+    }
+    let object_cells = wing_objects(&observed, &composed);
+    let frame = composed.frames[0];
+    let truth = World {
+        format: WORLD_FORMAT.to_string(),
+        frame: Frame { angle: if frame.angle == 0.0 { 0.0 } else { frame.angle }, ..frame },
+        wall_thickness: 1,
+        units,
+        doors,
+        object_cells,
+        rooms: Vec::new(),
+        unexplained: Vec::new(),
+    };
+    let labels = composed.labels;
+    let map = Grid::from_vec(mw, mh, map_cells).expect("map size");
+    Ok(Synthetic { map: occupancy_map(map, config.resolution), truth, labels, explored })
+}
+
+/// Both wings' furniture cells in the first wing's frame (through the map), row by row.
+fn wing_objects(observed: &[scan::Observed], composed: &wings::Composed) -> Vec<[i32; 2]> {
+    let [first, _] = composed.frames;
+    let [ww, wh] = first.world_size;
+    let mut out = std::collections::BTreeSet::new();
+    for (k, o) in observed.iter().enumerate() {
+        let (ox, oy) = composed.offsets[k];
+        for &[x, y] in &o.objects {
+            let (mx, my) = composed.frames[k].to_map((x + ox) as f64 + 0.5, (y + oy) as f64 + 0.5);
+            let (wx, wy) = first.to_world(mx, my);
+            let (wx, wy) = (libm::floor(wx), libm::floor(wy));
+            if wx >= 0.0 && wy >= 0.0 && wx < ww as f64 && wy < wh as f64 {
+                out.insert([wy as i32, wx as i32]);
+            }
+        }
+    }
+    out.into_iter().map(|[y, x]| [x, y]).collect()
 }
 
 /// Picks which units the robot never entered: a fraction of the rooms, halls and "other"

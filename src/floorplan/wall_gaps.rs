@@ -466,7 +466,7 @@ mod tests {
         fill(&mut map, 80..w, 40..41, Cell::Occupied);
         let mut world = World::empty(w as u32, h as u32);
         world.wall_thickness = 1;
-        world.units = vec![Unit { id: 1, x: 0, y: 0, w: w as i32, h: h as i32, kind: UnitType::Room }];
+        world.units = vec![Unit::new(1, 0, 0, w as i32, h as i32, UnitType::Room)];
         let c = RoomConfig { max_wall_gap: 50, min_wall_stub: 6, min_core_cells: 200, ..RoomConfig::default() };
         let labels = labels_of_groups(&world, &[1], &map, &map, &c);
         assert_ne!(labels.at(60, 20), labels.at(60, 70), "corridor and room are two segments");

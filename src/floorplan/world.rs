@@ -146,12 +146,30 @@ pub struct Unit {
     /// The unit's type.
     #[serde(rename = "type", default)]
     pub kind: UnitType,
+    /// The unit's own angle, radians, in the convention of `frame.angle`, for a unit that
+    /// follows another wall direction than the world frame (a wing of the building at an
+    /// angle, issue 13). Its rectangle then lies in the frame [`Frame::turned`] gives for that
+    /// angle on the same map ([`World::unit_frame`]). `None` (the field left out): the world
+    /// frame's angle.
+    #[serde(default, skip_serializing_if = "Option::is_none", deserialize_with = "crate::json::exact_opt")]
+    pub angle: Option<f64>,
 }
 
 impl Unit {
-    /// The unit's rectangle.
+    /// The unit's rectangle, in its own frame ([`World::unit_frame`]).
     pub fn rect(&self) -> Rect {
         Rect::new(self.x, self.y, self.w, self.h)
+    }
+
+    /// A unit at the world frame's angle.
+    ///
+    /// ```
+    /// use ksmcmc::floorplan::{Unit, UnitType};
+    /// let u = Unit::new(3, 10, 20, 40, 30, UnitType::Corridor);
+    /// assert_eq!((u.id, u.rect().area(), u.angle), (3, 1200, None));
+    /// ```
+    pub fn new(id: u32, x: i32, y: i32, w: i32, h: i32, kind: UnitType) -> Unit {
+        Unit { id, x, y, w, h, kind, angle: None }
     }
 }
 
@@ -391,6 +409,51 @@ impl World {
         self.units.iter().find(|u| u.id == id)
     }
 
+    /// The frame `unit`'s rectangle lies in: the world frame, or, for a unit with an angle of
+    /// its own (issue 13), the frame [`Frame::turned`] gives for that angle on the same map.
+    ///
+    /// ```
+    /// use ksmcmc::floorplan::{Unit, UnitType, World};
+    /// let w = World::empty(100, 60);
+    /// let upright = Unit::new(1, 0, 0, 10, 10, UnitType::Room);
+    /// assert_eq!(w.unit_frame(&upright), w.frame);
+    /// let turned = Unit { angle: Some(0.5), ..upright };
+    /// let f = w.unit_frame(&turned);
+    /// assert_eq!((f.angle, f.map_size), (0.5, [100, 60]));
+    /// assert!(f.world_size[0] > 100 && f.world_size[1] > 60);
+    /// ```
+    pub fn unit_frame(&self, unit: &Unit) -> Frame {
+        match unit.angle {
+            Some(a) if a != self.frame.angle => Frame::turned(self.frame.map_size[0], self.frame.map_size[1], a),
+            _ => self.frame,
+        }
+    }
+
+    /// The frame a door's cells lie in: its units' (a door joins two units of one frame).
+    pub fn door_frame(&self, door: &Door) -> Frame {
+        self.unit(door.units[0]).map_or(self.frame, |u| self.unit_frame(u))
+    }
+
+    /// Whether every unit lies in the world frame (none has an angle of its own).
+    pub fn is_one_direction(&self) -> bool {
+        self.units.iter().all(|u| self.unit_frame(u) == self.frame)
+    }
+
+    /// An error for the tools that draw or plan on the world frame alone when a unit has an
+    /// angle of its own: `what` names the tool.
+    pub fn require_one_direction(&self, what: &str) -> Result<(), WorldError> {
+        match self.units.iter().find(|u| self.unit_frame(u) != self.frame) {
+            Some(u) => Err(WorldError(format!(
+                "world.json: unit {} has an angle of its own ({} rad, the frame's is {}); {what} handles \
+                 units in the world frame only so far (issue 13)",
+                u.id,
+                u.angle.unwrap_or_default(),
+                self.frame.angle
+            ))),
+            None => Ok(()),
+        }
+    }
+
     /// Pretty JSON text.
     pub fn to_json(&self) -> String {
         serde_json::to_string_pretty(self).expect("a world always serialises")
@@ -401,7 +464,7 @@ impl World {
     /// ```
     /// use ksmcmc::floorplan::World;
     /// let mut w = World::empty(20, 10);
-    /// w.units.push(ksmcmc::floorplan::Unit { id: 1, x: 0, y: 0, w: 5, h: 5, kind: Default::default() });
+    /// w.units.push(ksmcmc::floorplan::Unit::new(1, 0, 0, 5, 5, Default::default()));
     /// let back = World::from_json(&w.to_json()).unwrap();
     /// assert_eq!(back, w);
     /// assert!(World::from_json("{").is_err());
@@ -431,7 +494,7 @@ impl World {
     /// let e = w.fits(100, 100).unwrap_err().to_string();
     /// assert!(e.contains("explains a 64x40 map, but the map is 100x100"), "{e}");
     /// w.frame.world_size = [200, 40];
-    /// w.units.push(Unit { id: 7, x: 190, y: 0, w: 10, h: 10, kind: Default::default() }); // frames share their centre
+    /// w.units.push(Unit::new(7, 190, 0, 10, 10, Default::default())); // frames share their centre
     /// let e = w.fits(64, 40).unwrap_err().to_string();
     /// assert!(e.contains("unit 7 (10x10 at 190,0) lies entirely outside the 64x40 map"), "{e}");
     /// ```
@@ -456,8 +519,9 @@ impl World {
     /// Whether any part of `unit` lands on the map (checked on the bounding box of its corners).
     fn touches_map(&self, unit: &Unit, w: usize, h: usize) -> bool {
         let r = unit.rect();
+        let frame = self.unit_frame(unit);
         let corners = [(r.x, r.y), (r.right(), r.y), (r.x, r.bottom()), (r.right(), r.bottom())]
-            .map(|(x, y)| self.frame.to_map(x as f64, y as f64));
+            .map(|(x, y)| frame.to_map(x as f64, y as f64));
         let min_x = corners.iter().map(|c| c.0).fold(f64::INFINITY, f64::min);
         let max_x = corners.iter().map(|c| c.0).fold(f64::NEG_INFINITY, f64::max);
         let min_y = corners.iter().map(|c| c.1).fold(f64::INFINITY, f64::min);
@@ -488,6 +552,10 @@ impl World {
             if u.w < 1 || u.h < 1 {
                 return bad(format!("world.json: unit {} has size {}x{}", u.id, u.w, u.h));
             }
+            if u.angle.is_some_and(|a| !(a.is_finite() && a.abs() <= std::f64::consts::TAU)) {
+                return bad(format!("world.json: unit {} has an angle that is not between -2π and 2π", u.id));
+            }
+            let [ww, wh] = self.unit_frame(u).world_size.map(i64::from);
             let (x0, y0) = (u.x as i64, u.y as i64);
             if x0 < 0 || y0 < 0 || x0 + u.w as i64 > ww || y0 + u.h as i64 > wh {
                 return bad(format!(
@@ -502,6 +570,14 @@ impl World {
                     return bad(format!("world.json: door {} names unit {id}, which does not exist", d.id));
                 }
             }
+            let frames = d.units.map(|id| self.unit(id).map(|u| self.unit_frame(u)));
+            if frames[0] != frames[1] {
+                return bad(format!(
+                    "world.json: door {} joins units {} and {} of different angles; a door joins units of one frame",
+                    d.id, d.units[0], d.units[1]
+                ));
+            }
+            let [ww, wh] = self.door_frame(d).world_size.map(i64::from);
             for (x, y) in [(d.x0, d.y0), (d.x1, d.y1)] {
                 if x < 0 || y < 0 || x as i64 >= ww || y as i64 >= wh {
                     return bad(format!("world.json: door {} has a cell ({x},{y}) outside the world", d.id));

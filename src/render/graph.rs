@@ -39,8 +39,8 @@ pub fn graph_node_radius(width: u32, height: u32) -> f32 {
 /// use ksmcmc::render::{render_scene_graph, unit_type_rgb};
 ///
 /// let mut w = World::empty(60, 30);
-/// w.units.push(Unit { id: 1, x: 0, y: 0, w: 30, h: 30, kind: UnitType::Room });
-/// w.units.push(Unit { id: 2, x: 29, y: 0, w: 31, h: 30, kind: UnitType::Corridor });
+/// w.units.push(Unit::new(1, 0, 0, 30, 30, UnitType::Room));
+/// w.units.push(Unit::new(2, 29, 0, 31, 30, UnitType::Corridor));
 /// w.doors.push(Door { id: 1, units: [1, 2], x0: 29, y0: 10, x1: 29, y1: 20 });
 /// let picture = render_scene_graph(&w, 240, 120).unwrap();
 /// // The room's node is a disc in the room colour at the room's centre.
@@ -209,9 +209,9 @@ mod tests {
 
     fn world() -> World {
         let mut w = World::empty(90, 30);
-        w.units.push(Unit { id: 1, x: 0, y: 0, w: 30, h: 30, kind: UnitType::Room });
-        w.units.push(Unit { id: 2, x: 29, y: 0, w: 31, h: 30, kind: UnitType::Corridor });
-        w.units.push(Unit { id: 3, x: 59, y: 0, w: 31, h: 30, kind: UnitType::Hall });
+        w.units.push(Unit::new(1, 0, 0, 30, 30, UnitType::Room));
+        w.units.push(Unit::new(2, 29, 0, 31, 30, UnitType::Corridor));
+        w.units.push(Unit::new(3, 59, 0, 31, 30, UnitType::Hall));
         w.doors.push(Door { id: 1, units: [1, 2], x0: 29, y0: 10, x1: 29, y1: 20 });
         w
     }
@@ -247,8 +247,8 @@ mod tests {
     fn nodes_sit_at_their_units_and_overlapping_ones_are_nudged_apart() {
         let mut w = world();
         // A small unit inside the room, with almost the same centre, and a twin of the hall.
-        w.units.push(Unit { id: 4, x: 13, y: 13, w: 5, h: 5, kind: UnitType::Other });
-        w.units.push(Unit { id: 5, x: 59, y: 0, w: 31, h: 30, kind: UnitType::Room });
+        w.units.push(Unit::new(4, 13, 13, 5, 5, UnitType::Other));
+        w.units.push(Unit::new(5, 59, 0, 31, 30, UnitType::Room));
         let layout = scene_graph_layout(&w, 560, 200).unwrap();
         let c = &layout.centres;
         let r = layout.radius;

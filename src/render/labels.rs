@@ -145,16 +145,14 @@ pub fn place_labels(
 /// its largest unit when the world has a room layer, else one per unit.
 pub fn world_label_candidates(world: &World, scale: u32) -> Vec<LabelCandidate> {
     let s = scale as f64;
-    let frame = &world.frame;
-    let to_pixel = |x: f64, y: f64| {
-        let (mx, my) = if frame.is_identity() { (x, y) } else { frame.to_map(x, y) };
-        (mx * s, my * s)
-    };
     let candidate = |unit: &crate::floorplan::Unit, kind: UnitType, id: u32, priority: u64| {
+        // Each unit in its own frame (issue 13): the world frame unless it has an angle.
+        let frame = world.unit_frame(unit);
         let (cx, cy) = unit.rect().center();
+        let (mx, my) = if frame.is_identity() { (cx, cy) } else { frame.to_map(cx, cy) };
         LabelCandidate {
             texts: label_texts(kind, id),
-            centre: to_pixel(cx, cy),
+            centre: (mx * s, my * s),
             half: (unit.w as f64 * s / 2.0, unit.h as f64 * s / 2.0),
             angle: frame.angle,
             priority,

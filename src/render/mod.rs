@@ -53,7 +53,7 @@
 //!
 //! let map = Grid::new(20, 10, Cell::Free);
 //! let mut world = World::empty(20, 10);
-//! world.units.push(Unit { id: 1, x: 2, y: 1, w: 8, h: 6, kind: UnitType::Room });
+//! world.units.push(Unit::new(1, 2, 1, 8, 6, UnitType::Room));
 //!
 //! let pixmap = render(&map, Some(&world), &RenderOptions { scale: 2, labels: false, legend: false });
 //! assert_eq!((pixmap.width(), pixmap.height()), (40, 20));
@@ -233,8 +233,8 @@ impl Default for RenderOptions {
 /// // Two rooms side by side on a free 30x12 map, joined by a door in their shared wall.
 /// let map = Grid::new(30, 12, Cell::Free);
 /// let mut world = World::empty(30, 12);
-/// world.units.push(Unit { id: 1, x: 1, y: 1, w: 14, h: 10, kind: UnitType::Room });
-/// world.units.push(Unit { id: 2, x: 14, y: 1, w: 15, h: 10, kind: UnitType::Corridor });
+/// world.units.push(Unit::new(1, 1, 1, 14, 10, UnitType::Room));
+/// world.units.push(Unit::new(2, 14, 1, 15, 10, UnitType::Corridor));
 /// world.doors.push(Door { id: 1, units: [1, 2], x0: 14, y0: 4, x1: 14, y1: 6 });
 ///
 /// let pixmap = render(&map, Some(&world), &RenderOptions { scale: 4, labels: false, legend: false });

@@ -24,8 +24,8 @@
 //! use ksmcmc::render::model3d::{world_glb, Model3dOptions};
 //! let mut world = World::empty(41, 20);
 //! world.units = vec![
-//!     Unit { id: 1, x: 0, y: 0, w: 21, h: 20, kind: UnitType::Room },
-//!     Unit { id: 2, x: 20, y: 0, w: 21, h: 20, kind: UnitType::Corridor },
+//!     Unit::new(1, 0, 0, 21, 20, UnitType::Room),
+//!     Unit::new(2, 20, 0, 21, 20, UnitType::Corridor),
 //! ];
 //! world.doors = vec![Door { id: 1, units: [1, 2], x0: 20, y0: 8, x1: 20, y1: 11 }];
 //! let glb = world_glb(&world, 0.05, &Model3dOptions::default()).unwrap();
@@ -102,6 +102,7 @@ pub fn world_glb(world: &World, resolution: f64, options: &Model3dOptions) -> Re
         return Err(Model3dError(format!("resolution {resolution}: give a positive number of metres per cell")));
     }
     world.validate().map_err(|e| Model3dError(e.to_string()))?;
+    world.require_one_direction("the 3D model").map_err(|e| Model3dError(e.to_string()))?;
     let place = Place { frame: world.frame, r: resolution };
     let mut glb = Glb::new();
     let (walls, doors) = wall_cells(world);

@@ -33,7 +33,7 @@ use std::fmt::Write as _;
 /// use ksmcmc::render::svg::world_svg;
 ///
 /// let mut world = World::empty(30, 20);
-/// world.units.push(Unit { id: 1, x: 0, y: 0, w: 30, h: 20, kind: UnitType::Hall });
+/// world.units.push(Unit::new(1, 0, 0, 30, 20, UnitType::Hall));
 /// world.rooms.push(Room { id: 1, kind: UnitType::Hall, units: vec![1], area_m2: 1.3, doors: vec![], opens_to: vec![], name: None });
 /// let svg = world_svg(&world, &Grid::new(30, 20, 1), 0.05)?;
 /// assert!(svg.contains(r#"viewBox="0 0 30 20""#));
@@ -229,10 +229,7 @@ mod tests {
     #[test]
     fn layers_hold_rooms_walls_doors_and_labels() {
         let mut world = World::empty(40, 20);
-        world.units = vec![
-            Unit { id: 1, x: 0, y: 0, w: 21, h: 20, kind: UnitType::Room },
-            Unit { id: 2, x: 20, y: 0, w: 20, h: 20, kind: UnitType::Corridor },
-        ];
+        world.units = vec![Unit::new(1, 0, 0, 21, 20, UnitType::Room), Unit::new(2, 20, 0, 20, 20, UnitType::Corridor)];
         world.doors = vec![Door { id: 9, units: [1, 2], x0: 20, y0: 5, x1: 20, y1: 10 }];
         world.rooms = vec![
             Room {
@@ -278,7 +275,7 @@ mod tests {
     #[test]
     fn a_named_room_is_labelled_with_its_name_escaped() {
         let mut world = World::empty(100, 40);
-        world.units = vec![Unit { id: 1, x: 0, y: 0, w: 100, h: 40, kind: UnitType::Hall }];
+        world.units = vec![Unit::new(1, 0, 0, 100, 40, UnitType::Hall)];
         world.rooms = vec![Room {
             id: 1,
             kind: UnitType::Hall,

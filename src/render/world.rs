@@ -96,17 +96,32 @@ pub fn draw_world(
     let Some(place) = Placement::new(&world.frame, map_width, map_height, scale) else {
         return Vec::new();
     };
+    // Units (with their doors) drawn in each frame they lie in: the world frame, and one per
+    // angle of units that follow another wall direction (issue 13).
+    let mut frames = vec![world.frame];
+    for u in &world.units {
+        let f = world.unit_frame(u);
+        if !frames.contains(&f) {
+            frames.push(f);
+        }
+    }
+    let placements: Vec<(Frame, Placement)> =
+        frames.iter().filter_map(|f| Placement::new(f, map_width, map_height, scale).map(|p| (*f, p))).collect();
+    let in_frame = |f: Frame| move |u: &&crate::floorplan::Unit| world.unit_frame(u) == f && u.w >= 1 && u.h >= 1;
     let t = world.wall_thickness.max(1) as i64;
     for kind in UnitType::ALL {
-        let interiors = world
-            .units
-            .iter()
-            .filter(|u| u.kind == kind && u.w >= 1 && u.h >= 1)
-            .filter_map(|u| CellRect::new(u.x as i64, u.y as i64, u.w as i64, u.h as i64).inset(t));
         let [r, g, b] = room_fill_rgb(kind);
         let mut paint = solid([r, g, b, 255]);
         paint.blend_mode = BlendMode::Multiply;
-        place.fill_with(pixmap, interiors, &paint);
+        for (f, p) in &placements {
+            let interiors = world
+                .units
+                .iter()
+                .filter(in_frame(*f))
+                .filter(|u| u.kind == kind)
+                .filter_map(|u| CellRect::new(u.x as i64, u.y as i64, u.w as i64, u.h as i64).inset(t));
+            p.fill_with(pixmap, interiors, &paint);
+        }
     }
 
     // Object cells first, so that walls and doors stay their pure colours where they meet.
@@ -121,19 +136,22 @@ pub fn draw_world(
         .map(|&[y, x0, x1]| CellRect { x0: x0 as i64, y0: y as i64, x1: x1 as i64 + 1, y1: y as i64 + 1 });
     place.fill(pixmap, unexplained, UNEXPLAINED_RGBA);
 
-    let walls = world
-        .units
-        .iter()
-        .filter(|u| u.w >= 1 && u.h >= 1)
-        .flat_map(|u| CellRect::new(u.x as i64, u.y as i64, u.w as i64, u.h as i64).ring(t));
-    place.fill(pixmap, walls, WALL_RGBA);
-
-    let doors = world.doors.iter().map(|d| {
-        let (x0, x1) = (d.x0.min(d.x1) as i64, d.x0.max(d.x1) as i64);
-        let (y0, y1) = (d.y0.min(d.y1) as i64, d.y0.max(d.y1) as i64);
-        CellRect { x0, y0, x1: x1 + 1, y1: y1 + 1 }
-    });
-    place.fill(pixmap, doors, DOOR_RGBA);
+    for (f, p) in &placements {
+        let walls = world
+            .units
+            .iter()
+            .filter(in_frame(*f))
+            .flat_map(|u| CellRect::new(u.x as i64, u.y as i64, u.w as i64, u.h as i64).ring(t));
+        p.fill(pixmap, walls, WALL_RGBA);
+    }
+    for (f, p) in &placements {
+        let doors = world.doors.iter().filter(|d| world.door_frame(d) == *f).map(|d| {
+            let (x0, x1) = (d.x0.min(d.x1) as i64, d.x0.max(d.x1) as i64);
+            let (y0, y1) = (d.y0.min(d.y1) as i64, d.y0.max(d.y1) as i64);
+            CellRect { x0, y0, x1: x1 + 1, y1: y1 + 1 }
+        });
+        p.fill(pixmap, doors, DOOR_RGBA);
+    }
 
     let factor = label_text_scale(scale);
     let entries = if options.legend { legend_entries(world) } else { Vec::new() };

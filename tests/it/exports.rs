@@ -178,7 +178,7 @@ fn hand_made() -> (OccupancyMap, World, Grid<u16>) {
     let image = ksmcmc::grid::pgm::encode_u8(40, 30, &[254; 1200]);
     let map = OccupancyMap::from_yaml_and_image(yaml, &image, &Limits::default()).unwrap();
     let mut world = World::empty(40, 30);
-    let unit = |id, x, y, w, h, kind| Unit { id, x, y, w, h, kind };
+    let unit = |id, x, y, w, h, kind| Unit::new(id, x, y, w, h, kind);
     world.units = vec![
         unit(1, 0, 0, 31, 11, UnitType::Corridor),
         unit(2, 0, 10, 11, 20, UnitType::Corridor),

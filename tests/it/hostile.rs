@@ -57,8 +57,7 @@ fn a_million_unit_world_is_refused_with_the_cap_named() {
     assert!(err.contains(&format!("too many units: over the cap of {MAX_UNITS}")), "{err}");
     // A world built in code is held to the same cap by validate().
     let mut w = World::empty(10, 10);
-    w.units =
-        (1..=MAX_UNITS as u32 + 1).map(|id| Unit { id, x: 0, y: 0, w: 3, h: 3, kind: Default::default() }).collect();
+    w.units = (1..=MAX_UNITS as u32 + 1).map(|id| Unit::new(id, 0, 0, 3, 3, Default::default())).collect();
     assert!(w.validate().unwrap_err().to_string().contains("over the limit of 10000 units"));
 }
 
@@ -100,7 +99,7 @@ fn predicted_map_allocates_by_the_map_not_the_world_frame() {
     let mut w = World::empty(10, 10);
     w.frame.world_size = [u32::MAX, u32::MAX];
     w.frame.angle = 0.25;
-    w.units.push(Unit { id: 1, x: 0, y: 0, w: 1 << 20, h: 1 << 20, kind: Default::default() });
+    w.units.push(Unit::new(1, 0, 0, 1 << 20, 1 << 20, Default::default()));
     let p = metrics::predicted_map(10, 10, &w);
     assert_eq!((p.width(), p.height()), (10, 10));
 }

@@ -89,10 +89,7 @@ fn boxes(p: &[[f32; 3]]) -> Vec<[[f32; 3]; 2]> {
 /// room layer: room 1 (a room) holds unit 1, room 2 (a corridor) unit 2.
 fn two_rooms() -> World {
     let mut world = World::empty(41, 20);
-    world.units = vec![
-        Unit { id: 1, x: 0, y: 0, w: 21, h: 20, kind: UnitType::Room },
-        Unit { id: 2, x: 20, y: 0, w: 21, h: 20, kind: UnitType::Corridor },
-    ];
+    world.units = vec![Unit::new(1, 0, 0, 21, 20, UnitType::Room), Unit::new(2, 20, 0, 21, 20, UnitType::Corridor)];
     world.doors = vec![Door { id: 1, units: [1, 2], x0: 20, y0: 8, x1: 20, y1: 11 }];
     let room = |id: u32, kind, opens_to| Room {
         id,

@@ -42,8 +42,8 @@ fn small_map() -> Grid<Cell> {
 /// occupied, (6, 3) free.
 fn small_world() -> World {
     let mut w = World::empty(16, 12);
-    w.units.push(Unit { id: 1, x: 1, y: 1, w: 8, h: 7, kind: UnitType::Room });
-    w.units.push(Unit { id: 2, x: 8, y: 1, w: 7, h: 7, kind: UnitType::Corridor });
+    w.units.push(Unit::new(1, 1, 1, 8, 7, UnitType::Room));
+    w.units.push(Unit::new(2, 8, 1, 7, 7, UnitType::Corridor));
     w.doors.push(Door { id: 1, units: [1, 2], x0: 8, y0: 3, x1: 8, y1: 5 });
     w.object_cells = vec![[3, 3], [4, 3], [5, 3], [6, 3]];
     w.validate().expect("the test world is valid");
@@ -190,7 +190,7 @@ fn rotated_frame_draws_walls_where_the_frame_puts_them() {
     let map = Grid::new(w, h, Cell::Free);
     let mut world = World::empty(w as u32, h as u32);
     world.frame = Frame { angle: 0.3, world_size: [64, 56], map_size: [w as u32, h as u32] };
-    let unit = Unit { id: 1, x: 22, y: 20, w: 20, h: 14, kind: UnitType::Room };
+    let unit = Unit::new(1, 22, 20, 20, 14, UnitType::Room);
     world.units.push(unit);
     world.validate().expect("valid world");
     let pixmap = render(&map, Some(&world), &no_labels(scale));
@@ -240,8 +240,8 @@ fn rotated_doors_and_objects_follow_the_frame() {
     let map = Grid::new(40, 40, Cell::Free);
     let mut world = World::empty(40, 40);
     world.frame.angle = -0.5;
-    world.units.push(Unit { id: 1, x: 5, y: 5, w: 15, h: 30, kind: UnitType::Room });
-    world.units.push(Unit { id: 2, x: 19, y: 5, w: 15, h: 30, kind: UnitType::Room });
+    world.units.push(Unit::new(1, 5, 5, 15, 30, UnitType::Room));
+    world.units.push(Unit::new(2, 19, 5, 15, 30, UnitType::Room));
     world.doors.push(Door { id: 1, units: [1, 2], x0: 19, y0: 15, x1: 19, y1: 20 });
     world.object_cells = vec![[10, 25], [11, 25]];
     world.validate().expect("valid world");
@@ -261,7 +261,7 @@ fn rotated_doors_and_objects_follow_the_frame() {
 fn labels_draw_at_the_unit_centre_and_only_when_asked() {
     let map = Grid::new(80, 40, Cell::Occupied);
     let mut world = World::empty(80, 40);
-    world.units.push(Unit { id: 3, x: 10, y: 5, w: 40, h: 30, kind: UnitType::Room });
+    world.units.push(Unit::new(3, 10, 5, 40, 30, UnitType::Room));
     let plain = render(&map, Some(&world), &no_labels(2));
     let labelled = render(&map, Some(&world), &RenderOptions { scale: 2, labels: true, legend: false });
     assert_eq!(render(&map, Some(&world), &no_labels(2)).data(), plain.data());
@@ -302,7 +302,7 @@ fn labels_are_readable_at_every_scale() {
         let glyph_px = label_text_scale(scale) * font::CAP_HEIGHT;
         assert!(glyph_px >= 10, "capitals are {glyph_px} px at scale {scale}");
     }
-    assert_eq!(render::unit_label(&Unit { id: 12, x: 0, y: 0, w: 3, h: 3, kind: UnitType::Corridor }), "corridor 12");
+    assert_eq!(render::unit_label(&Unit::new(12, 0, 0, 3, 3, UnitType::Corridor)), "corridor 12");
 }
 
 #[test]
@@ -482,9 +482,9 @@ fn sizes_are_checked_not_panicking() {
 fn unchecked_worlds_do_not_panic() {
     let map = small_map();
     let mut world = small_world();
-    world.units.push(Unit { id: 7, x: i32::MAX - 1, y: i32::MIN, w: i32::MAX, h: i32::MAX, kind: UnitType::Hall });
-    world.units.push(Unit { id: 8, x: 2, y: 2, w: 0, h: -4, kind: UnitType::Other });
-    world.units.push(Unit { id: 9, x: -100, y: -100, w: 120, h: 3, kind: UnitType::Other });
+    world.units.push(Unit::new(7, i32::MAX - 1, i32::MIN, i32::MAX, i32::MAX, UnitType::Hall));
+    world.units.push(Unit::new(8, 2, 2, 0, -4, UnitType::Other));
+    world.units.push(Unit::new(9, -100, -100, 120, 3, UnitType::Other));
     world.doors.push(Door { id: 2, units: [1, 99], x0: 0, y0: 0, x1: 5, y1: 5 });
     world.doors.push(Door { id: 3, units: [1, 2], x0: i32::MIN, y0: 3, x1: i32::MAX, y1: 3 });
     world.object_cells.extend([[i32::MIN, i32::MAX], [-1, -1], [16, 12]]);
@@ -611,9 +611,9 @@ fn walls_doors_and_labels_draw_over_the_fill() {
 fn the_legend_lists_the_colours_drawn_in_the_emptiest_corner() {
     let map = Grid::new(120, 80, Cell::Free);
     let mut world = World::empty(120, 80);
-    world.units.push(Unit { id: 1, x: 2, y: 2, w: 40, h: 30, kind: UnitType::Room });
-    world.units.push(Unit { id: 2, x: 41, y: 2, w: 77, h: 30, kind: UnitType::Corridor });
-    world.units.push(Unit { id: 3, x: 2, y: 45, w: 38, h: 33, kind: UnitType::Hall });
+    world.units.push(Unit::new(1, 2, 2, 40, 30, UnitType::Room));
+    world.units.push(Unit::new(2, 41, 2, 77, 30, UnitType::Corridor));
+    world.units.push(Unit::new(3, 2, 45, 38, 33, UnitType::Hall));
     world.doors.push(Door { id: 1, units: [1, 2], x0: 41, y0: 10, x1: 41, y1: 14 });
     let entries = render::legend_entries(&world);
     let names: Vec<&str> = entries.iter().map(|e| e.0).collect();
@@ -685,4 +685,41 @@ fn check_labels_on(path: &std::path::Path) {
             assert_eq!(again.data(), pixmap.data(), "{at}: deterministic");
         }
     }
+}
+
+/// A unit with an angle of its own (issue 13) is drawn in the frame that angle gives: exactly
+/// as the same unit in a world whose frame is that one, and beside an upright unit of the
+/// world frame, which stays where it was.
+#[test]
+fn a_unit_at_its_own_angle_is_drawn_in_its_own_frame() {
+    let map = Grid::new(120, 90, Cell::Free);
+    let angle = 0.5;
+    let turned = Frame::turned(120, 90, angle);
+    let unit = Unit::new(1, 50, 40, 30, 20, UnitType::Room);
+    let mut in_turned_frame = World::empty(120, 90);
+    in_turned_frame.frame = turned;
+    in_turned_frame.units.push(unit);
+    let mut with_angle = World::empty(120, 90);
+    with_angle.units.push(Unit { angle: Some(angle), ..unit });
+    with_angle.validate().unwrap();
+    assert_eq!(with_angle.unit_frame(&with_angle.units[0]), turned);
+    for options in [no_labels(2), RenderOptions { scale: 2, labels: true, legend: true }] {
+        let a = render(&map, Some(&in_turned_frame), &options);
+        let b = render(&map, Some(&with_angle), &options);
+        assert!(a.data() == b.data(), "the turned unit is drawn differently ({options:?})");
+    }
+    // With an upright unit beside it, both are drawn, each in its frame.
+    let upright = Unit::new(2, 2, 2, 20, 15, UnitType::Corridor);
+    with_angle.units.push(upright);
+    let mut alone = World::empty(120, 90);
+    alone.units.push(upright);
+    let both = render(&map, Some(&with_angle), &no_labels(1));
+    let only_upright = render(&map, Some(&alone), &no_labels(1));
+    let only_turned = render(&map, Some(&in_turned_frame), &no_labels(1));
+    for (x, y) in [(2, 2), (21, 16), (10, 2)] {
+        assert_eq!(rgb(&both, x, y), BLUE, "upright wall at ({x},{y})");
+        assert_eq!(rgb(&both, x, y), rgb(&only_upright, x, y));
+    }
+    let turned_wall = (0..120 * 90).find(|&i| rgb(&only_turned, i % 120, i / 120) == BLUE).unwrap();
+    assert_eq!(rgb(&both, turned_wall % 120, turned_wall / 120), BLUE);
 }

@@ -59,7 +59,7 @@ fn floor() -> (Grid<Cell>, World, Grid<u16>) {
     open(80, 85, 20, 21, 4);
     open(33, 34, 40, 45, 2);
     let mut world = World::empty(w as u32, h as u32);
-    let unit = |id, x, y, w, h, kind| Unit { id, x, y, w, h, kind };
+    let unit = |id, x, y, w, h, kind| Unit::new(id, x, y, w, h, kind);
     world.units = vec![
         unit(1, 0, 0, 100, 21, UnitType::Corridor),
         unit(2, 0, 20, 34, 40, UnitType::Room),

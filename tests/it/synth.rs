@@ -340,6 +340,75 @@ fn rotation_keeps_walls_on_the_truth() {
     }
 }
 
+/// Two wings at an angle (issue 13): the second wing's units carry their angle, lie in the
+/// frame that angle gives, and land on the map's walls and floor there; the labels agree; the
+/// passage joins the wings.
+#[test]
+fn two_wings_at_an_angle_keep_their_units_on_the_map() {
+    for (wing, seed) in [(30.0, 1), (-45.0, 2), (60.0, 3)] {
+        let c = SynthConfig { wing_deg: wing, ..quiet() };
+        let s = gen(&c, seed);
+        let w = &s.truth;
+        w.validate().unwrap();
+        assert!(!w.is_one_direction());
+        let second = w.units.iter().filter(|u| u.angle.is_some()).count();
+        assert!(second >= 3 && second < w.units.len(), "wing {wing}: {second} of {} units turned", w.units.len());
+        for u in w.units.iter().filter(|u| u.angle.is_some()) {
+            assert!((u.angle.unwrap() - f64::to_radians(wing)).abs() < 1e-12);
+        }
+        let (mut on_wall, mut rings, mut free, mut inside, mut labelled) = (0, 0, 0, 0, 0);
+        for (i, u) in w.units.iter().enumerate() {
+            let frame = w.unit_frame(u);
+            let r = u.rect();
+            for y in r.y..r.bottom() {
+                for x in r.x..r.right() {
+                    let (mx, my) = frame.to_map(x as f64 + 0.5, y as f64 + 0.5);
+                    let (mx, my) = (mx.floor() as i64, my.floor() as i64);
+                    let cell = s.map.classified().get(mx, my).copied();
+                    if r.on_border(x, y) {
+                        rings += 1;
+                        on_wall += usize::from(cell == Some(Cell::Occupied));
+                    } else {
+                        inside += 1;
+                        free += usize::from(cell == Some(Cell::Free));
+                        labelled += usize::from(s.labels.get(mx, my) == Some(&(i as u16 + 1)));
+                    }
+                }
+            }
+        }
+        let rates = (on_wall as f64 / rings as f64, free as f64 / inside as f64, labelled as f64 / inside as f64);
+        assert!(rates.0 > 0.8 && rates.1 > 0.97 && rates.2 > 0.97, "wing {wing}: wall, free, label rates {rates:?}");
+        // One building: the free cells are 8-connected through the passage.
+        let g = s.map.classified();
+        let free_cells = g.cells().iter().filter(|&&c| c == Cell::Free).count();
+        let start = g.cells().iter().position(|&c| c == Cell::Free).unwrap();
+        let (gw, gh) = (g.width() as i64, g.height() as i64);
+        let mut seen = vec![false; g.cells().len()];
+        let mut stack = vec![start];
+        seen[start] = true;
+        let mut reached = 0;
+        while let Some(i) = stack.pop() {
+            reached += 1;
+            let (x, y) = (i as i64 % gw, i as i64 / gw);
+            for (dx, dy) in [(-1, 0), (1, 0), (0, -1), (0, 1), (-1, -1), (1, 1), (-1, 1), (1, -1)] {
+                let (nx, ny) = (x + dx, y + dy);
+                if nx >= 0 && ny >= 0 && nx < gw && ny < gh {
+                    let j = (ny * gw + nx) as usize;
+                    if !seen[j] && g.cells()[j] == Cell::Free {
+                        seen[j] = true;
+                        stack.push(j);
+                    }
+                }
+            }
+        }
+        assert_eq!(reached, free_cells, "wing {wing}: the wings are not joined");
+        assert_eq!(gen(&c, seed).map_pgm(), s.map_pgm());
+        assert_eq!(World::from_json(&s.truth_json()).unwrap(), s.truth);
+    }
+    let bad = SynthConfig { wing_deg: 5.0, ..quiet() };
+    assert!(generate(&bad, 1).unwrap_err().to_string().contains("wing_deg"));
+}
+
 #[test]
 fn speckle_rates_match_the_config() {
     let c = SynthConfig { speckle_occupied: 0.05, speckle_unknown: 0.1, ..quiet() };

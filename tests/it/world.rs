@@ -4,8 +4,8 @@ use ksmcmc::floorplan::{Door, UnexplainedArea, Unit, World};
 
 fn world() -> World {
     let mut w = World::empty(40, 30);
-    w.units.push(Unit { id: 1, x: 0, y: 0, w: 20, h: 30, kind: Default::default() });
-    w.units.push(Unit { id: 2, x: 19, y: 0, w: 21, h: 12, kind: Default::default() });
+    w.units.push(Unit::new(1, 0, 0, 20, 30, Default::default()));
+    w.units.push(Unit::new(2, 19, 0, 21, 12, Default::default()));
     w.doors.push(Door { id: 1, units: [1, 2], x0: 19, y0: 4, x1: 19, y1: 8 });
     w.object_cells = vec![[3, 4], [3, 5]];
     w.unexplained.push(UnexplainedArea {
@@ -76,4 +76,52 @@ fn every_bad_world_is_refused_with_a_message_naming_the_problem() {
         let err = World::from_json(text).unwrap_err().to_string();
         assert!(err.contains(needle), "expected {needle:?} in {err:?}");
     }
+}
+
+/// Units at an angle of their own (issue 13): validated in their own frame, doors only between
+/// units of one frame, no wall shared across frames in the scene graph or the evidence, and
+/// the tools that work in the world frame alone refuse them saying so.
+#[test]
+fn units_at_their_own_angle_are_checked_in_their_frame_and_refused_where_unsupported() {
+    use ksmcmc::floorplan::{graph, knowledge, route::RoutePlanner, shapes, synth};
+    let s = synth::generate(&synth::SynthConfig { wing_deg: 30.0, ..Default::default() }, 4).unwrap();
+    let w = &s.truth;
+    w.validate().unwrap();
+    // A turned unit moved to where only its own frame holds it is still valid; past that, not.
+    let i = w.units.iter().position(|u| u.angle.is_some()).unwrap();
+    let [fw, _] = w.unit_frame(&w.units[i]).world_size;
+    let mut far = w.clone();
+    far.units[i].x = fw as i32 - far.units[i].w;
+    far.doors.retain(|d| !d.units.contains(&far.units[i].id));
+    far.validate().unwrap();
+    far.units[i].x += 1;
+    assert!(far.validate().unwrap_err().to_string().contains("outside"));
+    // A door between units of two frames is refused.
+    let mut mixed = w.clone();
+    let (a, b) = (mixed.units[0].id, mixed.units[i].id);
+    mixed.doors[0].units = [a, b];
+    let e = mixed.validate().unwrap_err().to_string();
+    assert!(e.contains("different angles"), "{e}");
+    // No wall adjacency and no Adj evidence between the wings.
+    let g = graph::scene_graph(w);
+    let turned = |id: u32| w.unit(id).unwrap().angle.is_some();
+    for e in g.edge_indices() {
+        let (p, q) = g.edge_endpoints(e).unwrap();
+        assert_eq!(turned(g[p].id), turned(g[q].id), "edge across the wings");
+    }
+    let facts = knowledge::evidence(w, 0.05, &Default::default());
+    let adj: Vec<_> = facts.iter().filter(|f| f.0 == "Adj").collect();
+    assert!(!adj.is_empty());
+    for (_, args, _) in adj {
+        let id = |c: &str| c[1..].parse::<u32>().unwrap();
+        assert_eq!(turned(id(&args[0])), turned(id(&args[1])));
+    }
+    // The world-frame tools say why they refuse.
+    let labels = s.labels.clone();
+    let e = RoutePlanner::new(s.map.classified().clone(), labels.clone(), w, 0.05).err().unwrap().to_string();
+    assert!(e.contains("issue 13"), "{e}");
+    let e = shapes::floor_shapes(w, &labels).err().unwrap().to_string();
+    assert!(e.contains("issue 13"), "{e}");
+    let e = ksmcmc::render::model3d::world_glb(w, 0.05, &Default::default()).unwrap_err().to_string();
+    assert!(e.contains("issue 13"), "{e}");
 }

@@ -84,13 +84,13 @@ fn bench_mln() -> Result<(), CliError> {
     let fail = |e: ksmcmc::mln::MlnError| args::failed("mln", e);
     // A 20-unit world: a corridor with two rows of nine rooms and a hall at its end.
     let mut w = World::empty(1400, 300);
-    let room = |id, x, y, kind| Unit { id, x, y, w: 81, h: 101, kind };
-    w.units.push(Unit { id: 1, x: 0, y: 100, w: 721, h: 41, kind: UnitType::Unknown });
+    let room = |id, x, y, kind| Unit::new(id, x, y, 81, 101, kind);
+    w.units.push(Unit::new(1, 0, 100, 721, 41, UnitType::Unknown));
     for i in 0..9 {
         w.units.push(room(2 + i, i as i32 * 80, 0, UnitType::Unknown));
         w.units.push(room(11 + i, i as i32 * 80, 140, UnitType::Unknown));
     }
-    w.units.push(Unit { id: 20, x: 720, y: 0, w: 300, h: 241, kind: UnitType::Unknown });
+    w.units.push(Unit::new(20, 720, 0, 300, 241, UnitType::Unknown));
     let indoor = Mln::parse(BUILTIN_INDOOR).map_err(fail)?;
     let facts = evidence(&w, 0.05, &GeometryClassifier::default());
     let mut db = Database::new();

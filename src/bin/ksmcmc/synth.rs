@@ -23,6 +23,8 @@ Options (override the config file, whose fields are documented in the library's 
   --height H            canvas height, cells (default 300)
   --resolution M        metres per cell (default 0.05)
   --rotation DEG        rotate the building against the image axes (default 0)
+  --wing DEG            a second wing turned DEG more (10 to 80 either way) to the right
+                        of the first, joined by a passage (default 0: one building)
   --corridors N         1 or 2 (default: chosen by the building's depth)
   --halls N             halls at the ends of the building, 0 to 2 (default 0)
   --others N            small \"other\" units such as storage (default 1)
@@ -105,11 +107,12 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
 }
 
 /// The options that override one config field.
-const OVERRIDES: [&str; 13] = [
+const OVERRIDES: [&str; 14] = [
     "width",
     "height",
     "resolution",
     "rotation",
+    "wing",
     "corridors",
     "halls",
     "others",
@@ -140,6 +143,10 @@ fn field_override(name: &str, v: OsString) -> Result<Override, CliError> {
         "rotation" => {
             let v = args::value(&flag, v)?;
             Box::new(move |c| c.rotation_deg = v)
+        }
+        "wing" => {
+            let v = args::value(&flag, v)?;
+            Box::new(move |c| c.wing_deg = v)
         }
         "corridors" => {
             let v = args::value(&flag, v)?;

@@ -33,8 +33,8 @@
 //! }
 //! let mut world = World::empty(41, 20);
 //! world.units = vec![
-//!     Unit { id: 1, x: 0, y: 0, w: 21, h: 20, kind: UnitType::Room },
-//!     Unit { id: 2, x: 20, y: 0, w: 21, h: 20, kind: UnitType::Room },
+//!     Unit::new(1, 0, 0, 21, 20, UnitType::Room),
+//!     Unit::new(2, 20, 0, 21, 20, UnitType::Room),
 //! ];
 //! world.doors = vec![Door { id: 7, units: [1, 2], x0: 20, y0: 8, x1: 20, y1: 11 }];
 //! // The room labels: room 1 up to the wall (and in its doorway), room 2 beyond it.
@@ -242,6 +242,7 @@ impl RoutePlanner {
             )));
         }
         world.fits(w, h).map_err(|e| RouteError::Mismatch(e.to_string()))?;
+        world.require_one_direction("route planning").map_err(|e| RouteError::Mismatch(e.to_string()))?;
         let links: BTreeSet<(u16, u16)> = world
             .rooms
             .iter()

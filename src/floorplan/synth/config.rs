@@ -63,6 +63,11 @@ pub struct SynthConfig {
     pub extra_doors: f64,
     /// Rotation of the building against the image axes, degrees, -360 to 360 (default 0).
     pub rotation_deg: f64,
+    /// A second wing (issue 13): 0 (the default) draws one building; an angle of 10 to 80
+    /// degrees either way draws a second building of this configuration to the right of the
+    /// first, turned by this much more, joined to it by a short passage. The truth's units of
+    /// the second wing carry their own `angle`.
+    pub wing_deg: f64,
     /// Probability that a free map cell reads occupied (scan speckle), 0 to 1 (default 0.002).
     pub speckle_occupied: f64,
     /// Probability that a free map cell reads unknown (scan dropout), 0 to 1 (default 0.004).
@@ -104,6 +109,7 @@ impl Default for SynthConfig {
             door_width: [0.8, 1.2],
             extra_doors: 0.2,
             rotation_deg: 0.0,
+            wing_deg: 0.0,
             speckle_occupied: 0.002,
             speckle_unknown: 0.004,
             wall_roughness: 0.05,
@@ -194,14 +200,32 @@ impl SynthConfig {
         self.rotation_deg * (core::f64::consts::PI / 180.0)
     }
 
-    /// Width and height of the map: the canvas, grown to hold it when rotated.
+    /// The second wing's angle against the image axes in radians (`rotation_deg + wing_deg`),
+    /// when there is one.
+    pub fn wing_angle(&self) -> Option<f64> {
+        (self.wing_deg != 0.0).then(|| (self.rotation_deg + self.wing_deg) * (core::f64::consts::PI / 180.0))
+    }
+
+    /// Width and height of the map: the canvas, grown to hold it when rotated; with a second
+    /// wing, both canvases side by side.
     pub fn map_size(&self) -> (u32, u32) {
-        let a = self.angle();
-        let (s, c) = (libm::fabs(libm::sin(a)), libm::fabs(libm::cos(a)));
-        let (w, h) = (self.width as f64, self.height as f64);
         // The tolerance keeps 0 and 360 degrees from growing the map by a rounding error.
         let side = |v: f64| libm::ceil(v - 1e-6).max(1.0) as u32;
-        (side(w * c + h * s), side(w * s + h * c))
+        let first = self.extent(self.angle());
+        match self.wing_angle() {
+            None => (side(first.0), side(first.1)),
+            Some(b) => {
+                let second = self.extent(b);
+                (side(first.0 + second.0), side(first.1.max(second.1)))
+            }
+        }
+    }
+
+    /// Width and height of the canvas turned by `angle` radians (its bounding box).
+    pub(super) fn extent(&self, angle: f64) -> (f64, f64) {
+        let (s, c) = (libm::fabs(libm::sin(angle)), libm::fabs(libm::cos(angle)));
+        let (w, h) = (self.width as f64, self.height as f64);
+        (w * c + h * s, w * s + h * c)
     }
 
     /// Validates and converts to cells; the error names the first bad field found.
@@ -279,6 +303,10 @@ impl SynthConfig {
         }
         if !self.rotation_deg.is_finite() || !(-360.0..=360.0).contains(&self.rotation_deg) {
             return err("rotation_deg", format!("is {}; accepted: -360 to 360 degrees", self.rotation_deg));
+        }
+        let wing = self.wing_deg;
+        if !wing.is_finite() || !(wing == 0.0 || (10.0..=80.0).contains(&libm::fabs(wing))) {
+            return err("wing_deg", format!("is {wing}; accepted: 0 (one building), or 10 to 80 degrees either way"));
         }
         let (mw, mh) = self.map_size();
         if mw as u64 * mh as u64 > DEFAULT_MAX_CELLS as u64 {

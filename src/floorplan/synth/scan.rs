@@ -327,8 +327,15 @@ pub(super) fn to_map(obs: &Observed, c: &Cells, noise: &Noise, rng: &mut Rng) ->
             }
         }
     }
+    degrade(&mut cells, mw, mh, noise, rng);
+    (Grid::from_vec(mw, mh, cells).expect("map size"), Grid::from_vec(mw, mh, labels).expect("map size"))
+}
+
+/// What a scan does to the map's cells (`mw` x `mh`, row by row): ragged wall faces and
+/// speckle on free cells.
+pub(super) fn degrade(cells: &mut [Cell], mw: usize, mh: usize, noise: &Noise, rng: &mut Rng) {
     if noise.wall_roughness > 0.0 {
-        let sharp = cells.clone();
+        let sharp = cells.to_vec();
         let occupied = |x: usize, y: usize| sharp[y * mw + x] == Cell::Occupied;
         for y in 0..mh {
             for x in 0..mw {
@@ -356,7 +363,6 @@ pub(super) fn to_map(obs: &Observed, c: &Cells, noise: &Noise, rng: &mut Rng) ->
             }
         }
     }
-    (Grid::from_vec(mw, mh, cells).expect("map size"), Grid::from_vec(mw, mh, labels).expect("map size"))
 }
 
 #[cfg(test)]

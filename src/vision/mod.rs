@@ -10,4 +10,5 @@ pub mod freespace;
 pub mod hough;
 pub mod objects;
 pub mod orientation;
+pub mod regions;
 pub mod walls;

@@ -130,3 +130,39 @@ fn wall_directions_of_a_pentagon_a_45_degree_wing_and_an_upright_floor() {
     let report: serde_json::Value = serde_json::from_slice(&std::fs::read(dir.join("report.json")).unwrap()).unwrap();
     assert_eq!(report["wall_directions"].as_array().unwrap().len(), 5);
 }
+
+/// Direction regions (issue 13): on two buildings at an angle, each wing's floor takes its
+/// own wing's direction; a one-direction building is one region.
+#[test]
+fn each_wing_of_a_building_is_a_region_of_its_direction() {
+    use ksmcmc::floorplan::synth::{generate, SynthConfig};
+    use ksmcmc::vision::regions::{direction_regions, RegionConfig};
+    // The difference of two angles modulo 90 degrees, in degrees.
+    let apart = |a: f64, b: f64| {
+        let d = (a - b).to_degrees().rem_euclid(90.0);
+        d.min(90.0 - d)
+    };
+    for (wing, seed) in [(30.0, 1), (-45.0, 2), (60.0, 3), (20.0, 4)] {
+        let s = generate(&SynthConfig { wing_deg: wing, ..SynthConfig::default() }, seed).unwrap();
+        let found = direction_regions(s.map.classified(), &RegionConfig::default());
+        let index_of = |a: f64| found.directions.iter().position(|d| apart(d.angle, a) < 1.0);
+        let first =
+            index_of(0.0).unwrap_or_else(|| panic!("wing {wing}: no upright direction in {:?}", found.directions));
+        let second = index_of(f64::to_radians(wing)).unwrap_or_else(|| panic!("wing {wing}: {:?}", found.directions));
+        let (mut right, mut total) = (0usize, 0usize);
+        for (i, &l) in s.labels.cells().iter().enumerate() {
+            if l == 0 || s.map.classified().cells()[i] != Cell::Free {
+                continue;
+            }
+            let turned = s.truth.units[l as usize - 1].angle.is_some();
+            total += 1;
+            right += usize::from(found.region.cells()[i] as usize == if turned { second } else { first });
+        }
+        let rate = right as f64 / total as f64;
+        assert!(rate > 0.95, "wing {wing}: {rate:.3} of the floor in its wing's region");
+    }
+    let s = generate(&SynthConfig { rotation_deg: 20.0, ..SynthConfig::default() }, 5).unwrap();
+    let found = direction_regions(s.map.classified(), &RegionConfig::default());
+    let shares = found.shares();
+    assert!(shares[0] > 0.99, "one building, {shares:?}");
+}

@@ -296,6 +296,9 @@ fn kinds() -> Vec<(&'static str, SynthConfig)> {
         ("furnished", SynthConfig { clutter: 0.1, ..SynthConfig::default() }),
         ("partly unexplored", SynthConfig { unexplored: 0.4, ..SynthConfig::default() }),
         ("large 1237x672", SynthConfig { width: 1237, height: 672, halls: 1, ..SynthConfig::default() }),
+        // Two buildings at an angle (issue 13): the world model's units follow one direction.
+        ("two wings 30 deg", SynthConfig { wing_deg: 30.0, ..SynthConfig::default() }),
+        ("two wings 45 deg", SynthConfig { wing_deg: 45.0, ..SynthConfig::default() }),
     ]
 }
 

@@ -1,0 +1,276 @@
+//! Which wall direction each part of a map follows (issue 13, step 1).
+//!
+//! [`super::orientation::wall_directions`] finds the directions a building's walls follow over
+//! the whole map, folded modulo 90°. A building whose wings meet at an angle, or a pentagon,
+//! has several, and each wing follows one of them: the units that explain a wing should be
+//! upright in *its* direction's frame. This module says where each direction holds, by local
+//! votes:
+//!
+//! 1. every wall face cell (an occupied cell beside free space) votes for the direction along
+//!    which the faces around it run straightest: the most face cells within `run` cells on
+//!    either side along the direction or at right angles to it, when that count beats every
+//!    other direction's clearly (corners and furniture outlines, which fit several, stay
+//!    silent);
+//! 2. every free cell takes the direction with the most votes within `radius` cells (a square
+//!    window, counted with one summed-area table per direction), the first (strongest)
+//!    direction where no face voted;
+//! 3. pieces of one direction smaller than `min_area` cells take the direction of most of the
+//!    free cells around them, so that a desk at an angle in a room does not make a region.
+//!
+//! Everything is integer counting over the grid in a fixed order, so the result is the same
+//! natively and in wasm.
+
+use super::orientation::{wall_directions, wall_surface, WallDirection};
+use crate::grid::{Cell, Grid};
+
+/// How the regions are found, in cells.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RegionConfig {
+    /// Directions weaker than this share of the strongest are left out (as in
+    /// [`wall_directions`]).
+    pub min_strength: f64,
+    /// Face cells counted on either side of a face cell along a direction (default 12).
+    pub run: i32,
+    /// A face votes when its best direction's count is at least this share of the longest
+    /// possible run, `2 run + 1` (default 0.7)...
+    pub min_straight: f64,
+    /// ...and at least this many times every other direction's (default 1.5).
+    pub margin: f64,
+    /// Half side of the square window over which free cells count votes (default 40).
+    pub radius: i32,
+    /// Connected pieces of one direction smaller than this many free cells are absorbed by
+    /// their surroundings (default 1600, 4 m² at 5 cm).
+    pub min_area: usize,
+}
+
+impl Default for RegionConfig {
+    fn default() -> Self {
+        RegionConfig { min_strength: 0.3, run: 12, min_straight: 0.7, margin: 1.5, radius: 40, min_area: 1600 }
+    }
+}
+
+/// No direction: the cell is not free.
+pub const NO_REGION: u8 = u8::MAX;
+
+/// The directions of a map and where each holds.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DirectionRegions {
+    /// The directions, strongest first (at most 254).
+    pub directions: Vec<WallDirection>,
+    /// Per map cell: the index in `directions` of the direction its part of the building
+    /// follows for free cells, [`NO_REGION`] for the others.
+    pub region: Grid<u8>,
+}
+
+impl DirectionRegions {
+    /// The share of the free cells in each direction's region, in the order of `directions`.
+    pub fn shares(&self) -> Vec<f64> {
+        let mut counts = vec![0usize; self.directions.len()];
+        for &r in self.region.cells() {
+            if let Some(c) = counts.get_mut(r as usize) {
+                *c += 1;
+            }
+        }
+        let total = counts.iter().sum::<usize>().max(1) as f64;
+        counts.iter().map(|&c| c as f64 / total).collect()
+    }
+}
+
+/// Finds the wall directions of `grid` and the region of free cells each holds (module docs).
+///
+/// ```
+/// use ksmcmc::floorplan::synth::{generate, SynthConfig};
+/// use ksmcmc::vision::regions::{direction_regions, RegionConfig};
+/// // Two buildings, the second turned 30 degrees against the first.
+/// let s = generate(&SynthConfig { wing_deg: 30.0, ..SynthConfig::default() }, 1)?;
+/// let found = direction_regions(s.map.classified(), &RegionConfig::default());
+/// let degrees: Vec<i64> = found.directions.iter().map(|d| d.angle.to_degrees().round() as i64).collect();
+/// assert!(degrees.contains(&0) && degrees.contains(&30), "{degrees:?}");
+/// let shares = found.shares();
+/// assert!(shares.iter().filter(|&&s| s > 0.3).count() == 2, "{shares:?}");
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn direction_regions(grid: &Grid<Cell>, config: &RegionConfig) -> DirectionRegions {
+    let mut directions = wall_directions(grid, config.min_strength);
+    directions.truncate(NO_REGION as usize);
+    let (w, h) = (grid.width(), grid.height());
+    let free = |i: usize| grid.cells()[i] == Cell::Free;
+    let mut region = Grid::from_vec(w, h, (0..w * h).map(|i| if free(i) { 0 } else { NO_REGION }).collect())
+        .expect("the grid's own size");
+    if directions.len() < 2 {
+        return DirectionRegions { directions, region };
+    }
+    let votes = face_votes(grid, &directions, config);
+    let sums: Vec<Sums> = (0..directions.len()).map(|k| Sums::new(&votes, w, h, k as u8)).collect();
+    let r = config.radius.max(0) as usize;
+    for y in 0..h {
+        for x in 0..w {
+            if !free(y * w + x) {
+                continue;
+            }
+            let (x0, y0, x1, y1) = (x.saturating_sub(r), y.saturating_sub(r), (x + r + 1).min(w), (y + r + 1).min(h));
+            let mut best = (0u32, 0u8);
+            for (k, s) in sums.iter().enumerate() {
+                let n = s.count(x0, y0, x1, y1);
+                if n > best.0 {
+                    best = (n, k as u8);
+                }
+            }
+            *region.at_mut(x, y) = best.1;
+        }
+    }
+    absorb_small_pieces(&mut region, config.min_area);
+    DirectionRegions { directions, region }
+}
+
+/// Per cell: the index of the direction a wall face cell votes for, [`NO_REGION`] elsewhere.
+fn face_votes(grid: &Grid<Cell>, directions: &[WallDirection], c: &RegionConfig) -> Vec<u8> {
+    let surface = wall_surface(grid);
+    let (w, h) = (grid.width(), grid.height());
+    let face = |x: i64, y: i64| {
+        x >= 0 && y >= 0 && x < w as i64 && y < h as i64 && *surface.at(x as usize, y as usize) == Cell::Occupied
+    };
+    // Unit steps along each direction and at right angles to it.
+    let steps: Vec<[(f64, f64); 2]> = directions
+        .iter()
+        .map(|d| {
+            let (s, co) = (libm::sin(d.angle), libm::cos(d.angle));
+            [(co, s), (-s, co)]
+        })
+        .collect();
+    let longest = (2 * c.run + 1) as f64;
+    let mut votes = vec![NO_REGION; w * h];
+    let mut counts = vec![0u32; directions.len()];
+    for y in 0..h {
+        for x in 0..w {
+            if *surface.at(x, y) != Cell::Occupied {
+                continue;
+            }
+            for (k, pair) in steps.iter().enumerate() {
+                counts[k] = pair
+                    .iter()
+                    .map(|&(dx, dy)| {
+                        (-c.run..=c.run)
+                            .filter(|&i| {
+                                let (px, py) = (x as f64 + 0.5 + dx * i as f64, y as f64 + 0.5 + dy * i as f64);
+                                face(libm::floor(px) as i64, libm::floor(py) as i64)
+                            })
+                            .count() as u32
+                    })
+                    .max()
+                    .unwrap_or(0);
+            }
+            let (best, k) = counts
+                .iter()
+                .enumerate()
+                .map(|(k, &n)| (n, k))
+                .max_by_key(|&(n, k)| (n, std::cmp::Reverse(k)))
+                .unwrap_or((0, 0));
+            let second = counts.iter().enumerate().filter(|&(j, _)| j != k).map(|(_, &n)| n).max().unwrap_or(0);
+            if best as f64 >= c.min_straight * longest && best as f64 >= c.margin * second as f64 {
+                votes[y * w + x] = k as u8;
+            }
+        }
+    }
+    votes
+}
+
+/// A summed-area table of the cells voting for one direction.
+struct Sums {
+    width: usize,
+    sums: Vec<u32>,
+}
+
+impl Sums {
+    fn new(votes: &[u8], w: usize, h: usize, k: u8) -> Sums {
+        let width = w + 1;
+        let mut sums = vec![0u32; width * (h + 1)];
+        for y in 0..h {
+            let mut row = 0;
+            for x in 0..w {
+                row += u32::from(votes[y * w + x] == k);
+                sums[(y + 1) * width + x + 1] = sums[y * width + x + 1] + row;
+            }
+        }
+        Sums { width, sums }
+    }
+
+    /// Votes in columns `x0..x1` and rows `y0..y1`.
+    fn count(&self, x0: usize, y0: usize, x1: usize, y1: usize) -> u32 {
+        let s = |x: usize, y: usize| self.sums[y * self.width + x];
+        s(x1, y1) + s(x0, y0) - s(x0, y1) - s(x1, y0)
+    }
+}
+
+/// Relabels every 4-connected piece of one direction smaller than `min_area` cells with the
+/// direction most of its free 4-neighbours outside it have (ties: the lower index), in one
+/// pass over the pieces in row-major order of their first cell.
+fn absorb_small_pieces(region: &mut Grid<u8>, min_area: usize) {
+    let (w, h) = (region.width(), region.height());
+    let mut seen = vec![false; w * h];
+    let mut piece = Vec::new();
+    for start in 0..w * h {
+        let k = region.cells()[start];
+        if k == NO_REGION || seen[start] {
+            continue;
+        }
+        piece.clear();
+        piece.push(start);
+        seen[start] = true;
+        let mut around = std::collections::BTreeMap::<u8, usize>::new();
+        let mut i = 0;
+        while i < piece.len() {
+            let c = piece[i];
+            i += 1;
+            let (x, y) = (c % w, c / w);
+            let neighbours = [
+                (x > 0).then(|| c - 1),
+                (x + 1 < w).then(|| c + 1),
+                (y > 0).then(|| c - w),
+                (y + 1 < h).then(|| c + w),
+            ];
+            for n in neighbours.into_iter().flatten() {
+                let l = region.cells()[n];
+                if l == k {
+                    if !seen[n] {
+                        seen[n] = true;
+                        piece.push(n);
+                    }
+                } else if l != NO_REGION {
+                    *around.entry(l).or_default() += 1;
+                }
+            }
+        }
+        if piece.len() >= min_area {
+            continue;
+        }
+        // The most common neighbour direction; the first key wins ties (max_by_key keeps the last).
+        let Some((&to, _)) = around.iter().rev().max_by_key(|&(_, &n)| n) else { continue };
+        for &c in &piece {
+            region.cells_mut()[c] = to;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn small_pieces_take_their_surroundings() {
+        let mut g = Grid::new(10, 10, 0u8);
+        for y in 2..4 {
+            for x in 2..4 {
+                *g.at_mut(x, y) = 1;
+            }
+        }
+        for y in 0..10 {
+            *g.at_mut(9, y) = NO_REGION;
+        }
+        let mut big = g.clone();
+        absorb_small_pieces(&mut g, 5);
+        assert!(g.cells().iter().all(|&c| c == 0 || c == NO_REGION));
+        absorb_small_pieces(&mut big, 4);
+        assert_eq!(big.cells().iter().filter(|&&c| c == 1).count(), 4, "a piece of min_area stays");
+    }
+}

@@ -1,6 +1,6 @@
 //! Scores of a world against a map.
 
-use super::world::World;
+use super::world::{Frame, World};
 use crate::grid::{Cell, Grid};
 
 /// The class a world predicts for every cell of the map (eq. 3.8), in the map's frame: wall
@@ -11,14 +11,45 @@ use crate::grid::{Cell, Grid};
 /// memory this takes is bounded by the map, not by the world's `frame.world_size`, which a
 /// hostile `world.json` chooses; a window whose size overflows predicts nothing (all unknown).
 pub fn predicted_map(map_width: usize, map_height: usize, world: &World) -> Grid<Cell> {
-    let mut out = Grid::new(map_width, map_height, Cell::Unknown);
-    let Some(win) = map_window(map_width, map_height, world) else { return out };
-    const COVER: u8 = 1;
-    const WALL: u8 = 2;
+    // Units at an angle of their own (issue 13) are rasterised in their own frame; a cell is
+    // a wall if any frame's rings hold it, else free if any frame's units or doors cover it.
+    let mut frames = vec![world.frame];
+    for u in &world.units {
+        let f = world.unit_frame(u);
+        if !frames.contains(&f) {
+            frames.push(f);
+        }
+    }
+    let mut flags = vec![0u8; map_width * map_height];
+    for f in &frames {
+        add_frame_flags(map_width, map_height, world, f, &mut flags);
+    }
+    let cells = flags
+        .iter()
+        .map(|&f| {
+            if f & WALL != 0 {
+                Cell::Occupied
+            } else if f & COVER != 0 {
+                Cell::Free
+            } else {
+                Cell::Unknown
+            }
+        })
+        .collect();
+    Grid::from_vec(map_width, map_height, cells).expect("the map's own size")
+}
+
+const COVER: u8 = 1;
+const WALL: u8 = 2;
+
+/// ORs into `out` (one byte per map cell) the flags of the units and doors lying in `frame`:
+/// [`WALL`] on their rings, [`COVER`] on their cells; a door's cells are [`COVER`] only.
+fn add_frame_flags(map_width: usize, map_height: usize, world: &World, frame: &Frame, out: &mut [u8]) {
+    let Some(win) = map_window(map_width, map_height, frame) else { return };
     let mut flags = vec![0u8; win.w * win.h];
     let index = |x: i32, y: i32| (y - win.y) as usize * win.w + (x - win.x) as usize;
     let (right, bottom) = (win.x + win.w as i32, win.y + win.h as i32);
-    for u in &world.units {
+    for u in world.units.iter().filter(|u| world.unit_frame(u) == *frame) {
         let r = u.rect();
         for y in r.y.max(win.y)..r.bottom().min(bottom) {
             for x in r.x.max(win.x)..r.right().min(right) {
@@ -27,7 +58,7 @@ pub fn predicted_map(map_width: usize, map_height: usize, world: &World) -> Grid
             }
         }
     }
-    for d in &world.doors {
+    for d in world.doors.iter().filter(|d| world.door_frame(d) == *frame) {
         for (x, y) in d.cells() {
             if x >= win.x && y >= win.y && x < right && y < bottom {
                 flags[index(x, y)] = COVER;
@@ -36,25 +67,17 @@ pub fn predicted_map(map_width: usize, map_height: usize, world: &World) -> Grid
     }
     for my in 0..map_height {
         for mx in 0..map_width {
-            let (wx, wy) = if world.frame.is_identity() {
+            let (wx, wy) = if frame.is_identity() {
                 (mx as f64 + 0.5, my as f64 + 0.5)
             } else {
-                world.frame.to_world(mx as f64 + 0.5, my as f64 + 0.5)
+                frame.to_world(mx as f64 + 0.5, my as f64 + 0.5)
             };
             let (x, y) = (libm::floor(wx), libm::floor(wy));
             if x >= win.x as f64 && y >= win.y as f64 && x < right as f64 && y < bottom as f64 {
-                let f = flags[index(x as i32, y as i32)];
-                *out.at_mut(mx, my) = if f & WALL != 0 {
-                    Cell::Occupied
-                } else if f & COVER != 0 {
-                    Cell::Free
-                } else {
-                    Cell::Unknown
-                };
+                out[my * map_width + mx] |= flags[index(x as i32, y as i32)];
             }
         }
     }
-    out
 }
 
 /// A rectangle of world cells, with its size as `usize`s.
@@ -67,14 +90,14 @@ struct Window {
 
 /// The world cells under the map's cells: the bounding box of the map turned into the world
 /// frame, clipped to the world. `None` when it is empty or its size does not fit `usize`.
-fn map_window(map_width: usize, map_height: usize, world: &World) -> Option<Window> {
+fn map_window(map_width: usize, map_height: usize, frame: &Frame) -> Option<Window> {
     // Units lie at i32 coordinates: no world cell past i32::MAX can be covered.
-    let [ww, wh] = world.frame.world_size.map(|v| f64::from(v).min(i32::MAX as f64));
+    let [ww, wh] = frame.world_size.map(|v| f64::from(v).min(i32::MAX as f64));
     let (mw, mh) = (map_width as f64, map_height as f64);
-    let (x0, y0, x1, y1) = if world.frame.is_identity() {
+    let (x0, y0, x1, y1) = if frame.is_identity() {
         (0.0, 0.0, mw.min(ww), mh.min(wh))
     } else {
-        let corners = [(0.0, 0.0), (mw, 0.0), (0.0, mh), (mw, mh)].map(|(x, y)| world.frame.to_world(x, y));
+        let corners = [(0.0, 0.0), (mw, 0.0), (0.0, mh), (mw, mh)].map(|(x, y)| frame.to_world(x, y));
         let min = |f: fn(&(f64, f64)) -> f64| corners.iter().map(f).fold(f64::INFINITY, f64::min);
         let max = |f: fn(&(f64, f64)) -> f64| corners.iter().map(f).fold(f64::NEG_INFINITY, f64::max);
         let (x0, x1) = (libm::floor(min(|c| c.0)).max(0.0), libm::ceil(max(|c| c.0)).min(ww));

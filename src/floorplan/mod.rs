@@ -38,6 +38,7 @@ pub mod topology;
 mod trace;
 pub mod unexplained;
 pub mod wall_gaps;
+pub mod wings;
 pub mod world;
 
 pub use chain::{Chain, ChainConfig, ChainError, DetectorConfig, OutputConfig};

@@ -103,8 +103,9 @@ impl ChainSummary {
     }
 }
 
-/// A note for a report whose map has walls in several directions, which the world's units
-/// (all at the map's one rotation) cannot follow: `None` for one direction or none.
+/// A note for a report whose map has walls in several directions: whether its wings were
+/// explained each in its own direction (`report.json`'s `wings`, [`super::wings`]) or the
+/// units follow the map's one rotation; `None` for one direction or none.
 ///
 /// ```
 /// use ksmcmc::floorplan::report::several_directions_note;
@@ -113,7 +114,10 @@ impl ChainSummary {
 /// let two = serde_json::json!({"wall_directions": [
 ///     {"angle_deg": 1.8, "strength": 1.0}, {"angle_deg": -43.5, "strength": 0.55}]});
 /// let note = several_directions_note(&two).unwrap();
-/// assert!(note.contains("2 directions (1.8°, -43.5°)"), "{note}");
+/// assert!(note.contains("2 directions (1.8°, -43.5°)") && note.contains("only the first"), "{note}");
+/// let mut wings = two.clone();
+/// wings["wings"] = serde_json::json!([{"rotation_deg": 1.8}, {"rotation_deg": -43.5}]);
+/// assert!(several_directions_note(&wings).unwrap().contains("2 wings were explained"));
 /// ```
 pub fn several_directions_note(r: &serde_json::Value) -> Option<String> {
     let angles: Vec<f64> = r["wall_directions"].as_array()?.iter().filter_map(|d| d["angle_deg"].as_f64()).collect();
@@ -121,12 +125,17 @@ pub fn several_directions_note(r: &serde_json::Value) -> Option<String> {
         return None;
     }
     let list: Vec<String> = angles.iter().map(|a| format!("{a:.1}°")).collect();
-    Some(format!(
-        "note: the walls of this map follow {} directions ({}); the units follow only the first, so \
-         rooms along the others are explained by several rectangles and may come out cut in pieces",
-        angles.len(),
-        list.join(", ")
-    ))
+    let what = match r["wings"].as_array() {
+        Some(wings) if wings.len() > 1 => format!(
+            "{} wings were explained each in its own direction (world.json, overlay.png, graph.json); world.svg, \
+             world.geojson and world.glb still draw the first chain's plan, in one frame",
+            wings.len()
+        ),
+        _ => "the units follow only the first, so rooms along the others are explained by several rectangles and \
+              may come out cut in pieces"
+            .into(),
+    };
+    Some(format!("note: the walls of this map follow {} directions ({}); {what}", angles.len(), list.join(", ")))
 }
 
 /// The least strength of a wall direction `report.json` lists

@@ -289,7 +289,7 @@ fn evaluate_pairs_knowledge_with_the_weak_prior_and_refuses_unknown_sets() {
         .filter(|l| l.starts_with("| ") && !l.starts_with("| kind"))
         .map(|l| l.split('|').map(str::trim).filter(|c| !c.is_empty()).collect())
         .collect();
-    assert_eq!(rows.len(), 5, "one row per synthetic kind:\n{text}");
+    assert_eq!(rows.len(), 7, "one row per synthetic kind (two of them two-wing):\n{text}");
     for r in &rows {
         let k: f64 = r[1].parse().unwrap();
         let weak: f64 = r[2].parse().unwrap();
@@ -420,4 +420,35 @@ fn floorplan_writes_the_3d_world_with_the_heights_asked_for() {
         "{}",
         String::from_utf8_lossy(&bad.stderr)
     );
+}
+
+/// A map of two buildings at an angle is explained wing by wing by default (issue 13): units
+/// at both angles, every file written, the report naming the wings; `--no-wings` keeps one
+/// frame with the same labels.
+#[test]
+fn floorplan_explains_wings_at_an_angle_each_in_its_frame() {
+    let d = tmp("wings");
+    let synth = d.join("synth");
+    let out = run(&["synth", "--seed", "5", "--wing", "30", "--out", synth.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let map = synth.join("map.yaml");
+    let (wings, one) = (d.join("wings"), d.join("one"));
+    for (dir, extra) in [(&wings, None), (&one, Some("--no-wings"))] {
+        let mut args = vec!["floorplan", map.to_str().unwrap(), "--out", dir.to_str().unwrap(), "--iterations", "6000"];
+        args.extend(extra);
+        let out = run(&args);
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        for f in ["world.json", "overlay.png", "graph.json", "labels.pgm", "report.json", "world.svg", "world.glb"] {
+            assert!(dir.join(f).exists(), "{f} missing in {}", dir.display());
+        }
+    }
+    let read = |dir: &Path| World::from_json(&std::fs::read_to_string(dir.join("world.json")).unwrap()).unwrap();
+    let (w, o) = (read(&wings), read(&one));
+    assert!(w.units.iter().any(|u| u.angle.is_some()) && w.units.iter().any(|u| u.angle.is_none()));
+    assert!(o.units.iter().all(|u| u.angle.is_none()));
+    assert_eq!(std::fs::read(wings.join("labels.pgm")).unwrap(), std::fs::read(one.join("labels.pgm")).unwrap());
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(wings.join("report.json")).unwrap()).unwrap();
+    assert_eq!(report["wings"].as_array().map(Vec::len), Some(2), "{report}");
+    assert_eq!(report["iterations"], 18000, "three chains of 6000");
 }

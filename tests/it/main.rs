@@ -29,4 +29,5 @@ mod tabletop_cli;
 mod tabletop_input;
 mod tabletop_pinned;
 mod vision;
+mod wings;
 mod world;

@@ -19,6 +19,8 @@ Prints the quality tables of BENCHMARKS.md:
   bormann    room-segmentation precision and recall on the Bormann et al. maps in DIR/bormann2016
              (plain and furnished), scored as the benchmark does (see `ksmcmc score`)
   synthetic  K(W,M), precision and recall against the truth of K generated maps per kind
+  wings      one chain against a chain per wing (floorplan::wings): K(W,M), the units'
+             angles and the time on the two-wing kinds and every Bormann map
   cartesium  K(W,M) on DIR/radish/ubremen-cartesium.png over K seeds, and per seed the rooms
              and their types
   knowledge  weak prior versus knowledge supervision (Fig. 3.34): K(W,M), unit-count error,
@@ -49,8 +51,18 @@ the same chains, in either mode, one more table each.
 ";
 
 /// The sets `--only` can name.
-const SETS: [&str; 9] =
-    ["cartesium", "synthetic", "bormann", "knowledge", "paired", "paired-bormann", "bormann-seeds", "rooms", "routes"];
+const SETS: [&str; 10] = [
+    "cartesium",
+    "synthetic",
+    "bormann",
+    "knowledge",
+    "paired",
+    "paired-bormann",
+    "bormann-seeds",
+    "rooms",
+    "routes",
+    "wings",
+];
 
 struct Opts {
     iterations: u64,
@@ -336,6 +348,58 @@ fn synthetic(o: &Opts) -> Result<(), CliError> {
             mean(&rs),
             units as f64 / o.seeds as f64,
             truth_units as f64 / o.seeds as f64
+        );
+    }
+    Ok(())
+}
+
+/// One chain against a chain per wing (`floorplan::wings`, issue 13): K(W,M) of the world, the
+/// angles its units follow and the time, on the two-wing kinds and every Bormann map (plain
+/// and furnished). The segmentation is the first chain's in both, so it is not repeated here.
+fn wings(dir: &Path, o: &Opts) -> Result<(), CliError> {
+    use ksmcmc::floorplan::wings::{WingConfig, Wings};
+    println!("\n### One chain against a chain per wing ({} iterations per chain, seed 1)\n", o.iterations);
+    println!("| map | wings | K(W,M) one chain | K(W,M) wings | units (angles) | seconds one / wings |");
+    println!("|---|---|---|---|---|---|");
+    let mut maps: Vec<(String, OccupancyMap)> = Vec::new();
+    for (name, config) in kinds().into_iter().filter(|(_, c)| c.wing_deg != 0.0) {
+        for seed in 0..o.seeds.min(3) {
+            let s = generate(&config, 100 + seed).map_err(|e| args::failed(name, e))?;
+            maps.push((format!("{name}, floor {}", 100 + seed), s.map));
+        }
+    }
+    let bormann = dir.join("bormann2016");
+    for name in bormann_names(&bormann)? {
+        for suffix in ["", "_furnitures"] {
+            let mut map = args::load_map(&bormann.join(format!("{name}{suffix}.png")))?;
+            map.set_classifier(Classifier::auto()).map_err(|e| args::failed("classifier", e))?;
+            maps.push((format!("{name}{suffix}"), map));
+        }
+    }
+    for (name, map) in maps {
+        let t0 = std::time::Instant::now();
+        let mut one = explain(&map, o, 1)?;
+        let k_one = prediction_rate(map.classified(), &one.best_world_with_rooms(&o.rooms).0);
+        let t_one = t0.elapsed().as_secs_f64();
+        let t0 = std::time::Instant::now();
+        let w = Wings::run(&map, &o.config, &WingConfig::default(), 1, o.iterations, &o.rooms)
+            .map_err(|e| CliError::Failed(e.to_string()))?;
+        let t_wings = t0.elapsed().as_secs_f64();
+        let mut angles: Vec<String> = w
+            .world
+            .units
+            .iter()
+            .map(|u| format!("{:.0}", w.world.unit_frame(u).angle.to_degrees()))
+            .collect::<std::collections::BTreeSet<_>>()
+            .into_iter()
+            .collect();
+        angles.sort();
+        println!(
+            "| {name} | {} | {k_one:.4} | {:.4} | {} ({}) | {t_one:.1} / {t_wings:.1} |",
+            w.chains.len().saturating_sub(1).max(1),
+            prediction_rate(map.classified(), &w.world),
+            w.world.units.len(),
+            angles.join(", ")
         );
     }
     Ok(())
@@ -708,6 +772,9 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     }
     if want("routes") {
         routes(&o)?;
+    }
+    if want("wings") {
+        wings(&dir, &o)?;
     }
 
     Ok(())

@@ -4,6 +4,7 @@ use crate::args::{self, CliError};
 use ksmcmc::floorplan::georef::Georef;
 use ksmcmc::floorplan::rooms::RoomConfig;
 use ksmcmc::floorplan::settled::{self, Settled};
+use ksmcmc::floorplan::wings::{WingConfig, Wings};
 use ksmcmc::floorplan::{export, metrics, Chain, ChainConfig};
 use ksmcmc::grid::Cell;
 use ksmcmc::render::model3d::Model3dOptions;
@@ -62,6 +63,12 @@ Options:
   --wall-height M    height of the walls in world.glb, metres (default 2.5)
   --door-height M    height of the door openings in world.glb, metres (default 2.0; at most
                      the wall height)
+  --no-wings         one chain in the dominant direction even where the walls follow
+                     several (by default a map whose walls follow several directions, such as
+                     a pentagon or wings at an angle, is explained again wing by wing, each in
+                     its own direction: world.json's units then carry their angles; see
+                     floorplan::wings; the iterations are per chain, and --edits,
+                     --until-settled, --time-limit and --rotation keep one chain)
   --classify RULE    how plain images become cells: auto (default; background grays found
                      from the histogram, anti-aliased walls occupied) or fixed (eq. 3.7
                      thresholds only); a map.yaml always uses its own thresholds
@@ -84,6 +91,7 @@ struct Opts {
     georef: Option<Georef>,
     edits: Option<PathBuf>,
     model: Model3dOptions,
+    wings: bool,
 }
 
 pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
@@ -92,6 +100,11 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     let map = args::load_classified(&o.map, &o.classify)?;
     let region = load_region(&o, &map)?;
     let t0 = Instant::now();
+    // A chain per wing where the walls follow several directions, unless a setting asks for
+    // what only the one chain does so far.
+    if o.wings && o.edits.is_none() && !o.until_settled && o.time_limit.is_none() && o.rotation.is_none() {
+        return run_wings(&o, &map, &config, region.as_ref(), t0);
+    }
     let mut chain = Chain::new(&map, config, o.seed).map_err(|e| args::failed(o.map.display(), e))?;
     if let Some(path) = &o.edits {
         chain.set_edits(load_edits(path)?).map_err(|e| args::failed(path.display(), e))?;
@@ -147,6 +160,64 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     Ok(())
 }
 
+/// `--wings` on a map whose walls follow several directions: a chain per wing, one world of
+/// units at several angles ([`ksmcmc::floorplan::wings`]).
+fn run_wings(
+    o: &Opts,
+    map: &ksmcmc::grid::OccupancyMap,
+    config: &ChainConfig,
+    region: Option<&ksmcmc::grid::Grid<bool>>,
+    t0: Instant,
+) -> Result<(), CliError> {
+    let wings = Wings::run(map, config, &WingConfig::default(), o.seed, o.iterations, &RoomConfig::default())
+        .map_err(|e| args::failed(o.map.display(), e))?;
+    let seconds = t0.elapsed().as_secs_f64();
+    let trace = export::trace_csv(wings.chains[0].trace());
+    let (world, labels) = (&wings.world, &wings.labels);
+    let mut report = ksmcmc::floorplan::report::summary(&wings.chains[0], map, world, seconds);
+    ksmcmc::floorplan::report::add_rooms(&mut report, world, labels);
+    let per_wing: Vec<serde_json::Value> = wings
+        .chains
+        .iter()
+        .skip(usize::from(wings.chains.len() > 1))
+        .map(|c| {
+            serde_json::json!({"rotation_deg": c.frame().angle.to_degrees(), "iterations": c.iteration(),
+            "units": world.units.iter().filter(|u| world.unit_frame(u) == *c.frame()).count()})
+        })
+        .collect();
+    let iterations: u64 = wings.chains.iter().map(|c| c.iteration()).sum();
+    let several = per_wing.len() > 1;
+    if several {
+        report["iterations"] = iterations.into();
+        report["iterations_per_second"] = (iterations as f64 / seconds.max(1e-9)).into();
+        report["wings"] = per_wing.into();
+    }
+    report["map"] = o.map.display().to_string().into();
+    report["cell_prediction_rate_region"] =
+        region.map(|r| metrics::prediction_rate_in(map.classified(), world, Some(r))).into();
+    let k = report["cell_prediction_rate"].as_f64().unwrap_or(0.0);
+    let outputs =
+        export::Outputs::drawn_from(map, world, &wings.one_frame, labels, &report, trace, o.georef.as_ref(), &o.model)
+            .map_err(|e| args::failed(o.out.display(), e))?;
+    for (name, bytes) in outputs.files() {
+        args::write(&o.out.join(name), bytes)?;
+    }
+    println!(
+        "{}: {iterations} iterations in {seconds:.2} s ({:.0}/s), K(W,M) = {k:.4}, {} units, {} doors, {} rooms{} -> {}",
+        o.map.display(),
+        iterations as f64 / seconds.max(1e-9),
+        world.units.len(),
+        world.doors.len(),
+        world.rooms.len(),
+        if several { format!(", {} wings", wings.chains.len() - 1) } else { String::new() },
+        o.out.display()
+    );
+    if let Some(note) = ksmcmc::floorplan::report::several_directions_note(&report) {
+        eprintln!("{note}");
+    }
+    Ok(())
+}
+
 /// Parses and checks the arguments; `None` when `--help` was answered.
 fn parse(argv: Vec<OsString>) -> Result<Option<Opts>, CliError> {
     use lexopt::prelude::*;
@@ -161,6 +232,7 @@ fn parse(argv: Vec<OsString>) -> Result<Option<Opts>, CliError> {
     let mut georef = None;
     let mut edits: Option<PathBuf> = None;
     let mut model = Model3dOptions::default();
+    let mut wings = true;
     while let Some(arg) = parser.next()? {
         match arg {
             Value(v) if map.is_none() => map = Some(args::path(v)),
@@ -175,6 +247,7 @@ fn parse(argv: Vec<OsString>) -> Result<Option<Opts>, CliError> {
             Long("knowledge") => knowledge = Some(args::value("--knowledge", parser.value()?)?),
             Long("room-rules") => room_rules = Some(args::path(parser.value()?)),
             Long("until-settled") => until_settled = true,
+            Long("no-wings") => wings = false,
             Long("georef") => georef = Some(args::value::<Georef>("--georef", parser.value()?)?),
             Long("edits") => edits = Some(args::path(parser.value()?)),
             Long("wall-height") => model.wall_height = args::value("--wall-height", parser.value()?)?,
@@ -215,6 +288,7 @@ fn parse(argv: Vec<OsString>) -> Result<Option<Opts>, CliError> {
         georef,
         edits,
         model,
+        wings,
     }))
 }
 

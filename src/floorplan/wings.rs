@@ -1,0 +1,269 @@
+//! Buildings whose walls follow several directions (issue 13): a chain per wing, each in its
+//! own direction's frame, and one world of units at several angles.
+//!
+//! The chain's units are upright rectangles in one frame, turned by the map's dominant wall
+//! angle. A building whose wings meet at an angle is explained there by rectangles cut across
+//! its walls. [`Wings::run`] keeps the chain and what it finds of the rooms, and explains the
+//! rooms again wing by wing:
+//!
+//! 1. a chain explains the whole map as [`Chain`] always does; its room layer gives the rooms
+//!    and their labels, which stay the result's (the segmentation is the one chain's);
+//! 2. each room takes the wall direction most of its cells follow
+//!    ([`crate::vision::regions`]); a room no direction holds 60 % of (a corridor round a
+//!    pentagon) is split by its cells' own directions;
+//! 3. every direction whose rooms hold `min_share` of the free cells is a wing, the dominant
+//!    direction the first; a chain turned by the wing's direction explains the wing's floor
+//!    alone (the other wings' free cells read unknown), its kernels unchanged;
+//! 4. the world has the first chain's rooms, with the units and doors of the wings' chains:
+//!    each unit whose interior lies mostly in its wing, in the room under most of it. The
+//!    units of every wing but the first carry their angle ([`World::unit_frame`]).
+//!
+//! The world's frame, object cells and room types are the first chain's; unexplained areas are
+//! left out. Each chain runs the given iterations, so a map of `n` wings costs `n + 1` chains.
+
+use super::rooms::RoomConfig;
+use super::world::{Door, Unit, World};
+use super::{Chain, ChainConfig, ChainError};
+use crate::grid::{Cell, Grid, OccupancyMap};
+use crate::vision::regions::{direction_regions, DirectionRegions, RegionConfig, NO_REGION};
+use std::collections::BTreeMap;
+
+/// When and how a map is explained wing by wing.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WingConfig {
+    /// How the regions of the wall directions are found.
+    pub regions: RegionConfig,
+    /// Smallest share of the free cells a direction's region needs to be a wing of its own
+    /// (default 0.1); smaller regions go to the first wing.
+    pub min_share: f64,
+}
+
+impl Default for WingConfig {
+    fn default() -> Self {
+        WingConfig { regions: RegionConfig::default(), min_share: 0.1 }
+    }
+}
+
+/// The chains of a building's wings and the world they compose (module docs).
+pub struct Wings {
+    /// The first chain, which explains the whole map in its dominant direction, then one
+    /// chain per wing (none when the map is one wing).
+    pub chains: Vec<Chain>,
+    /// Per map cell: the wing whose chain explains it (free cells), [`NO_REGION`] elsewhere.
+    pub wing_of: Grid<u8>,
+    /// The composed world, with its rooms.
+    pub world: World,
+    /// Its room labels, one id per room of `world`.
+    pub labels: Grid<u16>,
+    /// The first chain's world with its rooms (the same ids as `world`'s): a plan in one
+    /// frame, which the floor shapes (SVG, GeoJSON) and the 3D model draw until they take
+    /// units at several angles.
+    pub one_frame: World,
+}
+
+impl Wings {
+    /// Explains `map` wing by wing (module docs): a chain of `config` seeded with `seed` runs
+    /// `iterations` on the whole map; each of its rooms takes the wall direction most of its
+    /// cells follow; the rooms of every other direction that holds `wing.min_share` of the
+    /// free cells are explained again by a chain turned by that direction on them alone.
+    /// With one wing, the world is the first chain's.
+    ///
+    /// ```
+    /// use ksmcmc::floorplan::synth::{generate, SynthConfig};
+    /// use ksmcmc::floorplan::wings::{WingConfig, Wings};
+    /// use ksmcmc::floorplan::ChainConfig;
+    /// let s = generate(&SynthConfig { wing_deg: 30.0, width: 240, height: 160, ..Default::default() }, 1)?;
+    /// let wings = Wings::run(&s.map, &ChainConfig::default(), &WingConfig::default(), 1, 3000, &Default::default())?;
+    /// assert_eq!(wings.chains.len(), 3); // the first chain, then one per wing
+    /// let (world, labels) = (&wings.world, &wings.labels);
+    /// world.validate()?;
+    /// assert!(world.units.iter().any(|u| u.angle.is_some()) && world.units.iter().any(|u| u.angle.is_none()));
+    /// assert!(world.rooms.iter().all(|r| labels.cells().contains(&(r.id as u16))));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn run(
+        map: &OccupancyMap,
+        config: &ChainConfig,
+        wing: &WingConfig,
+        seed: u64,
+        iterations: u64,
+        rooms: &RoomConfig,
+    ) -> Result<Wings, ChainError> {
+        let mut first = Chain::new(map, config.clone(), seed)?;
+        first.step(iterations);
+        let (world, labels) = first.best_world_with_rooms(rooms);
+        let found = direction_regions(map.classified(), &wing.regions);
+        let wing_of = match wings_by_room(&found, &labels, first.frame().angle, wing.min_share) {
+            Some((wing_of, angles)) if config.detectors.rotation_deg.is_none() => (wing_of, angles),
+            _ => {
+                let wing_of = labels.map(|&l| if l > 0 { 0 } else { NO_REGION });
+                return Ok(Wings { chains: vec![first], wing_of, one_frame: world.clone(), world, labels });
+            }
+        };
+        let (wing_of, angles) = wing_of;
+        let mut chains = vec![first];
+        let mut units = Vec::new();
+        for (k, &angle) in angles.iter().enumerate() {
+            let mut c = config.clone();
+            c.detectors.rotation_deg = Some(angle.to_degrees());
+            let mut chain = Chain::new(&wing_map(map, &wing_of, k as u8), c, seed)?;
+            chain.step(iterations);
+            units.push(chain.best_world_typed());
+            chains.push(chain);
+        }
+        let one_frame = world.clone();
+        let world = compose(world, &labels, &units, &wing_of);
+        Ok(Wings { chains, wing_of, world, labels, one_frame })
+    }
+}
+
+/// The share of a room's cells its main direction needs for the whole room to follow it.
+const ROOM_SHARE: f64 = 0.6;
+
+/// Which wing explains each free cell: each room of `labels` (the first chain's) goes to the
+/// direction most of its cells follow ([`direction_regions`]), free cells of no room to their
+/// own cell's direction. Directions whose rooms hold less than `min_share` of the free cells
+/// go to the first wing, the direction nearest `first_angle` (the first chain's). `None` when
+/// one wing is left. Returns the wings per cell and each wing's angle, the first first.
+fn wings_by_room(
+    found: &DirectionRegions,
+    labels: &Grid<u16>,
+    first_angle: f64,
+    min_share: f64,
+) -> Option<(Grid<u8>, Vec<f64>)> {
+    let n = found.directions.len();
+    if n < 2 {
+        return None;
+    }
+    let rooms = labels.cells().iter().copied().max().unwrap_or(0) as usize;
+    let mut votes = vec![vec![0usize; n]; rooms + 1];
+    for (&l, &r) in labels.cells().iter().zip(found.region.cells()) {
+        if r != NO_REGION {
+            votes[l as usize][r as usize] += 1;
+        }
+    }
+    // A room takes the direction of most of its cells when that holds `ROOM_SHARE` of them;
+    // a room the directions share (a corridor round a pentagon) is split by its cells'.
+    let best = |v: &[usize]| {
+        let k = (0..n).max_by_key(|&k| (v[k], std::cmp::Reverse(k))).unwrap_or(0);
+        (v[k] as f64 >= ROOM_SHARE * v.iter().sum::<usize>() as f64).then_some(k)
+    };
+    let direction_of: Vec<Option<usize>> = votes.iter().map(|v| best(v)).collect();
+    let direction = |l: u16, r: u8| match direction_of[l as usize] {
+        Some(k) if l > 0 => Some(k),
+        _ => (r != NO_REGION).then_some(r as usize),
+    };
+    let mut cells = vec![0usize; n];
+    for (&l, &r) in labels.cells().iter().zip(found.region.cells()) {
+        if let Some(k) = direction(l, r) {
+            cells[k] += 1;
+        }
+    }
+    let total = cells.iter().sum::<usize>().max(1) as f64;
+    let apart = |a: f64, b: f64| {
+        let d = (a - b).rem_euclid(std::f64::consts::FRAC_PI_2);
+        d.min(std::f64::consts::FRAC_PI_2 - d)
+    };
+    let first = (0..n).min_by(|&a, &b| {
+        apart(found.directions[a].angle, first_angle).total_cmp(&apart(found.directions[b].angle, first_angle))
+    })?;
+    let mut order = vec![first];
+    order.extend((0..n).filter(|&k| k != first && cells[k] as f64 >= min_share * total));
+    if order.len() < 2 {
+        return None;
+    }
+    let wing_index: Vec<u8> = (0..n).map(|k| order.iter().position(|&j| j == k).unwrap_or(0) as u8).collect();
+    let cells: Vec<u8> = labels
+        .cells()
+        .iter()
+        .zip(found.region.cells())
+        .map(|(&l, &r)| direction(l, r).map_or(NO_REGION, |k| wing_index[k]))
+        .collect();
+    let mut angles: Vec<f64> = order.iter().map(|&k| found.directions[k].angle).collect();
+    angles[0] = first_angle;
+    Some((Grid::from_vec(labels.width(), labels.height(), cells).expect("the labels' own size"), angles))
+}
+
+/// `map` as wing `k`'s chain sees it: the other wings' free cells unknown, so that its units
+/// explain its own floor.
+fn wing_map(map: &OccupancyMap, wing_of: &Grid<u8>, k: u8) -> OccupancyMap {
+    let cells = map.classified().cells().iter().zip(wing_of.cells()).map(|(&c, &w)| {
+        if w != NO_REGION && w != k {
+            Cell::Unknown
+        } else {
+            c
+        }
+    });
+    let grid = Grid::from_vec(map.width(), map.height(), cells.collect()).expect("the map's own size");
+    OccupancyMap::from_classified(grid).with_yaml(map.yaml().clone())
+}
+
+/// The world of the wings: the first chain's rooms (and labels), their units and doors those
+/// of the wings' chains, each unit in the room that holds most of its interior.
+fn compose(first: World, labels: &Grid<u16>, wings: &[World], wing_of: &Grid<u8>) -> World {
+    let mut world = World { units: Vec::new(), doors: Vec::new(), unexplained: Vec::new(), ..first };
+    for r in &mut world.rooms {
+        r.units.clear();
+        r.doors.clear();
+    }
+    let index: BTreeMap<u32, usize> = world.rooms.iter().enumerate().map(|(i, r)| (r.id, i)).collect();
+    for (k, part) in wings.iter().enumerate() {
+        let mut ids = BTreeMap::new();
+        for unit in part.units.iter().filter(|u| mostly_in(part, u, wing_of, k as u8)) {
+            let id = world.units.len() as u32 + 1;
+            let angle = (k > 0).then_some(part.frame.angle);
+            world.units.push(Unit { id, angle, ..*unit });
+            ids.insert(unit.id, id);
+            if let Some(&i) = room_under(part, unit, labels).and_then(|room| index.get(&room)) {
+                world.rooms[i].units.push(id);
+            }
+        }
+        for d in &part.doors {
+            if let [Some(&a), Some(&b)] = d.units.map(|u| ids.get(&u)) {
+                let id = world.doors.len() as u32 + 1;
+                world.doors.push(Door { id, units: [a, b], ..*d });
+            }
+        }
+    }
+    for r in &mut world.rooms {
+        r.doors = world.doors.iter().filter(|d| d.units.iter().any(|u| r.units.contains(u))).map(|d| d.id).collect();
+    }
+    world
+}
+
+/// The room of `labels` under most of `unit`'s interior cells (in its world's frame), if any.
+fn room_under(world: &World, unit: &Unit, labels: &Grid<u16>) -> Option<u32> {
+    let mut counts: BTreeMap<u16, usize> = BTreeMap::new();
+    for_interior(world, unit, |mx, my| {
+        if let Some(&l) = labels.get(mx, my).filter(|&&l| l > 0) {
+            *counts.entry(l).or_default() += 1;
+        }
+    });
+    counts.iter().rev().max_by_key(|&(_, &n)| n).map(|(&l, _)| l as u32)
+}
+
+/// Calls `f` with the map cell under each interior cell of `unit` (its ring excluded).
+fn for_interior(world: &World, unit: &Unit, mut f: impl FnMut(i64, i64)) {
+    let rotation = world.unit_frame(unit).rotation();
+    let t = world.wall_thickness;
+    let r = unit.rect();
+    for y in r.y + t..r.bottom() - t {
+        for x in r.x + t..r.right() - t {
+            let (mx, my) = rotation.to_map(x as f64 + 0.5, y as f64 + 0.5);
+            f(libm::floor(mx) as i64, libm::floor(my) as i64);
+        }
+    }
+}
+
+/// Whether most of the free map cells under `unit`'s interior (in its world's frame) lie in
+/// wing `k`'s region: a wing keeps the units that explain its own floor.
+fn mostly_in(world: &World, unit: &Unit, wing_of: &Grid<u8>, k: u8) -> bool {
+    let (mut inside, mut free) = (0u64, 0u64);
+    for_interior(world, unit, |mx, my| {
+        if let Some(&w) = wing_of.get(mx, my).filter(|&&w| w != NO_REGION) {
+            free += 1;
+            inside += u64::from(w == k);
+        }
+    });
+    2 * inside > free
+}

@@ -1,0 +1,56 @@
+//! A chain per wing (`floorplan::wings`, issue 13): on two buildings at an angle, units at both
+//! angles that explain the map better than one chain's, with the one chain's segmentation.
+
+use ksmcmc::floorplan::metrics::prediction_rate;
+use ksmcmc::floorplan::synth::{generate, SynthConfig};
+use ksmcmc::floorplan::wings::{WingConfig, Wings};
+use ksmcmc::floorplan::{Chain, ChainConfig};
+
+const ITERATIONS: u64 = 8000;
+
+#[test]
+fn two_wings_are_explained_each_in_its_own_frame() {
+    let rooms = Default::default();
+    for (wing, seed) in [(30.0, 11), (-45.0, 12)] {
+        let s = generate(&SynthConfig { wing_deg: wing, ..SynthConfig::default() }, seed).unwrap();
+        let w = Wings::run(&s.map, &ChainConfig::default(), &WingConfig::default(), 1, ITERATIONS, &rooms).unwrap();
+        assert_eq!(w.chains.len(), 3, "wing {wing}: the first chain and one per wing");
+        w.world.validate().unwrap();
+        let frames: std::collections::BTreeSet<String> =
+            w.world.units.iter().map(|u| format!("{:.6}", w.world.unit_frame(u).angle)).collect();
+        assert_eq!(frames.len(), 2, "wing {wing}: units at {frames:?}");
+        // The segmentation is the one chain's, bit for bit.
+        let mut one = Chain::new(&s.map, ChainConfig::default(), 1).unwrap();
+        one.step(ITERATIONS);
+        let (single, labels) = one.best_world_with_rooms(&rooms);
+        assert!(w.labels == labels, "wing {wing}: the labels differ from the one chain's");
+        assert_eq!(w.world.rooms.len(), single.rooms.len());
+        // Units upright in each wing explain the map better than one frame's.
+        let (k_one, k_wings) =
+            (prediction_rate(s.map.classified(), &single), prediction_rate(s.map.classified(), &w.world));
+        assert!(k_wings > k_one + 0.01, "wing {wing}: K {k_wings:.4} with wings, {k_one:.4} with one chain");
+        // Every room's units lie in the room (most of their interior carries its label).
+        let in_rooms = w.world.rooms.iter().map(|r| r.units.len()).sum::<usize>();
+        assert!(
+            in_rooms as f64 >= 0.8 * w.world.units.len() as f64,
+            "{in_rooms} of {} units in rooms",
+            w.world.units.len()
+        );
+        // Same seed, same world.
+        let again = Wings::run(&s.map, &ChainConfig::default(), &WingConfig::default(), 1, ITERATIONS, &rooms).unwrap();
+        assert_eq!(again.world.to_json(), w.world.to_json());
+    }
+}
+
+#[test]
+fn a_building_in_one_direction_is_one_chain() {
+    let s = generate(&SynthConfig { rotation_deg: 20.0, ..SynthConfig::default() }, 3).unwrap();
+    let rooms = Default::default();
+    let w = Wings::run(&s.map, &ChainConfig::default(), &WingConfig::default(), 2, 3000, &rooms).unwrap();
+    assert_eq!(w.chains.len(), 1);
+    let mut one = Chain::new(&s.map, ChainConfig::default(), 2).unwrap();
+    one.step(3000);
+    let (world, labels) = one.best_world_with_rooms(&rooms);
+    assert_eq!(w.world, world);
+    assert!(w.labels == labels);
+}

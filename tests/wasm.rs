@@ -174,6 +174,29 @@ fn renders_rgba() {
     assert_eq!(with_world.rgba().0.len(), 4 * 3 * 2);
 }
 
+/// A world whose units carry their own angle (issue 13) renders in wasm as natively: each
+/// unit in its own frame.
+#[wasm_bindgen_test]
+fn renders_units_at_their_own_angle_as_natively() {
+    use ksmcmc::floorplan::{Unit, UnitType, World};
+    let cells: Vec<u8> = (0..80 * 60).map(|i| if i % 7 == 0 { 2 } else { 0 }).collect();
+    let map = Map::from_cells(80, 60, &cells).unwrap();
+    let mut world = World::empty(80, 60);
+    world.units.push(Unit::new(1, 5, 5, 20, 15, UnitType::Room));
+    world.units.push(Unit { angle: Some(0.6), ..Unit::new(2, 40, 30, 25, 18, UnitType::Corridor) });
+    world.validate().unwrap();
+    let r = wasm::render_rgba(&map, Some(world.to_json()), Some(2), Some(true)).unwrap();
+    let grid = ksmcmc::grid::Grid::from_vec(
+        80,
+        60,
+        cells.iter().map(|&c| ksmcmc::grid::Cell::from_code(c).unwrap()).collect(),
+    )
+    .unwrap();
+    let options = ksmcmc::render::RenderOptions { scale: 2, labels: true, legend: true };
+    let native = ksmcmc::render::render(&grid, Some(&world), &options);
+    assert!(r.rgba().0 == ksmcmc::render::to_rgba(&native), "wasm and native pictures differ");
+}
+
 #[wasm_bindgen_test]
 fn bad_render_requests_are_errors() {
     let map = Map::from_cells(3, 2, &[0; 6]).unwrap();

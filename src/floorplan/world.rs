@@ -30,8 +30,12 @@
 //! * `wall_thickness`: how many cells deep each unit's wall ring is (1 in the dissertation's
 //!   model; optional, default 1).
 //! * `units[].type`: `room`, `corridor`, `hall`, `other` or `unknown` (not yet typed).
+//! * `units[].angle`: optional, radians in the convention of `frame.angle`: a unit that follows
+//!   another wall direction than the frame (a wing at an angle, [`super::wings`]) lies in the
+//!   frame [`Frame::turned`] gives for its angle on the same map ([`World::unit_frame`]).
 //! * `doors[]`: the rectangle of cells from `(x0, y0)` to `(x1, y1)` inclusive, through the wall
-//!   between the two units named by id (a straight run of cells where they share a thin wall).
+//!   between the two units named by id (a straight run of cells where they share a thin wall),
+//!   in the two units' frame (a door joins units of one frame).
 //! * `object_cells`: unknown map cells inside units (furniture), optional.
 //! * `rooms`: the room layer, optional (written by `ksmcmc floorplan`): what a person would
 //!   call one space, one or more units each. `id` is the room's value in `labels.pgm`; `type`

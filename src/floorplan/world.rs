@@ -426,6 +426,7 @@ impl World {
     /// assert_eq!((f.angle, f.map_size), (0.5, [100, 60]));
     /// assert!(f.world_size[0] > 100 && f.world_size[1] > 60);
     /// ```
+    #[inline(never)] // one copy in the size-budgeted mapper module, not one per caller
     pub fn unit_frame(&self, unit: &Unit) -> Frame {
         match unit.angle {
             Some(a) if a != self.frame.angle => Frame::turned(self.frame.map_size[0], self.frame.map_size[1], a),

@@ -109,48 +109,47 @@ pub fn draw_world(
         frames.iter().filter_map(|f| Placement::new(f, map_width, map_height, scale).map(|p| (*f, p))).collect();
     let in_frame = |f: Frame| move |u: &&crate::floorplan::Unit| world.unit_frame(u) == f && u.w >= 1 && u.h >= 1;
     let t = world.wall_thickness.max(1) as i64;
+    let cells = |u: &crate::floorplan::Unit| CellRect::new(u.x as i64, u.y as i64, u.w as i64, u.h as i64);
     for kind in UnitType::ALL {
         let [r, g, b] = room_fill_rgb(kind);
         let mut paint = solid([r, g, b, 255]);
         paint.blend_mode = BlendMode::Multiply;
         for (f, p) in &placements {
-            let interiors = world
-                .units
-                .iter()
-                .filter(in_frame(*f))
-                .filter(|u| u.kind == kind)
-                .filter_map(|u| CellRect::new(u.x as i64, u.y as i64, u.w as i64, u.h as i64).inset(t));
-            p.fill_with(pixmap, interiors, &paint);
+            let units = world.units.iter().filter(in_frame(*f)).filter(|u| u.kind == kind);
+            let interiors: Vec<CellRect> = units.filter_map(|u| cells(u).inset(t)).collect();
+            p.fill_with(pixmap, &interiors, &paint);
         }
     }
 
     // Object cells first, so that walls and doors stay their pure colours where they meet.
     // Merged into rectangles: a furnished building has thousands, and one quad per cell made
     // them the slowest part of a frame.
-    place.fill(pixmap, object_rects(&world.object_cells).into_iter(), OBJECT_RGBA);
-    let unexplained = world
+    place.fill(pixmap, &object_rects(&world.object_cells), OBJECT_RGBA);
+    let unexplained: Vec<CellRect> = world
         .unexplained
         .iter()
         .flat_map(|a| a.runs.iter())
         .filter(|r| r[1] <= r[2])
-        .map(|&[y, x0, x1]| CellRect { x0: x0 as i64, y0: y as i64, x1: x1 as i64 + 1, y1: y as i64 + 1 });
-    place.fill(pixmap, unexplained, UNEXPLAINED_RGBA);
+        .map(|&[y, x0, x1]| CellRect { x0: x0 as i64, y0: y as i64, x1: x1 as i64 + 1, y1: y as i64 + 1 })
+        .collect();
+    place.fill(pixmap, &unexplained, UNEXPLAINED_RGBA);
 
     for (f, p) in &placements {
-        let walls = world
-            .units
-            .iter()
-            .filter(in_frame(*f))
-            .flat_map(|u| CellRect::new(u.x as i64, u.y as i64, u.w as i64, u.h as i64).ring(t));
-        p.fill(pixmap, walls, WALL_RGBA);
+        let walls: Vec<CellRect> = world.units.iter().filter(in_frame(*f)).flat_map(|u| cells(u).ring(t)).collect();
+        p.fill(pixmap, &walls, WALL_RGBA);
     }
     for (f, p) in &placements {
-        let doors = world.doors.iter().filter(|d| world.door_frame(d) == *f).map(|d| {
-            let (x0, x1) = (d.x0.min(d.x1) as i64, d.x0.max(d.x1) as i64);
-            let (y0, y1) = (d.y0.min(d.y1) as i64, d.y0.max(d.y1) as i64);
-            CellRect { x0, y0, x1: x1 + 1, y1: y1 + 1 }
-        });
-        p.fill(pixmap, doors, DOOR_RGBA);
+        let doors: Vec<CellRect> = world
+            .doors
+            .iter()
+            .filter(|d| world.door_frame(d) == *f)
+            .map(|d| {
+                let (x0, x1) = (d.x0.min(d.x1) as i64, d.x0.max(d.x1) as i64);
+                let (y0, y1) = (d.y0.min(d.y1) as i64, d.y0.max(d.y1) as i64);
+                CellRect { x0, y0, x1: x1 + 1, y1: y1 + 1 }
+            })
+            .collect();
+        p.fill(pixmap, &doors, DOOR_RGBA);
     }
 
     let factor = label_text_scale(scale);
@@ -349,14 +348,15 @@ impl Placement {
     }
 
     /// Fills the union of `rects` with one colour in one pass.
-    fn fill(&self, pixmap: &mut Pixmap, rects: impl Iterator<Item = CellRect>, rgba: [u8; 4]) {
+    fn fill(&self, pixmap: &mut Pixmap, rects: &[CellRect], rgba: [u8; 4]) {
         self.fill_with(pixmap, rects, &solid(rgba));
     }
 
-    /// Fills the union of `rects` with `paint` in one pass.
-    fn fill_with(&self, pixmap: &mut Pixmap, rects: impl Iterator<Item = CellRect>, paint: &Paint) {
+    /// Fills the union of `rects` with `paint` in one pass. (A slice, not an iterator: one
+    /// copy of this code in the mapper's wasm module, whose size is budgeted.)
+    fn fill_with(&self, pixmap: &mut Pixmap, rects: &[CellRect], paint: &Paint) {
         let mut pb = PathBuilder::new();
-        for r in rects.filter_map(|r| r.clip(&self.visible)) {
+        for r in rects.iter().filter_map(|r| r.clip(&self.visible)) {
             let corners = [(r.x0, r.y0), (r.x1, r.y0), (r.x1, r.y1), (r.x0, r.y1)];
             let [a, b, c, d] = corners.map(|(x, y)| self.to_pixel(x as f64, y as f64));
             pb.move_to(a.0 as f32, a.1 as f32);

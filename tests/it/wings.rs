@@ -54,3 +54,44 @@ fn a_building_in_one_direction_is_one_chain() {
     assert_eq!(w.world, world);
     assert!(w.labels == labels);
 }
+
+/// Routes run across the wings of a wings world: from a room of the first wing to one of the
+/// second, on free cells, 8-connected, through the doors of both wings' units.
+#[test]
+fn routes_cross_from_one_wing_to_the_other() {
+    use ksmcmc::floorplan::route::RoutePlanner;
+    use ksmcmc::grid::Cell;
+    let s = generate(&SynthConfig { wing_deg: 30.0, ..SynthConfig::default() }, 13).unwrap();
+    let w = Wings::run(&s.map, &ChainConfig::default(), &WingConfig::default(), 1, ITERATIONS, &Default::default())
+        .unwrap();
+    let g = s.map.classified();
+    let mut planner = RoutePlanner::new(g.clone(), w.labels.clone(), &w.world, 0.05).unwrap();
+    // A free cell in the middle of each truth wing's largest room.
+    let centre = |turned: bool| {
+        let (i, u) = s
+            .truth
+            .units
+            .iter()
+            .enumerate()
+            .filter(|(_, u)| u.angle.is_some() == turned)
+            .max_by_key(|(_, u)| u.w * u.h)
+            .unwrap();
+        let want = i as u16 + 1;
+        let cells: Vec<usize> = (0..g.cells().len())
+            .filter(|&c| s.labels.cells()[c] == want && g.cells()[c] == Cell::Free && w.labels.cells()[c] > 0)
+            .collect();
+        assert!(!cells.is_empty(), "unit {} has no labelled free cell", u.id);
+        let c = cells[cells.len() / 2];
+        ((c % g.width()) as i64, (c / g.width()) as i64)
+    };
+    let (from, to) = (centre(false), centre(true));
+    let route = planner.route(from, to).unwrap();
+    assert_eq!(route.path.first().copied(), Some([from.0 as u32, from.1 as u32]));
+    assert_eq!(route.path.last().copied(), Some([to.0 as u32, to.1 as u32]));
+    for pair in route.path.windows(2) {
+        let ([ax, ay], [bx, by]) = (pair[0], pair[1]);
+        assert!(ax.abs_diff(bx) <= 1 && ay.abs_diff(by) <= 1, "a jump in the path");
+    }
+    assert!(route.path.iter().all(|&[x, y]| *g.at(x as usize, y as usize) == Cell::Free), "the path leaves free space");
+    assert!(route.rooms.len() >= 2, "{:?}", route.rooms);
+}

@@ -242,7 +242,6 @@ impl RoutePlanner {
             )));
         }
         world.fits(w, h).map_err(|e| RouteError::Mismatch(e.to_string()))?;
-        world.require_one_direction("route planning").map_err(|e| RouteError::Mismatch(e.to_string()))?;
         let links: BTreeSet<(u16, u16)> = world
             .rooms
             .iter()
@@ -427,11 +426,12 @@ impl RoutePlanner {
 }
 
 /// The door (its id) over every map cell a door covers: map cells whose centre falls, in the
-/// world frame, on one of the door's cells (the first door listed, where doors overlap).
+/// door's frame (its units', [`World::door_frame`]), on one of the door's cells (the first door
+/// listed, where doors overlap).
 fn door_cells(world: &World, w: usize, h: usize) -> HashMap<u32, u32> {
     let mut out = HashMap::new();
-    let frame = &world.frame;
     for d in &world.doors {
+        let frame = &world.door_frame(d);
         let r = d.rect();
         // The door's box on the map, from its corners (the whole map's cells are checked
         // against the rectangle, so a turned frame misses none).

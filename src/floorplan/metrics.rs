@@ -1,6 +1,6 @@
 //! Scores of a world against a map.
 
-use super::world::{Frame, World};
+use super::world::{Frame, FrameGroup, World};
 use crate::grid::{Cell, Grid};
 
 /// The class a world predicts for every cell of the map (eq. 3.8), in the map's frame: wall
@@ -13,16 +13,9 @@ use crate::grid::{Cell, Grid};
 pub fn predicted_map(map_width: usize, map_height: usize, world: &World) -> Grid<Cell> {
     // Units at an angle of their own (issue 13) are rasterised in their own frame; a cell is
     // a wall if any frame's rings hold it, else free if any frame's units or doors cover it.
-    let mut frames = vec![world.frame];
-    for u in &world.units {
-        let f = world.unit_frame(u);
-        if !frames.contains(&f) {
-            frames.push(f);
-        }
-    }
     let mut flags = vec![0u8; map_width * map_height];
-    for f in &frames {
-        add_frame_flags(map_width, map_height, world, f, &mut flags);
+    for g in world.frame_groups() {
+        add_frame_flags(map_width, map_height, world, &g, &mut flags);
     }
     let cells = flags
         .iter()
@@ -44,12 +37,13 @@ const WALL: u8 = 2;
 
 /// ORs into `out` (one byte per map cell) the flags of the units and doors lying in `frame`:
 /// [`WALL`] on their rings, [`COVER`] on their cells; a door's cells are [`COVER`] only.
-fn add_frame_flags(map_width: usize, map_height: usize, world: &World, frame: &Frame, out: &mut [u8]) {
+fn add_frame_flags(map_width: usize, map_height: usize, world: &World, group: &FrameGroup, out: &mut [u8]) {
+    let frame = &group.frame;
     let Some(win) = map_window(map_width, map_height, frame) else { return };
     let mut flags = vec![0u8; win.w * win.h];
     let index = |x: i32, y: i32| (y - win.y) as usize * win.w + (x - win.x) as usize;
     let (right, bottom) = (win.x + win.w as i32, win.y + win.h as i32);
-    for u in world.units.iter().filter(|u| world.unit_frame(u) == *frame) {
+    for u in group.units.iter().map(|&i| &world.units[i]) {
         let r = u.rect();
         for y in r.y.max(win.y)..r.bottom().min(bottom) {
             for x in r.x.max(win.x)..r.right().min(right) {
@@ -58,7 +52,7 @@ fn add_frame_flags(map_width: usize, map_height: usize, world: &World, frame: &F
             }
         }
     }
-    for d in world.doors.iter().filter(|d| world.door_frame(d) == *frame) {
+    for d in group.doors.iter().map(|&i| &world.doors[i]) {
         for (x, y) in d.cells() {
             if x >= win.x && y >= win.y && x < right && y < bottom {
                 flags[index(x, y)] = COVER;

@@ -381,6 +381,17 @@ fn is_one(t: &i32) -> bool {
     *t == 1
 }
 
+/// The units and doors of a world that lie in one frame ([`World::frame_groups`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct FrameGroup {
+    /// The frame.
+    pub frame: Frame,
+    /// Indices into the world's `units`.
+    pub units: Vec<usize>,
+    /// Indices into the world's `doors`.
+    pub doors: Vec<usize>,
+}
+
 /// Why a `world.json` was refused.
 #[derive(Debug, Clone, PartialEq)]
 pub struct WorldError(pub String);
@@ -431,6 +442,51 @@ impl World {
         match unit.angle {
             Some(a) if a != self.frame.angle => Frame::turned(self.frame.map_size[0], self.frame.map_size[1], a),
             _ => self.frame,
+        }
+    }
+
+    /// The frames the units lie in, the world frame first, each with the indices of its units
+    /// and of its doors (a door lies in its first unit's frame, the world frame if that unit
+    /// does not exist), found in one pass over each list: what drawing and rasterising a world
+    /// of units at several angles works through frame by frame. Units whose angle is not a
+    /// finite number belong to no frame.
+    pub fn frame_groups(&self) -> Vec<FrameGroup> {
+        // Plain vectors and linear searches over the (few) frames, no maps: this runs in the
+        // size-budgeted mapper module.
+        let mut groups = vec![FrameGroup { frame: self.frame, units: Vec::new(), doors: Vec::new() }];
+        let mut group_of = vec![usize::MAX; self.units.len()];
+        let mut last = 0;
+        for (i, u) in self.units.iter().enumerate() {
+            let frame = self.unit_frame(u);
+            if !frame.angle.is_finite() {
+                continue;
+            }
+            if groups[last].frame != frame {
+                last = groups.iter().position(|g| g.frame == frame).unwrap_or_else(|| {
+                    groups.push(FrameGroup { frame, units: Vec::new(), doors: Vec::new() });
+                    groups.len() - 1
+                });
+            }
+            groups[last].units.push(i);
+            group_of[i] = last;
+        }
+        for (i, d) in self.doors.iter().enumerate() {
+            match self.unit_index(d.units[0]) {
+                Some(u) if group_of[u] != usize::MAX => groups[group_of[u]].doors.push(i),
+                Some(_) => {}
+                None => groups[0].doors.push(i),
+            }
+        }
+        groups
+    }
+
+    /// The index in `units` of the unit with this id: at once where ids follow the order
+    /// (as every world this crate writes has them), else by a search.
+    fn unit_index(&self, id: u32) -> Option<usize> {
+        let at = (id as usize).wrapping_sub(1);
+        match self.units.get(at) {
+            Some(u) if u.id == id => Some(at),
+            _ => self.units.iter().position(|u| u.id == id),
         }
     }
 
@@ -575,14 +631,14 @@ impl World {
                     return bad(format!("world.json: door {} names unit {id}, which does not exist", d.id));
                 }
             }
-            let frames = d.units.map(|id| self.unit(id).map(|u| self.unit_frame(u)));
+            let frames = d.units.map(|id| self.unit_index(id).map(|i| self.unit_frame(&self.units[i])));
             if frames[0] != frames[1] {
                 return bad(format!(
                     "world.json: door {} joins units {} and {} of different angles; a door joins units of one frame",
                     d.id, d.units[0], d.units[1]
                 ));
             }
-            let [ww, wh] = self.door_frame(d).world_size.map(i64::from);
+            let [ww, wh] = frames[0].unwrap_or(self.frame).world_size.map(i64::from);
             for (x, y) in [(d.x0, d.y0), (d.x1, d.y1)] {
                 if x < 0 || y < 0 || x as i64 >= ww || y as i64 >= wh {
                     return bad(format!("world.json: door {} has a cell ({x},{y}) outside the world", d.id));

@@ -16,6 +16,7 @@
 use super::labels::{place_labels, tag_size, world_label_candidates, LabelBox};
 use super::legend::{draw_legend, legend_box, legend_entries};
 use super::{font, RenderOptions};
+use crate::floorplan::world::FrameGroup;
 use crate::floorplan::{Frame, UnitType, World};
 use tiny_skia::{BlendMode, Color, FillRule, Paint, PathBuilder, Pixmap, Rect, Transform};
 
@@ -98,25 +99,23 @@ pub fn draw_world(
     };
     // Units (with their doors) drawn in each frame they lie in: the world frame, and one per
     // angle of units that follow another wall direction (issue 13).
-    let mut frames = vec![world.frame];
-    for u in &world.units {
-        let f = world.unit_frame(u);
-        if !frames.contains(&f) {
-            frames.push(f);
-        }
-    }
-    let placements: Vec<(Frame, Placement)> =
-        frames.iter().filter_map(|f| Placement::new(f, map_width, map_height, scale).map(|p| (*f, p))).collect();
-    let in_frame = |f: Frame| move |u: &&crate::floorplan::Unit| world.unit_frame(u) == f && u.w >= 1 && u.h >= 1;
+    let groups: Vec<(FrameGroup, Placement)> = world
+        .frame_groups()
+        .into_iter()
+        .filter_map(|g| Placement::new(&g.frame, map_width, map_height, scale).map(|p| (g, p)))
+        .collect();
     let t = world.wall_thickness.max(1) as i64;
+    let units = |g: &FrameGroup| -> Vec<&crate::floorplan::Unit> {
+        g.units.iter().map(|&i| &world.units[i]).filter(|u| u.w >= 1 && u.h >= 1).collect()
+    };
     let cells = |u: &crate::floorplan::Unit| CellRect::new(u.x as i64, u.y as i64, u.w as i64, u.h as i64);
     for kind in UnitType::ALL {
         let [r, g, b] = room_fill_rgb(kind);
         let mut paint = solid([r, g, b, 255]);
         paint.blend_mode = BlendMode::Multiply;
-        for (f, p) in &placements {
-            let units = world.units.iter().filter(in_frame(*f)).filter(|u| u.kind == kind);
-            let interiors: Vec<CellRect> = units.filter_map(|u| cells(u).inset(t)).collect();
+        for (g, p) in &groups {
+            let interiors: Vec<CellRect> =
+                units(g).into_iter().filter(|u| u.kind == kind).filter_map(|u| cells(u).inset(t)).collect();
             p.fill_with(pixmap, &interiors, &paint);
         }
     }
@@ -134,16 +133,16 @@ pub fn draw_world(
         .collect();
     place.fill(pixmap, &unexplained, UNEXPLAINED_RGBA);
 
-    for (f, p) in &placements {
-        let walls: Vec<CellRect> = world.units.iter().filter(in_frame(*f)).flat_map(|u| cells(u).ring(t)).collect();
+    for (g, p) in &groups {
+        let walls: Vec<CellRect> = units(g).into_iter().flat_map(|u| cells(u).ring(t)).collect();
         p.fill(pixmap, &walls, WALL_RGBA);
     }
-    for (f, p) in &placements {
-        let doors: Vec<CellRect> = world
+    for (g, p) in &groups {
+        let doors: Vec<CellRect> = g
             .doors
             .iter()
-            .filter(|d| world.door_frame(d) == *f)
-            .map(|d| {
+            .map(|&i| {
+                let d = &world.doors[i];
                 let (x0, x1) = (d.x0.min(d.x1) as i64, d.x0.max(d.x1) as i64);
                 let (y0, y1) = (d.y0.min(d.y1) as i64, d.y0.max(d.y1) as i64);
                 CellRect { x0, y0, x1: x1 + 1, y1: y1 + 1 }

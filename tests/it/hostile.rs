@@ -103,3 +103,36 @@ fn predicted_map_allocates_by_the_map_not_the_world_frame() {
     let p = metrics::predicted_map(10, 10, &w);
     assert_eq!((p.width(), p.height()), (10, 10));
 }
+
+/// A world of the most units, each at its own angle, with the most doors: validated, drawn and
+/// scored frame by frame in one pass over each list (not once per frame), and a unit whose
+/// angle is no number is drawn in no frame instead of stalling or panicking.
+#[test]
+fn units_at_ten_thousand_angles_are_grouped_not_searched() {
+    use ksmcmc::floorplan::world::{MAX_DOORS, MAX_UNITS};
+    use ksmcmc::floorplan::Door;
+    use ksmcmc::grid::{Cell, Grid};
+    let mut w = World::empty(200, 150);
+    w.units = (1..=MAX_UNITS as u32)
+        .map(|id| Unit { angle: Some(id as f64 * 1e-4), ..Unit::new(id, 60, 50, 40, 30, Default::default()) })
+        .collect();
+    w.doors = (1..=MAX_DOORS as u32)
+        .map(|id| {
+            let u = 1 + (id - 1) % MAX_UNITS as u32;
+            Door { id, units: [u, u], x0: 70, y0: 50, x1: 75, y1: 50 }
+        })
+        .collect();
+    w.validate().unwrap();
+    let groups = w.frame_groups();
+    assert_eq!(groups.len(), MAX_UNITS + 1, "the world frame and one per angle");
+    assert_eq!(groups.iter().map(|g| g.doors.len()).sum::<usize>(), MAX_DOORS);
+    let map = Grid::new(200, 150, Cell::Free);
+    let k = ksmcmc::floorplan::metrics::prediction_rate(&map, &w);
+    assert!((0.0..=1.0).contains(&k), "{k}");
+    let picture = ksmcmc::render::render(&map, Some(&w), &Default::default());
+    assert_eq!((picture.width(), picture.height()), (200, 150));
+    w.units[0].angle = Some(f64::NAN);
+    assert!(w.validate().is_err());
+    assert_eq!(w.frame_groups().iter().map(|g| g.units.len()).sum::<usize>(), MAX_UNITS - 1);
+    let _ = ksmcmc::render::render(&map, Some(&w), &Default::default());
+}

@@ -385,7 +385,8 @@ fn wings(dir: &Path, o: &Opts) -> Result<(), CliError> {
         let w = Wings::run(&map, &o.config, &WingConfig::default(), 1, o.iterations, &o.rooms)
             .map_err(|e| CliError::Failed(e.to_string()))?;
         let t_wings = t0.elapsed().as_secs_f64();
-        let mut angles: Vec<String> = w
+        // A set: each angle once, in order.
+        let angles: Vec<String> = w
             .world
             .units
             .iter()
@@ -393,7 +394,6 @@ fn wings(dir: &Path, o: &Opts) -> Result<(), CliError> {
             .collect::<std::collections::BTreeSet<_>>()
             .into_iter()
             .collect();
-        angles.sort();
         println!(
             "| {name} | {} | {k_one:.4} | {:.4} | {} ({}) | {t_one:.1} / {t_wings:.1} |",
             w.chains.len().saturating_sub(1).max(1),

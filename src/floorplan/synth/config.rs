@@ -124,6 +124,14 @@ impl Default for SynthConfig {
 /// Cells kept clear between a door and the ends of its wall.
 pub(super) const DOOR_CLEARANCE: i32 = 2;
 
+/// Width and height of the bounding box of a `canvas` (width, height) turned by `angle`
+/// radians: the map's size for one building, each wing's share of it for two.
+pub(super) fn turned_extent(canvas: (u32, u32), angle: f64) -> (f64, f64) {
+    let (s, c) = (libm::fabs(libm::sin(angle)), libm::fabs(libm::cos(angle)));
+    let (w, h) = (canvas.0 as f64, canvas.1 as f64);
+    (w * c + h * s, w * s + h * c)
+}
+
 /// The largest canvas side, cells.
 const MAX_SIDE: u32 = 1 << 16;
 
@@ -222,10 +230,8 @@ impl SynthConfig {
     }
 
     /// Width and height of the canvas turned by `angle` radians (its bounding box).
-    pub(super) fn extent(&self, angle: f64) -> (f64, f64) {
-        let (s, c) = (libm::fabs(libm::sin(angle)), libm::fabs(libm::cos(angle)));
-        let (w, h) = (self.width as f64, self.height as f64);
-        (w * c + h * s, w * s + h * c)
+    fn extent(&self, angle: f64) -> (f64, f64) {
+        turned_extent((self.width, self.height), angle)
     }
 
     /// Validates and converts to cells; the error names the first bad field found.

@@ -13,7 +13,7 @@
 //! the first wing's frame is the truth's `frame`, and the second wing's units carry its angle
 //! ([`World::unit_frame`](crate::floorplan::World::unit_frame)).
 
-use super::config::Cells;
+use super::config::{turned_extent, Cells};
 use super::scan::Observed;
 use crate::geometry::Frame;
 use crate::grid::{Cell, Grid};
@@ -36,11 +36,8 @@ pub(super) struct Composed {
 pub(super) fn compose(wings: [&Observed; 2], angles: [f64; 2], units: u16, c: &Cells, door: i32) -> Composed {
     let (mw, mh) = c.map_size;
     let (cw, ch) = (c.canvas.0 as f64, c.canvas.1 as f64);
-    let extent = |a: f64| {
-        let (s, co) = (libm::fabs(libm::sin(a)), libm::fabs(libm::cos(a)));
-        (cw * co + ch * s, cw * s + ch * co)
-    };
-    let (first, second) = (extent(angles[0]), extent(angles[1]));
+    let canvas = (c.canvas.0 as u32, c.canvas.1 as u32);
+    let (first, second) = (turned_extent(canvas, angles[0]), turned_extent(canvas, angles[1]));
     let centres = [(first.0 / 2.0, mh as f64 / 2.0), (first.0 + second.0 / 2.0, mh as f64 / 2.0)];
     let frames = angles.map(|a| Frame::turned(mw, mh, a));
     let offsets = [0, 1].map(|k| {

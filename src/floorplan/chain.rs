@@ -1020,6 +1020,25 @@ impl Chain {
         (world, labels)
     }
 
+    /// [`Chain::best_world_with_rooms`] for a building that none of its wall directions holds
+    /// most of: the rooms are where the walls, their gaps along the directions `angles` too
+    /// and the doorways part the floor ([`super::room_layer::explain_rooms_by_walls`];
+    /// [`super::wings`] decides when).
+    pub fn best_world_with_rooms_by_walls(
+        &mut self,
+        rooms: &super::rooms::RoomConfig,
+        angles: &[f64],
+    ) -> (World, Grid<u16>) {
+        use super::room_layer::{explain_rooms_by_walls, RoomKnowledge};
+        let mut world = self.best_world_typed();
+        let k = &self.config.knowledge;
+        let kb = if k.enabled { RoomKnowledge::configured(k).ok() } else { None };
+        let (map, world_map, resolution) = (&self.map, &self.world_map, self.resolution);
+        let mut by = |kb| explain_rooms_by_walls(&mut world, map, world_map, rooms, resolution, kb, angles);
+        let labels = by(kb.as_ref()).or_else(|_| by(None)).unwrap_or_else(|_| Grid::new(map.width(), map.height(), 0));
+        (world, labels)
+    }
+
     /// The classified map the chain explains, in the map's own frame.
     pub fn map(&self) -> &Grid<Cell> {
         &self.map

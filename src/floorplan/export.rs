@@ -51,6 +51,8 @@ pub struct RoomInput {
     /// The room rules when not the built-in ones (the chain's `knowledge.room_kb`).
     room_rules: Option<String>,
     edits: super::edits::Edits,
+    /// Set by [`RoomInput::by_walls`]: the wall directions of the building's other wings.
+    by_walls: Option<Vec<f64>>,
 }
 
 impl RoomInput {
@@ -64,6 +66,7 @@ impl RoomInput {
             knowledge: chain.config().knowledge.enabled,
             room_rules: chain.config().knowledge.room_kb.clone(),
             edits: chain.edits().clone(),
+            by_walls: None,
         }
     }
 
@@ -106,6 +109,7 @@ impl RoomInput {
             knowledge,
             room_rules: None,
             edits,
+            by_walls: None,
         })
     }
 
@@ -131,14 +135,32 @@ impl RoomInput {
         &self.world
     }
 
+    /// The same input with its rooms found where the walls part them, in a building that no
+    /// wall direction holds most of, with `angles` the other wings' wall directions
+    /// ([`room_layer::explain_rooms_by_walls`], [`super::wings`]).
+    pub fn by_walls(mut self, angles: &[f64]) -> RoomInput {
+        self.by_walls = Some(angles.to_vec());
+        self
+    }
+
     /// The world with its room layer and the room labels, as
-    /// [`Chain::best_world_with_rooms`] gives them ([`room_layer::explain_world_rooms`]).
+    /// [`Chain::best_world_with_rooms`] gives them ([`room_layer::explain_world_rooms`]), or
+    /// by the walls ([`RoomInput::by_walls`]).
     pub fn explain(self, rooms: &RoomConfig) -> (World, Grid<u16>) {
-        let RoomInput { mut world, map, world_map, resolution, knowledge, room_rules, edits } = self;
+        let RoomInput { mut world, map, world_map, resolution, knowledge, room_rules, edits, by_walls } = self;
         let text = room_rules.as_deref().unwrap_or(room_layer::BUILTIN_ROOM_RULES);
         let kb = if knowledge { room_layer::RoomKnowledge::parse(text).ok() } else { None };
-        let labels =
-            room_layer::explain_world_rooms_by(&mut world, &map, &world_map, rooms, resolution, kb.as_ref(), &edits);
+        let labels = match by_walls {
+            Some(angles) => {
+                let mut by = |kb| {
+                    room_layer::explain_rooms_by_walls(&mut world, &map, &world_map, rooms, resolution, kb, &angles)
+                };
+                by(kb.as_ref()).or_else(|_| by(None)).unwrap_or_else(|_| Grid::new(map.width(), map.height(), 0))
+            }
+            None => {
+                room_layer::explain_world_rooms_by(&mut world, &map, &world_map, rooms, resolution, kb.as_ref(), &edits)
+            }
+        };
         (world, labels)
     }
 }

@@ -233,12 +233,70 @@ pub fn explain_rooms_edited(
     let groups = join(world, world_map, joined);
     let mut labels = labels_of_groups(world, &groups, map, world_map, c);
     edits.apply_to_labels(&mut labels, map);
-    world.rooms = rooms_of_labels(world, &labels, resolution);
-    if let Some(k) = knowledge {
-        super::room_types::type_rooms(world, &labels, resolution, &k.types)?;
-    }
-    mark_unexplored(&mut world.rooms, &labels, map, resolution);
+    rooms_of_segments(world, &labels, map, resolution, knowledge)?;
     edits.apply_to_rooms(&mut world.rooms, &labels);
+    Ok(labels)
+}
+
+/// Fills in `world.rooms` from the room `labels`: the rooms read off the labels
+/// ([`rooms_of_labels`]), typed by the indoor rules when `knowledge` is on
+/// ([`super::room_types::type_rooms`]), rays typed unknown ([`mark_unexplored`]).
+fn rooms_of_segments(
+    world: &mut World,
+    labels: &Grid<u16>,
+    map: &Grid<Cell>,
+    resolution: f64,
+    knowledge: Option<&RoomKnowledge>,
+) -> Result<(), MlnError> {
+    world.rooms = rooms_of_labels(world, labels, resolution);
+    if let Some(k) = knowledge {
+        super::room_types::type_rooms(world, labels, resolution, &k.types)?;
+    }
+    mark_unexplored(&mut world.rooms, labels, map, resolution);
+    Ok(())
+}
+
+/// The rooms of a building that none of its wall directions holds most of (issue 13,
+/// [`super::wings`]), with the wall directions of its other wings `angles` (radians, as the
+/// frame's angle). The units of a chain turned one way cut across the walls that run the
+/// other ways, so which of them share a room says little of where a person parts the rooms.
+/// The rooms are where the walls part the floor: every unit that encloses space starts in
+/// one group, which the doorways and the wall gaps of every direction then split
+/// ([`super::rooms::labels_of_groups_along`]). The rooms are read off the labels and typed as
+/// [`explain_rooms`] does.
+///
+/// ```
+/// use ksmcmc::floorplan::room_layer::explain_rooms_by_walls;
+/// use ksmcmc::floorplan::rooms::RoomConfig;
+/// use ksmcmc::floorplan::{Unit, UnitType, World};
+/// use ksmcmc::grid::{Cell, Grid};
+///
+/// // Two rooms, 3 m square, parted by a wall along row 60 with a 1 m doorway: one unit
+/// // spans both.
+/// let mut map = Grid::new(60, 121, Cell::Free);
+/// for x in (0..20).chain(40..60) {
+///     *map.at_mut(x, 60) = Cell::Occupied;
+/// }
+/// let mut world = World::empty(60, 121);
+/// world.units = vec![Unit::new(1, 0, 0, 60, 121, UnitType::Room)];
+/// let c = RoomConfig { min_wall_len: 10, ..RoomConfig::default() };
+/// let labels = explain_rooms_by_walls(&mut world, &map, &map, &c, 0.05, None, &[])?;
+/// assert_eq!(world.rooms.len(), 2);
+/// assert_ne!(labels.at(30, 10), labels.at(30, 110));
+/// # Ok::<(), ksmcmc::mln::MlnError>(())
+/// ```
+pub fn explain_rooms_by_walls(
+    world: &mut World,
+    map: &Grid<Cell>,
+    world_map: &Grid<Cell>,
+    c: &RoomConfig,
+    resolution: f64,
+    knowledge: Option<&RoomKnowledge>,
+    angles: &[f64],
+) -> Result<Grid<u16>, MlnError> {
+    let groups: Vec<u16> = join(world, world_map, []).into_iter().map(|g| u16::from(g > 0)).collect();
+    let labels = super::rooms::labels_of_groups_along(world, &groups, map, world_map, c, angles);
+    rooms_of_segments(world, &labels, map, resolution, knowledge)?;
     Ok(labels)
 }
 

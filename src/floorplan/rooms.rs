@@ -348,13 +348,26 @@ pub fn labels_of_groups(
     world_map: &Grid<Cell>,
     c: &RoomConfig,
 ) -> Grid<u16> {
+    labels_of_groups_along(world, rooms, map, world_map, c, &[])
+}
+
+/// [`labels_of_groups`] with the wall gaps of further wall directions closed too (`angles`,
+/// [`super::wall_gaps::close_wall_gaps_along`]).
+pub fn labels_of_groups_along(
+    world: &World,
+    rooms: &[u16],
+    map: &Grid<Cell>,
+    world_map: &Grid<Cell>,
+    c: &RoomConfig,
+    angles: &[f64],
+) -> Grid<u16> {
     let owner = room_owner(world, rooms, world_map);
     let (mut labels, queue) = label_unit_cells(world, &owner, world_map.width(), map);
     spread_labels(&mut labels, map, queue, c.max_reach);
     label_far_regions(&mut labels, map, rooms.iter().copied().max().unwrap_or(0), c);
     let open = without_clutter(map, c.min_wall_len);
     split_open_at_doorways(&mut labels, &open, c);
-    if let Some(closed) = super::wall_gaps::close_wall_gaps(world, map, world_map, c) {
+    if let Some(closed) = super::wall_gaps::close_wall_gaps_along(world, map, world_map, c, angles) {
         split_at_wall_gaps(&mut labels, &closed, c);
     }
     let fragment = split_disconnected(&mut labels, c.min_room_cells);
@@ -484,9 +497,20 @@ pub(crate) fn world_cell(
     rotation: &Rotation,
     mx: usize,
     my: usize,
+    size: (usize, usize),
+) -> Option<(usize, usize)> {
+    frame_cell(&world.frame, rotation, mx, my, size)
+}
+
+/// [`world_cell`] in any `frame` of the map, with its `rotation`.
+pub(crate) fn frame_cell(
+    frame: &crate::geometry::Frame,
+    rotation: &Rotation,
+    mx: usize,
+    my: usize,
     (ww, wh): (usize, usize),
 ) -> Option<(usize, usize)> {
-    let (wx, wy) = if world.frame.is_identity() {
+    let (wx, wy) = if frame.is_identity() {
         (mx as f64 + 0.5, my as f64 + 0.5)
     } else {
         rotation.to_world(mx as f64 + 0.5, my as f64 + 0.5)

@@ -28,8 +28,9 @@
 //! The gaps never reach the chain, its likelihood or K(W,M): they are a reading of the walls,
 //! not an observation.
 
-use super::rooms::{world_cell, RoomConfig};
+use super::rooms::{frame_cell, RoomConfig};
 use super::world::World;
+use crate::geometry::Frame;
 use crate::grid::{Cell, Grid};
 
 /// Cells of the world frame (row-major, `world_map`'s size) that close a wall gap. `depth` is
@@ -282,32 +283,68 @@ pub fn stub_depth(t: i32) -> usize {
 /// The map (in the map frame) with every wall gap ([`wall_gaps`], found in the world frame)
 /// drawn as occupied; `None` when there is none, or gaps are off.
 pub fn close_wall_gaps(world: &World, map: &Grid<Cell>, world_map: &Grid<Cell>, c: &RoomConfig) -> Option<Grid<Cell>> {
-    let gaps = wall_gaps(world_map, c, stub_depth(world.wall_thickness));
-    if !gaps.contains(&true) {
-        return None;
-    }
-    let (ww, wh) = (world_map.width(), world_map.height());
-    let rotation = world.frame.rotation();
+    close_wall_gaps_along(world, map, world_map, c, &[])
+}
+
+/// [`close_wall_gaps`] with the gaps of the walls that run along further directions too:
+/// `angles` (radians, in the convention of the frame's angle, [`Frame::turned`]) are the
+/// wall directions of a building's other wings ([`super::wings`]). A person closes a room
+/// along its wall whichever way the wall runs; a gap is found in a frame turned by its
+/// wall's direction, where that wall runs along the rows or columns, and drawn back onto the
+/// map. Walls of other directions run along no row of that frame for a stub's length, so a
+/// frame closes the gaps of its own walls only.
+///
+/// [`Frame::turned`]: crate::geometry::Frame::turned
+pub fn close_wall_gaps_along(
+    world: &World,
+    map: &Grid<Cell>,
+    world_map: &Grid<Cell>,
+    c: &RoomConfig,
+    angles: &[f64],
+) -> Option<Grid<Cell>> {
+    let depth = stub_depth(world.wall_thickness);
     let mut closed = map.clone();
+    let mut any = close_in_frame(&mut closed, map, world_map, &world.frame, &wall_gaps(world_map, c, depth));
+    for &angle in angles {
+        let (turned, frame) = crate::vision::orientation::to_world_frame(map, angle);
+        any |= close_in_frame(&mut closed, map, &turned, &frame, &wall_gaps(&turned, c, depth));
+    }
+    any.then_some(closed)
+}
+
+/// Draws into `closed` (the map frame) every free cell of `map` whose cell in `frame` is a
+/// gap of `gaps` (cells of `framed`, the map in that frame); returns whether any gap was.
+fn close_in_frame(
+    closed: &mut Grid<Cell>,
+    map: &Grid<Cell>,
+    framed: &Grid<Cell>,
+    frame: &Frame,
+    gaps: &[bool],
+) -> bool {
+    if !gaps.contains(&true) {
+        return false;
+    }
+    let (ww, wh) = (framed.width(), framed.height());
+    let rotation = frame.rotation();
     for my in 0..map.height() {
         for mx in 0..map.width() {
             if *map.at(mx, my) != Cell::Free {
                 continue;
             }
-            if let Some((wx, wy)) = world_cell(world, &rotation, mx, my, (ww, wh)) {
+            if let Some((wx, wy)) = frame_cell(frame, &rotation, mx, my, (ww, wh)) {
                 if gaps[wy * ww + wx] {
                     *closed.at_mut(mx, my) = Cell::Occupied;
                 }
             }
         }
     }
-    Some(closed)
+    true
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::floorplan::rooms::labels_of_groups;
+    use crate::floorplan::rooms::{labels_of_groups, labels_of_groups_along};
     use crate::floorplan::{Unit, UnitType};
 
     fn config(gap: u32, stub: u32) -> RoomConfig {
@@ -448,6 +485,50 @@ mod tests {
         assert!((10..20).all(|x| gaps[2 * 40 + x]));
         assert!(!(30..33).any(|x| gaps[2 * 40 + x]));
         assert!(!wall_gaps(&map, &config(0, 5), 3).contains(&true));
+    }
+
+    /// The room and corridor of [`an_open_room_front_parts_room_and_corridor`] (walls 3 cells
+    /// thick) turned by 30 degrees on a map whose units stay upright (a wing of a building at an angle): the
+    /// gap is closed only along its own wall's direction.
+    #[test]
+    fn gaps_close_along_a_turned_wing() {
+        let (w, h) = (120usize, 100usize);
+        let mut upright = Grid::new(w, h, Cell::Free);
+        fill(&mut upright, 0..40, 39..42, Cell::Occupied);
+        fill(&mut upright, 80..w, 39..42, Cell::Occupied);
+        let angle = 30f64.to_radians();
+        let frame = crate::geometry::Frame::turned(200, 200, angle);
+        let [ww, wh] = frame.world_size.map(|v| v as f64);
+        // The building in the middle of the turned frame, solid outside.
+        let (ox, oy) = ((ww - w as f64) / 2.0, (wh - h as f64) / 2.0);
+        let mut map = Grid::new(200, 200, Cell::Occupied);
+        for my in 0..200 {
+            for mx in 0..200 {
+                let (wx, wy) = frame.to_world(mx as f64 + 0.5, my as f64 + 0.5);
+                let (x, y) = ((wx - ox).floor(), (wy - oy).floor());
+                if x >= 0.0 && y >= 0.0 && (x as usize) < w && (y as usize) < h {
+                    *map.at_mut(mx, my) = *upright.at(x as usize, y as usize);
+                }
+            }
+        }
+        let at = |x: f64, y: f64| {
+            let (mx, my) = frame.to_map(x + ox, y + oy);
+            (mx as usize, my as usize)
+        };
+        let (corridor, room) = (at(60.5, 20.5), at(60.5, 70.5));
+        let mut world = World::empty(200, 200);
+        world.wall_thickness = 3;
+        world.units = vec![Unit::new(1, 0, 0, 200, 200, UnitType::Room)];
+        let c = RoomConfig { max_wall_gap: 50, min_wall_stub: 6, min_core_cells: 200, ..RoomConfig::default() };
+        let label = |labels: &Grid<u16>, (x, y): (usize, usize)| *labels.at(x, y);
+        let upright_only = labels_of_groups(&world, &[1], &map, &map, &c);
+        assert_eq!(label(&upright_only, corridor), label(&upright_only, room), "no upright wall has a gap");
+        let turned = labels_of_groups_along(&world, &[1], &map, &map, &c, &[angle]);
+        assert_ne!(label(&turned, corridor), 0);
+        assert_ne!(label(&turned, corridor), label(&turned, room), "closed along the turned wall");
+        // A frame of another direction finds no gap there.
+        let other = labels_of_groups_along(&world, &[1], &map, &map, &c, &[-30f64.to_radians()]);
+        assert_eq!(label(&other, corridor), label(&other, room));
     }
 
     /// A corridor along the top and, below it, a room whose front is open between two wall

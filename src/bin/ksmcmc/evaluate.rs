@@ -144,6 +144,7 @@ fn room_variants(o: &Opts) -> Vec<(Option<String>, RoomConfig)> {
 /// chains.
 fn bormann_map_variants(dir: &Path, name: &str, o: &Opts, seed: u64) -> Result<Vec<[MapScore; 2]>, CliError> {
     use ksmcmc::floorplan::export::RoomInput;
+    use ksmcmc::floorplan::wings::{WingConfig, WingLayout};
     let truth = truth_regions(&dir.join(format!("{name}_gt_segmentation.png")))?;
     let rules = room_variants(o);
     let mut out: Vec<Vec<MapScore>> = vec![Vec::new(); rules.len()];
@@ -155,7 +156,15 @@ fn bormann_map_variants(dir: &Path, name: &str, o: &Opts, seed: u64) -> Result<V
         let input = RoomInput::of(&mut chain);
         let free = map.classified().map(|&c| c == Cell::Free);
         for (v, (r, rooms)) in rules.iter().enumerate() {
-            let (_, labels) = input.clone().with_room_rules(r.clone()).explain(rooms);
+            let input = input.clone().with_room_rules(r.clone());
+            let (world, labels) = input.clone().explain(rooms);
+            // As `ksmcmc floorplan` finds them (floorplan::wings): by the walls where no wall
+            // direction holds most of the building.
+            let layout = WingLayout::find(map.classified(), &labels, world.frame.angle, &WingConfig::default());
+            let labels = match layout.as_ref().and_then(WingLayout::by_walls) {
+                Some(angles) => input.by_walls(angles).explain(rooms).1,
+                None => labels,
+            };
             let labels = labels.map(|&l| l as u32);
             out[v].push(MapScore {
                 seg: score_segmentation(&labels, &truth),

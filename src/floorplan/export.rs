@@ -227,27 +227,9 @@ impl Outputs {
         georef: Option<&Georef>,
         model: &Model3dOptions,
     ) -> Result<Outputs, ExportError> {
-        Outputs::drawn_from(map, world, world, labels, report, trace_csv, georef, model)
-    }
-
-    /// [`Outputs::new`] for a world whose units follow several angles
-    /// ([`super::wings::Wings`]): the floor shapes (`world.geojson`, `world.svg`) and the 3D
-    /// model are drawn from `one_frame`, a world in one frame with the same rooms, since they
-    /// take units in the world frame only so far.
-    #[allow(clippy::too_many_arguments)]
-    pub fn drawn_from(
-        map: &OccupancyMap,
-        world: &World,
-        one_frame: &World,
-        labels: &Grid<u16>,
-        report: &serde_json::Value,
-        trace_csv: String,
-        georef: Option<&Georef>,
-        model: &Model3dOptions,
-    ) -> Result<Outputs, ExportError> {
-        let shapes = floor_shapes(one_frame, labels).map_err(ExportError::Shapes)?;
+        let shapes = floor_shapes(world, labels).map_err(ExportError::Shapes)?;
         Ok(Outputs {
-            world_glb: world_glb(one_frame, map.yaml().resolution, model).map_err(ExportError::Model3d)?,
+            world_glb: world_glb(world, map.yaml().resolution, model).map_err(ExportError::Model3d)?,
             world_json: world.to_json(),
             overlay_png: overlay_png(map.classified(), world).map_err(ExportError::Overlay)?,
             graph_json: graph_json(world),
@@ -255,7 +237,7 @@ impl Outputs {
             labels_pgm: labels_pgm(labels),
             report_json: report_json(report),
             world_geojson: geojson::geojson(&shapes, &MapOrigin::of(map), georef),
-            world_svg: render::svg::svg(&shapes, one_frame, map.yaml().resolution),
+            world_svg: render::svg::svg(&shapes, world, map.yaml().resolution),
         })
     }
 

@@ -127,8 +127,7 @@ pub fn several_directions_note(r: &serde_json::Value) -> Option<String> {
     let list: Vec<String> = angles.iter().map(|a| format!("{a:.1}°")).collect();
     let what = match r["wings"].as_array() {
         Some(wings) if wings.len() > 1 => format!(
-            "{} wings were explained each in its own direction (world.json, overlay.png, graph.json); world.svg, \
-             world.geojson and world.glb still draw the first chain's plan, in one frame",
+            "{} wings were explained each in its own direction, their units at their angles in every output",
             wings.len()
         ),
         _ => "the units follow only the first, so rooms along the others are explained by several rectangles and \

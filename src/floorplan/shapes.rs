@@ -35,7 +35,7 @@
 
 use super::outline::{self, Polygon};
 use super::room_layer::map_cell;
-use super::world::{Door, Room, UnitType, World, WorldError};
+use super::world::{Door, Frame, FrameGroup, Room, UnitType, World, WorldError};
 use crate::grid::Grid;
 
 /// A point on the map in cells: `x` right, `y` down, `(0, 0)` the top-left corner of the map's
@@ -82,6 +82,10 @@ pub struct RoomShape {
     pub label_room: (f64, f64),
     /// Where the shape came from.
     pub source: ShapeSource,
+    /// The angle (radians, as the frame's) of the frame the shape was drawn in, whose axes
+    /// `label_room` runs along: the world frame's, or in a world of units at several angles
+    /// the frame most of the room's units lie in.
+    pub angle: f64,
 }
 
 /// One door's line across its doorway.
@@ -157,15 +161,55 @@ impl std::error::Error for ShapeError {}
 /// ```
 pub fn floor_shapes(world: &World, labels: &Grid<u16>) -> Result<FloorShapes, ShapeError> {
     world.validate().map_err(ShapeError::World)?;
-    world.require_one_direction("the floor shapes (SVG, GeoJSON)").map_err(ShapeError::World)?;
     let map = world.frame.map_size;
     if [labels.width(), labels.height()] != [map[0] as usize, map[1] as usize] {
         return Err(ShapeError::Labels { labels: [labels.width(), labels.height()], map });
     }
-    let plan = Plan::new(world, labels);
-    let rooms = world.rooms.iter().enumerate().map(|(k, r)| plan.room(k, r)).collect();
+    let groups = world.frame_groups();
+    let rooms = if groups.len() > 1 {
+        rooms_by_frame(world, labels, &groups)
+    } else {
+        let plan = Plan::new(world, labels);
+        world.rooms.iter().enumerate().map(|(k, r)| plan.room(k, r)).collect()
+    };
     let doors = world.doors.iter().map(|d| door_line(world, d)).collect();
     Ok(FloorShapes { rooms, doors, map_size: map, angle: world.frame.angle })
+}
+
+/// The room shapes of a world of units at several angles (issue 13): each room outlined from
+/// its label cells, taken in the frame most of its units lie in (the world frame for a room
+/// with none), so that its walls along that frame's axes are straight lines. The floors of
+/// units of several angles do not union into exact polygons, and a wing's units need not
+/// tile the rooms the room layer found, so the labels give the shape. Rooms drawn in one
+/// frame never overlap; two drawn in different frames may overlap, or leave a sliver between
+/// them, less than a cell wide where their label cells meet.
+fn rooms_by_frame(world: &World, labels: &Grid<u16>, groups: &[FrameGroup]) -> Vec<RoomShape> {
+    let mut group_of = vec![usize::MAX; world.units.len()];
+    for (k, g) in groups.iter().enumerate() {
+        g.units.iter().for_each(|&i| group_of[i] = k);
+    }
+    let frame_of = |room: &Room| {
+        let count =
+            |k: usize| room.units.iter().filter(|&&id| world.unit_index(id).is_some_and(|i| group_of[i] == k)).count();
+        (0..groups.len()).max_by_key(|&k| (count(k), std::cmp::Reverse(k))).unwrap_or(0)
+    };
+    let room_frame: Vec<usize> = world.rooms.iter().map(frame_of).collect();
+    let mut shapes: Vec<Option<RoomShape>> = vec![None; world.rooms.len()];
+    for (k, g) in groups.iter().enumerate() {
+        let here: Vec<usize> = (0..world.rooms.len()).filter(|&i| room_frame[i] == k).collect();
+        if here.is_empty() {
+            continue;
+        }
+        // The frame's plan of these rooms, without units: each outlined from its labels.
+        let mut sub = World::empty(world.frame.map_size[0], world.frame.map_size[1]);
+        sub.frame = g.frame;
+        sub.rooms = here.iter().map(|&i| Room { units: Vec::new(), ..world.rooms[i].clone() }).collect();
+        let plan = Plan::new(&sub, labels);
+        for (j, &i) in here.iter().enumerate() {
+            shapes[i] = Some(plan.room(j, &sub.rooms[j]));
+        }
+    }
+    shapes.into_iter().flatten().collect()
 }
 
 /// A rectangle `[x0, y0, x1, y1]` in half cells of the world frame.
@@ -311,6 +355,7 @@ impl<'a> Plan<'a> {
             anchor: to_map(self.world, anchor.0, anchor.1),
             label_room,
             source,
+            angle: self.world.frame.angle,
         }
     }
 }
@@ -323,10 +368,15 @@ fn centre_and_size(r: Half) -> ((f64, f64), (f64, f64)) {
 
 /// A world-frame point (cells) on the map.
 pub fn to_map(world: &World, x: f64, y: f64) -> MapPoint {
-    if world.frame.is_identity() {
+    frame_to_map(&world.frame, x, y)
+}
+
+/// A point of `frame` (cells) on the map.
+pub fn frame_to_map(frame: &Frame, x: f64, y: f64) -> MapPoint {
+    if frame.is_identity() {
         (x, y)
     } else {
-        world.frame.to_map(x, y)
+        frame.to_map(x, y)
     }
 }
 
@@ -388,7 +438,8 @@ fn door_line(world: &World, d: &Door) -> DoorLine {
         let x = (x0 + x1) as f64 / 2.0;
         [(x, y0 as f64), (x, y1 as f64)]
     };
-    DoorLine { id: d.id, ends: ends.map(|(x, y)| to_map(world, x, y)) }
+    let frame = world.door_frame(d);
+    DoorLine { id: d.id, ends: ends.map(|(x, y)| frame_to_map(&frame, x, y)) }
 }
 
 #[cfg(test)]

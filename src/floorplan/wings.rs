@@ -66,10 +66,6 @@ pub struct Wings {
     pub world: World,
     /// Its room labels, one id per room of `world`.
     pub labels: Grid<u16>,
-    /// The first chain's world with its rooms (the same ids as `world`'s): a plan in one
-    /// frame, which the floor shapes (SVG, GeoJSON) and the 3D model draw until they take
-    /// units at several angles.
-    pub one_frame: World,
 }
 
 impl Wings {
@@ -106,7 +102,7 @@ impl Wings {
         let layout = WingLayout::find(map.classified(), &labels, first.frame().angle, wing);
         let Some(WingLayout { wing_of, angles }) = layout.filter(|_| config.detectors.rotation_deg.is_none()) else {
             let wing_of = labels.map(|&l| if l > 0 { 0 } else { NO_REGION });
-            return Ok(Wings { chains: vec![first], wing_of, one_frame: world.clone(), world, labels });
+            return Ok(Wings { chains: vec![first], wing_of, world, labels });
         };
         let layout = WingLayout { wing_of, angles };
         if let Some(others) = layout.by_walls() {
@@ -123,9 +119,8 @@ impl Wings {
             units.push(chain.best_world_typed());
             chains.push(chain);
         }
-        let one_frame = world.clone();
         let world = compose(world, &labels, &units, &wing_of);
-        Ok(Wings { chains, wing_of, world, labels, one_frame })
+        Ok(Wings { chains, wing_of, world, labels })
     }
 }
 

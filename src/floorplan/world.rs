@@ -482,7 +482,7 @@ impl World {
 
     /// The index in `units` of the unit with this id: at once where ids follow the order
     /// (as every world this crate writes has them), else by a search.
-    fn unit_index(&self, id: u32) -> Option<usize> {
+    pub(crate) fn unit_index(&self, id: u32) -> Option<usize> {
         let at = (id as usize).wrapping_sub(1);
         match self.units.get(at) {
             Some(u) if u.id == id => Some(at),

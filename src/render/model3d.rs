@@ -37,6 +37,7 @@
 
 use super::glb::{linear, Glb, Primitive};
 use super::world::{unit_type_rgb, DOOR_RGBA};
+use crate::floorplan::world::FrameGroup;
 use crate::floorplan::{Frame, Rect, UnitType, World};
 use serde_json::json;
 
@@ -102,25 +103,35 @@ pub fn world_glb(world: &World, resolution: f64, options: &Model3dOptions) -> Re
         return Err(Model3dError(format!("resolution {resolution}: give a positive number of metres per cell")));
     }
     world.validate().map_err(|e| Model3dError(e.to_string()))?;
-    world.require_one_direction("the 3D model").map_err(|e| Model3dError(e.to_string()))?;
-    let place = Place { frame: world.frame, r: resolution };
+    let groups = world.frame_groups();
+    let places: Vec<Place> = groups.iter().map(|g| Place { frame: g.frame, r: resolution }).collect();
     let mut glb = Glb::new();
-    let (walls, doors) = wall_cells(world);
+    // Walls, lintels and doors frame by frame: the rings of units at one angle merge.
+    let (mut walls, mut lintels, mut doors) = (Vec::new(), Vec::new(), Vec::new());
+    for (k, g) in groups.iter().enumerate() {
+        let (cells, door_rects) = wall_cells(world, g);
+        walls.push((k, cells.rects(1)));
+        lintels.push((k, cells.rects(2)));
+        doors.push((k, door_rects));
+    }
     let (h, d) = (options.wall_height, options.door_height);
     let heights = json!({ "wall_height_m": h, "door_height_m": d });
-    let add = |glb: &mut Glb, name: &str, rects: &[Rect], (y0, y1), paint, extras| {
-        if rects.iter().any(|r| r.w > 0 && r.h > 0) {
+    let add = |glb: &mut Glb, name: &str, parts: &[(usize, Vec<Rect>)], (y0, y1), paint, extras| {
+        let parts: Vec<&(usize, Vec<Rect>)> =
+            parts.iter().filter(|(_, rects)| rects.iter().any(|r| r.w > 0 && r.h > 0)).collect();
+        if !parts.is_empty() {
             let m = material(glb, paint);
-            glb.node(name, vec![boxes(rects, y0, y1, &place, m)], extras);
+            let primitives = parts.iter().map(|(k, rects)| boxes(rects, y0, y1, &places[*k], m)).collect();
+            glb.node(name, primitives, extras);
         }
     };
-    add(&mut glb, "walls", &walls.rects(1), (0.0, h), Paint::Wall, Some(heights));
+    add(&mut glb, "walls", &walls, (0.0, h), Paint::Wall, Some(heights));
     if d < h {
-        add(&mut glb, "lintels", &walls.rects(2), (d, h), Paint::Wall, None);
+        add(&mut glb, "lintels", &lintels, (d, h), Paint::Wall, None);
     }
     add(&mut glb, "doors", &doors, (-SLAB_M, 0.0), Paint::Door, None);
-    for f in floors(world) {
-        add(&mut glb, &f.name, &f.rects, (-SLAB_M, 0.0), Paint::Floor(f.kind), Some(f.extras));
+    for f in floors(world, &groups) {
+        add(&mut glb, &f.name, &f.parts, (-SLAB_M, 0.0), Paint::Floor(f.kind), Some(f.extras));
     }
     Ok(glb.to_bytes())
 }
@@ -143,48 +154,64 @@ fn material(glb: &mut Glb, paint: Paint) -> usize {
     glb.material_named(&name, [linear(rgb[0]), linear(rgb[1]), linear(rgb[2]), 1.0])
 }
 
-/// A floor slab: a node's name, its rectangles, its type and the node's extras.
+/// A floor slab: a node's name, its rectangles (with the index of the frame group they lie
+/// in), its type and the node's extras.
 struct Slab {
     name: String,
-    rects: Vec<Rect>,
+    parts: Vec<(usize, Vec<Rect>)>,
     kind: UnitType,
     extras: serde_json::Value,
 }
 
-/// The floor slabs: one per room (its units' interiors), then one per unit in no room.
-fn floors(world: &World) -> Vec<Slab> {
+/// The floor slabs: one per room (its units' interiors, frame by frame), then one per unit in
+/// no room.
+fn floors(world: &World, groups: &[FrameGroup]) -> Vec<Slab> {
     let t = world.wall_thickness;
     let interior =
         |r: Rect| (r.w > 2 * t && r.h > 2 * t).then(|| Rect::new(r.x + t, r.y + t, r.w - 2 * t, r.h - 2 * t));
+    // The frame group of each unit, by index.
+    let mut group_of = vec![usize::MAX; world.units.len()];
+    for (k, g) in groups.iter().enumerate() {
+        g.units.iter().for_each(|&i| group_of[i] = k);
+    }
     let mut out = Vec::new();
     let mut roomed = std::collections::HashSet::new();
     for room in &world.rooms {
-        let rects: Vec<Rect> =
-            room.units.iter().filter_map(|&id| world.unit(id)).filter_map(|u| interior(u.rect())).collect();
+        let units: Vec<usize> = room.units.iter().filter_map(|&id| world.unit_index(id)).collect();
         roomed.extend(room.units.iter().copied());
+        let parts = (0..groups.len())
+            .filter_map(|k| {
+                let rects: Vec<Rect> = units
+                    .iter()
+                    .filter(|&&i| group_of[i] == k)
+                    .filter_map(|&i| interior(world.units[i].rect()))
+                    .collect();
+                (!rects.is_empty()).then(|| (k, CellGrid::union(&rects).rects(1)))
+            })
+            .collect();
         let extras = json!({ "id": room.id, "type": room.kind.name(), "area_m2": room.area_m2 });
         let name = format!("room {} ({})", room.id, room.kind.name());
-        out.push(Slab { name, rects: CellGrid::union(&rects).rects(1), kind: room.kind, extras });
+        out.push(Slab { name, parts, kind: room.kind, extras });
     }
-    for u in world.units.iter().filter(|u| !roomed.contains(&u.id)) {
-        if let Some(r) = interior(u.rect()) {
+    for (i, u) in world.units.iter().enumerate().filter(|(_, u)| !roomed.contains(&u.id)) {
+        if let Some(r) = interior(u.rect()).filter(|_| group_of[i] != usize::MAX) {
             let extras = json!({ "unit": u.id, "type": u.kind.name() });
             let name = format!("unit {} ({})", u.id, u.kind.name());
-            out.push(Slab { name, rects: vec![r], kind: u.kind, extras });
+            out.push(Slab { name, parts: vec![(group_of[i], vec![r])], kind: u.kind, extras });
         }
     }
     out
 }
 
-/// The walls (1: wall cells, 2: door cells in or between them) over the units' bounding box,
-/// and the doors' rectangles.
-fn wall_cells(world: &World) -> (CellGrid, Vec<Rect>) {
+/// The walls (1: wall cells, 2: door cells in or between them) of the units of frame group
+/// `g`, over their bounding box in its frame, and its doors' rectangles.
+fn wall_cells(world: &World, g: &FrameGroup) -> (CellGrid, Vec<Rect>) {
     let t = world.wall_thickness;
-    let doors: Vec<Rect> = world.doors.iter().map(|d| d.rect()).collect();
-    let all: Vec<Rect> = world.units.iter().map(|u| u.rect()).chain(doors.iter().copied()).collect();
+    let doors: Vec<Rect> = g.doors.iter().map(|&i| world.doors[i].rect()).collect();
+    let units = || g.units.iter().map(|&i| world.units[i].rect());
+    let all: Vec<Rect> = units().chain(doors.iter().copied()).collect();
     let mut grid = CellGrid::over(&all);
-    for u in &world.units {
-        let r = u.rect();
+    for r in units() {
         let ring = [
             Rect::new(r.x, r.y, r.w, t.min(r.h)),
             Rect::new(r.x, r.bottom() - t.min(r.h), r.w, t.min(r.h)),

@@ -19,8 +19,8 @@
 
 use super::labels::label_texts;
 use super::world::{room_fill_rgb, DOOR_RGBA, LABEL_TEXT_RGBA, WALL_RGBA};
-use crate::floorplan::shapes::{floor_shapes, to_map, FloorShapes, MapPoint, RoomShape, ShapeError};
-use crate::floorplan::World;
+use crate::floorplan::shapes::{floor_shapes, frame_to_map, FloorShapes, MapPoint, RoomShape, ShapeError};
+use crate::floorplan::{Frame, World};
 use crate::grid::Grid;
 use std::fmt::Write as _;
 
@@ -100,10 +100,11 @@ fn walls(s: &mut String, world: &World) {
     let t = world.wall_thickness.max(1) as f64;
     let mut d = String::new();
     for u in world.units.iter().filter(|u| u.w >= 1 && u.h >= 1) {
+        let frame = world.unit_frame(u);
         let (x0, y0, x1, y1) = (u.x as f64, u.y as f64, (u.x + u.w) as f64, (u.y + u.h) as f64);
         let (tx, ty) = (t.min(x1 - x0), t.min(y1 - y0));
         for r in [(x0, y0, x1, y0 + ty), (x0, y1 - ty, x1, y1), (x0, y0, x0 + tx, y1), (x1 - tx, y0, x1, y1)] {
-            path_rect(&mut d, world, r);
+            path_rect(&mut d, &frame, r);
         }
     }
     if !d.is_empty() {
@@ -117,7 +118,7 @@ fn doors(s: &mut String, world: &World) {
     for door in &world.doors {
         let r = door.rect();
         let mut d = String::new();
-        path_rect(&mut d, world, (r.x as f64, r.y as f64, r.right() as f64, r.bottom() as f64));
+        path_rect(&mut d, &world.door_frame(door), (r.x as f64, r.y as f64, r.right() as f64, r.bottom() as f64));
         let _ = writeln!(s, r#"<path data-door="{}" d="{d}"/>"#, door.id);
     }
     s.push_str("</g>\n");
@@ -129,14 +130,14 @@ fn room_labels(s: &mut String, shapes: &FloorShapes) {
         hex(LABEL_TEXT_RGBA)
     );
     layer(s, "labels", "Labels", &attributes);
-    // Along the world frame, never upside down.
-    let mut deg = shapes.angle.to_degrees() % 180.0;
-    if deg > 90.0 {
-        deg -= 180.0;
-    } else if deg <= -90.0 {
-        deg += 180.0;
-    }
     for r in shapes.rooms.iter().filter(|r| !r.polygons.is_empty()) {
+        // Along the frame the room was drawn in, never upside down.
+        let mut deg = r.angle.to_degrees() % 180.0;
+        if deg > 90.0 {
+            deg -= 180.0;
+        } else if deg <= -90.0 {
+            deg += 180.0;
+        }
         let (text, size) = label_fit(r);
         let (x, y) = (num(r.anchor.0), num(r.anchor.1));
         let turn = if deg == 0.0 { String::new() } else { format!(r#" transform="rotate({} {x} {y})""#, num(deg)) };
@@ -177,9 +178,9 @@ fn path_ring(d: &mut String, ring: &[MapPoint]) {
     }
 }
 
-/// Appends a world-frame rectangle `(x0, y0, x1, y1)` (cells) as a closed path on the map.
-fn path_rect(d: &mut String, world: &World, (x0, y0, x1, y1): (f64, f64, f64, f64)) {
-    let corners = [(x0, y0), (x0, y1), (x1, y1), (x1, y0)].map(|(x, y)| to_map(world, x, y));
+/// Appends a rectangle `(x0, y0, x1, y1)` (cells) of `frame` as a closed path on the map.
+fn path_rect(d: &mut String, frame: &Frame, (x0, y0, x1, y1): (f64, f64, f64, f64)) {
+    let corners = [(x0, y0), (x0, y1), (x1, y1), (x1, y0)].map(|(x, y)| frame_to_map(frame, x, y));
     path_ring(d, &corners);
 }
 

@@ -202,6 +202,43 @@ fn a_turned_world_is_turned_onto_the_map_and_every_position_is_bounded() {
     );
 }
 
+/// A unit at an angle of its own (issue 13) is drawn exactly as the same unit in a world
+/// turned by that angle, and a world of two wings has a wall mesh per wing, all on the map.
+#[test]
+fn units_at_their_own_angle_are_drawn_in_their_frame() {
+    use ksmcmc::floorplan::synth::{generate, SynthConfig};
+    use ksmcmc::floorplan::Frame;
+    let angle = 30f64.to_radians();
+    let mut own = World::empty(200, 150);
+    let frame = Frame::turned(200, 150, angle);
+    own.units = vec![Unit { angle: Some(angle), ..Unit::new(1, 40, 30, 60, 40, UnitType::Room) }];
+    let mut turned = World::empty(200, 150);
+    turned.frame = frame;
+    turned.units = vec![Unit::new(1, 40, 30, 60, 40, UnitType::Room)];
+    let (a, b) = (
+        parse(&world_glb(&own, 0.05, &Default::default()).unwrap()),
+        parse(&world_glb(&turned, 0.05, &Default::default()).unwrap()),
+    );
+    assert_eq!(a.positions("walls"), b.positions("walls"));
+    assert_eq!(a.positions("unit 1 (room)"), b.positions("unit 1 (room)"));
+    assert!(!a.positions("walls").is_empty());
+
+    let s = generate(&SynthConfig { wing_deg: 30.0, ..SynthConfig::default() }, 4).unwrap();
+    let r = s.map.yaml().resolution;
+    let glb = parse(&world_glb(&s.truth, r, &Model3dOptions::default()).unwrap());
+    let walls = glb.node("walls").unwrap()["mesh"].as_u64().unwrap() as usize;
+    assert_eq!(glb.json["meshes"][walls]["primitives"].as_array().unwrap().len(), 2, "a wall mesh per wing");
+    let (w, h) = (s.map.width() as f32 * r as f32, s.map.height() as f32 * r as f32);
+    for p in glb.positions("walls") {
+        assert!((-1e-3..=w + 1e-3).contains(&p[0]) && (-1e-3..=h + 1e-3).contains(&p[2]), "{p:?} off the map");
+    }
+    // Every unit of the truth (it has no room layer) has its slab, the second wing's turned.
+    assert!(s.truth.rooms.is_empty());
+    for u in &s.truth.units {
+        assert!(glb.names().contains(&format!("unit {} ({})", u.id, u.kind.name())), "unit {}", u.id);
+    }
+}
+
 #[test]
 fn bad_heights_and_resolutions_are_refused() {
     let w = two_rooms();

@@ -120,8 +120,95 @@ fn units_at_their_own_angle_are_checked_in_their_frame_and_refused_where_unsuppo
     let labels = s.labels.clone();
     // Routes take them (they plan on the labels and the rooms' links, doors in their frame).
     assert!(RoutePlanner::new(s.map.classified().clone(), labels.clone(), w, 0.05).is_ok());
-    let e = shapes::floor_shapes(w, &labels).err().unwrap().to_string();
+    let room_input = ksmcmc::floorplan::export::RoomInput::for_map(w.clone(), &s.map, true, Default::default());
+    let e = room_input.err().unwrap().to_string();
     assert!(e.contains("issue 13"), "{e}");
-    let e = ksmcmc::render::model3d::world_glb(w, 0.05, &Default::default()).unwrap_err().to_string();
-    assert!(e.contains("issue 13"), "{e}");
+    // The floor shapes take them (tests/it/world.rs, `floor_shapes_draw_units_at_their_own_angle`).
+    assert!(shapes::floor_shapes(w, &labels).is_ok());
+}
+
+/// In a world of units at several angles the floor shapes outline each room from its label
+/// cells in the frame of its units: a room of turned units exactly as in a world turned by
+/// that angle, an upright room on the cell edges. `world.svg` draws walls and doors in their
+/// units' frames and turns each room's label with its room. In a world of two wings every
+/// room has a shape in its units' frame.
+#[test]
+fn floor_shapes_draw_units_at_their_own_angle() {
+    use ksmcmc::floorplan::shapes::floor_shapes;
+    use ksmcmc::floorplan::{synth, Frame, Room, UnitType};
+    use ksmcmc::grid::Grid;
+    let angle = 30f64.to_radians();
+    let room = |id: u32, units: Vec<u32>| Room {
+        id,
+        kind: UnitType::Room,
+        units,
+        area_m2: 1.0,
+        doors: vec![],
+        opens_to: vec![],
+        name: None,
+    };
+    let frame = Frame::turned(200, 150, angle);
+    let units = vec![Unit::new(1, 60, 50, 31, 40, UnitType::Room), Unit::new(2, 90, 50, 31, 40, UnitType::Room)];
+    let door = Door { id: 1, units: [1, 2], x0: 90, y0: 65, x1: 90, y1: 72 };
+    // Labels: each turned unit's interior, and an upright square room 3.
+    let mut labels = Grid::new(200, 150, 0u16);
+    for my in 0..150 {
+        for mx in 0..200 {
+            let (x, y) = frame.to_world(mx as f64 + 0.5, my as f64 + 0.5);
+            for u in &units {
+                let r = u.rect();
+                if x > (r.x + 1) as f64
+                    && x < (r.right() - 1) as f64
+                    && y > (r.y + 1) as f64
+                    && y < (r.bottom() - 1) as f64
+                {
+                    *labels.at_mut(mx, my) = u.id as u16;
+                }
+            }
+            if (150..180).contains(&mx) && (110..140).contains(&my) {
+                *labels.at_mut(mx, my) = 3;
+            }
+        }
+    }
+    let mut turned = World::empty(200, 150);
+    turned.frame = frame;
+    turned.units = units.clone();
+    turned.doors = vec![door];
+    turned.rooms = vec![room(1, vec![]), room(2, vec![])];
+    let mut own = World::empty(200, 150);
+    own.units = units.iter().map(|u| Unit { angle: Some(angle), ..*u }).collect();
+    own.units.push(Unit::new(3, 149, 109, 32, 32, UnitType::Corridor));
+    own.doors = vec![door];
+    own.rooms = vec![room(1, vec![1]), room(2, vec![2]), room(3, vec![3])];
+    let (a, b) = (floor_shapes(&own, &labels).unwrap(), floor_shapes(&turned, &labels).unwrap());
+    for k in 0..2 {
+        assert!(!a.rooms[k].polygons.is_empty());
+        assert_eq!(a.rooms[k].polygons, b.rooms[k].polygons, "room {}", k + 1);
+        assert_eq!(a.rooms[k].angle, angle);
+    }
+    assert_eq!(a.doors, b.doors);
+    assert_eq!(a.rooms[2].angle, 0.0);
+    assert_eq!(a.rooms[2].polygons[0].exterior, vec![(150.0, 110.0), (150.0, 140.0), (180.0, 140.0), (180.0, 110.0)]);
+    // world.svg: the turned units' walls and the door are the turned world's paths.
+    let (sa, sb) = (ksmcmc::render::svg::svg(&a, &own, 0.05), ksmcmc::render::svg::svg(&b, &turned, 0.05));
+    let door_path = |svg: &str| svg.lines().find(|l| l.contains("data-door=\"1\"")).unwrap().to_string();
+    assert_eq!(door_path(&sa), door_path(&sb));
+    let walls = |svg: &str| {
+        let layer = svg.split("id=\"walls\"").nth(1).unwrap().split("</g>").next().unwrap().to_string();
+        layer.split(" d=\"").nth(1).unwrap().split('"').next().unwrap().to_string()
+    };
+    assert!(walls(&sa).starts_with(&walls(&sb)), "{}\n{}", walls(&sa), walls(&sb));
+    assert!(walls(&sa).len() > walls(&sb).len(), "and the upright unit's walls");
+    assert!(sa.contains("rotate(30 "), "room labels turn with their rooms");
+
+    // A generated floor of two wings, its truth labels as rooms: every room has a shape.
+    let s = synth::generate(&synth::SynthConfig { wing_deg: 45.0, ..Default::default() }, 2).unwrap();
+    let mut w = s.truth.clone();
+    w.rooms = w.units.iter().map(|u| room(u.id, vec![u.id])).collect();
+    let shapes = floor_shapes(&w, &s.labels).unwrap();
+    assert_eq!(shapes.rooms.len(), w.rooms.len());
+    for (r, u) in shapes.rooms.iter().zip(&w.units) {
+        assert!(!r.polygons.is_empty(), "room {}", r.id);
+        assert_eq!(r.angle, w.unit_frame(u).angle, "room {} in its unit's frame", r.id);
+    }
 }

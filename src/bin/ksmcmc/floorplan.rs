@@ -196,9 +196,8 @@ fn run_wings(
     report["cell_prediction_rate_region"] =
         region.map(|r| metrics::prediction_rate_in(map.classified(), world, Some(r))).into();
     let k = report["cell_prediction_rate"].as_f64().unwrap_or(0.0);
-    let outputs =
-        export::Outputs::drawn_from(map, world, &wings.one_frame, labels, &report, trace, o.georef.as_ref(), &o.model)
-            .map_err(|e| args::failed(o.out.display(), e))?;
+    let outputs = export::Outputs::new(map, world, labels, &report, trace, o.georef.as_ref(), &o.model)
+        .map_err(|e| args::failed(o.out.display(), e))?;
     for (name, bytes) in outputs.files() {
         args::write(&o.out.join(name), bytes)?;
     }

@@ -5,7 +5,7 @@ import type { SAMPLES } from './samples.js';
 
 export { SAMPLES } from './samples.js';
 
-/** A sample name: office-small, office-rotated, furnished, partial, two-corridors, building-large. */
+/** A sample name: office-small, office-rotated, furnished, partial, two-corridors, building-large, two-wings. */
 export type SampleName = keyof typeof SAMPLES;
 
 export interface MountOptions {

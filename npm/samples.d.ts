@@ -17,6 +17,7 @@ export declare const SAMPLES: Readonly<{
   partial: SampleRecipe;
   'two-corridors': SampleRecipe;
   'building-large': SampleRecipe;
+  'two-wings': SampleRecipe;
 }>;
 
 /** The `ksmcmc synth` option behind each config field. */

@@ -49,6 +49,12 @@ export const SAMPLES = Object.freeze({
       'ksmcmc synth --seed 6 --width 1217 --height 272 --rotation 20 --halls 2 --others 3 --clutter 0.03 --unexplored 0.1',
     description: 'a long building with halls at both ends, rotated by 20 degrees (1237 x 672)',
   },
+  'two-wings': {
+    seed: 7,
+    config: { width: 300, height: 220, wing_deg: 30 },
+    command: 'ksmcmc synth --seed 7 --width 300 --height 220 --wing 30',
+    description: 'two buildings joined by a passage, the second turned by 30 degrees (670 x 341)',
+  },
 });
 
 /** The `ksmcmc synth` option behind each config field, for turning recipes into commands. */
@@ -62,6 +68,7 @@ export const SYNTH_FLAGS = Object.freeze({
   wall_thickness: '--wall-thickness',
   clutter: '--clutter',
   unexplored: '--unexplored',
+  wing_deg: '--wing',
 });
 
 /**

@@ -354,6 +354,31 @@ describe('Live mapper', () => {
     await done(page);
   });
 
+  test('a building of two wings: the sample truth\'s units at their angle are the reference', async () => {
+    const page = await openMapper('?sample=two-wings&seed=1&ipf=500');
+    await until(page, (s, v) => s.sample === v, 'two-wings');
+    const truth = JSON.parse(readFileSync(join(REPO, 'samples/two-wings/truth.json'), 'utf8'));
+    assert.ok(truth.units.some((u) => Math.abs(u.angle - Math.PI / 6) < 1e-9), 'the second wing is turned by 30 degrees');
+    await page.click('#truth');
+    await page.waitForFunction(() => window.__ksmcmc.snapshot().hasReference);
+    await key(page, 't');
+    await settled(page);
+    assert.equal((await snap(page)).show, 'reference');
+    assert.equal(await page.isVisible('#message'), false);
+    // Walls are drawn in both wings: the turned wing fills the right half of the map.
+    const blue = await page.evaluate(() => {
+      const c = document.querySelector('#map');
+      const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+      const half = [0, 0];
+      for (let i = 0; i < d.length; i += 4) {
+        if (d[i] === 0 && d[i + 1] === 0 && d[i + 2] === 255) half[(i / 4) % c.width < c.width / 2 ? 0 : 1]++;
+      }
+      return half;
+    });
+    assert.ok(blue[0] > 500 && blue[1] > 500, `walls drawn in both wings: ${blue}`);
+    await done(page);
+  });
+
   test('exports parse: world.json validates natively, labels.pgm has the map size', async () => {
     const page = await openMapper('?sample=furnished&seed=5&ipf=1000');
     await until(page, (s, v) => s.sample === v, 'furnished');
@@ -659,7 +684,7 @@ describe('mount() embed', () => {
     assert.equal(await page.evaluate(() => window.__widget.stats().iteration), 0, 'R resets');
 
     // The sample recipes remake the repository's sample files byte for byte.
-    for (const name of ['office-small', 'office-rotated', 'furnished', 'partial', 'two-corridors', 'building-large']) {
+    for (const name of ['office-small', 'office-rotated', 'furnished', 'partial', 'two-corridors', 'building-large', 'two-wings']) {
       const b64 = await page.evaluate(async (n) => {
         const { loadSample } = await import('./pkg/mount.js');
         const map = await loadSample(n);

@@ -129,29 +129,50 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     drop(chain);
     let (world, labels) = input.explain(&RoomConfig::default());
     ksmcmc::floorplan::report::add_rooms(&mut report, &world, &labels);
-    let rooms = world.rooms.len();
-    let k = report["cell_prediction_rate"].as_f64().unwrap_or(0.0);
-    report["map"] = o.map.display().to_string().into();
     if o.until_settled {
         report["settled_at"] = serde_json::json!(settled.settled_at());
     }
+    let run = Run { world: &world, labels: &labels, report, trace, iterations: iterations_done, seconds };
+    write_run(&o, &map, run, region.as_ref(), None)
+}
+
+/// What a run found, for [`write_run`].
+struct Run<'a> {
+    world: &'a ksmcmc::floorplan::World,
+    labels: &'a ksmcmc::grid::Grid<u16>,
+    report: serde_json::Value,
+    trace: String,
+    iterations: u64,
+    seconds: f64,
+}
+
+/// Writes the run's nine files to `o.out` and prints its summary line (with the number of
+/// `wings`, when there were several) and the note on several wall directions.
+fn write_run(
+    o: &Opts,
+    map: &ksmcmc::grid::OccupancyMap,
+    run: Run,
+    region: Option<&ksmcmc::grid::Grid<bool>>,
+    wings: Option<usize>,
+) -> Result<(), CliError> {
+    let Run { world, labels, mut report, trace, iterations, seconds } = run;
+    report["map"] = o.map.display().to_string().into();
     report["cell_prediction_rate_region"] =
-        region.as_ref().map(|r| metrics::prediction_rate_in(map.classified(), &world, Some(r))).into();
-    let outputs = export::Outputs::new(&map, &world, &labels, &report, trace, o.georef.as_ref(), &o.model)
+        region.map(|r| metrics::prediction_rate_in(map.classified(), world, Some(r))).into();
+    let k = report["cell_prediction_rate"].as_f64().unwrap_or(0.0);
+    let outputs = export::Outputs::new(map, world, labels, &report, trace, o.georef.as_ref(), &o.model)
         .map_err(|e| args::failed(o.out.display(), e))?;
     for (name, bytes) in outputs.files() {
         args::write(&o.out.join(name), bytes)?;
     }
     println!(
-        "{}: {} iterations in {:.2} s ({:.0}/s), K(W,M) = {:.4}, {} units, {} doors, {} rooms -> {}",
+        "{}: {iterations} iterations in {seconds:.2} s ({:.0}/s), K(W,M) = {k:.4}, {} units, {} doors, {} rooms{} -> {}",
         o.map.display(),
-        iterations_done,
-        seconds,
-        iterations_done as f64 / seconds.max(1e-9),
-        k,
+        iterations as f64 / seconds.max(1e-9),
         world.units.len(),
         world.doors.len(),
-        rooms,
+        world.rooms.len(),
+        wings.map_or(String::new(), |n| format!(", {n} wings")),
         o.out.display()
     );
     if let Some(note) = ksmcmc::floorplan::report::several_directions_note(&report) {
@@ -192,29 +213,8 @@ fn run_wings(
         report["iterations_per_second"] = (iterations as f64 / seconds.max(1e-9)).into();
         report["wings"] = per_wing.into();
     }
-    report["map"] = o.map.display().to_string().into();
-    report["cell_prediction_rate_region"] =
-        region.map(|r| metrics::prediction_rate_in(map.classified(), world, Some(r))).into();
-    let k = report["cell_prediction_rate"].as_f64().unwrap_or(0.0);
-    let outputs = export::Outputs::new(map, world, labels, &report, trace, o.georef.as_ref(), &o.model)
-        .map_err(|e| args::failed(o.out.display(), e))?;
-    for (name, bytes) in outputs.files() {
-        args::write(&o.out.join(name), bytes)?;
-    }
-    println!(
-        "{}: {iterations} iterations in {seconds:.2} s ({:.0}/s), K(W,M) = {k:.4}, {} units, {} doors, {} rooms{} -> {}",
-        o.map.display(),
-        iterations as f64 / seconds.max(1e-9),
-        world.units.len(),
-        world.doors.len(),
-        world.rooms.len(),
-        if several { format!(", {} wings", wings.chains.len() - 1) } else { String::new() },
-        o.out.display()
-    );
-    if let Some(note) = ksmcmc::floorplan::report::several_directions_note(&report) {
-        eprintln!("{note}");
-    }
-    Ok(())
+    let run = Run { world, labels, report, trace, iterations, seconds };
+    write_run(o, map, run, region, several.then(|| wings.chains.len() - 1))
 }
 
 /// Parses and checks the arguments; `None` when `--help` was answered.

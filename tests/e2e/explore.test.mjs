@@ -141,7 +141,9 @@ describe('Exploration page', () => {
     const s = await snap(page);
     assert.equal(await page.evaluate(() => document.documentElement.dataset.running), 'false');
     assert.ok(s.settledAt > 0);
-    assert.match(await page.textContent('#stat-phase'), /settled at iteration/);
+    // The figures are drawn on the next frame after the worker's stop: wait for it (a loaded
+    // machine delays frames).
+    await page.waitForFunction(() => /settled at iteration/.test(document.querySelector('#stat-phase').textContent), null, { timeout: 10_000 });
     console.log(`explore to the end: ${s.updates} updates, K(W,M) ${s.k} at iteration ${s.iteration} (natively ${report.cell_prediction_rate} after ${report.updates} x ${report.iterations_per_update})`);
     assert.ok(s.k > 0.9, `the settled floor plan explains the robot's map: K(W,M) ${s.k}`);
     // Its world is a world.json the native tools read.

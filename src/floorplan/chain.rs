@@ -1020,23 +1020,17 @@ impl Chain {
         (world, labels)
     }
 
-    /// [`Chain::best_world_with_rooms`] for a building that none of its wall directions holds
-    /// most of: the rooms are where the walls, their gaps along the directions `angles` too
-    /// and the doorways part the floor ([`super::room_layer::explain_rooms_by_walls`];
-    /// [`super::wings`] decides when).
-    pub fn best_world_with_rooms_by_walls(
-        &mut self,
-        rooms: &super::rooms::RoomConfig,
-        angles: &[f64],
-    ) -> (World, Grid<u16>) {
-        use super::room_layer::{explain_rooms_by_walls, RoomKnowledge};
-        let mut world = self.best_world_typed();
+    /// Finds the rooms of `world` again (a typed world of this chain, such as the one
+    /// [`Chain::best_world_with_rooms`] gave) for a building that none of its wall directions
+    /// holds most of: the rooms are where the walls, their gaps along the directions `angles`
+    /// too and the doorways part the floor
+    /// ([`super::room_layer::explain_world_rooms_by_walls`]; [`super::wings`] decides when).
+    /// Returns the room labels.
+    pub fn rooms_by_walls(&self, world: &mut World, rooms: &super::rooms::RoomConfig, angles: &[f64]) -> Grid<u16> {
+        use super::room_layer::{explain_world_rooms_by_walls, RoomKnowledge};
         let k = &self.config.knowledge;
         let kb = if k.enabled { RoomKnowledge::configured(k).ok() } else { None };
-        let (map, world_map, resolution) = (&self.map, &self.world_map, self.resolution);
-        let mut by = |kb| explain_rooms_by_walls(&mut world, map, world_map, rooms, resolution, kb, angles);
-        let labels = by(kb.as_ref()).or_else(|_| by(None)).unwrap_or_else(|_| Grid::new(map.width(), map.height(), 0));
-        (world, labels)
+        explain_world_rooms_by_walls(world, &self.map, &self.world_map, rooms, self.resolution, kb.as_ref(), angles)
     }
 
     /// The classified map the chain explains, in the map's own frame.

@@ -150,16 +150,10 @@ impl RoomInput {
         let RoomInput { mut world, map, world_map, resolution, knowledge, room_rules, edits, by_walls } = self;
         let text = room_rules.as_deref().unwrap_or(room_layer::BUILTIN_ROOM_RULES);
         let kb = if knowledge { room_layer::RoomKnowledge::parse(text).ok() } else { None };
+        let (w, m, wm, kb) = (&mut world, &map, &world_map, kb.as_ref());
         let labels = match by_walls {
-            Some(angles) => {
-                let mut by = |kb| {
-                    room_layer::explain_rooms_by_walls(&mut world, &map, &world_map, rooms, resolution, kb, &angles)
-                };
-                by(kb.as_ref()).or_else(|_| by(None)).unwrap_or_else(|_| Grid::new(map.width(), map.height(), 0))
-            }
-            None => {
-                room_layer::explain_world_rooms_by(&mut world, &map, &world_map, rooms, resolution, kb.as_ref(), &edits)
-            }
+            Some(angles) => room_layer::explain_world_rooms_by_walls(w, m, wm, rooms, resolution, kb, &angles),
+            None => room_layer::explain_world_rooms_by(w, m, wm, rooms, resolution, kb, &edits),
         };
         (world, labels)
     }

@@ -389,6 +389,22 @@ pub fn explain_world_rooms_by(
         .unwrap_or_else(|_| Grid::new(map.width(), map.height(), 0))
 }
 
+/// [`explain_rooms_by_walls`] with the rules `knowledge`, and without them should the rules
+/// fail, as [`explain_world_rooms_by`] does for the rooms the rules group.
+pub fn explain_world_rooms_by_walls(
+    world: &mut World,
+    map: &Grid<Cell>,
+    world_map: &Grid<Cell>,
+    c: &RoomConfig,
+    resolution: f64,
+    knowledge: Option<&RoomKnowledge>,
+    angles: &[f64],
+) -> Grid<u16> {
+    explain_rooms_by_walls(world, map, world_map, c, resolution, knowledge, angles)
+        .or_else(|_| explain_rooms_by_walls(world, map, world_map, c, resolution, None, angles))
+        .unwrap_or_else(|_| Grid::new(map.width(), map.height(), 0))
+}
+
 /// Marks the open pairs whose units the room layer's geometry parts (`closed`): with every
 /// open pair joined, the doorway split and the wall gaps ([`labels_of_groups`]) still leave
 /// the two units mostly in different segments ([`unit_rooms`]). It is evidence for the room

@@ -184,10 +184,7 @@ pub fn floor_shapes(world: &World, labels: &Grid<u16>) -> Result<FloorShapes, Sh
 /// frame never overlap; two drawn in different frames may overlap, or leave a sliver between
 /// them, less than a cell wide where their label cells meet.
 fn rooms_by_frame(world: &World, labels: &Grid<u16>, groups: &[FrameGroup]) -> Vec<RoomShape> {
-    let mut group_of = vec![usize::MAX; world.units.len()];
-    for (k, g) in groups.iter().enumerate() {
-        g.units.iter().for_each(|&i| group_of[i] = k);
-    }
+    let group_of = FrameGroup::of_units(groups, world.units.len());
     let frame_of = |room: &Room| {
         let count =
             |k: usize| room.units.iter().filter(|&&id| world.unit_index(id).is_some_and(|i| group_of[i] == k)).count();

@@ -15,7 +15,7 @@
 //!    direction the first ([`WingLayout`]). Where the first wing holds less than
 //!    [`MIN_FIRST_SHARE`] of the floor, the first chain's units cut across most of the walls,
 //!    and the rooms are found again where the walls part them, with the wall gaps of every
-//!    wing's direction closed ([`Chain::best_world_with_rooms_by_walls`]); otherwise the
+//!    wing's direction closed ([`Chain::rooms_by_walls`]); otherwise the
 //!    first chain's rooms and labels stay the result's;
 //! 4. a chain turned by each wing's direction explains the wing's floor alone (the other
 //!    wings' free cells read unknown), its kernels unchanged;
@@ -100,13 +100,12 @@ impl Wings {
         first.step(iterations);
         let (mut world, mut labels) = first.best_world_with_rooms(rooms);
         let layout = WingLayout::find(map.classified(), &labels, first.frame().angle, wing);
-        let Some(WingLayout { wing_of, angles }) = layout.filter(|_| config.detectors.rotation_deg.is_none()) else {
+        let Some(layout) = layout.filter(|_| config.detectors.rotation_deg.is_none()) else {
             let wing_of = labels.map(|&l| if l > 0 { 0 } else { NO_REGION });
             return Ok(Wings { chains: vec![first], wing_of, world, labels });
         };
-        let layout = WingLayout { wing_of, angles };
         if let Some(others) = layout.by_walls() {
-            (world, labels) = first.best_world_with_rooms_by_walls(rooms, others);
+            labels = first.rooms_by_walls(&mut world, rooms, others);
         }
         let WingLayout { wing_of, angles } = layout;
         let mut chains = vec![first];
@@ -129,7 +128,7 @@ const ROOM_SHARE: f64 = 0.6;
 
 /// The share of the free cells below which the first wing (the first chain's direction) is
 /// too little of the building for its chain's units to say which of them share a room: the
-/// rooms are then where the walls part them ([`Chain::best_world_with_rooms_by_walls`]). A
+/// rooms are then where the walls part them ([`Chain::rooms_by_walls`]). A
 /// building of two wings has half its floor or more in the first; the benchmark's pentagon
 /// (office_e, five directions) has 0.22. Set with that one floor in view.
 pub const MIN_FIRST_SHARE: f64 = 1.0 / 3.0;

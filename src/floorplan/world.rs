@@ -392,6 +392,18 @@ pub struct FrameGroup {
     pub doors: Vec<usize>,
 }
 
+impl FrameGroup {
+    /// Per unit of a world of `units` units, the index in `groups` (its
+    /// [`World::frame_groups`]) of the group the unit lies in, `usize::MAX` for none.
+    pub fn of_units(groups: &[FrameGroup], units: usize) -> Vec<usize> {
+        let mut group_of = vec![usize::MAX; units];
+        for (k, g) in groups.iter().enumerate() {
+            g.units.iter().for_each(|&i| group_of[i] = k);
+        }
+        group_of
+    }
+}
+
 /// Why a `world.json` was refused.
 #[derive(Debug, Clone, PartialEq)]
 pub struct WorldError(pub String);

@@ -169,11 +169,7 @@ fn floors(world: &World, groups: &[FrameGroup]) -> Vec<Slab> {
     let t = world.wall_thickness;
     let interior =
         |r: Rect| (r.w > 2 * t && r.h > 2 * t).then(|| Rect::new(r.x + t, r.y + t, r.w - 2 * t, r.h - 2 * t));
-    // The frame group of each unit, by index.
-    let mut group_of = vec![usize::MAX; world.units.len()];
-    for (k, g) in groups.iter().enumerate() {
-        g.units.iter().for_each(|&i| group_of[i] = k);
-    }
+    let group_of = FrameGroup::of_units(groups, world.units.len());
     let mut out = Vec::new();
     let mut roomed = std::collections::HashSet::new();
     for room in &world.rooms {

@@ -304,7 +304,7 @@ use ksmcmc::wasm::{Mapper, Plan};
 /// The plan module's `Plan` of a mapper's best world now, as the live mapper's worker makes
 /// it: from the map's PGM and YAML and `planInput()`.
 fn plan_of(map: &Map, m: &mut Mapper) -> Plan {
-    Plan::new(&map.to_pgm(), &map.to_yaml("map.pgm"), &m.plan_input(), None).unwrap()
+    Plan::new(&map.to_pgm(), &map.to_yaml("map.pgm"), &m.plan_input(), None, None).unwrap()
 }
 
 /// Two rooms side by side in a 64x40 map: walls all round, a wall between them with a door.
@@ -541,7 +541,7 @@ fn plans_keep_room_ids_through_edits_with_the_previous_labels() {
     m.step(1500.0).unwrap();
     chain.step(1500);
     let (pgm, yaml) = (map.to_pgm(), map.to_yaml("map.pgm"));
-    let second = Plan::new(&pgm, &yaml, &m.plan_input(), Some(first.room_labels())).unwrap();
+    let second = Plan::new(&pgm, &yaml, &m.plan_input(), Some(first.room_labels()), None).unwrap();
     // The library: the chain's rooms, ids carried over from the labels shown before.
     let (mut world, mut labels) = chain.best_world_with_rooms(&Default::default());
     let previous = ksmcmc::grid::Grid::from_vec(400, 300, first.room_labels()).unwrap();
@@ -551,7 +551,7 @@ fn plans_keep_room_ids_through_edits_with_the_previous_labels() {
     assert!(world.rooms.iter().any(|r| r.name.as_deref() == Some("Hall A")), "the name edit holds");
     // Without edits in force the previous labels change nothing.
     m.set_edits("[]").unwrap();
-    let a = Plan::new(&pgm, &yaml, &m.plan_input(), Some(first.room_labels())).unwrap();
+    let a = Plan::new(&pgm, &yaml, &m.plan_input(), Some(first.room_labels()), None).unwrap();
     assert_eq!(a.room_labels(), plan_of(&map, &mut m).room_labels());
 }
 
@@ -561,7 +561,7 @@ fn plans_refuse_bad_inputs() {
     let mut m = Mapper::new(&map, None, None).unwrap();
     m.step(500.0).unwrap();
     let (pgm, yaml, input) = (map.to_pgm(), map.to_yaml("map.pgm"), m.plan_input());
-    let plan = |pgm: &[u8], input: &str, previous| Plan::new(pgm, &yaml, input, previous).map(|_| ());
+    let plan = |pgm: &[u8], input: &str, previous| Plan::new(pgm, &yaml, input, previous, None).map(|_| ());
     err_contains(plan(&pgm, "{", None), "plan input");
     err_contains(plan(&pgm, "{}", None), "missing field `world`");
     err_contains(plan(&pgm, r#"{"world": {}}"#, None), "plan input");
@@ -569,16 +569,22 @@ fn plans_refuse_bad_inputs() {
     err_contains(plan(&pgm, &input, Some(vec![0; 3])), "previousLabels: give the 2560 room ids");
     // A world of another map.
     let other = Map::from_cells(50, 40, &[0; 2000]).unwrap();
-    err_contains(Plan::new(&other.to_pgm(), &other.to_yaml("map.pgm"), &input, None).map(|_| ()), "map");
+    err_contains(Plan::new(&other.to_pgm(), &other.to_yaml("map.pgm"), &input, None, None).map(|_| ()), "map");
     // Edits off the map.
     let mut v: serde_json::Value = serde_json::from_str(&input).unwrap();
     v["edits"] = r#"[{"op": "name", "at": [500, 5], "name": "x"}]"#.into();
     err_contains(plan(&pgm, &v.to_string(), None), "edits");
     // A saved typed world alone is a plan without a report.
     let world = serde_json::json!({"world": v["world"]});
-    let saved = Plan::new(&pgm, &yaml, &world.to_string(), None).unwrap();
+    let saved = Plan::new(&pgm, &yaml, &world.to_string(), None, None).unwrap();
     assert!(saved.world_json().contains("\"rooms\""));
     err_contains(saved.report_json(), "without a chain");
+    // A building of one direction needs no wing chains, and takes none.
+    let one = Plan::new(&pgm, &yaml, &input, None, None).unwrap();
+    assert_eq!(one.wing_count(), 0);
+    err_contains(one.wing_map_pgm(0), "needs 0 wing chains");
+    err_contains(Plan::new(&pgm, &yaml, &input, None, Some(vec![input.clone()])).map(|_| ()), "one chain");
+    err_contains(Plan::new(&pgm, &yaml, &input, None, Some(vec!["{".into()])).map(|_| ()), "wingInputs[0]");
 }
 
 #[wasm_bindgen_test]

@@ -515,6 +515,26 @@ function chainSettled(stats) {
   requestRedraw();
 }
 
+/**
+ * The worker explains the wings of a building whose walls follow several directions, a chain
+ * per wing once the chain has stopped (`stats.wings`), or has explained them (`wingsDone`):
+ * the best world's rooms and picture are then theirs.
+ */
+function chainWings(stats) {
+  takeStats(stats);
+  const w = stats.wings;
+  if (w) {
+    say(
+      `The walls follow ${w.of} directions: explaining wing ${w.wing} of ${w.of} in its own direction ` +
+        `(${formatNumber(w.rotationDeg, 1)}°), ${formatNumber(w.target)} iterations as the first chain ran.`,
+    );
+  } else if (stats.wingsDone > 0) {
+    say(`The ${stats.wingsDone} wings were explained each in its own direction: the best world's units lie at their angles.`);
+    state.rooms.request();
+    requestRedraw();
+  }
+}
+
 /** The worker stopped the chain because a step failed. */
 function chainFailed(message, stats) {
   if (stats) takeStats(stats);
@@ -1866,6 +1886,8 @@ function expose() {
         settledAt: m?.settledAt ?? null,
         improvedAt: m?.improvedAt ?? null,
         settleWindow: m?.settleWindow ?? 0,
+        wings: m?.wings ?? null,
+        wingsDone: m?.wingsDone ?? 0,
         stopWhenSettled: ui.stopSettled.checked,
         show: state.show,
         cloud: state.cloud,
@@ -1888,6 +1910,7 @@ async function main() {
   expose();
   if (!(await loadWasm(init))) return;
   state.chain = new RemoteChain(chainFailed, chainSettled);
+  state.chain.onWings = chainWings;
   state.rooms = new RoomsFeed(() => state.chain, showRooms);
   state.route = new RouteView({ ...ui.route, canvas: ui.canvas }, {
     plan: (from, to) => invoke('route', from[0], from[1], to[0], to[1]),

@@ -29,6 +29,7 @@ use super::export::RoomInput;
 use super::knowledge::Inferred;
 use super::report::{self, ChainSummary};
 use super::rooms::RoomConfig;
+use super::wings::{wing_rotation_deg, WingConfig, WingLayout};
 use super::world::World;
 use super::Chain;
 use crate::grid::{Grid, OccupancyMap};
@@ -162,6 +163,56 @@ impl PlanInput {
         Ok((world, labels))
     }
 
+    /// The wings of the building on `map` (a chain per wing, [`super::wings`]) given the room
+    /// `labels` of this input's world ([`PlanInput::explain`]), as `ksmcmc floorplan` finds
+    /// them; `None` for a building of one wing, and while edits are in force (the edits are
+    /// made on the one chain's world).
+    pub fn wing_layout(&self, map: &OccupancyMap, labels: &Grid<u16>) -> Option<WingLayout> {
+        if !self.edits().is_ok_and(|e| e.is_empty()) {
+            return None;
+        }
+        WingLayout::find(map.classified(), labels, self.world.frame.angle, &WingConfig::default())
+    }
+
+    /// The world of a building's wings and its room labels ([`WingLayout::compose`]), as
+    /// [`super::wings::Wings::run`] gives them: this input is the first chain's, `wings` the
+    /// inputs of the wings' chains, one per wing of [`PlanInput::wing_layout`] in order, each
+    /// run on [`WingLayout::wing_map`] with [`WingLayout::wing_config`]. Refused if the map is
+    /// one wing, or the wings' chains do not fit its layout.
+    pub fn explain_wings(&self, map: &OccupancyMap, wings: &[PlanInput]) -> Result<(World, Grid<u16>), PlanInputError> {
+        let (world, labels) = self.explain(map, None)?;
+        let layout = self.wing_layout(map, &labels).ok_or_else(|| {
+            PlanInputError("wings: this map is explained by one chain (one wall direction, or edits in force)".into())
+        })?;
+        if wings.len() != layout.angles.len() {
+            return Err(PlanInputError(format!(
+                "wings: the map has {} wings, but {} wing chains were given",
+                layout.angles.len(),
+                wings.len()
+            )));
+        }
+        for (k, w) in wings.iter().enumerate() {
+            let want = wing_rotation_deg(layout.angles[k]);
+            if w.world.frame.angle != want.to_radians() {
+                return Err(PlanInputError(format!(
+                    "wings: wing {k}'s chain is turned by {} degrees, but its direction is {want}: \
+                     configure it with detectors.rotation_deg {want}",
+                    w.world.frame.angle.to_degrees()
+                )));
+            }
+            w.world.fits(map.width(), map.height()).map_err(|e| PlanInputError(format!("wing {k}: {e}")))?;
+        }
+        let worlds: Vec<World> = wings.iter().map(|w| w.world.clone()).collect();
+        let again = RoomInput::for_map(self.world.clone(), map, self.knowledge, Edits::default())
+            .map_err(|e| PlanInputError(e.to_string()))?;
+        let by_walls = move |world: &mut World, others: &[f64]| {
+            let (found, labels) = again.by_walls(others).explain(&RoomConfig::default());
+            *world = found;
+            labels
+        };
+        Ok(layout.compose(world, labels, &worlds, by_walls))
+    }
+
     /// `report.json` of the chain for `world` (the world with its rooms) and its `labels`, as
     /// `ksmcmc floorplan` writes it ([`report::summary`] of the typed world, then
     /// [`report::add_rooms`]); none without a chain.
@@ -171,6 +222,26 @@ impl PlanInput {
         if let Some(s) = self.setup_seconds {
             r["setup_seconds"] = s.into();
         }
+        Some(r)
+    }
+
+    /// `report.json` of a building's wings ([`PlanInput::explain_wings`]) for their `world`
+    /// and `labels`, as `ksmcmc floorplan` writes it ([`report::add_wings`]): this input is the
+    /// first chain's, `wings` the wings' chains'; none without a chain.
+    pub fn report_wings(
+        &self,
+        map: &OccupancyMap,
+        world: &World,
+        labels: &Grid<u16>,
+        wings: &[PlanInput],
+    ) -> Option<serde_json::Value> {
+        let first = self.chain.as_ref()?;
+        let summaries: Option<Vec<ChainSummary>> = wings.iter().map(|w| w.chain.clone()).collect();
+        let summaries = summaries?;
+        let seconds = first.seconds + summaries.iter().map(|c| c.seconds).sum::<f64>();
+        let mut r = report::summary_of(&ChainSummary { seconds, ..first.clone() }, map, world);
+        report::add_rooms(&mut r, world, labels);
+        report::add_wings(&mut r, world, &summaries, seconds);
         Some(r)
     }
 }

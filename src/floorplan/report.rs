@@ -103,6 +103,51 @@ impl ChainSummary {
     }
 }
 
+/// Adds a building's wings to the `report` of its first chain ([`super::wings`]): their
+/// chains' summaries, one per wing in order, each with its direction, iterations and the
+/// units of `world` it explains (the first wing's units are those without an angle of their
+/// own), and `iterations` and `iterations_per_second` over all the chains in `seconds`.
+/// Nothing for a building of one wing.
+///
+/// ```
+/// use ksmcmc::floorplan::report::{add_wings, ChainSummary};
+/// use ksmcmc::floorplan::{Unit, UnitType, World};
+/// let mut world = World::empty(100, 100);
+/// world.units = vec![Unit::new(1, 0, 0, 20, 20, UnitType::Room), Unit::new(2, 30, 0, 20, 20, UnitType::Room)];
+/// world.units[1].angle = Some(0.5);
+/// let chain = |rotation_deg: f64, iterations| ChainSummary {
+///     iterations, seconds: 1.0, log_posterior: 0.0, best_iteration: 0, seed: 1, rotation_deg,
+///     wall_thickness: 1, knowledge: false, knowledge_error: None, inferences: 0,
+///     same_length_pairs: 0, proposed: vec![], accepted: vec![],
+/// };
+/// let mut report = serde_json::json!({"iterations": 100});
+/// add_wings(&mut report, &world, &[chain(0.0, 100), chain(0.5f64.to_degrees(), 100)], 2.0);
+/// assert_eq!(report["iterations"], 300); // the first chain's and the wings'
+/// assert_eq!(report["wings"][1]["units"], 1);
+/// ```
+pub fn add_wings(report: &mut serde_json::Value, world: &World, wings: &[ChainSummary], seconds: f64) {
+    if wings.len() < 2 {
+        return;
+    }
+    let first = report["iterations"].as_u64().unwrap_or(0);
+    let iterations = first + wings.iter().map(|c| c.iterations).sum::<u64>();
+    let per_wing: Vec<serde_json::Value> = wings
+        .iter()
+        .enumerate()
+        .map(|(k, c)| {
+            let units = world
+                .units
+                .iter()
+                .filter(|u| u.angle.map_or(k == 0, |a| k > 0 && a.to_degrees() == c.rotation_deg))
+                .count();
+            serde_json::json!({"rotation_deg": c.rotation_deg, "iterations": c.iterations, "units": units})
+        })
+        .collect();
+    report["iterations"] = iterations.into();
+    report["iterations_per_second"] = (iterations as f64 / seconds.max(1e-9)).into();
+    report["wings"] = per_wing.into();
+}
+
 /// A note for a report whose map has walls in several directions: whether its wings were
 /// explained each in its own direction (`report.json`'s `wings`, [`super::wings`]) or the
 /// units follow the map's one rotation; `None` for one direction or none.

@@ -104,23 +104,27 @@ impl Wings {
             let wing_of = labels.map(|&l| if l > 0 { 0 } else { NO_REGION });
             return Ok(Wings { chains: vec![first], wing_of, world, labels });
         };
-        if let Some(others) = layout.by_walls() {
-            labels = first.rooms_by_walls(&mut world, rooms, others);
-        }
-        let WingLayout { wing_of, angles } = layout;
-        let mut chains = vec![first];
+        let mut chains = Vec::new();
         let mut units = Vec::new();
-        for (k, &angle) in angles.iter().enumerate() {
-            let mut c = config.clone();
-            c.detectors.rotation_deg = Some(angle.to_degrees());
-            let mut chain = Chain::new(&wing_map(map, &wing_of, k as u8), c, seed)?;
+        for k in 0..layout.angles.len() {
+            let mut chain = Chain::new(&layout.wing_map(map, k), layout.wing_config(config, k), seed)?;
             chain.step(iterations);
             units.push(chain.best_world_typed());
             chains.push(chain);
         }
-        let world = compose(world, &labels, &units, &wing_of);
-        Ok(Wings { chains, wing_of, world, labels })
+        let by_walls = |world: &mut World, others: &[f64]| first.rooms_by_walls(world, rooms, others);
+        (world, labels) = layout.compose(world, labels, &units, by_walls);
+        chains.insert(0, first);
+        Ok(Wings { chains, wing_of: layout.wing_of, world, labels })
     }
+}
+
+/// A wing's direction in degrees as its chain is configured
+/// ([`super::DetectorConfig::rotation_deg`]): rounded to a millionth of a degree, so that the
+/// number reads back to the same bits from JSON text, as the browser's chain of a wing is
+/// configured (serde_json reads numbers of 17 digits fast, not exactly: [`crate::json`]).
+pub fn wing_rotation_deg(angle: f64) -> f64 {
+    libm::round(angle.to_degrees() * 1e6) / 1e6
 }
 
 /// The share of a room's cells its main direction needs for the whole room to follow it.
@@ -155,6 +159,39 @@ impl WingLayout {
     /// holds less than [`MIN_FIRST_SHARE`] of the floor), else `None`.
     pub fn by_walls(&self) -> Option<&[f64]> {
         (first_share(&self.wing_of) < MIN_FIRST_SHARE).then(|| &self.angles[1..])
+    }
+
+    /// `map` as wing `k`'s chain sees it (module docs, step 4): the other wings' free cells
+    /// unknown, so that its units explain its own floor.
+    pub fn wing_map(&self, map: &OccupancyMap, k: usize) -> OccupancyMap {
+        wing_map(map, &self.wing_of, k as u8)
+    }
+
+    /// The settings of wing `k`'s chain: `config` turned by the wing's direction
+    /// ([`wing_rotation_deg`]).
+    pub fn wing_config(&self, config: &ChainConfig, k: usize) -> ChainConfig {
+        let mut c = config.clone();
+        c.detectors.rotation_deg = self.angles.get(k).map(|&a| wing_rotation_deg(a));
+        c
+    }
+
+    /// The world of the wings (module docs, steps 3 and 5) from the first chain's `world` with
+    /// its rooms and their `labels`, and the typed best worlds of the wings' chains, one per
+    /// wing in order ([`WingLayout::wing_map`], [`WingLayout::wing_config`]). Where the rooms
+    /// go by the walls ([`WingLayout::by_walls`]), `by_walls` finds them again on `world` with
+    /// the other wings' directions and returns their labels
+    /// ([`Chain::rooms_by_walls`], [`super::export::RoomInput::by_walls`]).
+    pub fn compose(
+        &self,
+        mut world: World,
+        mut labels: Grid<u16>,
+        wings: &[World],
+        by_walls: impl FnOnce(&mut World, &[f64]) -> Grid<u16>,
+    ) -> (World, Grid<u16>) {
+        if let Some(others) = self.by_walls() {
+            labels = by_walls(&mut world, others);
+        }
+        (compose(world, &labels, wings, &self.wing_of), labels)
     }
 }
 

@@ -28,6 +28,7 @@ use crate::floorplan::georef::Georef;
 use crate::floorplan::plan_input::PlanInput;
 use crate::floorplan::room_types::{room_marginals, room_types};
 use crate::floorplan::route::RoutePlanner;
+use crate::floorplan::wings::{wing_rotation_deg, WingLayout};
 use crate::floorplan::{export, World};
 use crate::grid::{Grid, Limits, OccupancyMap};
 use crate::render;
@@ -49,6 +50,10 @@ pub struct Plan {
     /// The route planner, made by the first route: its room graph and the distances inside
     /// rooms are reused by the next.
     planner: Option<RoutePlanner>,
+    /// The wings' chains' inputs this plan was made with (none for one chain).
+    wings: Vec<PlanInput>,
+    /// The building's wings when it has several and the plan was made without their chains.
+    layout: Option<WingLayout>,
 }
 
 #[wasm_bindgen]
@@ -57,14 +62,24 @@ impl Plan {
     /// object with a saved typed world) on the map the chain ran on, as its PGM and YAML (the
     /// mapper module's `map.toPgm()` and `map.toYaml('map.pgm')`). While edits are in force,
     /// `previousLabels` (the `roomLabels()` of the plan shown before) keeps the rooms' ids.
-    /// Throws if the map, the input or the labels are not valid, or the input was made on
-    /// another map.
+    ///
+    /// A building whose walls follow several directions is explained wing by wing, as
+    /// `ksmcmc floorplan` does: a plan made without `wingInputs` says how many wing chains it
+    /// needs (`wingCount`); run a `Mapper` on each wing's map (`wingMapPgm(k)` with the same
+    /// YAML) turned by its direction (`detectors.rotation_deg` = `wingRotationDeg(k)` in its
+    /// `configJson`, the rest as the first chain's), with the first chain's seed and
+    /// iterations, and pass their `planInput()` texts in order as `wingInputs`: the plan is
+    /// then `ksmcmc floorplan`'s, units at their angles.
+    ///
+    /// Throws if the map, the input or the labels are not valid, the input was made on
+    /// another map, or the wings' inputs do not fit the building's wings.
     #[wasm_bindgen(constructor)]
     pub fn new(
         #[wasm_bindgen(js_name = mapPgm)] map_pgm: &[u8],
         #[wasm_bindgen(js_name = mapYaml)] map_yaml: &str,
         #[wasm_bindgen(js_name = inputJson)] input_json: &str,
         #[wasm_bindgen(js_name = previousLabels)] previous_labels: Option<Vec<u16>>,
+        #[wasm_bindgen(js_name = wingInputs)] wing_inputs: Option<Vec<String>>,
     ) -> Result<Plan, JsError> {
         let map = OccupancyMap::from_yaml_and_pgm(map_yaml, map_pgm, &Limits::default())?;
         let input = PlanInput::from_json(input_json).map_err(err)?;
@@ -77,8 +92,41 @@ impl Plan {
             })?),
             None => None,
         };
+        let wings = wing_inputs.unwrap_or_default();
+        let wings: Vec<PlanInput> = wings
+            .iter()
+            .enumerate()
+            .map(|(k, text)| PlanInput::from_json(text).map_err(|e| JsError::new(&format!("wingInputs[{k}]: {e}"))))
+            .collect::<Result<_, _>>()?;
+        if !wings.is_empty() {
+            let (world, labels) = input.explain_wings(&map, &wings).map_err(err)?;
+            return Ok(Plan { map, input, world, labels, planner: None, wings, layout: None });
+        }
         let (world, labels) = input.explain(&map, previous.as_ref()).map_err(err)?;
-        Ok(Plan { map, input, world, labels, planner: None })
+        let layout = input.wing_layout(&map, &labels);
+        Ok(Plan { map, input, world, labels, planner: None, wings, layout })
+    }
+
+    /// How many wing chains the building needs before the plan is `ksmcmc floorplan`'s (see
+    /// the constructor): 0 for a building of one wall direction, while edits are in force, and
+    /// for a plan made with its wings' inputs.
+    #[wasm_bindgen(getter, js_name = wingCount)]
+    pub fn wing_count(&self) -> u32 {
+        self.layout.as_ref().map_or(0, |l| l.angles.len() as u32)
+    }
+
+    /// The map wing `k`'s chain explains, as PGM bytes (with the map's YAML): the other
+    /// wings' free cells unknown. Throws for `k` not below `wingCount`.
+    #[wasm_bindgen(js_name = wingMapPgm)]
+    pub fn wing_map_pgm(&self, k: u32) -> Result<Vec<u8>, JsError> {
+        Ok(self.layout(k)?.wing_map(&self.map, k as usize).to_pgm())
+    }
+
+    /// Wing `k`'s direction in degrees: its chain's `detectors.rotation_deg`. Throws for `k`
+    /// not below `wingCount`.
+    #[wasm_bindgen(js_name = wingRotationDeg)]
+    pub fn wing_rotation_deg(&self, k: u32) -> Result<f64, JsError> {
+        Ok(wing_rotation_deg(self.layout(k)?.angles[k as usize]))
     }
 
     /// The world with its rooms as `world.json` text: what `ksmcmc floorplan` writes.
@@ -196,10 +244,25 @@ impl Plan {
     /// and per-kernel counts. Throws for a plan of a saved world (no chain, no report).
     #[wasm_bindgen(js_name = reportJson)]
     pub fn report_json(&self) -> Result<String, JsError> {
-        let r = self.input.report(&self.map, &self.world, &self.labels).ok_or_else(|| {
+        let r = if self.wings.is_empty() {
+            self.input.report(&self.map, &self.world, &self.labels)
+        } else {
+            self.input.report_wings(&self.map, &self.world, &self.labels, &self.wings)
+        };
+        let r = r.ok_or_else(|| {
             JsError::new("reportJson: this plan was made without a chain; make it from mapper.planInput()")
         })?;
         Ok(export::report_json(&r))
+    }
+}
+
+impl Plan {
+    /// The wings' layout, if wing `k` is one of them.
+    fn layout(&self, k: u32) -> Result<&WingLayout, JsError> {
+        self.layout
+            .as_ref()
+            .filter(|l| (k as usize) < l.angles.len())
+            .ok_or_else(|| JsError::new(&format!("wing {k}: this plan needs {} wing chains", self.wing_count())))
     }
 }
 

@@ -198,6 +198,47 @@ describe('Live mapper', () => {
     await done(page);
   });
 
+  test('a building of two wings: a chain per wing once the chain stops, the files of the native `ksmcmc floorplan`', async () => {
+    const sample = join(REPO, 'samples/two-wings');
+    const out = join(tmp, 'native-wings');
+    cli('floorplan', join(sample, 'map.yaml'), '--iterations', '2000', '--seed', '3', '--out', out);
+    const native = JSON.parse(readFileSync(join(out, 'report.json'), 'utf8'));
+    assert.equal(native.wings?.length, 2, 'the CLI explains the sample wing by wing');
+    const page = await openMapper('?sample=two-wings&seed=3&ipf=2000');
+    await until(page, (s, v) => s.sample === v, 'two-wings');
+    await page.click('#step');
+    await until(page, (s, v) => s.iteration === v, 2000);
+    await page.waitForFunction(() => window.__ksmcmc.snapshot().wingsDone === 2, null, { timeout: 120_000 });
+    assert.match(await page.textContent('#status'), /2 wings were explained each in its own direction/);
+    await key(page, 'b');
+    for (const [name, button] of Object.entries({
+      'world.json': '#export-world',
+      'labels.pgm': '#export-labels',
+      'overlay.png': '#export-png',
+      'graph.json': '#export-graph',
+      'world.geojson': '#export-geojson',
+      'world.svg': '#export-svg',
+    })) {
+      const got = await download(page, button);
+      const want = readFileSync(join(out, name));
+      assert.ok(got.bytes.equals(want), `${name}: the browser's ${got.bytes.length} bytes differ from the native ${want.length}`);
+    }
+    const world = JSON.parse(readFileSync(join(out, 'world.json'), 'utf8'));
+    assert.ok(world.units.some((u) => u.angle !== undefined) && world.units.some((u) => u.angle === undefined), 'units at two angles');
+    const report = JSON.parse((await download(page, '#export-report')).bytes.toString('utf8'));
+    for (const k of ['iterations', 'units', 'doors', 'rooms', 'cell_prediction_rate', 'wings']) {
+      assert.deepEqual(report[k], native[k], `report.json ${k}`);
+    }
+    // Running on drops the wings until the chain stops again.
+    await key(page, ' ');
+    await until(page, (s) => s.running, true);
+    await key(page, ' ');
+    await page.waitForFunction(() => !window.__ksmcmc.snapshot().running);
+    await settled(page);
+    assert.equal(await page.isVisible('#message'), false, 'no error');
+    await done(page);
+  });
+
   test('keyboard: Space, S, R and the view keys; Step runs the iterations per frame', async () => {
     const page = await openMapper();
     await page.fill('#ipf', '150');

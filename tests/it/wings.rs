@@ -95,3 +95,83 @@ fn routes_cross_from_one_wing_to_the_other() {
     assert!(route.path.iter().all(|&[x, y]| *g.at(x as usize, y as usize) == Cell::Free), "the path leaves free space");
     assert!(route.rooms.len() >= 2, "{:?}", route.rooms);
 }
+
+/// The browser's way to a building's wings: the first chain's plan input finds the layout,
+/// each wing's chain runs on the wing's map as PGM and YAML with its settings as JSON text,
+/// and the plan inputs compose the world `Wings::run` makes, with the same room labels.
+#[test]
+fn plan_inputs_of_the_wings_compose_the_world_of_wings_run() {
+    use ksmcmc::floorplan::plan_input::PlanInput;
+    use ksmcmc::grid::{Limits, OccupancyMap};
+    let s = generate(&SynthConfig { wing_deg: 30.0, width: 240, height: 160, ..Default::default() }, 1).unwrap();
+    let (seed, iterations) = (2, 1500);
+    let config = ChainConfig::default();
+    let wings = Wings::run(&s.map, &config, &WingConfig::default(), seed, iterations, &Default::default()).unwrap();
+    assert_eq!(wings.chains.len(), 3, "the first chain, then one per wing");
+
+    let text = |chain: &mut Chain| PlanInput::from_json(&PlanInput::of(chain, 0.0).to_json()).unwrap();
+    let mut first = Chain::new(&s.map, config.clone(), seed).unwrap();
+    first.step(iterations);
+    let input = text(&mut first);
+    let (_, labels) = input.explain(&s.map, None).unwrap();
+    let layout = input.wing_layout(&s.map, &labels).expect("two wings");
+    let mut inputs = Vec::new();
+    for k in 0..layout.angles.len() {
+        let wing = layout.wing_map(&s.map, k);
+        let map =
+            OccupancyMap::from_yaml_and_pgm(&wing.to_yaml("map.pgm"), &wing.to_pgm(), &Limits::default()).unwrap();
+        assert_eq!(map.classified(), wing.classified(), "wing {k}'s map reads back from its PGM");
+        let deg = layout.wing_config(&config, k).detectors.rotation_deg.unwrap();
+        let json = format!(r#"{{"detectors": {{"rotation_deg": {}}}}}"#, serde_json::to_string(&deg).unwrap());
+        let c = ChainConfig::from_json(&json).unwrap();
+        assert_eq!(c, layout.wing_config(&config, k), "wing {k}'s settings read back from {json}");
+        let mut chain = Chain::new(&map, c, seed).unwrap();
+        chain.step(iterations);
+        inputs.push(text(&mut chain));
+    }
+    let (world, labels) = input.explain_wings(&s.map, &inputs).unwrap();
+    assert!(world == wings.world, "the composed world is Wings::run's");
+    assert!(labels == wings.labels, "and so are its room labels");
+    // Wings that do not fit the layout are refused, saying why.
+    let err = input.explain_wings(&s.map, &inputs[..1]).unwrap_err().to_string();
+    assert!(err.contains("2 wings, but 1 wing chains"), "{err}");
+    let err = input.explain_wings(&s.map, &[inputs[1].clone(), inputs[0].clone()]).unwrap_err().to_string();
+    assert!(err.contains("rotation_deg"), "{err}");
+}
+
+/// A wing's direction as a chain's setting reads back from JSON text to the same bits, which
+/// 17-digit numbers do not always do (serde_json's fast reader).
+#[test]
+fn wing_directions_read_back_from_json_exactly() {
+    use ksmcmc::floorplan::wings::wing_rotation_deg;
+    let mut x: u64 = 0x9e37_79b9_7f4a_7c15;
+    for _ in 0..20_000 {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        let angle = (x >> 11) as f64 / (1u64 << 53) as f64 * std::f64::consts::PI - std::f64::consts::FRAC_PI_2;
+        let deg = wing_rotation_deg(angle);
+        assert!((deg - angle.to_degrees()).abs() <= 5e-7);
+        let json = format!(r#"{{"detectors": {{"rotation_deg": {}}}}}"#, serde_json::to_string(&deg).unwrap());
+        let back = ChainConfig::from_json(&json).unwrap().detectors.rotation_deg.unwrap();
+        assert_eq!(back.to_bits(), deg.to_bits(), "{json}");
+    }
+}
+
+/// The room layer by the walls is the same from a chain and from its plan input.
+#[test]
+fn rooms_by_the_walls_are_the_same_from_a_chain_and_from_its_room_input() {
+    use ksmcmc::floorplan::export::RoomInput;
+    use ksmcmc::floorplan::rooms::RoomConfig;
+    let s = generate(&SynthConfig { wing_deg: 30.0, width: 240, height: 160, ..Default::default() }, 4).unwrap();
+    let mut chain = Chain::new(&s.map, ChainConfig::default(), 1).unwrap();
+    chain.step(1500);
+    let rooms = RoomConfig::default();
+    let angles = [30f64.to_radians()];
+    let (mut world, _) = chain.best_world_with_rooms(&rooms);
+    let labels = chain.rooms_by_walls(&mut world, &rooms, &angles);
+    let input = RoomInput::for_map(chain.best_world_typed(), &s.map, true, Default::default()).unwrap();
+    let (other, other_labels) = input.by_walls(&angles).explain(&rooms);
+    assert!(other == world && other_labels == labels);
+    assert!(world.rooms.len() > 3, "{} rooms", world.rooms.len());
+}

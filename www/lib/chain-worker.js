@@ -15,8 +15,15 @@
 // the live mapper is once the best world has units, so that the page starts with the mapper
 // module alone. They get plain text and bytes: the map's PGM and YAML and `Mapper.planInput()`,
 // from which the plan module's `Plan` finds the rooms as the chain would.
+//
+// A building whose walls follow several directions is explained wing by wing, as
+// `ksmcmc floorplan` does (floorplan::wings): once the chain has stopped, the plan module says
+// how many wings there are, and the worker runs a chain per wing on that wing's map, turned by
+// its direction, for as many iterations as the first chain ran, in slices between requests.
+// The plan of the stopped chain is then made with the wings' chains, its units at their
+// angles: byte for byte what `ksmcmc floorplan --iterations N` writes.
 
-import init, { Mapper, renderMapperRgba, renderSceneGraphRgba, wasmHeapBytes } from '../pkg/ksmcmc.js';
+import init, { Map as OccMap, Mapper, renderMapperRgba, renderSceneGraphRgba, wasmHeapBytes } from '../pkg/ksmcmc.js';
 import { buildMap } from './map-source.js';
 import { loadModule } from './modules.js';
 
@@ -59,8 +66,18 @@ const state = {
   drawnAt: 0,
   /** The map's PGM and YAML for the plan module ({ pgm, yaml }), made when the first plan is. */
   floor: null,
-  /** The last plan made: { key, plan }. Its room ids carry over to the next while edits are in force. */
+  /**
+   * The last plan made: { key, plan, wings, world }. Its room ids carry over to the next while
+   * edits are in force. `wings`: whether it was made with its wings' chains (then `world` is
+   * its world's JSON text, which the best world's picture shows), or needs none.
+   */
   plan: null,
+  /** A plan on its way: { key, promise }, for requests that come while the wings run. */
+  planning: null,
+  /** The chain's settings as the page gave them (JSON text), for the wings' chains. */
+  config: '',
+  /** The wings being explained: { wing, of, iteration, target } (the first wing is 1). */
+  wings: null,
   /** The modules loaded besides the mapper module (for the heap's size). */
   modules: new Set(),
 };
@@ -105,6 +122,8 @@ function stats() {
     settledAt: m.settledAt ?? null,
     improvedAt: m.improvedAt ?? null,
     settleWindow: m.settleWindow,
+    wings: state.wings ? { ...state.wings } : null,
+    wingsDone: state.plan?.wings && state.plan.key === planKey() ? state.plan.count : 0,
   };
 }
 
@@ -142,6 +161,7 @@ function start(map, { config, seed, reference }) {
   }
   state.mapper?.free();
   state.mapper = mapper;
+  state.config = config ?? '';
   state.generation++;
   state.running = false;
   dropFrame();
@@ -168,7 +188,9 @@ async function frame(id, view) {
   const t0 = performance.now();
   const m = state.mapper;
   const s = stats();
-  const picture = rgbaBitmap(renderMapperRgba(m, { show: view.show, cloud: view.cloud, labels: view.labels, scale: view.scale }));
+  // The best world of a building of wings is the plan's, its units at their angles.
+  const world = view.show === 'best' && state.plan?.world && state.plan.key === planKey() ? state.plan.world : undefined;
+  const picture = rgbaBitmap(renderMapperRgba(m, { show: view.show, cloud: view.cloud, labels: view.labels, scale: view.scale, world }));
   const graph = rgbaBitmap(renderSceneGraphRgba(m, view.graphWidth, view.graphHeight, view.graphShow));
   const trace = m.traceLength > view.traceFrom ? m.trace(view.traceFrom) : null;
   state.drawnAt = performance.now();
@@ -237,25 +259,129 @@ function innerCell(ids, width, id) {
   return best;
 }
 
+/** What a plan is made of: the chain, its best world and its edits. */
+function planKey() {
+  const m = state.mapper;
+  return `${state.generation} ${m.bestIteration} ${m.bestLogPosterior} ${m.editsJson()}`;
+}
+
 /**
  * The `Plan` of the chain's best world as it is now: made again when the chain, its best world
  * or its edits have changed. While edits are in force, the rooms keep the ids of the plan shown
- * before.
+ * before. Once the chain has stopped, a building of several wings is explained wing by wing
+ * (see the top of this file) before the plan is handed out; while it runs, the plan is the one
+ * chain's.
  */
 async function plan() {
+  if (!state.mapper) throw new Error('no chain yet');
+  const key = planKey();
+  if (state.plan?.key === key && (state.plan.wings || state.running)) return state.plan.plan;
+  if (state.planning?.key === key) return state.planning.promise;
+  const promise = makePlan(key);
+  state.planning = { key, promise };
+  try {
+    return await promise;
+  } finally {
+    if (state.planning?.promise === promise) state.planning = null;
+  }
+}
+
+async function makePlan(key) {
   const x = await loadPlan();
   state.modules.add(x);
-  const m = state.mapper;
-  if (!m) throw new Error('no chain yet');
-  const edits = m.editsJson();
-  const key = `${state.generation} ${m.bestIteration} ${m.bestLogPosterior} ${edits}`;
-  if (state.plan?.key === key) return state.plan.plan;
+  const again = () => {
+    state.planning = null;
+    return plan();
+  };
+  if (!state.mapper || planKey() !== key) return again();
   state.floor ??= { pgm: state.map.toPgm(), yaml: state.map.toYaml('map.pgm') };
-  const previous = edits !== '[]' && state.plan ? state.plan.plan.roomLabels() : undefined;
-  const made = new x.Plan(state.floor.pgm, state.floor.yaml, m.planInput(), previous);
-  state.plan?.plan.free();
-  state.plan = { key, plan: made };
+  if (state.plan?.key !== key) keep(key, newPlan(x, state.mapper.planInput()), { wings: false });
+  const first = state.plan.plan;
+  const config = wingsConfig();
+  if (first.wingCount === 0 || !config) {
+    state.plan.wings = true;
+    return first;
+  }
+  if (state.running) return first;
+  const { floor } = state;
+  const input = state.mapper.planInput();
+  const inputs = await runWings(first, floor, config, key);
+  // The chain ran on or changed meanwhile: the plan of what it is now.
+  if (!inputs) return again();
+  const made = new x.Plan(floor.pgm, floor.yaml, input, undefined, inputs);
+  keep(key, made, { wings: true, count: inputs.length, world: made.worldJson() });
+  postMessage({ event: 'wings', stats: stats() });
   return made;
+}
+
+/** A plan of the chain's `input` (room ids carried over from the last plan while edits are in force). */
+function newPlan(x, input) {
+  const edits = state.mapper.editsJson();
+  const previous = edits !== '[]' && state.plan ? state.plan.plan.roomLabels() : undefined;
+  return new x.Plan(state.floor.pgm, state.floor.yaml, input, previous);
+}
+
+/** Makes `plan` the last plan made, for `key`. */
+function keep(key, plan, { wings, count = 0, world = null }) {
+  if (state.plan?.plan !== plan) state.plan?.plan.free();
+  state.plan = { key, plan, wings, count, world };
+}
+
+/**
+ * The chain's settings as an object for its wings' chains, or null when the page fixed the
+ * rotation (then one chain explains the map, as `ksmcmc floorplan --rotation` does).
+ */
+function wingsConfig() {
+  const c = state.config.trim() ? JSON.parse(state.config) : {};
+  return c.detectors?.rotation_deg != null ? null : c;
+}
+
+/** Iterations of a wing's chain per slice, until the time of one is known. */
+const FIRST_WING_STEP = 200;
+
+/**
+ * Runs the chains of the wings of plan `first` (its `wingCount`), each for as many iterations as
+ * the first chain ran, with its seed, in slices of about SLICE_MS between requests. Returns
+ * their plan inputs in order, or null if the chain ran on, changed or was replaced meanwhile.
+ */
+async function runWings(first, floor, config, key) {
+  const m = state.mapper;
+  const [generation, target, seed, of] = [state.generation, m.iteration, m.seed, first.wingCount];
+  const gone = () => state.running || state.generation !== generation || !state.mapper || planKey() !== key;
+  const inputs = [];
+  let step = FIRST_WING_STEP;
+  try {
+    for (let k = 0; k < of; k++) {
+      state.wings = { wing: k + 1, of, iteration: 0, target, rotationDeg: first.wingRotationDeg(k) };
+      postMessage({ event: 'wings', stats: stats() });
+      const map = OccMap.fromYaml(floor.yaml, first.wingMapPgm(k));
+      const detectors = { ...(config.detectors ?? {}), rotation_deg: state.wings.rotationDeg };
+      let chain;
+      try {
+        chain = new Mapper(map, JSON.stringify({ ...config, detectors }), seed);
+      } finally {
+        map.free();
+      }
+      try {
+        while (chain.iteration < target) {
+          const t0 = performance.now();
+          const n = Math.min(step, target - chain.iteration);
+          chain.step(n);
+          const ms = performance.now() - t0;
+          step = Math.max(16, Math.round((n * SLICE_MS) / Math.max(ms, 0.1)));
+          state.wings.iteration = chain.iteration;
+          await new Promise((resolve) => setTimeout(resolve, 0));
+          if (gone()) return null;
+        }
+        inputs.push(chain.planInput());
+      } finally {
+        chain.free();
+      }
+    }
+    return inputs;
+  } finally {
+    state.wings = null;
+  }
 }
 
 /**

@@ -13,6 +13,11 @@ export class RemoteChain {
   constructor(onError, onSettled, url = new URL('./chain-worker.js', import.meta.url)) {
     this.worker = new Worker(url, { type: 'module' });
     this.pending = new Map();
+    /**
+     * Called with the chain's numbers while the worker explains the wings of a building whose
+     * walls follow several directions (their `wings`), and once they are done (`wingsDone`).
+     */
+    this.onWings = null;
     this.next = 1;
     this.worker.onmessage = (e) => {
       const { id, result, error, event } = e.data;
@@ -22,6 +27,10 @@ export class RemoteChain {
       }
       if (event === 'settled') {
         onSettled(e.data.stats);
+        return;
+      }
+      if (event === 'wings') {
+        this.onWings?.(e.data.stats);
         return;
       }
       const p = this.pending.get(id);

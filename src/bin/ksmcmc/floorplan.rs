@@ -197,22 +197,11 @@ fn run_wings(
     let (world, labels) = (&wings.world, &wings.labels);
     let mut report = ksmcmc::floorplan::report::summary(&wings.chains[0], map, world, seconds);
     ksmcmc::floorplan::report::add_rooms(&mut report, world, labels);
-    let per_wing: Vec<serde_json::Value> = wings
-        .chains
-        .iter()
-        .skip(usize::from(wings.chains.len() > 1))
-        .map(|c| {
-            serde_json::json!({"rotation_deg": c.frame().angle.to_degrees(), "iterations": c.iteration(),
-            "units": world.units.iter().filter(|u| world.unit_frame(u) == *c.frame()).count()})
-        })
-        .collect();
-    let iterations: u64 = wings.chains.iter().map(|c| c.iteration()).sum();
-    let several = per_wing.len() > 1;
-    if several {
-        report["iterations"] = iterations.into();
-        report["iterations_per_second"] = (iterations as f64 / seconds.max(1e-9)).into();
-        report["wings"] = per_wing.into();
-    }
+    let summaries: Vec<_> =
+        wings.chains[1..].iter().map(|c| ksmcmc::floorplan::report::ChainSummary::of(c, seconds)).collect();
+    ksmcmc::floorplan::report::add_wings(&mut report, world, &summaries, seconds);
+    let iterations = report["iterations"].as_u64().unwrap_or(0);
+    let several = summaries.len() > 1;
     let run = Run { world, labels, report, trace, iterations, seconds };
     write_run(o, map, run, region, several.then(|| wings.chains.len() - 1))
 }

@@ -885,9 +885,13 @@ function updateStats() {
   s.lp.textContent = formatNumber(m.logPosterior, 1);
   s.best.textContent = formatNumber(m.bestLogPosterior, 1);
   s.acc.textContent = `${formatNumber(100 * m.acceptance, 1)} %`;
-  s.units.textContent = `${m.units} now, ${m.bestUnits} best`;
+  // Once a building's wings are explained, the best world is theirs (a chain per wing).
+  const wings = m.wingsDone > 0 ? ` (${m.wingsUnits} in ${m.wingsDone} wings)` : '';
+  s.units.textContent = `${m.units} now, ${m.bestUnits} best${wings}`;
   s.doors.textContent = `${m.doors} now, ${m.bestDoors} best`;
-  s.k.textContent = formatNumber(m.bestPredictionRate, 4);
+  s.k.textContent = m.wingsDone > 0
+    ? `${formatNumber(m.wingsPredictionRate, 4)} in ${m.wingsDone} wings (${formatNumber(m.bestPredictionRate, 4)} one chain)`
+    : formatNumber(m.bestPredictionRate, 4);
   s.rotation.textContent = `${formatNumber(m.rotationDeg, 1)}°`;
   s.setup.textContent = `${formatNumber(m.setupMs)} ms`;
   s.settled.textContent = m.settledAt !== null
@@ -1888,6 +1892,7 @@ function expose() {
         settleWindow: m?.settleWindow ?? 0,
         wings: m?.wings ?? null,
         wingsDone: m?.wingsDone ?? 0,
+        wingsPredictionRate: m?.wingsPredictionRate ?? null,
         stopWhenSettled: ui.stopSettled.checked,
         show: state.show,
         cloud: state.cloud,

@@ -210,7 +210,10 @@ describe('Live mapper', () => {
     await until(page, (s, v) => s.iteration === v, 2000);
     await page.waitForFunction(() => window.__ksmcmc.snapshot().wingsDone === 2, null, { timeout: 120_000 });
     assert.match(await page.textContent('#status'), /2 wings were explained each in its own direction/);
+    assert.equal((await snap(page)).wingsPredictionRate, native.cell_prediction_rate, 'K(W,M) of the wings\' world');
     await key(page, 'b');
+    await settled(page);
+    assert.match(await page.textContent('#stat-k'), /in 2 wings/);
     for (const [name, button] of Object.entries({
       'world.json': '#export-world',
       'labels.pgm': '#export-labels',

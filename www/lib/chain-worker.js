@@ -123,7 +123,7 @@ function stats() {
     improvedAt: m.improvedAt ?? null,
     settleWindow: m.settleWindow,
     wings: state.wings ? { ...state.wings } : null,
-    wingsDone: state.plan?.wings && state.plan.key === planKey() ? state.plan.count : 0,
+    ...wingsDone(),
   };
 }
 
@@ -259,6 +259,16 @@ function innerCell(ids, width, id) {
   return best;
 }
 
+/**
+ * The wings explained for the best world as it is now: how many (`wingsDone`, 0 for none), and
+ * their world's units and K(W,M) (`wingsUnits`, `wingsPredictionRate`).
+ */
+function wingsDone() {
+  const p = state.plan;
+  if (!p?.wings || !p.count || p.key !== planKey()) return { wingsDone: 0 };
+  return { wingsDone: p.count, wingsUnits: p.units, wingsPredictionRate: p.rate };
+}
+
 /** What a plan is made of: the chain, its best world and its edits. */
 function planKey() {
   const m = state.mapper;
@@ -309,7 +319,8 @@ async function makePlan(key) {
   // The chain ran on or changed meanwhile: the plan of what it is now.
   if (!inputs) return again();
   const made = new x.Plan(floor.pgm, floor.yaml, input, undefined, inputs);
-  keep(key, made, { wings: true, count: inputs.length, world: made.worldJson() });
+  const report = JSON.parse(made.reportJson());
+  keep(key, made, { wings: true, count: inputs.length, world: made.worldJson(), units: report.units, rate: report.cell_prediction_rate });
   postMessage({ event: 'wings', stats: stats() });
   return made;
 }
@@ -322,9 +333,9 @@ function newPlan(x, input) {
 }
 
 /** Makes `plan` the last plan made, for `key`. */
-function keep(key, plan, { wings, count = 0, world = null }) {
+function keep(key, plan, { wings, count = 0, world = null, units = 0, rate = 0 }) {
   if (state.plan?.plan !== plan) state.plan?.plan.free();
-  state.plan = { key, plan, wings, count, world };
+  state.plan = { key, plan, wings, count, world, units, rate };
 }
 
 /**

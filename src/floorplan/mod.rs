@@ -38,6 +38,7 @@ pub mod topology;
 mod trace;
 pub mod unexplained;
 pub mod wall_gaps;
+pub mod wing_doors;
 pub mod wings;
 pub mod world;
 

@@ -210,7 +210,7 @@ impl PlanInput {
             *world = found;
             labels
         };
-        Ok(layout.compose(world, labels, &worlds, by_walls))
+        Ok(layout.compose(map.classified(), world, labels, &worlds, by_walls))
     }
 
     /// `report.json` of the chain for `world` (the world with its rooms) and its `labels`, as

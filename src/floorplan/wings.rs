@@ -21,7 +21,9 @@
 //!    wings' free cells read unknown), its kernels unchanged;
 //! 5. the world has those rooms, with the units and doors of the wings' chains: each unit
 //!    whose interior lies mostly in its wing, in the room under most of it. The units of
-//!    every wing but the first carry their angle ([`World::unit_frame`]).
+//!    every wing but the first carry their angle ([`World::unit_frame`]);
+//! 6. where a passage of free cells leads from a unit of one wing into a unit of another,
+//!    a door joins them ([`super::wing_doors`]).
 //!
 //! Why the rooms stay the first chain's in a building of two wings: the wings' own chains
 //! find rooms whose labels move by 0.03 of precision with a chain's random path, and lose on
@@ -34,7 +36,7 @@
 
 use super::rooms::RoomConfig;
 use super::world::{Door, Unit, World};
-use super::{Chain, ChainConfig, ChainError};
+use super::{Chain, ChainConfig, ChainError, DoorLimits};
 use crate::grid::{Cell, Grid, OccupancyMap};
 use crate::vision::regions::{direction_regions, DirectionRegions, RegionConfig, NO_REGION};
 use std::collections::BTreeMap;
@@ -113,7 +115,7 @@ impl Wings {
             chains.push(chain);
         }
         let by_walls = |world: &mut World, others: &[f64]| first.rooms_by_walls(world, rooms, others);
-        (world, labels) = layout.compose(world, labels, &units, by_walls);
+        (world, labels) = layout.compose(map.classified(), world, labels, &units, by_walls);
         chains.insert(0, first);
         Ok(Wings { chains, wing_of: layout.wing_of, world, labels })
     }
@@ -180,9 +182,12 @@ impl WingLayout {
     /// wing in order ([`WingLayout::wing_map`], [`WingLayout::wing_config`]). Where the rooms
     /// go by the walls ([`WingLayout::by_walls`]), `by_walls` finds them again on `world` with
     /// the other wings' directions and returns their labels
-    /// ([`Chain::rooms_by_walls`], [`super::export::RoomInput::by_walls`]).
+    /// ([`Chain::rooms_by_walls`], [`super::export::RoomInput::by_walls`]). Passages of free
+    /// cells of `map` between units of two wings become doors ([`super::wing_doors`], with
+    /// the default [`DoorLimits`]).
     pub fn compose(
         &self,
+        map: &Grid<Cell>,
         mut world: World,
         mut labels: Grid<u16>,
         wings: &[World],
@@ -191,7 +196,9 @@ impl WingLayout {
         if let Some(others) = self.by_walls() {
             labels = by_walls(&mut world, others);
         }
-        (compose(world, &labels, wings, &self.wing_of), labels)
+        let mut world = compose(world, &labels, wings, &self.wing_of);
+        super::wing_doors::join_wings(&mut world, map, &DoorLimits::default());
+        (world, labels)
     }
 }
 

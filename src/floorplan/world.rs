@@ -35,7 +35,9 @@
 //!   frame [`Frame::turned`] gives for its angle on the same map ([`World::unit_frame`]).
 //! * `doors[]`: the rectangle of cells from `(x0, y0)` to `(x1, y1)` inclusive, through the wall
 //!   between the two units named by id (a straight run of cells where they share a thin wall),
-//!   in the two units' frame (a door joins units of one frame).
+//!   in the first unit's frame. A door between units of two angles (where two wings meet,
+//!   [`super::wing_doors`]) crosses the first unit's wall and the second's, up to the second's
+//!   interior.
 //! * `object_cells`: unknown map cells inside units (furniture), optional.
 //! * `rooms`: the room layer, optional (written by `ksmcmc floorplan`): what a person would
 //!   call one space, one or more units each. `id` is the room's value in `labels.pgm`; `type`
@@ -502,7 +504,8 @@ impl World {
         }
     }
 
-    /// The frame a door's cells lie in: its units' (a door joins two units of one frame).
+    /// The frame a door's cells lie in: its first unit's (the other's too, but for a door
+    /// between two wings, [`super::wing_doors`]).
     pub fn door_frame(&self, door: &Door) -> Frame {
         self.unit(door.units[0]).map_or(self.frame, |u| self.unit_frame(u))
     }
@@ -643,14 +646,7 @@ impl World {
                     return bad(format!("world.json: door {} names unit {id}, which does not exist", d.id));
                 }
             }
-            let frames = d.units.map(|id| self.unit_index(id).map(|i| self.unit_frame(&self.units[i])));
-            if frames[0] != frames[1] {
-                return bad(format!(
-                    "world.json: door {} joins units {} and {} of different angles; a door joins units of one frame",
-                    d.id, d.units[0], d.units[1]
-                ));
-            }
-            let [ww, wh] = frames[0].unwrap_or(self.frame).world_size.map(i64::from);
+            let [ww, wh] = self.door_frame(d).world_size.map(i64::from);
             for (x, y) in [(d.x0, d.y0), (d.x1, d.y1)] {
                 if x < 0 || y < 0 || x as i64 >= ww || y as i64 >= wh {
                     return bad(format!("world.json: door {} has a cell ({x},{y}) outside the world", d.id));

@@ -221,6 +221,11 @@ fn wall_cells(world: &World, g: &FrameGroup) -> (CellGrid, Vec<Rect>) {
     for &d in &doors {
         grid.fill(d, 2);
     }
+    for d in world.doors.iter().filter(|d| world.door_frame(d) != g.frame) {
+        if world.unit(d.units[1]).is_some_and(|u| world.unit_frame(u) == g.frame) {
+            grid.open_where(d.rect(), &world.door_frame(d), &g.frame);
+        }
+    }
     (grid, doors)
 }
 
@@ -256,6 +261,36 @@ impl CellGrid {
             let row = (y - self.area.y) as usize * self.area.w as usize;
             for x in r.x..r.right() {
                 self.cells[row + (x - self.area.x) as usize] = v;
+            }
+        }
+    }
+
+    /// Wall cells (1) whose centres lie in `door`, a rectangle of another frame `from` (a door
+    /// between two wings, [`crate::floorplan::wing_doors`]), become doorway (2): the second
+    /// unit's wall opens where the door crosses it.
+    fn open_where(&mut self, door: Rect, from: &Frame, to: &Frame) {
+        let (rf, rt) = (from.rotation(), to.rotation());
+        let corners =
+            [(door.x, door.y), (door.right(), door.y), (door.x, door.bottom()), (door.right(), door.bottom())].map(
+                |(x, y)| {
+                    let (mx, my) = rf.to_map(x as f64, y as f64);
+                    rt.to_world(mx, my)
+                },
+            );
+        let lo = |f: fn(&(f64, f64)) -> f64| libm::floor(corners.iter().map(f).fold(f64::INFINITY, f64::min)) as i32;
+        let hi = |f: fn(&(f64, f64)) -> f64| libm::ceil(corners.iter().map(f).fold(f64::NEG_INFINITY, f64::max)) as i32;
+        let bbox = Rect::new(lo(|c| c.0), lo(|c| c.1), hi(|c| c.0) - lo(|c| c.0), hi(|c| c.1) - lo(|c| c.1));
+        let Some(r) = bbox.intersection(&self.area) else { return };
+        for y in r.y..r.bottom() {
+            for x in r.x..r.right() {
+                let (mx, my) = rt.to_map(x as f64 + 0.5, y as f64 + 0.5);
+                let (dx, dy) = rf.to_world(mx, my);
+                let within =
+                    dx >= door.x as f64 && dx < door.right() as f64 && dy >= door.y as f64 && dy < door.bottom() as f64;
+                let i = (y - self.area.y) as usize * self.area.w as usize + (x - self.area.x) as usize;
+                if within && self.cells[i] == 1 {
+                    self.cells[i] = 2;
+                }
             }
         }
     }
@@ -350,4 +385,37 @@ fn face(p: &mut Primitive, mut q: [[f64; 3]; 4], inside: [f64; 3]) {
         p.normals.push(n);
     }
     p.indices.extend_from_slice(&[base, base + 1, base + 2, base, base + 2, base + 3]);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::floorplan::{wing_doors::join_wings, DoorLimits, Unit, UnitType};
+    use crate::grid::{Cell, Grid};
+
+    /// A door between two wings opens the walls of both units: the first unit's in its own
+    /// frame, the second's in the other frame where the door crosses it.
+    #[test]
+    fn a_door_between_wings_opens_both_walls() {
+        let mut world = World::empty(100, 60);
+        world.wall_thickness = 2;
+        world.units = vec![Unit::new(1, 0, 0, 50, 60, UnitType::Room), Unit::new(2, 50, 0, 50, 60, UnitType::Room)];
+        world.units[1].angle = Some(1e-6);
+        assert_eq!(join_wings(&mut world, &Grid::new(100, 60, Cell::Free), &DoorLimits::default()), 1);
+        let groups = world.frame_groups();
+        assert_eq!(groups.len(), 2);
+        let opened = |k: usize| {
+            let (grid, _) = wall_cells(&world, &groups[k]);
+            let u = &world.units[k];
+            // Doorway cells on the unit's own ring, between its corners.
+            let ring = |x: i32| x < u.x + 2 || x >= u.x + u.w - 2;
+            let a = grid.area;
+            (0..grid.cells.len())
+                .filter(|&i| grid.cells[i] == 2)
+                .filter(|&i| ring(a.x + (i % a.w as usize) as i32))
+                .count()
+        };
+        assert!(opened(0) >= 2 * 50, "the first unit's right wall opens: {}", opened(0));
+        assert!(opened(1) >= 2 * 50, "the second unit's left wall opens: {}", opened(1));
+    }
 }

@@ -36,6 +36,11 @@ fn two_wings_are_explained_each_in_its_own_frame() {
             "{in_rooms} of {} units in rooms",
             w.world.units.len()
         );
+        // The wings are joined where the building's passage leads from one into the other: a
+        // door between units of the two angles.
+        let turned = |id: u32| w.world.unit(id).unwrap().angle.is_some();
+        let across = w.world.doors.iter().filter(|d| turned(d.units[0]) != turned(d.units[1])).count();
+        assert!(across >= 1, "wing {wing}: no door between the wings");
         // Same seed, same world.
         let again = Wings::run(&s.map, &ChainConfig::default(), &WingConfig::default(), 1, ITERATIONS, &rooms).unwrap();
         assert_eq!(again.world.to_json(), w.world.to_json());

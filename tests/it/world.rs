@@ -78,8 +78,8 @@ fn every_bad_world_is_refused_with_a_message_naming_the_problem() {
     }
 }
 
-/// Units at an angle of their own (issue 13): validated in their own frame, doors only between
-/// units of one frame, no wall shared across frames in the scene graph or the evidence, and
+/// Units at an angle of their own (issue 13): validated in their own frame, doors in their
+/// first unit's frame, no wall shared across frames in the scene graph or the evidence, and
 /// the tools that work in the world frame alone refuse them saying so.
 #[test]
 fn units_at_their_own_angle_are_checked_in_their_frame_and_refused_where_unsupported() {
@@ -96,12 +96,15 @@ fn units_at_their_own_angle_are_checked_in_their_frame_and_refused_where_unsuppo
     far.validate().unwrap();
     far.units[i].x += 1;
     assert!(far.validate().unwrap_err().to_string().contains("outside"));
-    // A door between units of two frames is refused.
+    // A door between units of two frames (where wings meet) lies in its first unit's frame.
     let mut mixed = w.clone();
     let (a, b) = (mixed.units[0].id, mixed.units[i].id);
-    mixed.doors[0].units = [a, b];
+    mixed.doors[0].units = [b, a];
+    mixed.doors[0].x1 = fw as i32 - 1;
+    mixed.validate().unwrap();
+    mixed.doors[0].x1 = fw as i32;
     let e = mixed.validate().unwrap_err().to_string();
-    assert!(e.contains("different angles"), "{e}");
+    assert!(e.contains("outside the world"), "{e}");
     // No wall adjacency and no Adj evidence between the wings.
     let g = graph::scene_graph(w);
     let turned = |id: u32| w.unit(id).unwrap().angle.is_some();

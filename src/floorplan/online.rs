@@ -4,7 +4,9 @@
 //! [`explore`] drives a simulated robot ([`crate::explore`]) over a true map. Every
 //! `update_every_m` metres it hands the robot's map to the chain ([`Chain::update_map`]) and
 //! runs `iterations` more. To measure the warm start it also starts a cold chain on the same
-//! snapshot, with the same seed and as many iterations, and notes for each how many
+//! snapshot, with the same seed and up to five times as many iterations (a cold chain that
+//! never comes back counts its whole budget, so the budget must leave it room to show what
+//! it needs: `cold_budget`), and notes for each how many
 //! iterations it took to come within 0.1 % of the better of the two best log posteriors (the
 //! reference). A warm chain that keeps most of its world needs few; a cold one climbs from the
 //! empty world every time. The cold chain's walls are as thick as the warm chain's rings at
@@ -33,6 +35,11 @@ pub struct OnlineConfig {
     pub max_updates: usize,
     /// Whether to run a cold chain on every snapshot to compare (default true).
     pub measure_cold: bool,
+    /// Iterations the cold chain of each update may run, at least `iterations`; 0 (the
+    /// default) is [`COLD_FACTOR`] times `iterations`. A cold chain that never comes back
+    /// counts its whole budget, fewer than it needs: with the warm chain's budget alone, most
+    /// cold chains on the generated floors did (BENCHMARKS, "Cold chains given room").
+    pub cold_budget: u64,
 }
 
 impl Default for OnlineConfig {
@@ -43,9 +50,14 @@ impl Default for OnlineConfig {
             iterations: 20_000,
             max_updates: 200,
             measure_cold: true,
+            cold_budget: 0,
         }
     }
 }
+
+/// How many times the warm chain's iterations a cold chain may run by default
+/// ([`OnlineConfig::cold_budget`]).
+pub const COLD_FACTOR: u64 = 5;
 
 /// How close to the reference counts as back (eq.: `L ≥ L_ref - 0.001 |L_ref|`).
 pub const WITHIN: f64 = 0.001;
@@ -117,6 +129,14 @@ impl std::fmt::Display for OnlineError {
 impl std::error::Error for OnlineError {}
 
 impl OnlineConfig {
+    /// The iterations each cold chain may run ([`OnlineConfig::cold_budget`]).
+    pub fn cold_iterations(&self) -> u64 {
+        match self.cold_budget {
+            0 => COLD_FACTOR.saturating_mul(self.iterations),
+            b => b.max(self.iterations),
+        }
+    }
+
     /// Checks every setting, saying which is out of range.
     pub fn validate(&self) -> Result<(), OnlineError> {
         self.explore.validate().map_err(OnlineError::Explore)?;
@@ -125,6 +145,12 @@ impl OnlineConfig {
         }
         if self.iterations == 0 || self.iterations > 100_000_000 {
             return Err(OnlineError::Config(format!("iterations {} must be 1 to 10^8", self.iterations)));
+        }
+        if self.cold_budget > 500_000_000 {
+            return Err(OnlineError::Config(format!(
+                "cold_budget {} must be at most 5 x 10^8 (0: five times the iterations)",
+                self.cold_budget
+            )));
         }
         if self.max_updates == 0 || self.max_updates > 100_000 {
             return Err(OnlineError::Config(format!("max_updates {} must be 1 to 100000", self.max_updates)));
@@ -223,14 +249,14 @@ fn update(
         // (a cold chain would measure them on this snapshot as seen from one side).
         let same = ChainConfig { wall_thickness: Some(chain.wall_thickness()), ..chain_config.clone() };
         let mut c = Chain::new(&snapshot, same, seed).map_err(OnlineError::Chain)?;
-        Some(climb(&mut c, config.iterations))
+        Some(climb(&mut c, config.cold_iterations()))
     } else {
         None
     };
     let last = |curve: &[f64]| *curve.last().expect("a curve has its start");
     let reference = cold.as_deref().map_or(last(&warm), |c| last(c).max(last(&warm)));
     let (warm_iterations, warm_reached) = came_back(&warm, reference, config.iterations);
-    let cold_back = cold.as_deref().map(|c| came_back(c, reference, config.iterations));
+    let cold_back = cold.as_deref().map(|c| came_back(c, reference, config.cold_iterations()));
     let best = chain.best_world();
     let robot = explorer.robot();
     Ok(UpdateRecord {

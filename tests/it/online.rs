@@ -130,3 +130,34 @@ fn updates_are_deterministic() {
     };
     assert_eq!(run(), run());
 }
+
+/// A cold chain may run longer than the warm one (`cold_budget`): it then counts the
+/// iterations it needed where it would have counted the warm chain's budget, and one that
+/// never comes back counts all of its own.
+#[test]
+fn a_cold_budget_counts_what_the_cold_chains_need() {
+    use ksmcmc::floorplan::online::{explore, OnlineConfig};
+    let s = synth::generate(&synth::SynthConfig { width: 200, height: 140, ..Default::default() }, 2).unwrap();
+    let short = OnlineConfig { update_every_m: 6.0, iterations: 1000, cold_budget: 1000, ..Default::default() };
+    let long = OnlineConfig { cold_budget: 4000, ..short };
+    assert_eq!(OnlineConfig { cold_budget: 0, ..short }.cold_iterations(), 5000, "five times by default");
+    let (a, b) = (
+        explore(&s.map, &ChainConfig::default(), &short, 1, &mut |_| {}).unwrap(),
+        explore(&s.map, &ChainConfig::default(), &long, 1, &mut |_| {}).unwrap(),
+    );
+    assert_eq!(a.updates(), b.updates(), "the robot drives the same way");
+    for r in &a.timeline {
+        assert!(r.cold_iterations.unwrap() <= 1000);
+    }
+    for r in &b.timeline {
+        let c = r.cold_iterations.unwrap();
+        assert!(c <= 4000);
+        if r.cold_reached == Some(false) {
+            assert_eq!(c, 4000, "update {}", r.update);
+        }
+    }
+    assert!(
+        b.timeline.iter().any(|r| r.cold_iterations.unwrap() > 1000),
+        "some cold chain needs more than the warm chain's budget"
+    );
+}

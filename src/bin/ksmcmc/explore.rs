@@ -34,6 +34,8 @@ Options:
   --range M          the sensor's range, metres (default 8)
   --start X,Y        the start cell (column, row); default: a free cell drawn from the seed
   --no-cold          do not run the cold chains (cold_iterations is then null)
+  --cold-budget N    iterations each cold chain may run, at least --iterations (default: five
+                     times --iterations); a cold chain that never comes back counts them all
   --seed S           random seed (default 1); same seed, same result
   --config FILE      chain configuration JSON, as for ksmcmc floorplan; the fields it does
                      not give keep the online defaults (ChainConfig::online: the floorplan
@@ -90,6 +92,7 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
         "warm_iterations": run.warm_iterations(),
         "cold_iterations": run.cold_iterations(),
         "iterations_per_update": o.online.iterations,
+        "cold_budget": o.online.cold_iterations(),
         "update_every_m": o.online.update_every_m,
         "travelled_m": run.explorer.travelled_m(),
         "scans": run.explorer.scans().len(),
@@ -140,6 +143,7 @@ fn parse(argv: Vec<OsString>) -> Result<Option<Opts>, CliError> {
             Long("range") => online.explore.range_m = args::value("--range", parser.value()?)?,
             Long("start") => online.explore.start = Some(start(parser.value()?)?),
             Long("no-cold") => online.measure_cold = false,
+            Long("cold-budget") => online.cold_budget = args::value("--cold-budget", parser.value()?)?,
             Long("config") => config = Some(args::path(parser.value()?)),
             Long("knowledge") => knowledge = Some(args::value("--knowledge", parser.value()?)?),
             Long("rotation") => rotation = Some(args::value("--rotation", parser.value()?)?),

@@ -51,7 +51,7 @@ WASM_OPT_FLAGS := -O3 --enable-bulk-memory --enable-nontrapping-float-to-int --e
 # before its first frame. `make pkg` warns above it; tests/e2e/size.test.mjs fails.
 MAPPER_GZIP_MAX := 500000
 
-.PHONY: help demo serve pkg www-pkg www-samples www-vendor test lint fmt fmt-check clippy test-native test-wasm \
+.PHONY: help demo serve pkg www-pkg www-samples www-vendor test lint fmt fmt-check clippy doc-check test-native test-wasm \
 	test-e2e cli release-cli bench-wasm tools rust-tools wasm-tools wasm-opt-tool browser-tools e2e-deps vendor-deps clean-pkg \
 	fuzz fuzz-ci fuzz-tools fuzz-cpu soak
 
@@ -60,7 +60,7 @@ help:
 	@echo "make test      fmt, clippy, native tests, wasm tests (headless Chromium), e2e tests"
 	@echo "make pkg       build the npm package in pkg/ (release wasm + wasm-bindgen + the mount embed)"
 	@echo "make bench-wasm  chain speed in headless Chromium (compare: ./target/release/ksmcmc bench)"
-	@echo "make lint      cargo fmt --check and clippy (native and wasm32)"
+	@echo "make lint      cargo fmt --check, clippy (native and wasm32) and the API docs without a warning"
 	@echo "make test-native | test-wasm | test-e2e    one part of make test"
 	@echo "make tools     install what the build and tests need"
 	@echo "make fuzz      run each fuzz target FUZZ_SECONDS (default 600) s, one at a time (needs nightly)"
@@ -192,10 +192,14 @@ serve: www-samples www-vendor
 
 # ---------------------------------------------------------------- checks
 
-lint: fmt-check clippy
+lint: fmt-check clippy doc-check
 
 fmt:
 	$(CARGO) fmt
+
+# The API docs build without a warning: no broken or private intra-doc links.
+doc-check: rust-tools
+	RUSTDOCFLAGS="-D warnings" $(CARGO) doc --no-deps --lib
 
 fmt-check: rust-tools
 	$(CARGO) fmt --check

@@ -90,7 +90,7 @@ impl Rect {
 #[serde(deny_unknown_fields)]
 pub struct Frame {
     /// Rotation from the world frame to the map, radians, counter-clockwise in image terms
-    /// (x right, y down). Read exactly ([`crate::json`]): a world's JSON reads back to the
+    /// (x right, y down). Read exactly (`crate::json`): a world's JSON reads back to the
     /// same text, and its rooms are found on the map turned by it.
     #[serde(deserialize_with = "crate::json::exact")]
     pub angle: f64,

@@ -20,7 +20,7 @@
 //! * **split**: the line is taken as a wall, extended at both ends along its direction to the
 //!   nearest non-free cell ([`MAX_EXTENSION_CELLS`] at most), so that a line drawn roughly from
 //!   wall to wall closes the gap. No unit's interior may hold a wall cell: the chain refuses any
-//!   proposal that would ([`super::state::State::forbid`]), so no world that breaks the edit is
+//!   proposal that would (`State::forbid`), so no world that breaks the edit is
 //!   proposed or accepted. The room layer gets `SameRoom` false for units the wall separates,
 //!   and the room the line is drawn across (the one at its middle) is cut in two along it.
 //! * **merge**: the units under the two points get `SameRoom` as evidence, and the rooms at the

@@ -10,7 +10,7 @@
 //! the map, exactly as [`Chain::best_world_with_rooms`] does: the grids are made again as
 //! [`Chain::new`] made them ([`RoomInput::for_map`]), and the numbers (the frame's angle, on
 //! which the room labels are made, the marginals, the report's) are read back to the bits
-//! they were written from ([`crate::json::exact`]).
+//! they were written from (`crate::json::exact`).
 //!
 //! ```
 //! use ksmcmc::floorplan::plan_input::PlanInput;

@@ -407,7 +407,7 @@ pub fn explain_world_rooms_by_walls(
 
 /// Marks the open pairs whose units the room layer's geometry parts (`closed`): with every
 /// open pair joined, the doorway split and the wall gaps ([`labels_of_groups`]) still leave
-/// the two units mostly in different segments ([`unit_rooms`]). It is evidence for the room
+/// the two units mostly in different segments (`unit_rooms`). It is evidence for the room
 /// rules (`Closed`): on the chain's worlds of the benchmark floors, nine in ten open pairs
 /// that geometry does not part lie in one drawn room, and four in five that it parts do not.
 ///

@@ -339,7 +339,7 @@ pub fn room_labels(world: &World, map: &Grid<Cell>, world_map: &Grid<Cell>, c: &
 
 /// [`room_labels`] for a given grouping of units into rooms (`rooms[i]` is unit `i`'s room,
 /// 1-based, 0 for none), as [`join`] makes it: the units' free cells, then a wavefront within
-/// reach, then free regions beyond reach ([`label_far_regions`]), split at doorways and with
+/// reach, then free regions beyond reach (`label_far_regions`), split at doorways and with
 /// small segments joined to their neighbours.
 pub fn labels_of_groups(
     world: &World,

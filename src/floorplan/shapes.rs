@@ -9,7 +9,7 @@
 //! exactly on its centre line, so that neighbouring rooms share edges instead of overlapping,
 //! and the units of one room cut apart by a seam merge into one polygon. The union is exact
 //! ([`outline`], in half cells of the world frame) and turned onto the map with the world's
-//! [`Frame`](super::Frame); a room whose floors do not touch is a multi-polygon.
+//! [`Frame`]; a room whose floors do not touch is a multi-polygon.
 //!
 //! Rooms never overlap:
 //!

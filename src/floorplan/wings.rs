@@ -124,7 +124,7 @@ impl Wings {
 /// A wing's direction in degrees as its chain is configured
 /// ([`super::DetectorConfig::rotation_deg`]): rounded to a millionth of a degree, so that the
 /// number reads back to the same bits from JSON text, as the browser's chain of a wing is
-/// configured (serde_json reads numbers of 17 digits fast, not exactly: [`crate::json`]).
+/// configured (serde_json reads numbers of 17 digits fast, not exactly: `crate::json`).
 pub fn wing_rotation_deg(angle: f64) -> f64 {
     libm::round(angle.to_degrees() * 1e6) / 1e6
 }

@@ -265,7 +265,7 @@ pub struct Room {
     /// Ids of its units (may be empty: free space the chain left unexplained can be a room).
     #[serde(deserialize_with = "caps::ids")]
     pub units: Vec<u32>,
-    /// Free floor area, square metres. Read exactly ([`crate::json`]): a world's JSON reads
+    /// Free floor area, square metres. Read exactly (`crate::json`): a world's JSON reads
     /// back to the same text.
     #[serde(deserialize_with = "crate::json::exact")]
     pub area_m2: f64,

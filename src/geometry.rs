@@ -54,6 +54,11 @@ impl Rect {
         self.w.max(0) as i64 * self.h.max(0) as i64
     }
 
+    /// The rectangle inside a wall ring `t` cells deep, if anything is left of it.
+    pub fn interior(&self, t: i32) -> Option<Rect> {
+        (self.w > 2 * t && self.h > 2 * t).then(|| Rect::new(self.x + t, self.y + t, self.w - 2 * t, self.h - 2 * t))
+    }
+
     /// Whether cell `(x, y)` is inside.
     pub fn contains(&self, x: i32, y: i32) -> bool {
         x >= self.x && x < self.right() && y >= self.y && y < self.bottom()
@@ -141,6 +146,18 @@ impl Frame {
     /// Maps a map point to the world frame (the inverse of [`Frame::to_map`]).
     pub fn to_world(&self, x: f64, y: f64) -> (f64, f64) {
         self.rotation().to_world(x, y)
+    }
+
+    /// The bounding box `[x0, y0, x1, y1]` on the map of rectangle `r` of this frame, from its
+    /// corners.
+    pub fn map_box(&self, r: Rect) -> [f64; 4] {
+        let rot = self.rotation();
+        let corners = [(r.x, r.y), (r.right(), r.y), (r.x, r.bottom()), (r.right(), r.bottom())]
+            .map(|(x, y)| rot.to_map(x as f64, y as f64));
+        let min = |v: [f64; 4]| v.iter().copied().fold(f64::INFINITY, f64::min);
+        let max = |v: [f64; 4]| v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        let (xs, ys) = (corners.map(|c| c.0), corners.map(|c| c.1));
+        [min(xs), min(ys), max(xs), max(ys)]
     }
 
     /// The frame's rotation with its sine and cosine worked out once, for loops over cells.

@@ -180,7 +180,11 @@ impl PlanInput {
     /// run on [`WingLayout::wing_map`] with [`WingLayout::wing_config`]. Refused if the map is
     /// one wing, or the wings' chains do not fit its layout.
     pub fn explain_wings(&self, map: &OccupancyMap, wings: &[PlanInput]) -> Result<(World, Grid<u16>), PlanInputError> {
-        let (world, labels) = self.explain(map, None)?;
+        // One room input for the rooms the rules group and, where they go by the walls, for
+        // those: the map turned into the world frame once.
+        let input = RoomInput::for_map(self.world.clone(), map, self.knowledge, self.edits()?)
+            .map_err(|e| PlanInputError(e.to_string()))?;
+        let (world, labels) = input.clone().explain(&RoomConfig::default());
         let layout = self.wing_layout(map, &labels).ok_or_else(|| {
             PlanInputError("wings: this map is explained by one chain (one wall direction, or edits in force)".into())
         })?;
@@ -203,10 +207,8 @@ impl PlanInput {
             w.world.fits(map.width(), map.height()).map_err(|e| PlanInputError(format!("wing {k}: {e}")))?;
         }
         let worlds: Vec<World> = wings.iter().map(|w| w.world.clone()).collect();
-        let again = RoomInput::for_map(self.world.clone(), map, self.knowledge, Edits::default())
-            .map_err(|e| PlanInputError(e.to_string()))?;
         let by_walls = move |world: &mut World, others: &[f64]| {
-            let (found, labels) = again.by_walls(others).explain(&RoomConfig::default());
+            let (found, labels) = input.by_walls(others).explain(&RoomConfig::default());
             *world = found;
             labels
         };

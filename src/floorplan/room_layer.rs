@@ -384,9 +384,18 @@ pub fn explain_world_rooms_by(
     knowledge: Option<&RoomKnowledge>,
     edits: &Edits,
 ) -> Grid<u16> {
-    explain_rooms_edited(world, map, world_map, c, resolution, knowledge, edits)
-        .or_else(|_| explain_rooms_edited(world, map, world_map, c, resolution, None, edits))
-        .unwrap_or_else(|_| Grid::new(map.width(), map.height(), 0))
+    with_rules_or_without(map, knowledge, |kb| explain_rooms_edited(world, map, world_map, c, resolution, kb, edits))
+}
+
+/// The labels `explain` finds with the rules `knowledge`, or without them should the rules
+/// fail, or none (every cell 0) should that fail too: the fallback of the room layer's
+/// infallible entries.
+fn with_rules_or_without<E>(
+    map: &Grid<Cell>,
+    knowledge: Option<&RoomKnowledge>,
+    mut explain: impl FnMut(Option<&RoomKnowledge>) -> Result<Grid<u16>, E>,
+) -> Grid<u16> {
+    explain(knowledge).or_else(|_| explain(None)).unwrap_or_else(|_| Grid::new(map.width(), map.height(), 0))
 }
 
 /// [`explain_rooms_by_walls`] with the rules `knowledge`, and without them should the rules
@@ -400,9 +409,7 @@ pub fn explain_world_rooms_by_walls(
     knowledge: Option<&RoomKnowledge>,
     angles: &[f64],
 ) -> Grid<u16> {
-    explain_rooms_by_walls(world, map, world_map, c, resolution, knowledge, angles)
-        .or_else(|_| explain_rooms_by_walls(world, map, world_map, c, resolution, None, angles))
-        .unwrap_or_else(|_| Grid::new(map.width(), map.height(), 0))
+    with_rules_or_without(map, knowledge, |kb| explain_rooms_by_walls(world, map, world_map, c, resolution, kb, angles))
 }
 
 /// Marks the open pairs whose units the room layer's geometry parts (`closed`): with every

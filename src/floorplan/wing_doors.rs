@@ -47,12 +47,21 @@ use std::collections::BTreeMap;
 pub fn join_wings(world: &mut World, map: &Grid<Cell>, limits: &DoorLimits) -> usize {
     let frames: Vec<Frame> = world.units.iter().map(|u| world.unit_frame(u)).collect();
     let reach = 2 * world.wall_thickness + limits.max_gap;
-    let boxes: Vec<[f64; 4]> = world.units.iter().zip(&frames).map(|(u, f)| map_box(u.rect(), f, reach)).collect();
+    let g = reach as f64;
+    let boxes: Vec<[f64; 4]> = world
+        .units
+        .iter()
+        .zip(&frames)
+        .map(|(u, f)| {
+            let [x0, y0, x1, y1] = f.map_box(u.rect());
+            [x0 - g, y0 - g, x1 + g, y1 + g]
+        })
+        .collect();
     // The widest passage per pair of rooms and pair of angles: where two wings' units overlap
     // in a corner room, or a corridor runs on into the next wing, one door joins the two
     // parts, not one per pair of units that touch.
     let room_of = room_index(world);
-    let mut widest: BTreeMap<[(u32, u64); 2], Passage> = BTreeMap::new();
+    let mut widest: BTreeMap<[(usize, u64); 2], Passage> = BTreeMap::new();
     for i in 0..world.units.len() {
         for j in i + 1..world.units.len() {
             if frames[i] == frames[j] || !overlap(&boxes[i], &boxes[j]) {
@@ -65,49 +74,50 @@ pub fn join_wings(world: &mut World, map: &Grid<Cell>, limits: &DoorLimits) -> u
             };
             let best = [side(i, j), side(j, i)].into_iter().flatten().max_by_key(|o| o.0);
             let Some((len, r, a, b)) = best.filter(|o| o.0 >= limits.min_len) else { continue };
-            let end = |k: usize| (room_of[k], frames[k].angle.to_bits());
+            let end = |k: usize| (room_of[k].map_or(usize::MAX, |r| r), frames[k].angle.to_bits());
             let key = if end(a) <= end(b) { [end(a), end(b)] } else { [end(b), end(a)] };
             if widest.get(&key).is_none_or(|w| len > w.0) {
-                widest.insert(key, (len, r, world.units[a].id, world.units[b].id));
+                widest.insert(key, (len, r, a, b));
             }
         }
     }
-    let mut found: Vec<(Rect, u32, u32)> = widest.into_values().map(|(_, r, a, b)| (r, a, b)).collect();
-    found.sort_by_key(|&(_, a, b)| (a, b));
+    // In the order of the units' ids (units are listed by id).
+    let mut found: Vec<(Rect, usize, usize)> = widest.into_values().map(|(_, r, a, b)| (r, a, b)).collect();
+    found.sort_by_key(|&(_, a, b)| (world.units[a].id, world.units[b].id));
     let added = found.len();
-    for (r, a, b) in found {
-        let id = world.doors.iter().map(|d| d.id).max().unwrap_or(0) + 1;
-        world.doors.push(Door { id, units: [a, b], x0: r.x, y0: r.y, x1: r.right() - 1, y1: r.bottom() - 1 });
-        link_rooms(&mut world.rooms, id, a, b);
+    let first_id = world.doors.iter().map(|d| d.id).max().unwrap_or(0) + 1;
+    for (id, (r, a, b)) in (first_id..).zip(found) {
+        let units = [world.units[a].id, world.units[b].id];
+        world.doors.push(Door { id, units, x0: r.x, y0: r.y, x1: r.right() - 1, y1: r.bottom() - 1 });
+        link_rooms(&mut world.rooms, id, room_of[a], room_of[b]);
     }
     added
 }
 
 /// A passage found between two units: its width, its rectangle in the first unit's frame and
-/// the two units' ids.
-type Passage = (i32, Rect, u32, u32);
+/// the two units' indices.
+type Passage = (i32, Rect, usize, usize);
 
 /// A run of walks side by side: the first and last position along the side, and how deep
 /// the deepest walk went.
 type Run = (i32, i32, i32);
 
-/// Per unit of `world`, the id of the room that holds it (0 for none).
-fn room_index(world: &World) -> Vec<u32> {
-    let mut of = vec![0; world.units.len()];
-    for r in &world.rooms {
+/// Per unit of `world`, the index in `rooms` of the first room that holds it.
+fn room_index(world: &World) -> Vec<Option<usize>> {
+    let mut of = vec![None; world.units.len()];
+    for (k, r) in world.rooms.iter().enumerate().rev() {
         for &u in &r.units {
             if let Some(i) = world.unit_index(u) {
-                of[i] = r.id;
+                of[i] = Some(k);
             }
         }
     }
     of
 }
 
-/// The door's rooms: each records the door, and the other room in `opens_to` (kept sorted).
-fn link_rooms(rooms: &mut [Room], door: u32, a: u32, b: u32) {
-    let room_of = |u: u32, rooms: &[Room]| rooms.iter().position(|r| r.units.contains(&u));
-    let (ra, rb) = (room_of(a, rooms), room_of(b, rooms));
+/// The rooms `ra` and `rb` (indices) of a door's two units: each records the door, and the
+/// other room in `opens_to` (kept sorted).
+fn link_rooms(rooms: &mut [Room], door: u32, ra: Option<usize>, rb: Option<usize>) {
     for r in [ra, rb].into_iter().flatten() {
         if !rooms[r].doors.contains(&door) {
             rooms[r].doors.push(door);
@@ -124,19 +134,6 @@ fn link_rooms(rooms: &mut [Room], door: u32, a: u32, b: u32) {
             }
         }
     }
-}
-
-/// The map-space bounding box `[x0, y0, x1, y1]` of `r` in `frame`, grown by `grow` cells.
-fn map_box(r: Rect, frame: &Frame, grow: i32) -> [f64; 4] {
-    let rot = frame.rotation();
-    let corners = [(r.x, r.y), (r.right(), r.y), (r.x, r.bottom()), (r.right(), r.bottom())]
-        .map(|(x, y)| rot.to_map(x as f64, y as f64));
-    let g = grow as f64;
-    let xs = corners.map(|c| c.0);
-    let ys = corners.map(|c| c.1);
-    let min = |v: [f64; 4]| v.iter().copied().fold(f64::INFINITY, f64::min);
-    let max = |v: [f64; 4]| v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-    [min(xs) - g, min(ys) - g, max(xs) + g, max(ys) + g]
 }
 
 fn overlap(a: &[f64; 4], b: &[f64; 4]) -> bool {
@@ -157,7 +154,7 @@ fn opening(
 ) -> Option<(Rect, i32)> {
     let t = world.wall_thickness;
     let (r, ra) = (a.0.rect(), a.1.rotation());
-    let (inner_b, rb) = (interior(b.0.rect(), t)?, b.1.rotation());
+    let (inner_b, rb) = (b.0.rect().interior(t)?, b.1.rotation());
     let [ww, wh] = a.1.world_size.map(|v| v as i32);
     // The side's cells along it, the first wall cell off the interior, and the way out.
     let (along, first, (dx, dy)) = match side {
@@ -209,9 +206,4 @@ fn opening(
     let (x0, x1) = (c0.0.min(c1.0), c0.0.max(c1.0));
     let (y0, y1) = (c0.1.min(c1.1), c0.1.max(c1.1));
     Some((Rect::new(x0, y0, x1 - x0 + 1, y1 - y0 + 1), e - s + 1))
-}
-
-/// `r` without its wall ring `t` deep, if anything is left.
-fn interior(r: Rect, t: i32) -> Option<Rect> {
-    (r.w > 2 * t && r.h > 2 * t).then(|| Rect::new(r.x + t, r.y + t, r.w - 2 * t, r.h - 2 * t))
 }

@@ -166,7 +166,15 @@ impl WingLayout {
     /// `map` as wing `k`'s chain sees it (module docs, step 4): the other wings' free cells
     /// unknown, so that its units explain its own floor.
     pub fn wing_map(&self, map: &OccupancyMap, k: usize) -> OccupancyMap {
-        wing_map(map, &self.wing_of, k as u8)
+        let cells = map.classified().cells().iter().zip(self.wing_of.cells()).map(|(&c, &w)| {
+            if w != NO_REGION && w as usize != k {
+                Cell::Unknown
+            } else {
+                c
+            }
+        });
+        let grid = Grid::from_vec(map.width(), map.height(), cells.collect()).expect("the map's own size");
+        OccupancyMap::from_classified(grid).with_yaml(map.yaml().clone())
     }
 
     /// The settings of wing `k`'s chain: `config` turned by the wing's direction
@@ -273,20 +281,6 @@ fn wings_by_room(
     let mut angles: Vec<f64> = order.iter().map(|&k| found.directions[k].angle).collect();
     angles[0] = first_angle;
     Some((Grid::from_vec(labels.width(), labels.height(), cells).expect("the labels' own size"), angles))
-}
-
-/// `map` as wing `k`'s chain sees it: the other wings' free cells unknown, so that its units
-/// explain its own floor.
-fn wing_map(map: &OccupancyMap, wing_of: &Grid<u8>, k: u8) -> OccupancyMap {
-    let cells = map.classified().cells().iter().zip(wing_of.cells()).map(|(&c, &w)| {
-        if w != NO_REGION && w != k {
-            Cell::Unknown
-        } else {
-            c
-        }
-    });
-    let grid = Grid::from_vec(map.width(), map.height(), cells.collect()).expect("the map's own size");
-    OccupancyMap::from_classified(grid).with_yaml(map.yaml().clone())
 }
 
 /// The world of the wings: the first chain's rooms (and labels), their units and doors those

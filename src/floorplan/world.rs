@@ -594,14 +594,7 @@ impl World {
 
     /// Whether any part of `unit` lands on the map (checked on the bounding box of its corners).
     fn touches_map(&self, unit: &Unit, w: usize, h: usize) -> bool {
-        let r = unit.rect();
-        let frame = self.unit_frame(unit);
-        let corners = [(r.x, r.y), (r.right(), r.y), (r.x, r.bottom()), (r.right(), r.bottom())]
-            .map(|(x, y)| frame.to_map(x as f64, y as f64));
-        let min_x = corners.iter().map(|c| c.0).fold(f64::INFINITY, f64::min);
-        let max_x = corners.iter().map(|c| c.0).fold(f64::NEG_INFINITY, f64::max);
-        let min_y = corners.iter().map(|c| c.1).fold(f64::INFINITY, f64::min);
-        let max_y = corners.iter().map(|c| c.1).fold(f64::NEG_INFINITY, f64::max);
+        let [min_x, min_y, max_x, max_y] = self.unit_frame(unit).map_box(unit.rect());
         max_x > 0.0 && max_y > 0.0 && min_x < w as f64 && min_y < h as f64
     }
 

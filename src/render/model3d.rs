@@ -167,8 +167,6 @@ struct Slab {
 /// no room.
 fn floors(world: &World, groups: &[FrameGroup]) -> Vec<Slab> {
     let t = world.wall_thickness;
-    let interior =
-        |r: Rect| (r.w > 2 * t && r.h > 2 * t).then(|| Rect::new(r.x + t, r.y + t, r.w - 2 * t, r.h - 2 * t));
     let group_of = FrameGroup::of_units(groups, world.units.len());
     let mut out = Vec::new();
     let mut roomed = std::collections::HashSet::new();
@@ -180,7 +178,7 @@ fn floors(world: &World, groups: &[FrameGroup]) -> Vec<Slab> {
                 let rects: Vec<Rect> = units
                     .iter()
                     .filter(|&&i| group_of[i] == k)
-                    .filter_map(|&i| interior(world.units[i].rect()))
+                    .filter_map(|&i| world.units[i].rect().interior(t))
                     .collect();
                 (!rects.is_empty()).then(|| (k, CellGrid::union(&rects).rects(1)))
             })
@@ -190,7 +188,7 @@ fn floors(world: &World, groups: &[FrameGroup]) -> Vec<Slab> {
         out.push(Slab { name, parts, kind: room.kind, extras });
     }
     for (i, u) in world.units.iter().enumerate().filter(|(_, u)| !roomed.contains(&u.id)) {
-        if let Some(r) = interior(u.rect()).filter(|_| group_of[i] != usize::MAX) {
+        if let Some(r) = u.rect().interior(t).filter(|_| group_of[i] != usize::MAX) {
             let extras = json!({ "unit": u.id, "type": u.kind.name() });
             let name = format!("unit {} ({})", u.id, u.kind.name());
             out.push(Slab { name, parts: vec![(group_of[i], vec![r])], kind: u.kind, extras });

@@ -89,6 +89,26 @@ async function key(page, k) {
   await page.keyboard.press(k);
 }
 
+/** The page's exports, by file name, and the buttons that download them. */
+const EXPORTS = {
+  'world.json': '#export-world',
+  'labels.pgm': '#export-labels',
+  'overlay.png': '#export-png',
+  'graph.json': '#export-graph',
+  'world.geojson': '#export-geojson',
+  'world.svg': '#export-svg',
+};
+
+/** Downloads each of the page's exports and checks it is the native file of that name in `out`. */
+async function sameFilesAsNative(page, out) {
+  for (const [name, button] of Object.entries(EXPORTS)) {
+    const got = await download(page, button);
+    assert.equal(got.name, name);
+    const want = readFileSync(join(out, name));
+    assert.ok(got.bytes.equals(want), `${name}: the browser's ${got.bytes.length} bytes differ from the native ${want.length}`);
+  }
+}
+
 async function openMapper(query = '') {
   const page = await openPage(env, `mapper.html${query}`);
   await page.waitForFunction(() => window.__ksmcmc.snapshot().width > 0);
@@ -176,20 +196,7 @@ describe('Live mapper', () => {
     await page.click('#step');
     await until(page, (s, v) => s.iteration === v, 2000);
     await key(page, 'b');
-    const files = {
-      'world.json': '#export-world',
-      'labels.pgm': '#export-labels',
-      'overlay.png': '#export-png',
-      'graph.json': '#export-graph',
-      'world.geojson': '#export-geojson',
-      'world.svg': '#export-svg',
-    };
-    for (const [name, button] of Object.entries(files)) {
-      const got = await download(page, button);
-      assert.equal(got.name, name);
-      const want = readFileSync(join(out, name));
-      assert.ok(got.bytes.equals(want), `${name}: the browser's ${got.bytes.length} bytes differ from the native ${want.length}`);
-    }
+    await sameFilesAsNative(page, out);
     const report = JSON.parse((await download(page, '#export-report')).bytes.toString('utf8'));
     const native = JSON.parse(readFileSync(join(out, 'report.json'), 'utf8'));
     for (const k of ['iterations', 'units', 'doors', 'rooms', 'cell_prediction_rate', 'log_posterior', 'best_iteration', 'seed', 'confusion', 'kernels']) {
@@ -214,18 +221,7 @@ describe('Live mapper', () => {
     await key(page, 'b');
     await settled(page);
     assert.match(await page.textContent('#stat-k'), /in 2 wings/);
-    for (const [name, button] of Object.entries({
-      'world.json': '#export-world',
-      'labels.pgm': '#export-labels',
-      'overlay.png': '#export-png',
-      'graph.json': '#export-graph',
-      'world.geojson': '#export-geojson',
-      'world.svg': '#export-svg',
-    })) {
-      const got = await download(page, button);
-      const want = readFileSync(join(out, name));
-      assert.ok(got.bytes.equals(want), `${name}: the browser's ${got.bytes.length} bytes differ from the native ${want.length}`);
-    }
+    await sameFilesAsNative(page, out);
     const world = JSON.parse(readFileSync(join(out, 'world.json'), 'utf8'));
     assert.ok(world.units.some((u) => u.angle !== undefined) && world.units.some((u) => u.angle === undefined), 'units at two angles');
     const report = JSON.parse((await download(page, '#export-report')).bytes.toString('utf8'));

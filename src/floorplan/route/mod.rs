@@ -435,18 +435,11 @@ fn door_cells(world: &World, w: usize, h: usize) -> HashMap<u32, u32> {
         let r = d.rect();
         // The door's box on the map, from its corners (the whole map's cells are checked
         // against the rectangle, so a turned frame misses none).
-        let corners = [(r.x, r.y), (r.right(), r.y), (r.x, r.bottom()), (r.right(), r.bottom())]
-            .map(|(x, y)| frame.to_map(x as f64, y as f64));
+        let [min_x, min_y, max_x, max_y] = frame.map_box(r);
         let lo = |v: f64, n: usize| (libm::floor(v).max(0.0) as usize).min(n);
         let hi = |v: f64, n: usize| (libm::ceil(v).max(0.0) as usize + 1).min(n);
-        let (x0, x1) = (
-            lo(corners.iter().map(|c| c.0).fold(f64::INFINITY, f64::min), w),
-            hi(corners.iter().map(|c| c.0).fold(f64::NEG_INFINITY, f64::max), w),
-        );
-        let (y0, y1) = (
-            lo(corners.iter().map(|c| c.1).fold(f64::INFINITY, f64::min), h),
-            hi(corners.iter().map(|c| c.1).fold(f64::NEG_INFINITY, f64::max), h),
-        );
+        let (x0, x1) = (lo(min_x, w), hi(max_x, w));
+        let (y0, y1) = (lo(min_y, h), hi(max_y, h));
         for my in y0..y1 {
             for mx in x0..x1 {
                 let (wx, wy) = frame.to_world(mx as f64 + 0.5, my as f64 + 0.5);

@@ -31,7 +31,7 @@ use super::report::{self, ChainSummary};
 use super::rooms::RoomConfig;
 use super::wings::{wing_rotation_deg, WingConfig, WingLayout};
 use super::world::World;
-use super::Chain;
+use super::{Chain, DoorLimits};
 use crate::grid::{Grid, OccupancyMap};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -64,6 +64,11 @@ pub struct PlanInput {
     /// `setup_seconds`.
     #[serde(default, deserialize_with = "crate::json::exact_opt")]
     pub setup_seconds: Option<f64>,
+    /// The chain's door limits ([`super::ChainConfig::doors`]): the doors found between the
+    /// units of two wings ([`PlanInput::explain_wings`]) keep to them too (default: the
+    /// default limits).
+    #[serde(default)]
+    pub doors: DoorLimits,
 }
 
 fn no_edits() -> String {
@@ -106,6 +111,7 @@ impl PlanInput {
             marginals,
             chain: Some(ChainSummary::of(chain, seconds)),
             setup_seconds: None,
+            doors: chain.config().doors,
         }
     }
 
@@ -212,7 +218,7 @@ impl PlanInput {
             *world = found;
             labels
         };
-        Ok(layout.compose(map.classified(), world, labels, &worlds, by_walls))
+        Ok(layout.compose(map.classified(), world, labels, &worlds, &self.doors, by_walls))
     }
 
     /// `report.json` of the chain for `world` (the world with its rooms) and its `labels`, as

@@ -115,7 +115,7 @@ impl Wings {
             chains.push(chain);
         }
         let by_walls = |world: &mut World, others: &[f64]| first.rooms_by_walls(world, rooms, others);
-        (world, labels) = layout.compose(map.classified(), world, labels, &units, by_walls);
+        (world, labels) = layout.compose(map.classified(), world, labels, &units, &config.doors, by_walls);
         chains.insert(0, first);
         Ok(Wings { chains, wing_of: layout.wing_of, world, labels })
     }
@@ -191,21 +191,22 @@ impl WingLayout {
     /// go by the walls ([`WingLayout::by_walls`]), `by_walls` finds them again on `world` with
     /// the other wings' directions and returns their labels
     /// ([`Chain::rooms_by_walls`], [`super::export::RoomInput::by_walls`]). Passages of free
-    /// cells of `map` between units of two wings become doors ([`super::wing_doors`], with
-    /// the default [`DoorLimits`]).
+    /// cells of `map` between units of two wings become doors within `doors`, the chains'
+    /// door limits ([`super::wing_doors`]).
     pub fn compose(
         &self,
         map: &Grid<Cell>,
         mut world: World,
         mut labels: Grid<u16>,
         wings: &[World],
+        doors: &DoorLimits,
         by_walls: impl FnOnce(&mut World, &[f64]) -> Grid<u16>,
     ) -> (World, Grid<u16>) {
         if let Some(others) = self.by_walls() {
             labels = by_walls(&mut world, others);
         }
         let mut world = compose(world, &labels, wings, &self.wing_of);
-        super::wing_doors::join_wings(&mut world, map, &DoorLimits::default());
+        super::wing_doors::join_wings(&mut world, map, doors);
         (world, labels)
     }
 }

@@ -101,6 +101,26 @@ fn routes_cross_from_one_wing_to_the_other() {
     assert!(route.rooms.len() >= 2, "{:?}", route.rooms);
 }
 
+/// The doors between the wings keep to the chains' door limits, natively and in the plan
+/// input the browser composes the wings from: none where every passage between the wings is
+/// narrower than the shortest door allowed (3 m).
+#[test]
+fn doors_between_the_wings_keep_to_the_door_limits() {
+    use ksmcmc::floorplan::plan_input::PlanInput;
+    use ksmcmc::floorplan::DoorLimits;
+    let s = generate(&SynthConfig { wing_deg: 30.0, ..SynthConfig::default() }, 11).unwrap();
+    let doors = DoorLimits { min_len: 60, max_len: 80, ..DoorLimits::default() };
+    let config = ChainConfig { doors, ..ChainConfig::default() };
+    let w = Wings::run(&s.map, &config, &WingConfig::default(), 1, ITERATIONS, &Default::default()).unwrap();
+    assert_eq!(w.chains.len(), 3);
+    let turned = |id: u32| w.world.unit(id).unwrap().angle.is_some();
+    let across = w.world.doors.iter().filter(|d| turned(d.units[0]) != turned(d.units[1])).count();
+    assert_eq!(across, 0, "no door between the wings under 3 m");
+    let mut first = Chain::new(&s.map, config, 1).unwrap();
+    let input = PlanInput::from_json(&PlanInput::of(&mut first, 0.0).to_json()).unwrap();
+    assert_eq!(input.doors, doors, "the plan input carries the chain's door limits");
+}
+
 /// The browser's way to a building's wings: the first chain's plan input finds the layout,
 /// each wing's chain runs on the wing's map as PGM and YAML with its settings as JSON text,
 /// and the plan inputs compose the world `Wings::run` makes, with the same room labels.

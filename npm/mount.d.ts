@@ -54,6 +54,14 @@ export interface MountOptions {
   graph?: boolean;
   /** Show the buttons and switches (default true); without them only the statistics line. */
   controls?: boolean;
+  /**
+   * Explain a building whose walls run in several directions wing by wing once the chain
+   * stops (paused, stepped or settled), as `ksmcmc floorplan` does: a chain per wing, turned by
+   * its direction, with the chain's seed and iterations, stepped in slices of `budgetMs`; the
+   * best-world view then shows their world (`stats().wings`). Loads the plan module
+   * (`ksmcmc_plan.js`, beside `mount.js`). Default false.
+   */
+  wings?: boolean;
   /** Where ksmcmc_bg.wasm is, if not next to ksmcmc.js (passed to `init`). */
   wasm?: string | URL | Request | BufferSource | WebAssembly.Module;
   /** Called after every drawn frame. */
@@ -80,6 +88,12 @@ export interface MapperStats {
   /** The iteration at which the chain settled (`Mapper.settledAt`), or null. */
   settledAt: number | null;
   running: boolean;
+  /**
+   * With the option `wings`, once the wings are explained for this iteration: how many (0 for
+   * a building of one direction, whose world is the chain's), the units of their world and its
+   * K(W, M); null before.
+   */
+  wings: { count: number; units: number; predictionRate: number } | null;
 }
 
 export interface MapperWidget {

@@ -20,7 +20,7 @@ export { SAMPLES };
 
 const OPTIONS = [
   'sample', 'map', 'url', 'classify', 'seed', 'config', 'knowledge', 'autoplay', 'budgetMs', 'iterationsPerFrame',
-  'stopWhenSettled', 'show', 'cloud', 'labels', 'graph', 'controls', 'wasm', 'onUpdate', 'onError',
+  'stopWhenSettled', 'show', 'cloud', 'labels', 'graph', 'controls', 'wings', 'wasm', 'onUpdate', 'onError',
 ];
 const STYLE_ID = 'ksmcmc-mount-style';
 const CSS = `
@@ -44,6 +44,7 @@ const CSS = `
 
 let initialised = null;
 let synthModule = null;
+let planModule = null;
 
 /**
  * Initialises the WebAssembly module once (later calls share the first one's promise).
@@ -68,6 +69,21 @@ function synthReady() {
     },
   );
   return synthModule;
+}
+
+/** The plan module (ksmcmc_plan.js and its .wasm beside it), once: the wings' world. */
+function planReady() {
+  planModule ??= import('./ksmcmc_plan.js').then(
+    async (m) => {
+      await m.default();
+      return m;
+    },
+    (err) => {
+      planModule = null;
+      throw err;
+    },
+  );
+  return planModule;
 }
 
 /**
@@ -147,6 +163,20 @@ function checkOptions(options) {
   if (options.knowledge !== undefined && typeof options.knowledge !== 'boolean') {
     throw new Error(`mount: knowledge ${JSON.stringify(options.knowledge)} must be true or false`);
   }
+  if (options.wings !== undefined && typeof options.wings !== 'boolean') {
+    throw new Error(`mount: wings ${JSON.stringify(options.wings)} must be true or false`);
+  }
+}
+
+/**
+ * The settings of a wing's chain: the chain's settings (JSON text) turned by `rotationDeg`, as
+ * `ksmcmc floorplan` configures them; null when the settings fix the rotation (one chain then
+ * explains the map, as `ksmcmc floorplan --rotation` does).
+ */
+function wingSettings(config, rotationDeg) {
+  const c = config?.trim() ? JSON.parse(config) : {};
+  if (c.detectors?.rotation_deg != null) return null;
+  return JSON.stringify({ ...c, detectors: { ...(c.detectors ?? {}), rotation_deg: rotationDeg } });
 }
 
 /**
@@ -266,6 +296,13 @@ export async function mount(element, options = {}) {
   let destroyed = false;
   let lastStats = 0;
   let rate = { iteration: 0, time: performance.now(), perSecond: 0 };
+  // The world of the building's wings (option `wings`) for the iteration it was made at, and
+  // the wing whose chain runs now; `wingsRun` counts runs, so that a stale one stops.
+  let wings = null;
+  let wingRunning = null;
+  let wingsFor = null;
+  let wingsRun = 0;
+  const wingsNow = () => (wings && wings.iteration === mapper.iteration ? wings : null);
 
   const stats = () => ({
     iteration: mapper.iteration,
@@ -280,6 +317,7 @@ export async function mount(element, options = {}) {
     iterationsPerSecond: rate.perSecond,
     settledAt: mapper.settledAt ?? null,
     running,
+    wings: wingsNow() && { count: wings.count, units: wings.units, predictionRate: wings.predictionRate },
   });
 
   const fail = (err) => {
@@ -314,7 +352,8 @@ export async function mount(element, options = {}) {
       // Zoomed in: more pixels per cell, but this draws on the page's thread in every frame:
       // at most 2 million pixels (a few milliseconds).
       const detail = v.isReset ? s : Math.max(s, detailScale(s, v.zoom, mapper.width * mapper.height, { maxScale: 6, maxPixels: 2_000_000 }));
-      drawMapper(picture, mapper, { show, cloud, labels, scale: detail });
+      const world = show === 'best' ? wingsNow()?.world ?? undefined : undefined;
+      drawMapper(picture, mapper, { show, cloud, labels, scale: detail, world });
       drawnScale = detail;
       paint(s);
       if (graph) {
@@ -338,7 +377,9 @@ export async function mount(element, options = {}) {
         `iteration ${s.iteration.toLocaleString('en-US')} · log p ${s.bestLogPosterior.toFixed(0)} · ` +
         `${s.bestUnits} units · K ${s.bestPredictionRate.toFixed(3)}` +
         (running ? ` · ${Math.round(s.iterationsPerSecond).toLocaleString('en-US')}/s` : '') +
-        (s.settledAt !== null ? ` · settled at ${s.settledAt.toLocaleString('en-US')}` : '');
+        (s.settledAt !== null ? ` · settled at ${s.settledAt.toLocaleString('en-US')}` : '') +
+        (wingRunning ? ` · wing ${wingRunning.wing} of ${wingRunning.of}: ${wingRunning.iteration.toLocaleString('en-US')}` : '') +
+        (s.wings?.count ? ` · ${s.wings.count} wings: ${s.wings.units} units, K ${s.wings.predictionRate.toFixed(3)}` : '');
     }
     options.onUpdate?.(stats());
   };
@@ -364,9 +405,96 @@ export async function mount(element, options = {}) {
     schedule();
   }
 
+  /**
+   * Explains a building of several wall directions wing by wing once the chain has stopped
+   * (option `wings`), as `ksmcmc floorplan` does: a chain per wing on the wing's map, turned by
+   * its direction, with the chain's seed and iterations, stepped in slices of about `budgetMs`
+   * between frames; then their world, which the best-world view shows.
+   */
+  async function explainWings() {
+    const target = mapper.iteration;
+    if (!options.wings || destroyed || running || target === 0) return;
+    // Done for this iteration, or under way (a second pause asks again).
+    if (wings?.iteration === target || wingsFor === target) return;
+    const run = ++wingsRun;
+    wingsFor = target;
+    const gone = () => destroyed || running || run !== wingsRun || mapper.iteration !== target;
+    try {
+      const x = await planReady();
+      if (gone()) return;
+      const map = mapper.map;
+      let floor;
+      try {
+        floor = { pgm: map.toPgm(), yaml: map.toYaml('map.pgm') };
+      } finally {
+        map.free();
+      }
+      const input = mapper.planInput();
+      const first = new x.Plan(floor.pgm, floor.yaml, input);
+      const inputs = [];
+      try {
+        const of = first.wingCount;
+        if (of === 0 || wingSettings(config, 0) === null) {
+          wings = { iteration: target, count: 0, world: null, units: mapper.bestUnits, predictionRate: mapper.bestPredictionRate };
+          return;
+        }
+        let n = 200;
+        for (let k = 0; k < of; k++) {
+          wingRunning = { wing: k + 1, of, iteration: 0 };
+          const wingMap = OccupancyMap.fromYaml(floor.yaml, first.wingMapPgm(k));
+          let chain;
+          try {
+            chain = new Mapper(wingMap, wingSettings(config, first.wingRotationDeg(k)), mapper.seed);
+          } finally {
+            wingMap.free();
+          }
+          try {
+            while (chain.iteration < target) {
+              const t0 = performance.now();
+              const steps = Math.min(n, target - chain.iteration);
+              chain.step(steps);
+              n = Math.max(16, Math.round((steps * budgetMs) / Math.max(performance.now() - t0, 0.1)));
+              wingRunning.iteration = chain.iteration;
+              draw();
+              await new Promise((resolve) => setTimeout(resolve, 0));
+              if (gone()) return;
+            }
+            inputs.push(chain.planInput());
+          } finally {
+            chain.free();
+          }
+        }
+      } finally {
+        first.free();
+      }
+      const made = new x.Plan(floor.pgm, floor.yaml, input, undefined, inputs);
+      try {
+        const report = JSON.parse(made.reportJson());
+        wings = { iteration: target, count: inputs.length, world: made.worldJson(), units: report.units, predictionRate: report.cell_prediction_rate };
+      } finally {
+        made.free();
+      }
+    } catch (err) {
+      if (!gone()) {
+        // Not again for this iteration: failing pauses, and a pause explains the wings.
+        wings = { iteration: target, count: 0, world: null, units: mapper.bestUnits, predictionRate: mapper.bestPredictionRate };
+        fail(err);
+      }
+    } finally {
+      if (run === wingsRun) {
+        wingRunning = null;
+        wingsFor = null;
+      }
+      if (!destroyed && !running) draw();
+    }
+  }
+
   function play() {
     if (destroyed || running) return;
     running = true;
+    wingsRun++;
+    wingRunning = null;
+    wingsFor = null;
     settledWhenStarted = mapper.settledAt !== undefined;
     errorLine.textContent = '';
     toggleButton.textContent = 'Pause';
@@ -379,6 +507,7 @@ export async function mount(element, options = {}) {
     if (raf) cancelAnimationFrame(raf);
     raf = 0;
     if (!destroyed) draw();
+    explainWings();
   }
   const toggle = () => (running ? pause() : play());
   function step(n = iterationsPerFrame ?? 500) {
@@ -389,6 +518,7 @@ export async function mount(element, options = {}) {
       return;
     }
     draw();
+    if (!running) explainWings();
   }
   function reset(seed) {
     try {
@@ -397,6 +527,10 @@ export async function mount(element, options = {}) {
       fail(err);
       return;
     }
+    wings = null;
+    wingsRun++;
+    wingRunning = null;
+    wingsFor = null;
     errorLine.textContent = '';
     rate = { iteration: 0, time: performance.now(), perSecond: 0 };
     draw();
@@ -457,8 +591,10 @@ export async function mount(element, options = {}) {
     resetView: () => viewport.reset(),
     destroy() {
       if (destroyed) return;
-      pause();
+      wingsRun++;
       destroyed = true;
+      running = false;
+      if (raf) cancelAnimationFrame(raf);
       observer?.disconnect();
       resized?.disconnect();
       viewport.destroy();

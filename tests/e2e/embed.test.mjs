@@ -116,6 +116,46 @@ describe('The embed as pkg/README.md shows it', () => {
     }
   });
 
+  test('mount({ wings: true }) explains the two-wings sample wing by wing, as `ksmcmc floorplan` does', async () => {
+    const out = join(site, 'wings');
+    cli('floorplan', join(REPO, 'samples/two-wings/map.yaml'), '--iterations', '2000', '--seed', '3', '--out', out);
+    const native = JSON.parse(readFileSync(join(out, 'report.json'), 'utf8'));
+    assert.equal(native.wings.length, 2, 'the CLI explains the sample with a chain per wing');
+    const page = await open();
+    try {
+      await page.waitForSelector('#demo .ksmcmc-mapper');
+      await page.evaluate(async () => {
+        const { mount } = await import('./node_modules/ksmcmc/mount.js');
+        const div = document.body.appendChild(document.createElement('div'));
+        window.__wings = await mount(div, { sample: 'two-wings', seed: 3, wings: true, show: 'best' });
+        window.__wings.step(2000);
+      });
+      await page.waitForFunction(() => window.__wings.stats().wings !== null, null, { timeout: 120_000 });
+      const s = await page.evaluate(() => window.__wings.stats());
+      assert.equal(s.iteration, 2000);
+      assert.deepEqual(s.wings, { count: 2, units: native.units, predictionRate: native.cell_prediction_rate });
+      assert.ok(s.wings.predictionRate > s.bestPredictionRate, `the wings' K ${s.wings.predictionRate} over one chain's ${s.bestPredictionRate}`);
+      assert.match(await page.evaluate(() => window.__wings.element.textContent), /2 wings: \d+ units, K 0\.\d{3}/);
+      // Running on drops the wings' world; stopping again explains the wings of the new iteration.
+      await page.evaluate(() => window.__wings.step(500));
+      assert.equal(await page.evaluate(() => window.__wings.stats().wings), null);
+      await page.waitForFunction(() => window.__wings.stats().wings?.count === 2, null, { timeout: 120_000 });
+      const bad = await page.evaluate(async () => {
+        const { mount } = await import('./node_modules/ksmcmc/mount.js');
+        try {
+          await mount(document.createElement('div'), { wings: 'yes' });
+        } catch (e) {
+          return e.message;
+        }
+        return null;
+      });
+      assert.match(bad, /wings "yes" must be true or false/);
+      assert.deepEqual(page.problems, []);
+    } finally {
+      await page.context().close();
+    }
+  });
+
   test('mount() classifies plain images as the CLI does (auto) unless told otherwise, and takes knowledge', async (t) => {
     const page = await open();
     try {

@@ -121,9 +121,9 @@ vendor/node_modules/.package-lock.json: vendor/package.json vendor/package-lock.
 
 # The npm package: the modules' wasm, wasm-bindgen's ES modules and .d.ts, the hand-written
 # modules in npm/ (the `mount` embed, the sample recipes), the page modules mount imports
-# (PKG_LIB: zoom and pan, shared with the demo pages) and package.json. Prints each module's
+# (PKG_LIB: zoom and pan, and the wings' chains, shared with the demo pages) and package.json. Prints each module's
 # size, raw and gzipped (gzip -9), and fails if the mapper module is over MAPPER_GZIP_MAX.
-PKG_LIB := www/lib/viewport.js
+PKG_LIB := www/lib/viewport.js www/lib/wing-chains.js
 pkg: wasm-tools wasm-opt-tool $(foreach n,$(WASM_NAMES),$(WASM_DIR)/$(n).opt.wasm)
 	rm -f pkg/*.js pkg/*.d.ts pkg/*.wasm pkg/package.json
 	@for n in $(WASM_NAMES); do \

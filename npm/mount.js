@@ -15,6 +15,7 @@
 import init, { Map as OccupancyMap, Mapper, drawMapper, drawSceneGraph } from './ksmcmc.js';
 import { SAMPLES, sampleRecipe } from './samples.js';
 import { Viewport, detailScale } from './viewport.js';
+import { runWingChains, wingSettings } from './wing-chains.js';
 
 export { SAMPLES };
 
@@ -43,8 +44,6 @@ const CSS = `
 `;
 
 let initialised = null;
-let synthModule = null;
-let planModule = null;
 
 /**
  * Initialises the WebAssembly module once (later calls share the first one's promise).
@@ -56,35 +55,30 @@ export function ready(wasm) {
   return initialised;
 }
 
-/** The synthetic generator's module (ksmcmc_synth.js and its .wasm beside it), once. */
-function synthReady() {
-  synthModule ??= import('./ksmcmc_synth.js').then(
-    async (m) => {
-      await m.default();
-      return m;
-    },
-    (err) => {
-      synthModule = null;
-      throw err;
-    },
-  );
-  return synthModule;
+/**
+ * A further module of the package, imported and initialised the first time `load` is asked
+ * for, then kept; a failed import is tried again the next time. (`load` is a literal
+ * `import()`, which bundlers follow.)
+ */
+function lazyModule(load) {
+  let module = null;
+  return () =>
+    (module ??= load().then(
+      async (m) => {
+        await m.default();
+        return m;
+      },
+      (err) => {
+        module = null;
+        throw err;
+      },
+    ));
 }
 
-/** The plan module (ksmcmc_plan.js and its .wasm beside it), once: the wings' world. */
-function planReady() {
-  planModule ??= import('./ksmcmc_plan.js').then(
-    async (m) => {
-      await m.default();
-      return m;
-    },
-    (err) => {
-      planModule = null;
-      throw err;
-    },
-  );
-  return planModule;
-}
+/** The synthetic generator's module (ksmcmc_synth.js and its .wasm beside it). */
+const synthReady = lazyModule(() => import('./ksmcmc_synth.js'));
+/** The plan module (ksmcmc_plan.js and its .wasm beside it): the wings' world. */
+const planReady = lazyModule(() => import('./ksmcmc_plan.js'));
 
 /**
  * A sample map, remade by the synthetic generator from its recipe: the same cells as the
@@ -166,17 +160,6 @@ function checkOptions(options) {
   if (options.wings !== undefined && typeof options.wings !== 'boolean') {
     throw new Error(`mount: wings ${JSON.stringify(options.wings)} must be true or false`);
   }
-}
-
-/**
- * The settings of a wing's chain: the chain's settings (JSON text) turned by `rotationDeg`, as
- * `ksmcmc floorplan` configures them; null when the settings fix the rotation (one chain then
- * explains the map, as `ksmcmc floorplan --rotation` does).
- */
-function wingSettings(config, rotationDeg) {
-  const c = config?.trim() ? JSON.parse(config) : {};
-  if (c.detectors?.rotation_deg != null) return null;
-  return JSON.stringify({ ...c, detectors: { ...(c.detectors ?? {}), rotation_deg: rotationDeg } });
 }
 
 /**
@@ -419,6 +402,8 @@ export async function mount(element, options = {}) {
     const run = ++wingsRun;
     wingsFor = target;
     const gone = () => destroyed || running || run !== wingsRun || mapper.iteration !== target;
+    // The chain's own world stands for the building: one wing, or no wings to be had.
+    const oneChain = () => ({ iteration: target, count: 0, world: null, units: mapper.bestUnits, predictionRate: mapper.bestPredictionRate });
     try {
       const x = await planReady();
       if (gone()) return;
@@ -431,39 +416,21 @@ export async function mount(element, options = {}) {
       }
       const input = mapper.planInput();
       const first = new x.Plan(floor.pgm, floor.yaml, input);
-      const inputs = [];
+      let inputs;
       try {
-        const of = first.wingCount;
-        if (of === 0 || wingSettings(config, 0) === null) {
-          wings = { iteration: target, count: 0, world: null, units: mapper.bestUnits, predictionRate: mapper.bestPredictionRate };
+        const settings = wingSettings(config);
+        if (first.wingCount === 0 || settings === null) {
+          wings = oneChain();
           return;
         }
-        let n = 200;
-        for (let k = 0; k < of; k++) {
-          wingRunning = { wing: k + 1, of, iteration: 0 };
-          const wingMap = OccupancyMap.fromYaml(floor.yaml, first.wingMapPgm(k));
-          let chain;
-          try {
-            chain = new Mapper(wingMap, wingSettings(config, first.wingRotationDeg(k)), mapper.seed);
-          } finally {
-            wingMap.free();
-          }
-          try {
-            while (chain.iteration < target) {
-              const t0 = performance.now();
-              const steps = Math.min(n, target - chain.iteration);
-              chain.step(steps);
-              n = Math.max(16, Math.round((steps * budgetMs) / Math.max(performance.now() - t0, 0.1)));
-              wingRunning.iteration = chain.iteration;
-              draw();
-              await new Promise((resolve) => setTimeout(resolve, 0));
-              if (gone()) return;
-            }
-            inputs.push(chain.planInput());
-          } finally {
-            chain.free();
-          }
-        }
+        const onProgress = (p) => {
+          wingRunning = p;
+          draw();
+        };
+        inputs = await runWingChains({
+          first, yaml: floor.yaml, config: settings, seed: mapper.seed, target, sliceMs: budgetMs, Map: OccupancyMap, Mapper, gone, onProgress,
+        });
+        if (inputs === null) return;
       } finally {
         first.free();
       }
@@ -477,7 +444,7 @@ export async function mount(element, options = {}) {
     } catch (err) {
       if (!gone()) {
         // Not again for this iteration: failing pauses, and a pause explains the wings.
-        wings = { iteration: target, count: 0, world: null, units: mapper.bestUnits, predictionRate: mapper.bestPredictionRate };
+        wings = oneChain();
         fail(err);
       }
     } finally {

@@ -424,24 +424,15 @@ fn label_clutter(labels: &mut Grid<u16>, map: &Grid<Cell>, open: &Grid<Cell>) {
 /// segment are segments of their own if they have `min_room_cells` or more, or a quarter of
 /// that and are walled in (a closet walled off from the rest), and no part of any room
 /// otherwise: specks of free space walled in by clutter, and the tips of fans of scan rays
-/// ([`is_walled_in`]).
+/// ([`part_surroundings`]).
 fn split_disconnected(labels: &mut Grid<u16>, map: &Grid<Cell>, min_room_cells: usize) -> Vec<bool> {
-    let (w, h) = (labels.width(), labels.height());
     // `part[i]` is cell i's part (1-based, 0 for none); `found[k]` is part k's (label, cells).
     let (part, found) = find_cores(labels, |_| true);
-    let walled_in = is_walled_in(labels, map, &part, found.len());
-    let mut touches = vec![false; found.len()];
-    for (i, &l) in labels.cells().iter().enumerate() {
-        if l != 0 {
-            let other = |(nx, ny): (usize, usize)| {
-                let lj = labels.cells()[ny * w + nx];
-                lj != 0 && lj != l
-            };
-            touches[part[i] as usize] |= neighbours4(i % w, i / w, w, h).any(other);
-        }
-    }
+    let around = part_surroundings(labels, map, &part, found.len());
     // Each part: (label, cells, touches another segment), numbered from 0.
-    let parts: Vec<(u16, usize, bool)> = found.iter().zip(&touches).skip(1).map(|(&(l, n), &t)| (l, n, t)).collect();
+    let parts: Vec<(u16, usize, bool)> =
+        found.iter().zip(&around).skip(1).map(|(&(l, n), &(t, _))| (l, n, t)).collect();
+    let walled_in = |k: usize| around[k + 1].1;
     let max_label = labels.cells().iter().copied().max().unwrap_or(0) as usize;
     let mut biggest = vec![(0usize, usize::MAX); max_label + 1];
     for (k, &(l, n, _)) in parts.iter().enumerate() {
@@ -450,7 +441,7 @@ fn split_disconnected(labels: &mut Grid<u16>, map: &Grid<Cell>, min_room_cells: 
         }
     }
     let largest = |k: usize| biggest[parts[k].0 as usize].1 == k;
-    let lone_room = |k: usize| parts[k].1 >= min_room_cells || (walled_in[k + 1] && parts[k].1 >= min_room_cells / 4);
+    let lone_room = |k: usize| parts[k].1 >= min_room_cells || (walled_in(k) && parts[k].1 >= min_room_cells / 4);
     let kept = |k: usize| parts[k].2 || lone_room(k);
     let mut id = vec![0u16; parts.len()];
     let mut fragment = vec![false];
@@ -471,18 +462,17 @@ fn split_disconnected(labels: &mut Grid<u16>, map: &Grid<Cell>, min_room_cells: 
     fragment
 }
 
-/// Whether each part (`part`: cells to 1-based parts, `n` parts counting the 0th) is walled
-/// in: at least [`MIN_WALLED_BORDER`] of the steps from its cells to the 4-neighbours outside
-/// it lead to occupied cells. A closet is walled in. The tip of a fan of scan rays beyond a
-/// room's wall, which the room's rectangle overlaps and the splits cut off, is not: unseen
-/// cells lie between its rays.
-fn is_walled_in(labels: &Grid<u16>, map: &Grid<Cell>, part: &[u32], n: usize) -> Vec<bool> {
+/// For each part (`part`: cells to 1-based parts, `n` parts counting the 0th), in one pass
+/// over the steps from its cells to the 4-neighbours outside it: whether it touches another
+/// segment, and whether it is walled in, at least [`MIN_WALLED_BORDER`] of those steps leading
+/// to occupied cells of `map` (always, if `map` is not the labels' size). A closet is walled
+/// in. The tip of a fan of scan rays beyond a room's wall, which the room's rectangle overlaps
+/// and the splits cut off, is not: unseen cells lie between its rays.
+fn part_surroundings(labels: &Grid<u16>, map: &Grid<Cell>, part: &[u32], n: usize) -> Vec<(bool, bool)> {
     let (w, h) = (labels.width(), labels.height());
-    if (map.width(), map.height()) != (w, h) {
-        return vec![true; n];
-    }
-    // Per part: (steps out of it, steps onto occupied cells).
-    let mut border = vec![(0u32, 0u32); n];
+    let same_size = (map.width(), map.height()) == (w, h);
+    // Per part: (touches another segment, steps out of it, steps onto occupied cells).
+    let mut border = vec![(false, 0u32, 0u32); n];
     for (i, &l) in labels.cells().iter().enumerate() {
         if l == 0 {
             continue;
@@ -491,15 +481,18 @@ fn is_walled_in(labels: &Grid<u16>, map: &Grid<Cell>, part: &[u32], n: usize) ->
         let mut inside = 0;
         for (nx, ny) in neighbours4(i % w, i / w, w, h) {
             let j = ny * w + nx;
-            inside += u32::from(labels.cells()[j] == l);
-            b.1 += u32::from(labels.cells()[j] != l && map.cells()[j] == Cell::Occupied);
+            let lj = labels.cells()[j];
+            inside += u32::from(lj == l);
+            b.0 |= lj != 0 && lj != l;
+            b.2 += u32::from(lj != l && same_size && map.cells()[j] == Cell::Occupied);
         }
-        b.0 += 4 - inside;
+        b.1 += 4 - inside;
     }
-    border.iter().map(|&(all, wall)| f64::from(wall) >= MIN_WALLED_BORDER * f64::from(all)).collect()
+    let walled = |all: u32, wall: u32| !same_size || f64::from(wall) >= MIN_WALLED_BORDER * f64::from(all);
+    border.into_iter().map(|(touches, all, wall)| (touches, walled(all, wall))).collect()
 }
 
-/// The smallest share of a walled-in part's border on occupied cells ([`is_walled_in`]). The
+/// The smallest share of a walled-in part's border on occupied cells ([`part_surroundings`]). The
 /// closets the splits cut off on the benchmark maps have 46 % or more; the tips of fans of rays
 /// cut off on Cartesium 6 - 13 %.
 const MIN_WALLED_BORDER: f64 = 1.0 / 3.0;

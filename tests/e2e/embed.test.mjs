@@ -59,6 +59,23 @@ async function open() {
   return page;
 }
 
+/** `report.json` of `ksmcmc floorplan ARGS... --out site/NAME`. */
+function nativeReport(name, ...args) {
+  const out = join(site, name);
+  cli('floorplan', ...args, '--out', out);
+  return JSON.parse(readFileSync(join(out, 'report.json'), 'utf8'));
+}
+
+/** Mounts a widget with `options` in a new element of the snippet's page, as `window[name]`. */
+async function mountAs(page, name, options) {
+  await page.waitForSelector('#demo .ksmcmc-mapper');
+  await page.evaluate(async ([name, options]) => {
+    const { mount } = await import('./node_modules/ksmcmc/mount.js');
+    const div = document.body.appendChild(document.createElement('div'));
+    window[name] = await mount(div, options);
+  }, [name, options]);
+}
+
 describe('The embed as pkg/README.md shows it', () => {
   test('the package ships every module its modules import', () => {
     const json = JSON.parse(readFileSync(join(REPO, 'pkg/package.json'), 'utf8'));
@@ -90,17 +107,10 @@ describe('The embed as pkg/README.md shows it', () => {
   });
 
   test('mount({ stopWhenSettled }) pauses where `ksmcmc floorplan --until-settled` stops', async () => {
-    const out = join(site, 'settled');
-    cli('floorplan', join(REPO, 'samples/office-small/map.yaml'), '--until-settled', '--iterations', '1000000', '--out', out);
-    const native = JSON.parse(readFileSync(join(out, 'report.json'), 'utf8'));
+    const native = nativeReport('settled', join(REPO, 'samples/office-small/map.yaml'), '--until-settled', '--iterations', '1000000');
     const page = await open();
     try {
-      await page.waitForSelector('#demo .ksmcmc-mapper');
-      await page.evaluate(async () => {
-        const { mount } = await import('./node_modules/ksmcmc/mount.js');
-        const div = document.body.appendChild(document.createElement('div'));
-        window.__settling = await mount(div, { sample: 'office-small', stopWhenSettled: true, autoplay: 'always' });
-      });
+      await mountAs(page, '__settling', { sample: 'office-small', stopWhenSettled: true, autoplay: 'always' });
       await page.waitForFunction(() => !window.__settling.running, null, { timeout: 120_000 });
       const s = await page.evaluate(() => window.__settling.stats());
       assert.equal(s.settledAt, native.settled_at, 'settled at the iteration the CLI stops at');
@@ -117,19 +127,12 @@ describe('The embed as pkg/README.md shows it', () => {
   });
 
   test('mount({ wings: true }) explains the two-wings sample wing by wing, as `ksmcmc floorplan` does', async () => {
-    const out = join(site, 'wings');
-    cli('floorplan', join(REPO, 'samples/two-wings/map.yaml'), '--iterations', '2000', '--seed', '3', '--out', out);
-    const native = JSON.parse(readFileSync(join(out, 'report.json'), 'utf8'));
+    const native = nativeReport('wings', join(REPO, 'samples/two-wings/map.yaml'), '--iterations', '2000', '--seed', '3');
     assert.equal(native.wings.length, 2, 'the CLI explains the sample with a chain per wing');
     const page = await open();
     try {
-      await page.waitForSelector('#demo .ksmcmc-mapper');
-      await page.evaluate(async () => {
-        const { mount } = await import('./node_modules/ksmcmc/mount.js');
-        const div = document.body.appendChild(document.createElement('div'));
-        window.__wings = await mount(div, { sample: 'two-wings', seed: 3, wings: true, show: 'best' });
-        window.__wings.step(2000);
-      });
+      await mountAs(page, '__wings', { sample: 'two-wings', seed: 3, wings: true, show: 'best' });
+      await page.evaluate(() => window.__wings.step(2000));
       await page.waitForFunction(() => window.__wings.stats().wings !== null, null, { timeout: 120_000 });
       const s = await page.evaluate(() => window.__wings.stats());
       assert.equal(s.iteration, 2000);

@@ -26,6 +26,7 @@
 import init, { Map as OccMap, Mapper, renderMapperRgba, renderSceneGraphRgba, wasmHeapBytes } from '../pkg/ksmcmc.js';
 import { buildMap } from './map-source.js';
 import { loadModule } from './modules.js';
+import { runWingChains, wingSettings } from './wing-chains.js';
 
 /** Milliseconds of iterations between looking at the page's requests. */
 const SLICE_MS = 8;
@@ -307,7 +308,7 @@ async function makePlan(key) {
   state.floor ??= { pgm: state.map.toPgm(), yaml: state.map.toYaml('map.pgm') };
   if (state.plan?.key !== key) keep(key, newPlan(x, state.mapper.planInput()), { wings: false });
   const first = state.plan.plan;
-  const config = wingsConfig();
+  const config = wingSettings(state.config);
   if (first.wingCount === 0 || !config) {
     state.plan.wings = true;
     return first;
@@ -339,57 +340,20 @@ function keep(key, plan, { wings, count = 0, world = null, units = 0, rate = 0 }
 }
 
 /**
- * The chain's settings as an object for its wings' chains, or null when the page fixed the
- * rotation (then one chain explains the map, as `ksmcmc floorplan --rotation` does).
- */
-function wingsConfig() {
-  const c = state.config.trim() ? JSON.parse(state.config) : {};
-  return c.detectors?.rotation_deg != null ? null : c;
-}
-
-/** Iterations of a wing's chain per slice, until the time of one is known. */
-const FIRST_WING_STEP = 200;
-
-/**
  * Runs the chains of the wings of plan `first` (its `wingCount`), each for as many iterations as
  * the first chain ran, with its seed, in slices of about SLICE_MS between requests. Returns
  * their plan inputs in order, or null if the chain ran on, changed or was replaced meanwhile.
  */
 async function runWings(first, floor, config, key) {
   const m = state.mapper;
-  const [generation, target, seed, of] = [state.generation, m.iteration, m.seed, first.wingCount];
+  const [generation, target] = [state.generation, m.iteration];
   const gone = () => state.running || state.generation !== generation || !state.mapper || planKey() !== key;
-  const inputs = [];
-  let step = FIRST_WING_STEP;
+  const onProgress = (p) => {
+    state.wings = { ...p, target };
+    if (p.iteration === 0) postMessage({ event: 'wings', stats: stats() });
+  };
   try {
-    for (let k = 0; k < of; k++) {
-      state.wings = { wing: k + 1, of, iteration: 0, target, rotationDeg: first.wingRotationDeg(k) };
-      postMessage({ event: 'wings', stats: stats() });
-      const map = OccMap.fromYaml(floor.yaml, first.wingMapPgm(k));
-      const detectors = { ...(config.detectors ?? {}), rotation_deg: state.wings.rotationDeg };
-      let chain;
-      try {
-        chain = new Mapper(map, JSON.stringify({ ...config, detectors }), seed);
-      } finally {
-        map.free();
-      }
-      try {
-        while (chain.iteration < target) {
-          const t0 = performance.now();
-          const n = Math.min(step, target - chain.iteration);
-          chain.step(n);
-          const ms = performance.now() - t0;
-          step = Math.max(16, Math.round((n * SLICE_MS) / Math.max(ms, 0.1)));
-          state.wings.iteration = chain.iteration;
-          await new Promise((resolve) => setTimeout(resolve, 0));
-          if (gone()) return null;
-        }
-        inputs.push(chain.planInput());
-      } finally {
-        chain.free();
-      }
-    }
-    return inputs;
+    return await runWingChains({ first, yaml: floor.yaml, config, seed: m.seed, target, sliceMs: SLICE_MS, Map: OccMap, Mapper, gone, onProgress });
   } finally {
     state.wings = null;
   }

@@ -16,9 +16,11 @@ export interface MountOptions {
   /** A map to fetch: a PGM or PNG, or a map.yaml (its image is fetched relative to it). */
   url?: string | URL;
   /**
-   * How a plain PGM or PNG (`map` bytes or `url`) is classified: `'auto'` (default) finds the
-   * background grays from the histogram, as `ksmcmc floorplan` does; `'fixed'` uses the
-   * default intensity thresholds (`Map.fromBytes`). A map.yaml's own thresholds always apply.
+   * How a map read from a file (`map` bytes or `{ yaml, image }`, or `url`) is classified:
+   * `'auto'` (default) finds the background grays from the histogram, as `ksmcmc floorplan`
+   * reads every format, so a PNG, a PGM and a map.yaml of the same pixels give the same cells
+   * (a YAML with `negate: 1` or `mode: raw` keeps its own rule); `'fixed'` uses the default
+   * intensity thresholds (`Map.fromBytes`) or the map.yaml's own.
    */
   classify?: 'auto' | 'fixed';
   /** The chain's seed, a whole number >= 0 (default 1): the same seed gives the same chain. */

@@ -98,11 +98,12 @@ export async function loadSample(name) {
 }
 
 /**
- * A plain PGM or PNG, classified by `rule`: 'auto' finds the background grays from the
- * histogram (as `ksmcmc floorplan` does), 'fixed' uses the default thresholds.
+ * A map read from a file, classified by `rule`: 'auto' finds the background grays from the
+ * histogram (as `ksmcmc floorplan` does to a PNG, a PGM or a map.yaml alike, so the same
+ * pixels give the same cells), 'fixed' keeps the rule it was read with (the default
+ * thresholds for a plain image, the map.yaml's own for a YAML).
  */
-function imageMap(bytes, rule) {
-  const map = OccupancyMap.fromBytes(bytes);
+function classified(map, rule) {
   if (rule !== 'auto') return map;
   try {
     return map.reclassify('auto');
@@ -120,13 +121,13 @@ async function fetchMap(url, rule) {
   };
   const base = new URL(String(url), document.baseURI);
   if (!/\.ya?ml$/i.test(base.pathname)) {
-    return imageMap(new Uint8Array(await (await get(base)).arrayBuffer()), rule);
+    return classified(OccupancyMap.fromBytes(new Uint8Array(await (await get(base)).arrayBuffer())), rule);
   }
   const yaml = await (await get(base)).text();
   const m = /^\s*image\s*:\s*["']?([^"'#\r\n]+?)["']?\s*(#.*)?$/m.exec(yaml);
   if (!m) throw new Error(`${base}: no \`image:\` line, so it is not a ROS map.yaml`);
   const image = new Uint8Array(await (await get(new URL(m[1].trim(), base))).arrayBuffer());
-  return OccupancyMap.fromYaml(yaml, image);
+  return classified(OccupancyMap.fromYaml(yaml, image), rule);
 }
 
 function checkOptions(options) {
@@ -219,9 +220,12 @@ export async function mount(element, options = {}) {
     map = options.map;
     ownMap = false;
   } else if (options.map && typeof options.map === 'object' && 'yaml' in options.map) {
-    map = OccupancyMap.fromYaml(String(options.map.yaml), new Uint8Array(options.map.image));
+    map = classified(
+      OccupancyMap.fromYaml(String(options.map.yaml), new Uint8Array(options.map.image)),
+      options.classify ?? 'auto',
+    );
   } else if (options.map instanceof Uint8Array || options.map instanceof ArrayBuffer) {
-    map = imageMap(new Uint8Array(options.map), options.classify ?? 'auto');
+    map = classified(OccupancyMap.fromBytes(new Uint8Array(options.map)), options.classify ?? 'auto');
   } else if (options.map !== undefined) {
     throw new Error('mount: map must be a Map, the bytes of a PGM or PNG, or { yaml, image }');
   } else if (options.url !== undefined) {

@@ -110,6 +110,34 @@ impl Classifier {
         Classifier::Auto { occupied_max: 0.35, unknown_max: 0.92, plateau_share: 0.02 }
     }
 
+    /// The one rule by which ksmcmc reads a map's pixels, whatever file they came in: a PNG,
+    /// a PGM, or either named by a `map.yaml`. It is [`Classifier::auto`] on the gray levels,
+    /// so that the same pixels give the same cells, and so the same rooms, from every format.
+    ///
+    /// Why not the `map.yaml`'s own thresholds: map_server's default `free_thresh` (0.196)
+    /// calls every gray from 206 up free, and drawn or edited maps carry their furniture (211
+    /// in the benchmark floors) and the anti-aliased edges of their walls in exactly those
+    /// grays; a map that `map_saver` wrote holds only 0, 205 and 254, which both rules read
+    /// alike. Where the YAML says its pixels mean something else (`negate: 1`, or `mode: raw`,
+    /// whose values are occupancy percentages) its own rule ([`Classifier::from_yaml`]) is kept.
+    /// `ksmcmc floorplan --classify fixed` and `Map.reclassify('fixed')` ask for the YAML's
+    /// rule (or, without a YAML, [`Classifier::default`]) instead.
+    ///
+    /// ```
+    /// use ksmcmc::grid::{Classifier, MapYaml};
+    /// let yaml = MapYaml::parse("image: m.pgm\nresolution: 0.1\norigin: [0, 0, 0]\n").unwrap();
+    /// assert_eq!(Classifier::for_map(&yaml), Classifier::auto());
+    /// let raw = MapYaml::parse("image: m.pgm\nresolution: 0.1\norigin: [0, 0, 0]\nmode: raw\n").unwrap();
+    /// assert_eq!(Classifier::for_map(&raw), Classifier::from_yaml(&raw));
+    /// ```
+    pub fn for_map(yaml: &MapYaml) -> Self {
+        if yaml.negate || yaml.mode == Mode::Raw {
+            Classifier::from_yaml(yaml)
+        } else {
+            Classifier::auto()
+        }
+    }
+
     /// Checks that the thresholds are finite, ordered probabilities.
     pub fn validate(&self) -> Result<(), MapError> {
         if let Classifier::Auto { plateau_share, .. } = *self {

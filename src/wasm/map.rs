@@ -125,14 +125,17 @@ impl Map {
 
     /// The same image classified by another rule, as a new map: `'auto'` finds the background
     /// grays from the histogram and counts anti-aliased wall edges as occupied (what
-    /// `ksmcmc floorplan --classify auto`, its default, does to plain images), `'fixed'` applies
-    /// the default intensity thresholds (what `Map.fromBytes` does).
+    /// `ksmcmc floorplan --classify auto`, its default, does to every map, so that a PNG, a PGM
+    /// and a map.yaml of the same pixels give the same cells; a YAML with `negate: 1` or
+    /// `mode: raw` keeps its own rule), `'fixed'` applies the default intensity thresholds
+    /// (what `Map.fromBytes` does; a map read with `Map.fromYaml` has its YAML's rule until
+    /// reclassified).
     pub fn reclassify(
         &self,
         #[wasm_bindgen(unchecked_param_type = "'auto' | 'fixed'")] rule: &str,
     ) -> Result<Map, JsError> {
         let classifier = match rule {
-            "auto" => Classifier::auto(),
+            "auto" => Classifier::for_map(self.inner.yaml()),
             "fixed" => Classifier::default(),
             other => return Err(JsError::new(&format!("classify: {other:?} is neither 'auto' nor 'fixed'"))),
         };

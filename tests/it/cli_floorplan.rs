@@ -452,3 +452,98 @@ fn floorplan_explains_wings_at_an_angle_each_in_its_frame() {
     assert_eq!(report["wings"].as_array().map(Vec::len), Some(2), "{report}");
     assert_eq!(report["iterations"], 18000, "three chains of 6000");
 }
+
+/// The gray levels of `samples/furnished/map.pgm` with what drawn maps add: furniture in a light
+/// gray (211, as the benchmark's furnished floors draw it) and anti-aliased wall edges (a mid
+/// gray beside each wall), which map_server's default `free_thresh` would call free.
+fn drawn_map() -> (usize, usize, Vec<u8>) {
+    let m = OccupancyMap::load(&sample("furnished/map.yaml"), &Limits::default()).unwrap();
+    let (w, h) = (m.width(), m.height());
+    let mut gray: Vec<u8> = m.raster().gray.cells().iter().map(|&g| (g / 257) as u8).collect();
+    for y in 1..h - 1 {
+        for x in 1..w - 1 {
+            let i = y * w + x;
+            if gray[i] == 254 && gray[i - 1] == 0 {
+                gray[i] = 150;
+            }
+            if gray[i] == 254 && (x / 7 + y / 9) % 23 == 0 {
+                gray[i] = 211;
+            }
+        }
+    }
+    (w, h, gray)
+}
+
+#[test]
+fn the_same_pixels_as_png_pgm_and_map_yaml_give_the_same_labels() {
+    let d = tmp("formats");
+    let (w, h, gray) = drawn_map();
+    let mut pgm = format!("P5\n{w} {h}\n255\n").into_bytes();
+    pgm.extend_from_slice(&gray);
+    std::fs::write(d.join("map.pgm"), &pgm).unwrap();
+    let mut png_bytes = Vec::new();
+    {
+        let mut enc = png::Encoder::new(&mut png_bytes, w as u32, h as u32);
+        enc.set_color(png::ColorType::Grayscale);
+        enc.set_depth(png::BitDepth::Eight);
+        enc.write_header().unwrap().write_image_data(&gray).unwrap();
+    }
+    std::fs::write(d.join("map.png"), &png_bytes).unwrap();
+    let yaml = "image: map.pgm\nresolution: 0.05\norigin: [-3.0, 2.5, 0.0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n";
+    std::fs::write(d.join("map.yaml"), yaml).unwrap();
+    // The cells: one rule for the three; the YAML's own thresholds read otherwise.
+    let cells = |f: &str| {
+        let mut m = OccupancyMap::load(&d.join(f), &Limits::default()).unwrap();
+        let fixed = m.classified().clone();
+        m.set_classifier(ksmcmc::grid::Classifier::for_map(m.yaml())).unwrap();
+        (fixed, m.classified().clone())
+    };
+    let (yaml_fixed, yaml_auto) = cells("map.yaml");
+    assert_eq!(cells("map.png").1, yaml_auto);
+    assert_eq!(cells("map.pgm").1, yaml_auto);
+    let differ = yaml_fixed.cells().iter().zip(yaml_auto.cells()).filter(|(a, b)| a != b).count();
+    assert!(differ > 100, "map_server's thresholds read the drawn grays otherwise ({differ} cells)");
+    // The rooms: the same labels.pgm and rooms from each file.
+    let labels: Vec<Vec<u8>> = ["map.png", "map.pgm", "map.yaml"]
+        .iter()
+        .map(|f| {
+            let out_dir = d.join(format!("out-{f}"));
+            let path = d.join(f);
+            let args = ["floorplan", path.to_str().unwrap(), "--out", out_dir.to_str().unwrap()];
+            let out = run(&[&args[..], &["--iterations", "3000", "--seed", "4"]].concat());
+            assert!(out.status.success(), "{f}: {}", String::from_utf8_lossy(&out.stderr));
+            let note = String::from_utf8_lossy(&out.stderr).contains("has no map.yaml; reading it at 0.05 m a cell");
+            assert_eq!(note, !f.ends_with(".yaml"), "{f}: {}", String::from_utf8_lossy(&out.stderr));
+            std::fs::read(out_dir.join("labels.pgm")).unwrap()
+        })
+        .collect();
+    assert_eq!(labels[0], labels[1], "PNG and PGM");
+    assert_eq!(labels[0], labels[2], "PNG and map.yaml");
+}
+
+#[test]
+fn resolution_sets_the_cell_size_of_a_plain_image() {
+    let d = tmp("resolution");
+    let map = sample("office-small/map.pgm");
+    let area = |resolution: Option<&str>| {
+        let out_dir = d.join(format!("out-{resolution:?}"));
+        let mut args =
+            vec!["floorplan", map.to_str().unwrap(), "--out", out_dir.to_str().unwrap(), "--iterations", "3000"];
+        args.extend(resolution.map(|r| ["--resolution", r]).into_iter().flatten());
+        let out = run(&args);
+        let stderr = String::from_utf8_lossy(&out.stderr).to_string();
+        assert!(out.status.success(), "{stderr}");
+        assert_eq!(stderr.contains("has no map.yaml; reading it at 0.05 m"), resolution.is_none(), "{stderr}");
+        let world: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out_dir.join("world.json")).unwrap()).unwrap();
+        world["rooms"].as_array().unwrap().iter().map(|r| r["area_m2"].as_f64().unwrap()).sum::<f64>()
+    };
+    // The same cells at twice the cell size cover four times the floor.
+    let ratio = area(Some("0.1")) / area(None);
+    assert!((3.0..5.0).contains(&ratio), "rooms' area at 0.1 m over 0.05 m: {ratio}");
+    for bad in ["0", "-1", "nan", "11"] {
+        let out = run(&["floorplan", map.to_str().unwrap(), "--out", d.to_str().unwrap(), "--resolution", bad]);
+        assert_eq!(out.status.code(), Some(2), "--resolution {bad}");
+        assert!(String::from_utf8_lossy(&out.stderr).contains("--resolution"));
+    }
+}

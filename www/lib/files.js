@@ -167,5 +167,5 @@ export async function readPickedMap(fileList, classify) {
   const pick = pickYamlImage(plan.yaml, yaml, plan.images);
   if ('message' in pick) throw new Error(pick.message);
   const image = new Uint8Array(await byName(pick.image).arrayBuffer());
-  return { source: { kind: 'yaml', yaml, image }, name: stem(plan.yaml), label: `${plan.yaml} + ${pick.image}` };
+  return { source: { kind: 'yaml', yaml, image, classify }, name: stem(plan.yaml), label: `${plan.yaml} + ${pick.image}` };
 }

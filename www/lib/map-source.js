@@ -5,27 +5,34 @@
 import { Map as OccMap } from '../pkg/ksmcmc.js';
 
 /**
- * The map a `source` describes, classified as the pages do: `{ kind: 'yaml', yaml, image }`,
- * `{ kind: 'image', bytes, classify }` (`classify` 'auto' reclassifies by the histogram, as
- * `ksmcmc floorplan` does) or `{ kind: 'cells', width, height, codes }`. Throws, saying why,
+ * The map a `source` describes, classified as the pages do: `{ kind: 'yaml', yaml, image,
+ * classify }`, `{ kind: 'image', bytes, classify }` (`classify` 'auto' reclassifies by the
+ * histogram, as `ksmcmc floorplan` does to every format) or `{ kind: 'cells', width, height, codes }`. Throws, saying why,
  * for bytes that are not a map.
  */
 export function buildMap(source) {
   switch (source.kind) {
     case 'yaml':
-      return OccMap.fromYaml(source.yaml, source.image);
-    case 'image': {
-      const map = OccMap.fromBytes(source.bytes);
-      if (source.classify !== 'auto') return map;
-      try {
-        return map.reclassify('auto');
-      } finally {
-        map.free();
-      }
-    }
+      return classified(OccMap.fromYaml(source.yaml, source.image), source.classify);
+    case 'image':
+      return classified(OccMap.fromBytes(source.bytes), source.classify);
     case 'cells':
       return OccMap.fromCells(source.width, source.height, source.codes);
     default:
       throw new Error(`unknown map source ${source.kind}`);
+  }
+}
+
+/**
+ * `map` as `classify` asks: 'auto' is the one rule `ksmcmc floorplan` reads every format by
+ * (the same pixels give the same cells as a PNG, a PGM or a map.yaml); anything else keeps the
+ * rule the map was read with (the default thresholds, or the map.yaml's own).
+ */
+function classified(map, classify) {
+  if (classify !== 'auto') return map;
+  try {
+    return map.reclassify('auto');
+  } finally {
+    map.free();
   }
 }

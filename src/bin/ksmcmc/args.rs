@@ -56,19 +56,49 @@ pub fn path(v: OsString) -> PathBuf {
     PathBuf::from(v)
 }
 
-/// Loads a map and classifies a plain image as `--classify` asks: `auto` (background grays
-/// from the histogram) or `fixed` (eq. 3.7's thresholds); a map.yaml keeps its own thresholds.
+/// Loads a map and classifies it as `--classify` asks: `auto`, the one rule for every format
+/// (background grays from the histogram, [`ksmcmc::grid::Classifier::for_map`]), so that a
+/// PNG, a PGM and a map.yaml of the same pixels give the same cells; or `fixed` (a map.yaml's
+/// own thresholds, eq. 3.7's defaults for a plain image).
 pub fn load_classified(path: &Path, classify: &str) -> Result<ksmcmc::grid::OccupancyMap, CliError> {
     let mut map = load_map(path)?;
-    let is_yaml = matches!(path.extension().and_then(|e| e.to_str()), Some("yaml" | "yml"));
     match classify {
-        "auto" if !is_yaml => {
-            map.set_classifier(ksmcmc::grid::Classifier::auto()).map_err(|e| failed("--classify", e))?
+        "auto" => {
+            let rule = ksmcmc::grid::Classifier::for_map(map.yaml());
+            map.set_classifier(rule).map_err(|e| failed("--classify", e))?
         }
-        "auto" | "fixed" => {}
+        "fixed" => {}
         other => return Err(CliError::Usage(format!("--classify must be auto or fixed, not {other:?}"))),
     }
     Ok(map)
+}
+
+/// `map` at `resolution` metres per cell when one is given. Without one, a plain image (no
+/// map.yaml says its cell size) is read at the default 0.05 m, and a note on standard error
+/// says so and how to change it: every length of the floor plan is in metres, so the cell
+/// size decides which walls, doors and rooms are seen.
+pub fn at_resolution(
+    map: ksmcmc::grid::OccupancyMap,
+    path: &Path,
+    resolution: Option<f64>,
+) -> ksmcmc::grid::OccupancyMap {
+    let is_yaml = matches!(path.extension().and_then(|e| e.to_str()), Some("yaml" | "yml"));
+    match resolution {
+        Some(r) => {
+            let yaml = ksmcmc::grid::MapYaml { resolution: r, ..map.yaml().clone() };
+            map.with_yaml(yaml)
+        }
+        None => {
+            if !is_yaml {
+                eprintln!(
+                    "note: {} has no map.yaml; reading it at {} m a cell (give --resolution M, or its map.yaml)",
+                    path.display(),
+                    map.yaml().resolution
+                );
+            }
+            map
+        }
+    }
 }
 
 /// Reads a world.json and checks that it belongs to `map`.

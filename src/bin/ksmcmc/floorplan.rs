@@ -69,9 +69,12 @@ Options:
                      its own direction: world.json's units then carry their angles; see
                      floorplan::wings; the iterations are per chain, and --edits,
                      --until-settled, --time-limit and --rotation keep one chain)
-  --classify RULE    how plain images become cells: auto (default; background grays found
-                     from the histogram, anti-aliased walls occupied) or fixed (eq. 3.7
-                     thresholds only); a map.yaml always uses its own thresholds
+  --classify RULE    how pixels become cells: auto (default; background grays found from
+                     the histogram, anti-aliased walls occupied, the same rule for a PNG, a
+                     PGM and a map.yaml, so the same pixels give the same rooms) or fixed
+                     (a map.yaml's own thresholds; eq. 3.7's for a plain image)
+  --resolution M     metres per cell of the map (default: the map.yaml's; a plain image
+                     without one is read at 0.05 m, the benchmark maps' cell, with a note)
 ";
 
 /// The command line, parsed.
@@ -84,6 +87,7 @@ struct Opts {
     time_limit: Option<f64>,
     rotation: Option<f64>,
     classify: String,
+    resolution: Option<f64>,
     region: Option<PathBuf>,
     knowledge: Option<String>,
     room_rules: Option<PathBuf>,
@@ -97,7 +101,7 @@ struct Opts {
 pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     let Some(o) = parse(argv)? else { return Ok(()) };
     let config = chain_config(&o)?;
-    let map = args::load_classified(&o.map, &o.classify)?;
+    let map = args::at_resolution(args::load_classified(&o.map, &o.classify)?, &o.map, o.resolution);
     let region = load_region(&o, &map)?;
     let t0 = Instant::now();
     // A chain per wing where the walls follow several directions, unless a setting asks for
@@ -213,6 +217,7 @@ fn parse(argv: Vec<OsString>) -> Result<Option<Opts>, CliError> {
     let (mut map, mut out, mut config_path) = (None, None, None::<PathBuf>);
     let (mut iterations, mut seed, mut time_limit, mut rotation) = (20_000u64, 1u64, None::<f64>, None::<f64>);
     let mut classify = String::from("auto");
+    let mut resolution = None::<f64>;
     let mut region_path: Option<PathBuf> = None;
     let mut knowledge: Option<String> = None;
     let mut room_rules: Option<PathBuf> = None;
@@ -231,6 +236,7 @@ fn parse(argv: Vec<OsString>) -> Result<Option<Opts>, CliError> {
             Long("config") => config_path = Some(args::path(parser.value()?)),
             Long("rotation") => rotation = Some(args::value("--rotation", parser.value()?)?),
             Long("classify") => classify = args::value("--classify", parser.value()?)?,
+            Long("resolution") => resolution = Some(args::value("--resolution", parser.value()?)?),
             Long("region") => region_path = Some(args::path(parser.value()?)),
             Long("knowledge") => knowledge = Some(args::value("--knowledge", parser.value()?)?),
             Long("room-rules") => room_rules = Some(args::path(parser.value()?)),
@@ -255,6 +261,11 @@ fn parse(argv: Vec<OsString>) -> Result<Option<Opts>, CliError> {
         }
     }
     model.validate().map_err(|e| CliError::Usage(format!("--wall-height/--door-height: {e}")))?;
+    if let Some(r) = resolution.filter(|r| !(r.is_finite() && *r > 0.0 && *r <= 10.0)) {
+        return Err(CliError::Usage(format!(
+            "--resolution must be the metres per cell, above 0 and at most 10, not {r}"
+        )));
+    }
     if let Some(r) = rotation {
         if !r.is_finite() {
             return Err(CliError::Usage(format!("--rotation must be a number of degrees, not {r}")));
@@ -269,6 +280,7 @@ fn parse(argv: Vec<OsString>) -> Result<Option<Opts>, CliError> {
         time_limit,
         rotation,
         classify,
+        resolution,
         region: region_path,
         knowledge,
         room_rules,

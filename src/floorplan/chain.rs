@@ -997,7 +997,7 @@ impl Chain {
     /// The room segmentation of `world`, a world of this chain such as [`Chain::best_world`]
     /// or [`Chain::best_world_typed`] (unit types do not change it), on the original map.
     pub fn labels(&self, world: &World, rooms: &super::rooms::RoomConfig) -> Grid<u16> {
-        super::rooms::room_labels(world, &self.map, &self.world_map, rooms)
+        super::rooms::room_labels(world, &self.map, &self.world_map, &rooms.cells(self.resolution))
     }
 
     /// The typed best world ([`Chain::best_world_typed`]) with its room layer filled in, and

@@ -127,7 +127,13 @@ impl RoomInput {
         truth: &Grid<u16>,
         rooms: &RoomConfig,
     ) -> Result<super::room_training::RoomTraining, super::room_training::RoomTrainingError> {
-        super::room_training::room_training(&self.world, &self.map, &self.world_map, truth, rooms)
+        super::room_training::room_training(
+            &self.world,
+            &self.map,
+            &self.world_map,
+            truth,
+            &rooms.cells(self.resolution),
+        )
     }
 
     /// The typed best world, without rooms yet.

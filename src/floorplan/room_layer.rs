@@ -24,7 +24,7 @@
 
 use super::edits::Edits;
 use super::knowledge::{constant, Fact};
-use super::rooms::{join, labels_of_groups, open_pairs, world_cell, OpenPair, RoomConfig};
+use super::rooms::{join, labels_of_groups, open_pairs, world_cell, OpenPair, RoomCells, RoomConfig};
 use super::topology::{touching, MIN_CONTACT_CELLS};
 use super::world::{Room, UnitType, World};
 use crate::grid::{Cell, Grid};
@@ -211,6 +211,7 @@ pub fn explain_rooms_edited(
     knowledge: Option<&RoomKnowledge>,
     edits: &Edits,
 ) -> Result<Grid<u16>, MlnError> {
+    let c = &c.cells(resolution);
     let walls = edits.world_wall_cells(map, &world.frame);
     let apart = |a: usize, b: usize| Edits::separates(&walls, world.units[a].rect(), world.units[b].rect());
     let merged = edits.merged_units(world);
@@ -279,7 +280,7 @@ fn rooms_of_segments(
 /// }
 /// let mut world = World::empty(60, 121);
 /// world.units = vec![Unit::new(1, 0, 0, 60, 121, UnitType::Room)];
-/// let c = RoomConfig { min_wall_len: 10, ..RoomConfig::default() };
+/// let c = RoomConfig { min_wall_len_m: 0.5, ..RoomConfig::default() };
 /// let labels = explain_rooms_by_walls(&mut world, &map, &map, &c, 0.05, None, &[])?;
 /// assert_eq!(world.rooms.len(), 2);
 /// assert_ne!(labels.at(30, 10), labels.at(30, 110));
@@ -294,6 +295,7 @@ pub fn explain_rooms_by_walls(
     knowledge: Option<&RoomKnowledge>,
     angles: &[f64],
 ) -> Result<Grid<u16>, MlnError> {
+    let c = &c.cells(resolution);
     let groups: Vec<u16> = join(world, world_map, []).into_iter().map(|g| u16::from(g > 0)).collect();
     let labels = super::rooms::labels_of_groups_along(world, &groups, map, world_map, c, angles);
     rooms_of_segments(world, &labels, map, resolution, knowledge)?;
@@ -420,7 +422,7 @@ pub fn explain_world_rooms_by_walls(
 ///
 /// ```
 /// use ksmcmc::floorplan::room_layer::mark_closed;
-/// use ksmcmc::floorplan::rooms::{open_pairs, RoomConfig};
+/// use ksmcmc::floorplan::rooms::{open_pairs, RoomCells};
 /// use ksmcmc::floorplan::{Unit, UnitType, World};
 /// use ksmcmc::grid::{Cell, Grid};
 ///
@@ -439,17 +441,17 @@ pub fn explain_world_rooms_by_walls(
 ///     Unit::new(1, 0, 0, 200, 41, UnitType::Corridor),
 ///     Unit::new(2, 75, 40, 51, 60, UnitType::Room),
 /// ];
-/// let c = RoomConfig::default();
+/// let c = RoomCells::default();
 /// let mut pairs = open_pairs(&world, &map, &c);
 /// assert_eq!(pairs.len(), 1);
 /// mark_closed(&world, &map, &map, &mut pairs, &c);
 /// assert!(pairs[0].closed);
 /// // Without wall gaps nothing parts them.
-/// let open = RoomConfig { max_wall_gap: 0, ..c };
+/// let open = RoomCells { max_wall_gap: 0, ..c };
 /// mark_closed(&world, &map, &map, &mut pairs, &open);
 /// assert!(!pairs[0].closed);
 /// ```
-pub fn mark_closed(world: &World, map: &Grid<Cell>, world_map: &Grid<Cell>, pairs: &mut [OpenPair], c: &RoomConfig) {
+pub fn mark_closed(world: &World, map: &Grid<Cell>, world_map: &Grid<Cell>, pairs: &mut [OpenPair], c: &RoomCells) {
     if pairs.is_empty() {
         return;
     }
@@ -682,7 +684,8 @@ mod tests {
     #[test]
     fn rooms_open_onto_a_corridor_are_apart_where_the_walls_show_their_fronts() {
         let (mut map, mut world) = rooms_off_a_corridor();
-        let c = RoomConfig { door_half_width: 0, ..RoomConfig::default() };
+        let c = RoomConfig { door_half_width_m: 0.0, ..RoomConfig::default() };
+        let cells = c.cells(0.05);
         let kb = RoomKnowledge::builtin();
         // Nothing shows the rooms' fronts: the rules join the open pairs, one space.
         let labels = explain_rooms(&mut world, &map, &map, &c, 0.05, Some(&kb)).unwrap();
@@ -694,8 +697,8 @@ mod tests {
         for x in (0..25).chain(75..125).chain(175..225).chain(275..300) {
             *map.at_mut(x, 44) = Cell::Occupied;
         }
-        let mut pairs = open_pairs(&world, &map, &c);
-        mark_closed(&world, &map, &map, &mut pairs, &c);
+        let mut pairs = open_pairs(&world, &map, &cells);
+        mark_closed(&world, &map, &map, &mut pairs, &cells);
         assert_eq!(
             pairs.iter().map(|p| (p.a, p.b, p.closed)).collect::<Vec<_>>(),
             [(0, 1, true), (0, 2, true), (0, 3, true)]
@@ -736,7 +739,7 @@ mod tests {
         world.doors = vec![Door { id: 7, units: [2, 3], x0: 100, y0: 15, x1: 100, y1: 24 }];
         // The wall's two pieces are 15 cells long, with nothing else in this small map to
         // join them to: walls of 10 cells and more are walls here.
-        let c = RoomConfig { door_half_width: 0, min_wall_len: 10, ..RoomConfig::default() };
+        let c = RoomConfig { door_half_width_m: 0.0, min_wall_len_m: 1.0, ..RoomConfig::default() };
         explain_rooms(&mut world, &map, &map, &c, 0.1, Some(&RoomKnowledge::builtin())).unwrap();
         assert_eq!(world.rooms.len(), 2, "{:?}", world.rooms);
         let (a, b) = (&world.rooms[0], &world.rooms[1]);
@@ -756,7 +759,7 @@ mod tests {
     #[test]
     fn the_configured_room_rules_decide() {
         let (map, mut world) = rooms_off_a_corridor();
-        let c = RoomConfig { door_half_width: 0, ..RoomConfig::default() };
+        let c = RoomConfig { door_half_width_m: 0.0, ..RoomConfig::default() };
         // Rules that keep every open pair apart: four rooms, where the built-in rules join
         // them (nothing shows the rooms' fronts).
         let mut config = crate::floorplan::knowledge::KnowledgeConfig {

@@ -15,7 +15,7 @@
 
 use super::knowledge::{constant, Fact};
 use super::room_layer::{mark_closed, room_evidence, unit_rooms};
-use super::rooms::{open_pairs, RoomConfig};
+use super::rooms::{open_pairs, RoomCells};
 use super::world::World;
 use crate::grid::{Cell, Grid};
 use std::collections::BTreeMap;
@@ -55,7 +55,7 @@ impl std::error::Error for RoomTrainingError {}
 ///
 /// ```
 /// use ksmcmc::floorplan::room_training::room_training;
-/// use ksmcmc::floorplan::rooms::RoomConfig;
+/// use ksmcmc::floorplan::rooms::RoomCells;
 /// use ksmcmc::floorplan::{Unit, UnitType, World};
 /// use ksmcmc::grid::{Cell, Grid};
 ///
@@ -66,7 +66,7 @@ impl std::error::Error for RoomTrainingError {}
 /// for (id, x) in [(1, 0), (2, 40)] {
 ///     world.units.push(Unit::new(id, x, 0, 40, 40, UnitType::Room));
 /// }
-/// let t = room_training(&world, &map, &map, &truth, &RoomConfig::default())?;
+/// let t = room_training(&world, &map, &map, &truth, &RoomCells::default())?;
 /// assert_eq!((t.open_pairs, t.same_room), (1, 1));
 /// assert!(t.facts.contains(&("SameRoom", vec!["U1".to_string(), "U2".to_string()], true)));
 /// # Ok::<(), ksmcmc::floorplan::room_training::RoomTrainingError>(())
@@ -76,7 +76,7 @@ pub fn room_training(
     map: &Grid<Cell>,
     world_map: &Grid<Cell>,
     truth: &Grid<u16>,
-    c: &RoomConfig,
+    c: &RoomCells,
 ) -> Result<RoomTraining, RoomTrainingError> {
     world.require_one_direction("learning which units are one room").map_err(|e| RoomTrainingError(e.to_string()))?;
     let size = |g: (usize, usize)| [g.0 as u32, g.1 as u32];
@@ -167,7 +167,7 @@ mod tests {
     #[test]
     fn two_units_of_one_truth_room_are_one_room_and_the_corridor_is_apart() {
         let (map, truth, world) = office_off_a_corridor();
-        let c = RoomConfig { door_half_width: 0, ..RoomConfig::default() };
+        let c = RoomCells { door_half_width: 0, ..RoomCells::default() };
         let t = room_training(&world, &map, &map, &truth, &c).unwrap();
         assert_eq!(t.truth_rooms, vec![Some(1), Some(2), Some(2)]);
         assert_eq!(t.open_pairs, 3, "{:?}", t.facts);
@@ -190,7 +190,7 @@ mod tests {
                 *truth.at_mut(x, y) = 0;
             }
         }
-        let t = room_training(&world, &map, &map, &truth, &RoomConfig { door_half_width: 0, ..RoomConfig::default() })
+        let t = room_training(&world, &map, &map, &truth, &RoomCells { door_half_width: 0, ..RoomCells::default() })
             .unwrap();
         assert_eq!(t.truth_rooms[2], None);
         assert!(!same_room(&t, "U2", "U3"));
@@ -201,10 +201,9 @@ mod tests {
     fn grids_of_another_map_are_refused() {
         let (map, truth, world) = office_off_a_corridor();
         let small = Grid::new(100, 100, 1u16);
-        let e = room_training(&world, &map, &map, &small, &RoomConfig::default()).unwrap_err();
+        let e = room_training(&world, &map, &map, &small, &RoomCells::default()).unwrap_err();
         assert!(e.to_string().contains("truth labels are 100x100"), "{e}");
-        let e =
-            room_training(&world, &map, &Grid::new(20, 20, Cell::Free), &truth, &RoomConfig::default()).unwrap_err();
+        let e = room_training(&world, &map, &Grid::new(20, 20, Cell::Free), &truth, &RoomCells::default()).unwrap_err();
         assert!(e.to_string().contains("world-frame map is 20x20"), "{e}");
     }
 }

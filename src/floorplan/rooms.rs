@@ -12,10 +12,85 @@ use crate::geometry::Rotation;
 use crate::grid::{Cell, Grid};
 use std::collections::VecDeque;
 
-/// Parameters of the room grouping.
+/// The room layer's settings, every length in metres and every area in square metres, each
+/// default with its physical reason. A map's resolution turns them into cells once
+/// ([`RoomConfig::cells`]), so that the same building gives the same rooms at any cell size.
+///
+/// The JSON names carry their unit (`_m`, `_m2`): settings written in cells by an older
+/// version are refused by name rather than read as metres.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct RoomConfig {
+    /// Largest share of occupied cells in the band between two units for their boundary to
+    /// count as open. 5 %: a laser's stray hits on a boundary that no wall runs along.
+    pub max_wall_share: f64,
+    /// Shortest open boundary that joins two units, m; shorter ones are doors. 1.5 m: wider
+    /// than the widest single door leaf (1.2 m) with its frame.
+    pub min_open_m: f64,
+    /// How far through free space the wavefront carries a room's label beyond its units, m.
+    /// 1 m: a door's depth and the corners a rectangle misses; farther free space is a room
+    /// of its own.
+    pub max_reach_m: f64,
+    /// Smallest free region beyond every unit's reach that counts as a room, m². 1 m²: a
+    /// closet a person can stand in; smaller are specks and scan rays.
+    pub min_room_m2: f64,
+    /// Half the widest doorway, m: free space narrower than twice this parts the cores of two
+    /// rooms. 0.6 m: a door up to 1.2 m wide (a wide single leaf, as building codes allow for
+    /// accessible doors) parts two rooms, while a corridor (at least 1.2 m, usually 1.5 m and
+    /// more) keeps a core of its own. 0 turns the split off.
+    pub door_half_width_m: f64,
+    /// Smallest room core a doorway split keeps as a room of its own, m². 2.5 m²: the core of
+    /// a room of about 2.8 m x 2.8 m; smaller cores (a nook behind furniture) stay with the
+    /// room around them.
+    pub min_core_m2: f64,
+    /// Free regions beyond every unit's reach are rooms only if a quarter of their
+    /// `min_room_m2` lies deeper than this in free space, m. 0.3 m: a person's half-width;
+    /// fans of scan rays are thinner. 0 keeps every region.
+    pub min_room_depth_m: f64,
+    /// Segments smaller than this join the neighbour they share the longest boundary with, m²:
+    /// a sliver between two units. 2.5 m², as `min_core_m2`. 0 keeps them.
+    pub min_segment_m2: f64,
+    /// A door at least this share as wide as the stretch along which its two units face each
+    /// other is an opening, not a door. Above 1 no door is.
+    pub wide_door_share: f64,
+    /// Longest gap between two collinear wall stubs that the doorway split closes, m. 2.5 m:
+    /// a double door or the open front of a small office. 0 turns it off.
+    pub max_wall_gap_m: f64,
+    /// Shortest wall stub on each side of such a gap along its line, m. 0.3 m: longer than a
+    /// wall is thick (a wall crossed at right angles is no stub).
+    pub min_wall_stub_m: f64,
+    /// Smallest extent of a connected occupied part that is a wall, m. 2 m: the side of a
+    /// small room; chairs, the legs of a table and a SLAM map's clutter are smaller.
+    pub min_wall_len_m: f64,
+    /// Whether the clutter inside a room gets the room's label, as a person colours a room on
+    /// a floor plan under its furniture ([`RoomCells::clutter_in_rooms`]).
+    pub clutter_in_rooms: bool,
+}
+
+impl Default for RoomConfig {
+    fn default() -> Self {
+        RoomConfig {
+            max_wall_share: 0.05,
+            min_open_m: 1.5,
+            max_reach_m: 1.0,
+            min_room_m2: 1.0,
+            door_half_width_m: 0.6,
+            min_core_m2: 2.5,
+            min_room_depth_m: 0.3,
+            min_segment_m2: 2.5,
+            wide_door_share: 0.8,
+            max_wall_gap_m: 2.5,
+            min_wall_stub_m: 0.3,
+            min_wall_len_m: 2.0,
+            clutter_in_rooms: true,
+        }
+    }
+}
+
+/// The room layer's settings in cells of one map: [`RoomConfig`] turned into cells once, from
+/// the map's resolution ([`RoomConfig::cells`]). The stages of the room layer read these.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RoomCells {
     /// Largest share of occupied cells in the band between two units for their boundary to
     /// count as open.
     pub max_wall_share: f64,
@@ -30,14 +105,12 @@ pub struct RoomConfig {
     /// ones (specks, scan rays) are not part of any room.
     pub min_room_cells: usize,
     /// Half the widest doorway, in cells: free space narrower than twice this separates the
-    /// cores of two rooms ([`split_at_doorways`]). 0 turns the split off. The default is
-    /// 0.6 m at the 5 cm cells of the benchmark maps: a door up to 1.2 m wide parts two rooms,
-    /// while a corridor wider than that keeps a core of its own.
+    /// cores of two rooms ([`split_at_doorways`]). 0 turns the split off.
+    /// ([`RoomConfig::door_half_width_m`]).
     pub door_half_width: u32,
     /// Smallest room core, in cells, that a doorway split keeps as a room of its own; smaller
     /// cores (a nook behind furniture, the gap between a cupboard and a desk) stay with the
-    /// room around them. The default, 2.5 m² at 5 cm cells, is a core of a room of about
-    /// 2.8 m x 2.8 m and more.
+    /// room around them. ([`RoomConfig::min_core_m2`]).
     pub min_core_cells: usize,
     /// Free regions beyond every unit's reach are rooms only if at least `min_room_cells / 4`
     /// of their cells lie deeper than this (cells) in free space: the fans of scan rays a
@@ -52,44 +125,30 @@ pub struct RoomConfig {
     pub wide_door_share: f64,
     /// Longest gap, in cells, between two collinear wall stubs that the doorway split closes
     /// ([`super::wall_gaps`]): a room open onto a corridor over its width is closed along the
-    /// corridor's wall, as a person draws it. 0 turns it off. The default is 2.5 m at 5 cm
-    /// cells, a double door or the open front of a small office.
+    /// corridor's wall, as a person draws it. 0 turns it off. ([`RoomConfig::max_wall_gap_m`])
     pub max_wall_gap: u32,
     /// Shortest wall stub, in cells, on each side of such a gap along its line: a wall crossed
-    /// at right angles (as thick as a wall) is no stub. The default is 0.3 m at 5 cm cells.
+    /// at right angles (as thick as a wall) is no stub. ([`RoomConfig::min_wall_stub_m`])
     pub min_wall_stub: u32,
     /// Smallest extent, in cells, of a connected occupied part that is a wall (its parts
     /// joined through the unseen cells beside them, [`super::wall_gaps`]): chairs, the dots
     /// of a drawn table and the clutter of a SLAM map are no walls. Wall gaps close onto
     /// walls only, a doorway is a narrowing between walls ([`split_at_doorways`]), and only
-    /// walls close the boundary between two units ([`open_pairs`]). The default is 2 m at
-    /// 5 cm cells, the side of a small room.
+    /// walls close the boundary between two units ([`open_pairs`]). ([`RoomConfig::min_wall_len_m`])
     pub min_wall_len: u32,
     /// Whether the clutter inside a room (occupied parts that are no walls, and unseen specks:
-    /// [`RoomConfig::min_wall_len`]) gets the room's label, as a person colours a room on a
+    /// [`RoomCells::min_wall_len`]) gets the room's label, as a person colours a room on a
     /// floor plan under its furniture. Only parts that one room's cells enclose are labelled,
     /// so no two rooms come to touch through clutter. Off, only free cells
     /// are labelled, as the room-segmentation tools of Bormann et al. (2016) do.
     pub clutter_in_rooms: bool,
 }
 
-impl Default for RoomConfig {
+impl Default for RoomCells {
+    /// The default settings on a map of 5 cm cells (the benchmark floors' and the generated
+    /// floors' cell), for examples and tests that draw their maps in cells.
     fn default() -> Self {
-        RoomConfig {
-            max_wall_share: 0.05,
-            min_open_len: 30,
-            max_reach: 20,
-            min_room_cells: 400,
-            door_half_width: 12,
-            min_core_cells: 1000,
-            min_room_depth: 6,
-            min_segment_cells: 1000,
-            wide_door_share: 0.8,
-            max_wall_gap: 50,
-            min_wall_stub: 6,
-            min_wall_len: 40,
-            clutter_in_rooms: true,
-        }
+        RoomConfig::default().cells(0.05)
     }
 }
 
@@ -116,10 +175,12 @@ impl RoomConfig {
     /// ```
     /// use ksmcmc::floorplan::rooms::RoomConfig;
     ///
-    /// let c = RoomConfig::from_json(r#"{"max_wall_gap": 0}"#).unwrap();
-    /// assert_eq!((c.max_wall_gap, c.min_wall_len), (0, RoomConfig::default().min_wall_len));
-    /// let e = RoomConfig::from_json(r#"{"max_wall_gaps": 0}"#).unwrap_err();
-    /// assert!(e.to_string().contains("unknown field `max_wall_gaps`"), "{e}");
+    /// let c = RoomConfig::from_json(r#"{"max_wall_gap_m": 0}"#).unwrap();
+    /// assert_eq!((c.max_wall_gap_m, c.min_wall_len_m), (0.0, RoomConfig::default().min_wall_len_m));
+    /// let e = RoomConfig::from_json(r#"{"max_wall_gap": 50}"#).unwrap_err();
+    /// assert!(e.to_string().contains("unknown field `max_wall_gap`"), "{e}");
+    /// let e = RoomConfig::from_json(r#"{"min_wall_len_m": -1}"#).unwrap_err();
+    /// assert!(e.to_string().contains("min_wall_len_m"), "{e}");
     /// let e = RoomConfig::from_json(r#"{"max_wall_share": 1.5}"#).unwrap_err();
     /// assert!(e.to_string().contains("max_wall_share"), "{e}");
     /// ```
@@ -138,6 +199,13 @@ impl RoomConfig {
                 c.max_wall_share
             )));
         }
+        for (name, v) in c.lengths() {
+            if !(v.is_finite() && (0.0..=MAX_ROOM_LENGTH_M).contains(&v)) {
+                return Err(RoomConfigError(format!(
+                    "{name} is {v}: give metres (or square metres) from 0 to {MAX_ROOM_LENGTH_M}"
+                )));
+            }
+        }
         if !(c.wide_door_share.is_finite() && c.wide_door_share >= 0.0) {
             return Err(RoomConfigError(format!(
                 "wide_door_share is {}: give a share of 0 or more (above 1, no door is an opening)",
@@ -146,7 +214,60 @@ impl RoomConfig {
         }
         Ok(c)
     }
+
+    /// The lengths and areas by their JSON names.
+    fn lengths(&self) -> [(&'static str, f64); 10] {
+        [
+            ("min_open_m", self.min_open_m),
+            ("max_reach_m", self.max_reach_m),
+            ("min_room_m2", self.min_room_m2),
+            ("door_half_width_m", self.door_half_width_m),
+            ("min_core_m2", self.min_core_m2),
+            ("min_room_depth_m", self.min_room_depth_m),
+            ("min_segment_m2", self.min_segment_m2),
+            ("max_wall_gap_m", self.max_wall_gap_m),
+            ("min_wall_stub_m", self.min_wall_stub_m),
+            ("min_wall_len_m", self.min_wall_len_m),
+        ]
+    }
+
+    /// These settings in cells of `resolution` metres: lengths rounded to whole cells, areas
+    /// to whole cells of `resolution`² (a setting above 0 is at least one cell, so that only
+    /// 0 turns a stage off). A resolution that is not a positive number is read as 0.05 m.
+    ///
+    /// ```
+    /// use ksmcmc::floorplan::rooms::RoomConfig;
+    /// let c = RoomConfig::default();
+    /// assert_eq!((c.cells(0.05).min_wall_len, c.cells(0.05).min_core_cells), (40, 1000));
+    /// assert_eq!((c.cells(0.1).min_wall_len, c.cells(0.1).min_core_cells), (20, 250));
+    /// assert_eq!(c.cells(0.025).door_half_width, 24);
+    /// ```
+    pub fn cells(&self, resolution: f64) -> RoomCells {
+        let r = if resolution.is_finite() && resolution > 0.0 { resolution } else { 0.05 };
+        let count = |v: f64| if v > 0.0 { libm::round(v).max(1.0) } else { 0.0 };
+        let len = |m: f64| count(m / r) as u32;
+        let area = |m2: f64| count(m2 / (r * r)) as usize;
+        RoomCells {
+            max_wall_share: self.max_wall_share,
+            min_open_len: len(self.min_open_m) as i32,
+            max_reach: len(self.max_reach_m),
+            min_room_cells: area(self.min_room_m2),
+            door_half_width: len(self.door_half_width_m),
+            min_core_cells: area(self.min_core_m2),
+            min_room_depth: len(self.min_room_depth_m),
+            min_segment_cells: area(self.min_segment_m2),
+            wide_door_share: self.wide_door_share,
+            max_wall_gap: len(self.max_wall_gap_m),
+            min_wall_stub: len(self.min_wall_stub_m),
+            min_wall_len: len(self.min_wall_len_m),
+            clutter_in_rooms: self.clutter_in_rooms,
+        }
+    }
 }
+
+/// The longest length (or largest area) a room-layer setting may have: 10 km, far beyond any
+/// building, and few enough cells at any resolution to count in a `u32`.
+pub const MAX_ROOM_LENGTH_M: f64 = 10_000.0;
 
 /// Whether a unit encloses space: at least half of its interior (inside the wall ring) is free
 /// in the map. Units lying on thick walls or over unexplored space are not rooms.
@@ -208,7 +329,7 @@ fn is_flush(lo: Rect, hi: Rect, axis: Axis, (s, e): (i32, i32), t: i32) -> bool 
 
 /// Whether units `a` and `b` (rectangles, walls `t` deep) have an open boundary, and whether
 /// it is flush: `None` if there is none.
-fn open_boundary(a: Rect, b: Rect, t: i32, world_map: &Grid<Cell>, c: &RoomConfig) -> Option<bool> {
+fn open_boundary(a: Rect, b: Rect, t: i32, world_map: &Grid<Cell>, c: &RoomCells) -> Option<bool> {
     let mut found: Option<bool> = None;
     for (lo, hi) in [(a, b), (b, a)] {
         for axis in [Axis::Horizontal, Axis::Vertical] {
@@ -239,9 +360,9 @@ fn open_boundary(a: Rect, b: Rect, t: i32, world_map: &Grid<Cell>, c: &RoomConfi
 }
 
 /// Whether units `a` and `b` (indices) are joined by a door nearly as wide as the stretch they
-/// face each other along ([`RoomConfig::wide_door_share`]), and whether that stretch is flush
+/// face each other along ([`RoomCells::wide_door_share`]), and whether that stretch is flush
 /// (as in [`OpenPair::flush`]); `None` if not.
-fn wide_door(world: &World, a: usize, b: usize, c: &RoomConfig) -> Option<bool> {
+fn wide_door(world: &World, a: usize, b: usize, c: &RoomCells) -> Option<bool> {
     let t = world.wall_thickness;
     let (ua, ub) = (&world.units[a], &world.units[b]);
     let (door, across) = world
@@ -263,8 +384,8 @@ fn wide_door(world: &World, a: usize, b: usize, c: &RoomConfig) -> Option<bool> 
 }
 
 /// Every pair of space-enclosing units ([`encloses_space`]) with an open boundary, or joined
-/// by a door as wide as their shared stretch ([`RoomConfig::wide_door_share`]).
-pub fn open_pairs(world: &World, world_map: &Grid<Cell>, c: &RoomConfig) -> Vec<OpenPair> {
+/// by a door as wide as their shared stretch ([`RoomCells::wide_door_share`]).
+pub fn open_pairs(world: &World, world_map: &Grid<Cell>, c: &RoomCells) -> Vec<OpenPair> {
     let t = world.wall_thickness;
     let space: Vec<bool> = world.units.iter().map(|u| encloses_space(u, t, world_map)).collect();
     let walls = without_clutter(world_map, c.min_wall_len);
@@ -287,7 +408,7 @@ pub fn open_pairs(world: &World, world_map: &Grid<Cell>, c: &RoomConfig) -> Vec<
 /// Room id (1-based) of every unit, by unit index; 0 for units that enclose no space
 /// ([`encloses_space`]). Units with an open boundary ([`open_pairs`]) are one room: the rule
 /// without knowledge supervision ([`super::room_layer`] lets the knowledge base decide).
-pub fn group_units(world: &World, world_map: &Grid<Cell>, c: &RoomConfig) -> Vec<u16> {
+pub fn group_units(world: &World, world_map: &Grid<Cell>, c: &RoomCells) -> Vec<u16> {
     let pairs = open_pairs(world, world_map, c);
     join(world, world_map, pairs.iter().map(|p| (p.a, p.b)))
 }
@@ -333,7 +454,7 @@ pub fn join(world: &World, world_map: &Grid<Cell>, pairs: impl IntoIterator<Item
 /// The segmentation in the map's frame: every free map cell of a room gets the room's id
 /// (1..=n), other cells 0. `world_map` is the classified map in the world frame, `map` in the
 /// map frame.
-pub fn room_labels(world: &World, map: &Grid<Cell>, world_map: &Grid<Cell>, c: &RoomConfig) -> Grid<u16> {
+pub fn room_labels(world: &World, map: &Grid<Cell>, world_map: &Grid<Cell>, c: &RoomCells) -> Grid<u16> {
     labels_of_groups(world, &group_units(world, world_map, c), map, world_map, c)
 }
 
@@ -346,7 +467,7 @@ pub fn labels_of_groups(
     rooms: &[u16],
     map: &Grid<Cell>,
     world_map: &Grid<Cell>,
-    c: &RoomConfig,
+    c: &RoomCells,
 ) -> Grid<u16> {
     labels_of_groups_along(world, rooms, map, world_map, c, &[])
 }
@@ -358,7 +479,7 @@ pub fn labels_of_groups_along(
     rooms: &[u16],
     map: &Grid<Cell>,
     world_map: &Grid<Cell>,
-    c: &RoomConfig,
+    c: &RoomCells,
     angles: &[f64],
 ) -> Grid<u16> {
     let owner = room_owner(world, rooms, world_map);
@@ -595,9 +716,9 @@ fn spread_labels(labels: &mut Grid<u16>, map: &Grid<Cell>, mut queue: VecDeque<u
 }
 
 /// Free regions out of every unit's reach become rooms of their own, numbered after `last`,
-/// if big and deep enough ([`RoomConfig::min_room_cells`], [`RoomConfig::min_room_depth`]);
+/// if big and deep enough ([`RoomCells::min_room_cells`], [`RoomCells::min_room_depth`]);
 /// the others stay unlabelled.
-fn label_far_regions(labels: &mut Grid<u16>, map: &Grid<Cell>, last: u16, c: &RoomConfig) {
+fn label_far_regions(labels: &mut Grid<u16>, map: &Grid<Cell>, last: u16, c: &RoomCells) {
     let (w, h) = (map.width(), map.height());
     let depth = if c.min_room_depth > 0 { free_depth(map) } else { vec![u32::MAX; w * h] };
     let mut next = last;
@@ -774,13 +895,13 @@ pub fn free_depth(map: &Grid<Cell>) -> Vec<u32> {
 ///
 /// A room's *cores* are its free cells farther than `door_half_width` from every wall or
 /// unknown cell (a chamfer distance; clutter such as chairs counts as free,
-/// [`RoomConfig::min_wall_len`]), split into 4-connected parts; a doorway narrower than twice that
+/// [`RoomCells::min_wall_len`]), split into 4-connected parts; a doorway narrower than twice that
 /// leaves no core cells, so rooms joined by doors have separate cores while a room narrowed
 /// only a little keeps one. A room with two or more cores of `min_core_cells` or more is
 /// divided among them: each of its cells joins the core nearest to it through the room
 /// (wavefront), and cells no core reaches keep the room's label. Rooms are then numbered
 /// 1..=n in scan order. `labels` must be the size of `map` (otherwise nothing is split).
-pub fn split_at_doorways(labels: &mut Grid<u16>, map: &Grid<Cell>, c: &RoomConfig) {
+pub fn split_at_doorways(labels: &mut Grid<u16>, map: &Grid<Cell>, c: &RoomCells) {
     let (w, h) = (labels.width(), labels.height());
     if c.door_half_width == 0 || w == 0 || h == 0 || (map.width(), map.height()) != (w, h) {
         return;
@@ -789,7 +910,7 @@ pub fn split_at_doorways(labels: &mut Grid<u16>, map: &Grid<Cell>, c: &RoomConfi
 }
 
 /// [`split_at_doorways`] on `open`, the map with its clutter drawn free ([`without_clutter`]).
-fn split_open_at_doorways(labels: &mut Grid<u16>, open: &Grid<Cell>, c: &RoomConfig) {
+fn split_open_at_doorways(labels: &mut Grid<u16>, open: &Grid<Cell>, c: &RoomCells) {
     let (w, h) = (labels.width(), labels.height());
     if c.door_half_width == 0 || w == 0 || h == 0 || (open.width(), open.height()) != (w, h) {
         return;
@@ -843,7 +964,7 @@ fn unknown_specks(map: &Grid<Cell>, min_len: usize) -> Vec<bool> {
 /// two or more 4-connected parts of `min_core_cells` or more is divided among those parts
 /// as [`split_at_doorways`] divides a room among its cores. A gap that closes nothing (two
 /// desks in a row, a notch) leaves one part and changes nothing.
-pub fn split_at_wall_gaps(labels: &mut Grid<u16>, closed: &Grid<Cell>, c: &RoomConfig) {
+pub fn split_at_wall_gaps(labels: &mut Grid<u16>, closed: &Grid<Cell>, c: &RoomCells) {
     let (w, h) = (labels.width(), labels.height());
     if w == 0 || h == 0 || (closed.width(), closed.height()) != (w, h) {
         return;
@@ -971,9 +1092,9 @@ pub(crate) mod tests {
         }
         let mut world = World::empty(90, 40);
         world.units = vec![unit(1, 0, 0, 31, 40), unit(2, 30, 0, 31, 40), unit(3, 60, 0, 30, 40)];
-        let rooms = group_units(&world, &map, &RoomConfig::default());
+        let rooms = group_units(&world, &map, &RoomCells::default());
         assert_eq!(rooms, vec![1, 1, 2]);
-        let labels = room_labels(&world, &map, &map, &RoomConfig::default());
+        let labels = room_labels(&world, &map, &map, &RoomCells::default());
         assert_eq!(*labels.at(5, 5), 1);
         assert_eq!(*labels.at(45, 5), 1);
         assert_eq!(*labels.at(75, 5), 2);
@@ -992,7 +1113,7 @@ pub(crate) mod tests {
         let mut world = World::empty(120, 20);
         world.units = vec![unit(1, 0, 0, 20, 20)];
         // Rooms here are smaller than the smallest segment kept alone: no merging.
-        let c = RoomConfig { min_segment_cells: 0, ..RoomConfig::default() };
+        let c = RoomCells { min_segment_cells: 0, ..RoomCells::default() };
         let labels = room_labels(&world, &map, &map, &c);
         assert_eq!(*labels.at(5, 5), 1);
         assert_eq!(*labels.at(25, 5), 1, "within reach of the unit");
@@ -1010,7 +1131,7 @@ pub(crate) mod tests {
         let mut world = World::empty(50, 20);
         world.units = vec![unit(1, 0, 0, 20, 20), unit(2, 30, 0, 20, 20)];
         *map.at_mut(25, 0) = Cell::Free; // isolated: unreachable
-        let c = RoomConfig { min_segment_cells: 0, ..RoomConfig::default() };
+        let c = RoomCells { min_segment_cells: 0, ..RoomCells::default() };
         let labels = room_labels(&world, &map, &map, &c);
         assert_eq!(*labels.at(22, 10), 1, "nearer to the left unit");
         assert_eq!(*labels.at(27, 10), 2, "nearer to the right unit");
@@ -1034,10 +1155,10 @@ pub(crate) mod tests {
         let mut world = World::empty(81, 40);
         world.units = vec![unit(1, 0, 0, 41, 40), unit(2, 40, 0, 41, 40)];
         world.doors = vec![crate::floorplan::Door { id: 1, units: [1, 2], x0: 40, y0: 3, x1: 40, y1: 36 }];
-        let c = RoomConfig::default();
+        let c = RoomCells::default();
         assert_eq!(open_pairs(&world, &map, &c), vec![OpenPair { a: 0, b: 1, flush: true, closed: false }]);
         // Not when wide doors are doors (the wall band is 15 % occupied: no opening by itself).
-        let doors = RoomConfig { wide_door_share: 2.0, ..c };
+        let doors = RoomCells { wide_door_share: 2.0, ..c };
         assert!(open_pairs(&world, &map, &doors).is_empty());
         // A narrow door stays a door.
         world.doors[0].y1 = 12;
@@ -1064,7 +1185,7 @@ pub(crate) mod tests {
         world.wall_thickness = 3;
         world.units = vec![unit(1, 0, 0, 41, 40), unit(2, 49, 0, 41, 40)];
         world.doors = vec![crate::floorplan::Door { id: 1, units: [1, 2], x0: 38, y0: 3, x1: 51, y1: 36 }];
-        let c = RoomConfig::default();
+        let c = RoomCells::default();
         assert_eq!(open_pairs(&world, &map, &c), vec![OpenPair { a: 0, b: 1, flush: true, closed: false }]);
         // A narrow door through the same wall stays a door.
         world.doors[0].y1 = 14;
@@ -1127,10 +1248,10 @@ pub(crate) mod tests {
         }
         let mut world = World::empty(200, 100);
         world.units = vec![unit(1, 0, 0, 30, 100)];
-        let labels = room_labels(&world, &map, &map, &RoomConfig::default());
+        let labels = room_labels(&world, &map, &map, &RoomCells::default());
         assert_eq!(*labels.at(150, 5), 0, "a fan is no room");
         assert!(*labels.at(140, 75) > 0, "a deep region is");
-        let keep = RoomConfig { min_room_depth: 0, ..RoomConfig::default() };
+        let keep = RoomCells { min_room_depth: 0, ..RoomCells::default() };
         assert!(*room_labels(&world, &map, &map, &keep).at(150, 5) > 0, "without the depth test it is");
     }
 
@@ -1160,7 +1281,7 @@ pub(crate) mod tests {
         let map = corridor_with_two_rooms();
         let mut world = World::empty(200, 120);
         world.units = vec![unit(1, 0, 0, 200, 120)];
-        let labels = room_labels(&world, &map, &map, &RoomConfig::default());
+        let labels = room_labels(&world, &map, &map, &RoomCells::default());
         let (corridor, left, right) = (*labels.at(50, 20), *labels.at(50, 80), *labels.at(150, 80));
         assert!(corridor > 0 && left > 0 && right > 0);
         assert!(corridor != left && corridor != right && left != right, "{corridor} {left} {right}");
@@ -1170,7 +1291,7 @@ pub(crate) mod tests {
         assert_eq!(labels.cells().iter().copied().max(), Some(3), "rooms are numbered 1..=n");
         // Without the split (and without closing wall gaps, which close these doorways too)
         // it is one room.
-        let off = RoomConfig { door_half_width: 0, max_wall_gap: 0, ..RoomConfig::default() };
+        let off = RoomCells { door_half_width: 0, max_wall_gap: 0, ..RoomCells::default() };
         let labels = room_labels(&world, &map, &map, &off);
         assert_eq!(*labels.at(50, 20), *labels.at(150, 80));
     }
@@ -1200,13 +1321,13 @@ pub(crate) mod tests {
         world.units = vec![unit(1, 0, 0, 160, 80)];
         // Wall gaps off: the doorway split alone (closing the 10-cell gap between the two
         // wall-thin pieces of cupboard, as the default does, makes the 2 m nook a room).
-        let doorways = RoomConfig { max_wall_gap: 0, ..RoomConfig::default() };
+        let doorways = RoomCells { max_wall_gap: 0, ..RoomCells::default() };
         let labels = room_labels(&world, &map, &map, &doorways);
         assert_eq!(*labels.at(50, 40), *labels.at(137, 60), "the nook is part of the room");
-        let labels = room_labels(&world, &map, &map, &RoomConfig::default());
+        let labels = room_labels(&world, &map, &map, &RoomCells::default());
         assert_ne!(*labels.at(50, 40), *labels.at(137, 60), "closed, the nook is a room");
         // With small cores allowed, the same nook is a room of its own: the test can fail.
-        let small = RoomConfig { min_core_cells: 50, ..doorways };
+        let small = RoomCells { min_core_cells: 50, ..doorways };
         let labels = room_labels(&world, &map, &map, &small);
         assert_ne!(*labels.at(50, 40), *labels.at(137, 60));
     }
@@ -1248,12 +1369,12 @@ pub(crate) mod tests {
         }
         let mut world = World::empty(300, 200);
         world.units = vec![unit(1, 0, 0, 300, 200)];
-        let c = RoomConfig::default();
+        let c = RoomCells::default();
         let labels = room_labels(&world, &map, &map, &c);
         assert!(*labels.at(150, 100) > 0);
         assert_eq!(*labels.at(150, 100), *labels.at(20, 20), "the table's middle is part of the room");
         // Chairs counted as walls (no part too short to be one): the ring parts the room.
-        let chairs_are_walls = RoomConfig { min_wall_len: 1, ..c };
+        let chairs_are_walls = RoomCells { min_wall_len: 1, ..c };
         let labels = room_labels(&world, &map, &map, &chairs_are_walls);
         assert_ne!(*labels.at(150, 100), *labels.at(20, 20));
     }
@@ -1278,7 +1399,7 @@ pub(crate) mod tests {
         block(58, 18, 5, 4);
         let mut world = World::empty(121, 40);
         world.units = vec![unit(1, 0, 0, 61, 40), unit(2, 60, 0, 61, 40)];
-        let c = RoomConfig { door_half_width: 0, max_wall_gap: 0, ..RoomConfig::default() };
+        let c = RoomCells { door_half_width: 0, max_wall_gap: 0, ..RoomCells::default() };
         let labels = room_labels(&world, &map, &map, &c);
         let (left, right) = (*labels.at(5, 5), *labels.at(100, 5));
         assert!(left != 0 && right != 0 && left != right, "two rooms: {left}, {right}");
@@ -1286,7 +1407,7 @@ pub(crate) mod tests {
         assert_eq!((*labels.at(57, 20), *labels.at(63, 20)), (left, right), "the block touches both rooms");
         assert_eq!(*labels.at(60, 20), 0, "the block in the doorway belongs to no room");
         assert_eq!(*labels.at(60, 5), 0, "walls belong to no room");
-        let free_only = room_labels(&world, &map, &map, &RoomConfig { clutter_in_rooms: false, ..c });
+        let free_only = room_labels(&world, &map, &map, &RoomCells { clutter_in_rooms: false, ..c });
         assert_eq!(*free_only.at(25, 20), 0, "off, only free cells are labelled");
         let counted = |l: &Grid<u16>| l.cells().iter().filter(|&&v| v == left).count();
         assert_eq!(counted(&labels), counted(&free_only) + 60, "the desk's 60 cells, no more");
@@ -1305,7 +1426,7 @@ pub(crate) mod tests {
         }
         *labels.at_mut(50, 35) = 2;
         *labels.at_mut(51, 35) = 3;
-        let c = RoomConfig::default();
+        let c = RoomCells::default();
         let fragment = split_disconnected(&mut labels, &walls(60, 40), c.min_room_cells);
         let mut kept = labels.clone();
         merge_segments(&mut kept, c.min_segment_cells, &fragment, 0);
@@ -1330,9 +1451,9 @@ pub(crate) mod tests {
         }
         let mut world = World::empty(90, 40);
         world.units = vec![unit(1, 0, 0, 46, 40), unit(2, 45, 0, 45, 40)];
-        let c = RoomConfig::default();
+        let c = RoomCells::default();
         assert_eq!(open_pairs(&world, &map, &c), vec![OpenPair { a: 0, b: 1, flush: true, closed: false }]);
-        let chairs_are_walls = RoomConfig { min_wall_len: 1, ..c };
+        let chairs_are_walls = RoomCells { min_wall_len: 1, ..c };
         assert!(open_pairs(&world, &map, &chairs_are_walls).is_empty());
     }
 
@@ -1399,12 +1520,12 @@ pub(crate) mod tests {
         }
         let mut world = World::empty(300, 200);
         world.units = vec![unit(1, 0, 0, 300, 200)];
-        let c = RoomConfig::default();
+        let c = RoomCells::default();
         let labels = room_labels(&world, &map, &map, &c);
         assert_eq!(*labels.at(50, 100), *labels.at(250, 100), "one room");
         // Unseen specks counted as the edge of the map (no part too short to be a wall): the
         // line parts the room.
-        let specks_are_walls = RoomConfig { min_wall_len: 1, ..c };
+        let specks_are_walls = RoomCells { min_wall_len: 1, ..c };
         let labels = room_labels(&world, &map, &map, &specks_are_walls);
         assert_ne!(*labels.at(50, 100), *labels.at(250, 100));
     }

@@ -7,9 +7,9 @@
 //! into the room, and the room layer then labels room and corridor as one segment.
 //!
 //! This module finds those gaps. In the world frame, where walls run along the axes, a *gap*
-//! is a run of free cells along a row or a column, at most [`RoomConfig::max_wall_gap`] cells
+//! is a run of free cells along a row or a column, at most [`RoomCells::max_wall_gap`] cells
 //! long, between two ends of walls of that line, at least one of them a *stub*: a wall lying
-//! along the line for [`RoomConfig::min_wall_stub`] cells or more and somewhere no deeper
+//! along the line for [`RoomCells::min_wall_stub`] cells or more and somewhere no deeper
 //! across it than a wall (a desk is deep all along). The other end may be a stub or a
 //! *corner*, a wall meeting the line from one side. Three things a person would not close
 //! stay open:
@@ -19,7 +19,7 @@
 //! * a corridor passing between the walls of the rooms either side of it (walls cross the
 //!   line at both ends of the gap);
 //! * gaps onto chairs, the dots of a drawn table and specks: occupied parts less than
-//!   [`RoomConfig::min_wall_len`] long are no walls (a wall's parts join through the unseen
+//!   [`RoomCells::min_wall_len`] long are no walls (a wall's parts join through the unseen
 //!   cells beside them, so a wall a scan saw in pieces is still one wall).
 //!
 //! The gaps are drawn into a copy of the map as occupied cells ([`close_wall_gaps`]), and the
@@ -28,7 +28,7 @@
 //! The gaps never reach the chain, its likelihood or K(W,M): they are a reading of the walls,
 //! not an observation.
 
-use super::rooms::{frame_cell, RoomConfig};
+use super::rooms::{frame_cell, RoomCells};
 use super::world::World;
 use crate::geometry::Frame;
 use crate::grid::{Cell, Grid};
@@ -38,7 +38,7 @@ use crate::grid::{Cell, Grid};
 /// deeper than a wall).
 ///
 /// ```
-/// use ksmcmc::floorplan::rooms::RoomConfig;
+/// use ksmcmc::floorplan::rooms::RoomCells;
 /// use ksmcmc::floorplan::wall_gaps::wall_gaps;
 /// use ksmcmc::grid::{Cell, Grid};
 ///
@@ -47,12 +47,12 @@ use crate::grid::{Cell, Grid};
 /// for x in (0..10).chain(14..24) {
 ///     *map.at_mut(x, 5) = Cell::Occupied;
 /// }
-/// let c = RoomConfig { max_wall_gap: 6, min_wall_stub: 6, min_wall_len: 8, ..RoomConfig::default() };
+/// let c = RoomCells { max_wall_gap: 6, min_wall_stub: 6, min_wall_len: 8, ..RoomCells::default() };
 /// let gaps = wall_gaps(&map, &c, 3);
 /// assert!((10..14).all(|x| gaps[5 * 24 + x]));
 /// assert_eq!(gaps.iter().filter(|&&g| g).count(), 4);
 /// ```
-pub fn wall_gaps(world_map: &Grid<Cell>, c: &RoomConfig, depth: usize) -> Vec<bool> {
+pub fn wall_gaps(world_map: &Grid<Cell>, c: &RoomCells, depth: usize) -> Vec<bool> {
     let (w, h) = (world_map.width(), world_map.height());
     let mut gaps = vec![false; w * h];
     if c.max_wall_gap == 0 || w == 0 || h == 0 {
@@ -92,7 +92,7 @@ pub fn wall_gaps(world_map: &Grid<Cell>, c: &RoomConfig, depth: usize) -> Vec<bo
 /// [`HOLE_REACH`]), so a wall that a scan saw in pieces, with unseen cells in it, is one part;
 /// smaller parts (chairs, the dots of a drawn table, specks amid free space) are no wall a gap
 /// could close onto, no jamb of a doorway and no wall between two units (see
-/// [`RoomConfig::min_wall_len`]).
+/// [`RoomCells::min_wall_len`]).
 pub(crate) fn walls(map: &Grid<Cell>, min_len: usize) -> Vec<bool> {
     let (w, h) = (map.width(), map.height());
     let cells = map.cells();
@@ -195,7 +195,7 @@ impl<W: Fn(usize, isize) -> bool, F: Fn(usize) -> bool> Line<W, F> {
     /// Whether the run `s..e` of the band is a wall stub: long along the line and somewhere
     /// no deeper across it than a wall (a stub meets the wall it sticks out of; a desk is
     /// deep all along).
-    fn stub(&self, (s, e): (usize, usize), c: &RoomConfig) -> bool {
+    fn stub(&self, (s, e): (usize, usize), c: &RoomCells) -> bool {
         e - s >= c.min_wall_stub.max(1) as usize && (s..e).any(|k| self.across(k) <= self.depth)
     }
 
@@ -205,7 +205,7 @@ impl<W: Fn(usize, isize) -> bool, F: Fn(usize) -> bool> Line<W, F> {
     /// corridor seen from the tip of a wall pointing at it), and the jamb of a door in a wall
     /// across the line (the wall resumes beyond the tip within a doorway's width, `door`
     /// cells). Closing onto either would cut a corridor.
-    fn end(&self, (s, e): (usize, usize), c: &RoomConfig, door: usize) -> bool {
+    fn end(&self, (s, e): (usize, usize), c: &RoomCells, door: usize) -> bool {
         let mid = (s + e) / 2;
         if self.stub((s, e), c) {
             return true;
@@ -244,7 +244,7 @@ impl<W: Fn(usize, isize) -> bool, F: Fn(usize) -> bool> Line<W, F> {
     /// Marks every free run between two ends of walls of the line ([`Line::end`]), at least
     /// one of them a stub, that is short enough to be a gap, unless walls cross the line at
     /// both ends (a corridor passing between the walls of the rooms either side of it).
-    fn mark(&self, c: &RoomConfig, mut mark: impl FnMut(usize)) {
+    fn mark(&self, c: &RoomCells, mut mark: impl FnMut(usize)) {
         let max_gap = c.max_wall_gap as usize;
         let door = 2 * c.door_half_width as usize;
         let mut prev: Option<(usize, usize)> = None;
@@ -282,7 +282,7 @@ pub fn stub_depth(t: i32) -> usize {
 
 /// The map (in the map frame) with every wall gap ([`wall_gaps`], found in the world frame)
 /// drawn as occupied; `None` when there is none, or gaps are off.
-pub fn close_wall_gaps(world: &World, map: &Grid<Cell>, world_map: &Grid<Cell>, c: &RoomConfig) -> Option<Grid<Cell>> {
+pub fn close_wall_gaps(world: &World, map: &Grid<Cell>, world_map: &Grid<Cell>, c: &RoomCells) -> Option<Grid<Cell>> {
     close_wall_gaps_along(world, map, world_map, c, &[])
 }
 
@@ -299,7 +299,7 @@ pub fn close_wall_gaps_along(
     world: &World,
     map: &Grid<Cell>,
     world_map: &Grid<Cell>,
-    c: &RoomConfig,
+    c: &RoomCells,
     angles: &[f64],
 ) -> Option<Grid<Cell>> {
     let depth = stub_depth(world.wall_thickness);
@@ -347,8 +347,8 @@ mod tests {
     use crate::floorplan::rooms::{labels_of_groups, labels_of_groups_along};
     use crate::floorplan::{Unit, UnitType};
 
-    fn config(gap: u32, stub: u32) -> RoomConfig {
-        RoomConfig { max_wall_gap: gap, min_wall_stub: stub, min_wall_len: 1, ..RoomConfig::default() }
+    fn config(gap: u32, stub: u32) -> RoomCells {
+        RoomCells { max_wall_gap: gap, min_wall_stub: stub, min_wall_len: 1, ..RoomCells::default() }
     }
 
     fn fill(map: &mut Grid<Cell>, xs: std::ops::Range<usize>, ys: std::ops::Range<usize>, cell: Cell) {
@@ -408,9 +408,9 @@ mod tests {
         let mut map = Grid::new(30, 5, Cell::Free);
         fill(&mut map, 0..10, 2..3, Cell::Occupied);
         fill(&mut map, 14..20, 2..3, Cell::Occupied);
-        let c = RoomConfig { min_wall_len: 7, ..config(8, 3) };
+        let c = RoomCells { min_wall_len: 7, ..config(8, 3) };
         assert!(!wall_gaps(&map, &c, 3).contains(&true));
-        let c = RoomConfig { min_wall_len: 6, ..config(8, 3) };
+        let c = RoomCells { min_wall_len: 6, ..config(8, 3) };
         assert_eq!(marked(&wall_gaps(&map, &c, 3), 30), [(10, 2), (11, 2), (12, 2), (13, 2)]);
     }
 
@@ -438,7 +438,7 @@ mod tests {
         let mut map = Grid::new(60, 60, Cell::Free);
         fill(&mut map, 20..21, 30..50, Cell::Occupied);
         fill(&mut map, 0..22, 10..11, Cell::Occupied);
-        let c = RoomConfig { door_half_width: 6, ..config(30, 5) };
+        let c = RoomCells { door_half_width: 6, ..config(30, 5) };
         let gaps = wall_gaps(&map, &c, 3);
         assert!((11..30).all(|y| gaps[y * 60 + 20]));
         // The same wall resuming 8 cells on (a door 8 cells wide, under 12): a jamb, no corner.
@@ -446,7 +446,7 @@ mod tests {
         let gaps = wall_gaps(&map, &c, 3);
         assert!(!(11..30).any(|y| gaps[y * 60 + 20]));
         // A wider opening (over twice the door half-width) is no door: the corner is back.
-        let c = RoomConfig { door_half_width: 3, ..c };
+        let c = RoomCells { door_half_width: 3, ..c };
         let gaps = wall_gaps(&map, &c, 3);
         assert!((11..30).all(|y| gaps[y * 60 + 20]));
     }
@@ -462,7 +462,7 @@ mod tests {
         fill(&mut map, 21..23, 10..11, Cell::Unknown);
         fill(&mut map, 31..33, 10..11, Cell::Unknown);
         fill(&mut map, 20..21, 25..40, Cell::Occupied);
-        let c = RoomConfig { min_wall_len: 12, ..config(20, 5) };
+        let c = RoomCells { min_wall_len: 12, ..config(20, 5) };
         assert!(!wall_gaps(&map, &c, 3).iter().enumerate().any(|(i, &g)| g && i % 40 == 20));
         // Holes wider than twice the reach part the wall: the pieces right of column 20 are
         // too short to be walls, column 20 is a corner, and the stub closes onto it.
@@ -519,7 +519,7 @@ mod tests {
         let mut world = World::empty(200, 200);
         world.wall_thickness = 3;
         world.units = vec![Unit::new(1, 0, 0, 200, 200, UnitType::Room)];
-        let c = RoomConfig { max_wall_gap: 50, min_wall_stub: 6, min_core_cells: 200, ..RoomConfig::default() };
+        let c = RoomCells { max_wall_gap: 50, min_wall_stub: 6, min_core_cells: 200, ..RoomCells::default() };
         let label = |labels: &Grid<u16>, (x, y): (usize, usize)| *labels.at(x, y);
         let upright_only = labels_of_groups(&world, &[1], &map, &map, &c);
         assert_eq!(label(&upright_only, corridor), label(&upright_only, room), "no upright wall has a gap");
@@ -548,13 +548,13 @@ mod tests {
         let mut world = World::empty(w as u32, h as u32);
         world.wall_thickness = 1;
         world.units = vec![Unit::new(1, 0, 0, w as i32, h as i32, UnitType::Room)];
-        let c = RoomConfig { max_wall_gap: 50, min_wall_stub: 6, min_core_cells: 200, ..RoomConfig::default() };
+        let c = RoomCells { max_wall_gap: 50, min_wall_stub: 6, min_core_cells: 200, ..RoomCells::default() };
         let labels = labels_of_groups(&world, &[1], &map, &map, &c);
         assert_ne!(labels.at(60, 20), labels.at(60, 70), "corridor and room are two segments");
-        let open = labels_of_groups(&world, &[1], &map, &map, &RoomConfig { max_wall_gap: 0, ..c });
+        let open = labels_of_groups(&world, &[1], &map, &map, &RoomCells { max_wall_gap: 0, ..c });
         assert_eq!(open.at(60, 20), open.at(60, 70), "without gaps they are one");
         // 40 cells is over a 30-cell gap: the front stays open.
-        let wide = labels_of_groups(&world, &[1], &map, &map, &RoomConfig { max_wall_gap: 30, ..c });
+        let wide = labels_of_groups(&world, &[1], &map, &map, &RoomCells { max_wall_gap: 30, ..c });
         assert_eq!(wide.at(60, 20), wide.at(60, 70));
     }
 }

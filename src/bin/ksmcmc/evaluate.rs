@@ -7,7 +7,7 @@ use ksmcmc::floorplan::rooms::RoomConfig;
 use ksmcmc::floorplan::synth::{generate, SynthConfig};
 use ksmcmc::floorplan::topology::{score_links, LinkScore};
 use ksmcmc::floorplan::{Chain, ChainConfig, UnitType};
-use ksmcmc::grid::{Cell, Classifier, Grid, OccupancyMap};
+use ksmcmc::grid::{Cell, Classifier, Grid, OccupancyMap, Raster};
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};
 
@@ -34,6 +34,9 @@ Prints the quality tables of BENCHMARKS.md:
   rooms      the room layer against synthetic truth, both modes: rooms per truth unit and
              type accuracy (the room covering most of each truth unit has the unit's type),
              on hall, two-corridor, cluttered, rotated and many-storage floors
+  scale      the bormann maps resampled to 0.025, 0.05 and 0.10 m a cell (the darkest cell of
+             each 2x2 block; each cell repeated 2x2), read as a map.yaml of that resolution,
+             explained as `ksmcmc floorplan` does, labels taken back and scored; with the time
   routes     route length over the shortest free path (floorplan::route::study) between
              200 pairs of free cells in different rooms per floor, on the explained floors
              of the rooms set's kinds
@@ -51,7 +54,7 @@ the same chains, in either mode, one more table each.
 ";
 
 /// The sets `--only` can name.
-const SETS: [&str; 10] = [
+const SETS: [&str; 11] = [
     "cartesium",
     "synthetic",
     "bormann",
@@ -62,6 +65,7 @@ const SETS: [&str; 10] = [
     "rooms",
     "routes",
     "wings",
+    "scale",
 ];
 
 struct Opts {
@@ -144,7 +148,6 @@ fn room_variants(o: &Opts) -> Vec<(Option<String>, RoomConfig)> {
 /// chains.
 fn bormann_map_variants(dir: &Path, name: &str, o: &Opts, seed: u64) -> Result<Vec<[MapScore; 2]>, CliError> {
     use ksmcmc::floorplan::export::RoomInput;
-    use ksmcmc::floorplan::wings::{WingConfig, WingLayout};
     let truth = truth_regions(&dir.join(format!("{name}_gt_segmentation.png")))?;
     let rules = room_variants(o);
     let mut out: Vec<Vec<MapScore>> = vec![Vec::new(); rules.len()];
@@ -156,16 +159,7 @@ fn bormann_map_variants(dir: &Path, name: &str, o: &Opts, seed: u64) -> Result<V
         let input = RoomInput::of(&mut chain);
         let free = map.classified().map(|&c| c == Cell::Free);
         for (v, (r, rooms)) in rules.iter().enumerate() {
-            let input = input.clone().with_room_rules(r.clone());
-            let (world, labels) = input.clone().explain(rooms);
-            // As `ksmcmc floorplan` finds them (floorplan::wings): by the walls where no wall
-            // direction holds most of the building.
-            let layout = WingLayout::find(map.classified(), &labels, world.frame.angle, &WingConfig::default());
-            let labels = match layout.as_ref().and_then(WingLayout::by_walls) {
-                Some(angles) => input.by_walls(angles).explain(rooms).1,
-                None => labels,
-            };
-            let labels = labels.map(|&l| l as u32);
+            let labels = floorplan_labels(&map, input.clone().with_room_rules(r.clone()), rooms);
             out[v].push(MapScore {
                 seg: score_segmentation(&labels, &truth),
                 links: score_links(&labels, &truth, &free),
@@ -173,6 +167,121 @@ fn bormann_map_variants(dir: &Path, name: &str, o: &Opts, seed: u64) -> Result<V
         }
     }
     Ok(out.into_iter().map(|v| [v[0], v[1]]).collect())
+}
+
+/// The room labels `ksmcmc floorplan` writes for `map` from the chain's `input`: by the
+/// walls where no wall direction holds most of the building (floorplan::wings).
+fn floorplan_labels(map: &OccupancyMap, input: ksmcmc::floorplan::export::RoomInput, rooms: &RoomConfig) -> Grid<u32> {
+    use ksmcmc::floorplan::wings::{WingConfig, WingLayout};
+    let (world, labels) = input.clone().explain(rooms);
+    let layout = WingLayout::find(map.classified(), &labels, world.frame.angle, &WingConfig::default());
+    let labels = match layout.as_ref().and_then(WingLayout::by_walls) {
+        Some(angles) => input.by_walls(angles).explain(rooms).1,
+        None => labels,
+    };
+    labels.map(|&l| l as u32)
+}
+
+/// The cell sizes `scale` reads each benchmark floor at, metres, and how many cells of the
+/// 0.05 m original each cell spans along a side (0.5: each original cell is 2 x 2 cells).
+const SCALES: [(f64, f64); 3] = [(0.025, 0.5), (0.05, 1.0), (0.10, 2.0)];
+
+/// `raster` at `factor` times its cell size: 2 keeps the darkest opaque pixel of each 2 x 2
+/// block (a wall one cell thick survives, as a coarser SLAM map would draw it), 0.5 repeats
+/// each pixel 2 x 2, 1 is the raster itself.
+fn resample(raster: &Raster, factor: f64) -> Raster {
+    let (w, h) = (raster.width(), raster.height());
+    let opaque = |x: usize, y: usize| raster.alpha.as_ref().is_none_or(|a| *a.at(x, y) >= 32768);
+    if factor > 1.0 {
+        let (cw, ch) = (w.div_ceil(2), h.div_ceil(2));
+        let mut gray = Vec::with_capacity(cw * ch);
+        let mut alpha = Vec::with_capacity(cw * ch);
+        for y in 0..ch {
+            for x in 0..cw {
+                let block =
+                    (2 * y..(2 * y + 2).min(h)).flat_map(|yy| (2 * x..(2 * x + 2).min(w)).map(move |xx| (xx, yy)));
+                let dark = block.filter(|&(xx, yy)| opaque(xx, yy)).map(|(xx, yy)| *raster.gray.at(xx, yy)).min();
+                gray.push(dark.unwrap_or(u16::MAX));
+                alpha.push(if dark.is_some() { u16::MAX } else { 0 });
+            }
+        }
+        let alpha = raster.alpha.as_ref().map(|_| Grid::from_vec(cw, ch, alpha).expect("size"));
+        return Raster { gray: Grid::from_vec(cw, ch, gray).expect("size"), alpha };
+    }
+    if factor < 1.0 {
+        let up = |g: &Grid<u16>| {
+            let cells = (0..2 * h).flat_map(|y| (0..2 * w).map(move |x| *g.at(x / 2, y / 2))).collect();
+            Grid::from_vec(2 * w, 2 * h, cells).expect("size")
+        };
+        return Raster { gray: up(&raster.gray), alpha: raster.alpha.as_ref().map(up) };
+    }
+    raster.clone()
+}
+
+/// Labels found on a map `factor` times coarser, back on the original grid of `w` x `h`: each
+/// original cell takes the label of the resampled cell at its top-left corner.
+fn labels_back(labels: &Grid<u32>, factor: f64, w: usize, h: usize) -> Grid<u32> {
+    let at = |x: usize, y: usize| {
+        let (sx, sy) = if factor > 1.0 {
+            (x / 2, y / 2)
+        } else if factor < 1.0 {
+            (2 * x, 2 * y)
+        } else {
+            (x, y)
+        };
+        *labels.at(sx.min(labels.width() - 1), sy.min(labels.height() - 1))
+    };
+    Grid::from_vec(w, h, (0..h).flat_map(|y| (0..w).map(move |x| at(x, y))).collect()).expect("size")
+}
+
+/// The benchmark floors read at other cell sizes (issue 31): each floor resampled as
+/// [`resample`] does, given as a map.yaml of that resolution would give it (one rule,
+/// `Classifier::for_map`), explained as `ksmcmc floorplan` does at seed 1, its labels taken
+/// back to the original grid and scored against the truth; with the run's wall time.
+fn scale(dir: &Path, o: &Opts) -> Result<(), CliError> {
+    use ksmcmc::floorplan::export::RoomInput;
+    use ksmcmc::grid::MapYaml;
+    let dir = dir.join("bormann2016");
+    let names = bormann_names(&dir)?;
+    println!("\n### The benchmark floors at other resolutions ({} iterations, seed 1)\n", o.iterations);
+    println!("| map | m per cell | precision | recall | link precision | link recall | seconds |");
+    println!("|---|---|---|---|---|---|---|");
+    let mut sums = [[0.0; 5]; SCALES.len()];
+    let mut n = 0.0f64;
+    for name in &names {
+        let truth = truth_regions(&dir.join(format!("{name}_gt_segmentation.png")))?;
+        for suffix in ["", "_furnitures"] {
+            n += 1.0;
+            let path = dir.join(format!("{name}{suffix}.png"));
+            let original = args::load_classified(&path, "auto")?;
+            let free = original.classified().map(|&c| c == Cell::Free);
+            for (k, &(resolution, factor)) in SCALES.iter().enumerate() {
+                let yaml = MapYaml { resolution, ..MapYaml::for_image("map.pgm") };
+                let map = OccupancyMap::from_raster(
+                    resample(original.raster(), factor),
+                    yaml.clone(),
+                    Classifier::for_map(&yaml),
+                );
+                let t0 = std::time::Instant::now();
+                let mut chain = explain(&map, o, 1)?;
+                let labels = floorplan_labels(&map, RoomInput::of(&mut chain), &o.rooms);
+                let seconds = t0.elapsed().as_secs_f64();
+                let labels = labels_back(&labels, factor, original.width(), original.height());
+                let s =
+                    MapScore { seg: score_segmentation(&labels, &truth), links: score_links(&labels, &truth, &free) };
+                let f = s.figures();
+                for (a, b) in sums[k].iter_mut().zip(f.iter().chain([seconds].iter())) {
+                    *a += b;
+                }
+                println!("| {name}{suffix} | {resolution} | {} | {seconds:.2} |", fmt4(f));
+            }
+        }
+    }
+    for (k, &(resolution, _)) in SCALES.iter().enumerate() {
+        let m = sums[k].map(|v| v / n.max(1.0));
+        println!("| **mean** | {resolution} | {} | {:.2} |", fmt4([m[0], m[1], m[2], m[3]]), m[4]);
+    }
+    Ok(())
 }
 
 fn fmt4(f: [f64; 4]) -> String {
@@ -793,6 +902,9 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     }
     if want("wings") {
         wings(&dir, &o)?;
+    }
+    if want("scale") {
+        scale(&dir, &o)?;
     }
 
     Ok(())

@@ -446,14 +446,16 @@ impl Chain {
         };
         let sensor = config.posterior.sensor.table;
         let k = &config.knowledge;
+        // Per cell, so weighted as the likelihood's cells are (posterior::cell_weight).
+        let w = super::posterior::cell_weight(resolution);
         let object_gain = [
-            (libm::log(k.object[1]) - libm::log(sensor[0][1])).max(0.0),
-            (libm::log(k.object[2]) - libm::log(sensor[0][2])).max(0.0),
+            (libm::log(k.object[1]) - libm::log(sensor[0][1])).max(0.0) * w,
+            (libm::log(k.object[2]) - libm::log(sensor[0][2])).max(0.0) * w,
         ];
         let objects = knowledge.is_some().then(|| object_cells(&world_map, resolution, &config, object_gain));
         let state = State::new(&world_map, config.doors, wall);
         let proposer = Proposer::new(config.kernels, candidates, state.width(), state.height(), wall);
-        let posterior = Posterior::new(&config.posterior);
+        let posterior = Posterior::at_resolution(&config.posterior, resolution);
         let log_target = posterior.log_target(&state.explanation, 0);
         let phase_tables = config.schedule.phases.iter().map(|p| Cumulative::new(p.weights.0)).collect();
         let best_log_posterior = posterior.log_posterior(&state.explanation, 0);

@@ -13,6 +13,15 @@
 //!   fills with slivers no person would draw.
 //!
 //! A temperature `T` flattens the posterior to `p^(1/T)`; `T = 1` is the papers' model.
+//!
+//! * Evidence per area, not per cell (an extension): every term that counts cells (the
+//!   likelihood, the overlap penalty) is weighted by the cell's area over the area of a
+//!   [`REFERENCE_CELL_M`] cell, so that a building's posterior does not depend on the
+//!   resolution it was mapped at. Eq. 3.6 treats cells as independent readings; a map of 2.5 cm
+//!   cells does not hold four times the evidence of the same scan drawn at 5 cm, and without
+//!   the weight the per-unit terms (the complexity prior, the rules) would weigh four times
+//!   less on it, and four times more on a 10 cm map: rooms split on fine maps and merge on
+//!   coarse ones.
 
 use super::explain::Explanation;
 use serde::{Deserialize, Serialize};
@@ -121,6 +130,30 @@ impl PosteriorConfig {
     }
 }
 
+/// The cell side at which one cell counts as one reading of eq. 3.6, metres: 5 cm, the cell
+/// of the maps the dissertation's sensor table (Tab. 3.1) and this crate's priors were set on,
+/// and about a laser range finder's range noise, below which neighbouring cells repeat the
+/// same reading. See [`cell_weight`].
+pub const REFERENCE_CELL_M: f64 = 0.05;
+
+/// How many readings one cell of a map of `resolution` metres is worth: its area over a
+/// [`REFERENCE_CELL_M`] cell's. 1 at 5 cm (exactly), 4 at 10 cm, 1/4 at 2.5 cm. A resolution
+/// that is not a positive number counts as 5 cm.
+///
+/// ```
+/// use ksmcmc::floorplan::posterior::cell_weight;
+/// assert_eq!(cell_weight(0.05), 1.0);
+/// assert!((cell_weight(0.1) - 4.0).abs() < 1e-12 && (cell_weight(0.025) - 0.25).abs() < 1e-12);
+/// ```
+pub fn cell_weight(resolution: f64) -> f64 {
+    if resolution.is_finite() && resolution > 0.0 {
+        let k = resolution / REFERENCE_CELL_M;
+        k * k
+    } else {
+        1.0
+    }
+}
+
 /// Evaluates the log posterior from an [`Explanation`]'s integer counts.
 #[derive(Debug, Clone, Copy)]
 pub struct Posterior {
@@ -128,20 +161,29 @@ pub struct Posterior {
     log_overlap: f64,
     unit_cost: f64,
     inv_temperature: f64,
+    cell_weight: f64,
 }
 
 impl Posterior {
-    /// Precomputes the logarithms.
+    /// Precomputes the logarithms, for a map of [`REFERENCE_CELL_M`] cells.
     pub fn new(c: &PosteriorConfig) -> Self {
+        Posterior::at_resolution(c, REFERENCE_CELL_M)
+    }
+
+    /// [`Posterior::new`] for a map of `resolution` metres per cell: each cell's terms weigh
+    /// [`cell_weight`]`(resolution)`.
+    pub fn at_resolution(c: &PosteriorConfig, resolution: f64) -> Self {
         Posterior {
             log_sensor: c.sensor.log_table(),
             log_overlap: libm::log(c.overlap_penalty),
             unit_cost: c.unit_cost,
             inv_temperature: 1.0 / c.temperature,
+            cell_weight: cell_weight(resolution),
         }
     }
 
-    /// `log p(M|W) + log α2 - λ n` for a world of `units` units (untempered), up to a constant.
+    /// `w (log p(M|W) + log α2) - λ n` for a world of `units` units (untempered), up to a
+    /// constant, with `w` the [`cell_weight`].
     pub fn log_posterior(&self, e: &Explanation, units: usize) -> f64 {
         let n = e.confusion();
         let mut s = 0.0;
@@ -150,7 +192,12 @@ impl Posterior {
                 s += *c as f64 * l;
             }
         }
-        s + e.overlap() as f64 * self.log_overlap - self.unit_cost * units as f64
+        (s + e.overlap() as f64 * self.log_overlap) * self.cell_weight - self.unit_cost * units as f64
+    }
+
+    /// What one cell's evidence weighs ([`cell_weight`]).
+    pub fn cell_weight(&self) -> f64 {
+        self.cell_weight
     }
 
     /// The tempered log density the chain targets.

@@ -339,11 +339,17 @@ fn evaluate_reads_room_layer_settings_and_says_what_is_wrong_with_them() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("missing.json"), "{err}");
     let bad = d.join("bad.json");
-    std::fs::write(&bad, r#"{"max_wall_gap": 50, "max_wal_gap": 3}"#).unwrap();
+    std::fs::write(&bad, r#"{"max_wall_gap_m": 2.5, "max_wal_gap_m": 3}"#).unwrap();
     let out = run(&["evaluate", "--only", "bormann", "--also-room-config", bad.to_str().unwrap()]);
     assert_eq!(out.status.code(), Some(1));
     let err = String::from_utf8_lossy(&out.stderr);
-    assert!(err.contains("bad.json") && err.contains("room-layer settings") && err.contains("max_wal_gap"), "{err}");
+    assert!(err.contains("bad.json") && err.contains("room-layer settings") && err.contains("max_wal_gap_m"), "{err}");
+    // Settings in cells, as older versions took them, are refused by name, not read as metres.
+    std::fs::write(&bad, r#"{"max_wall_gap": 50}"#).unwrap();
+    let out = run(&["evaluate", "--only", "bormann", "--room-config", bad.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("unknown field `max_wall_gap`"), "{err}");
     std::fs::write(&bad, r#"{"max_wall_share": 2}"#).unwrap();
     let out = run(&["evaluate", "--only", "bormann", "--room-config", bad.to_str().unwrap()]);
     assert_eq!(out.status.code(), Some(1));

@@ -60,6 +60,7 @@ fn main() -> ExitCode {
         eprintln!("ksmcmc: internal error (this is a bug, please report it): {info}");
     }));
     fix_mmap_threshold();
+    quiet_on_closed_pipe();
     let mut argv = std::env::args_os().skip(1);
     let Some(command) = argv.next() else {
         eprint!("{USAGE}");
@@ -103,6 +104,18 @@ fn main() -> ExitCode {
             eprintln!("ksmcmc: {m}");
             ExitCode::from(1)
         }
+    }
+}
+
+/// Ends the process quietly, as other command-line tools do, when what reads its output
+/// closes the pipe (`ksmcmc info MAP | head -1`): Rust ignores SIGPIPE, so the next print
+/// would fail with "Broken pipe" and report an internal error. With the signal's default
+/// action restored the shell sees the usual exit status 141. Elsewhere a no-op.
+fn quiet_on_closed_pipe() {
+    #[cfg(all(target_os = "linux", target_env = "gnu"))]
+    // SAFETY: restores a signal's default disposition before any threads start.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
     }
 }
 

@@ -173,7 +173,7 @@ pub fn world_arbitrary(data: &[u8]) {
         let units = [1 + b.u8() as u32 % n.max(1), 1 + b.u8() as u32 % n.max(1)];
         let (x0, y0) = (b.coord(ww), b.coord(wh));
         let (dx, dy) = (b.u8() as i32 % 8, b.u8() as i32 % 8);
-        world.doors.push(Door { id, units, x0, y0, x1: x0 + dx, y1: y0 + dy });
+        world.doors.push(Door { id, units, x0, y0, x1: x0 + dx, y1: y0 + dy, opening: false });
     }
     for _ in 0..b.u8() % 32 {
         world.object_cells.push([b.coord(ww), b.coord(wh)]);

@@ -595,6 +595,7 @@ impl Chain {
                     y0: r.y,
                     x1: r.right() - 1,
                     y1: r.bottom() - 1,
+                    opening: false,
                 });
             }
         }

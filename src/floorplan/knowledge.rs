@@ -359,8 +359,8 @@ mod tests {
             unit(4, 0, 79, 278, 21, UnitType::Unknown),
             unit(5, 200, 150, 30, 30, UnitType::Unknown),
         ];
-        w.doors.push(crate::floorplan::Door { id: 1, units: [1, 4], x0: 10, y0: 79, x1: 14, y1: 79 });
-        w.doors.push(crate::floorplan::Door { id: 2, units: [2, 4], x0: 70, y0: 79, x1: 74, y1: 79 });
+        w.doors.push(crate::floorplan::Door { id: 1, units: [1, 4], x0: 10, y0: 79, x1: 14, y1: 79, opening: false });
+        w.doors.push(crate::floorplan::Door { id: 2, units: [2, 4], x0: 70, y0: 79, x1: 74, y1: 79, opening: false });
         let facts = evidence(&w, 0.05, &GeometryClassifier::default());
         // The evidence as it was before: every ordered pair's Adj atom, true or false.
         let mut all_pairs = facts.clone();

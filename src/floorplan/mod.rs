@@ -20,6 +20,7 @@ pub(crate) mod kernels;
 pub mod knowledge;
 pub mod metrics;
 pub mod online;
+pub mod openings;
 pub mod outline;
 pub mod plan_input;
 pub mod posterior;

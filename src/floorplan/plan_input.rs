@@ -218,7 +218,14 @@ impl PlanInput {
             *world = found;
             labels
         };
-        Ok(layout.compose(map.classified(), world, labels, &worlds, &self.doors, by_walls))
+        let (mut world, labels) = layout.compose(map.classified(), world, labels, &worlds, &self.doors, by_walls);
+        super::room_layer::mark_world_openings(
+            &mut world,
+            map.classified(),
+            &RoomConfig::default(),
+            map.yaml().resolution,
+        );
+        Ok((world, labels))
     }
 
     /// `report.json` of the chain for `world` (the world with its rooms) and its `labels`, as

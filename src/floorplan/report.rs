@@ -21,8 +21,10 @@ pub fn report(chain: &Chain, map: &OccupancyMap, world: &World, labels: &Grid<u1
     r
 }
 
-/// Sets `rooms` (the room layer's count, or the labels' when the world has no room layer)
-/// and `room_types` (rooms per type) in a report.
+/// Sets `rooms` (the room layer's count, or the labels' when the world has no room layer),
+/// `room_types` (rooms per type), `openings` (doors that are openings within a room) and
+/// `doors_in_one_room` (doors whose two units the room layer put in one room, openings
+/// aside) in a report.
 pub fn add_rooms(r: &mut serde_json::Value, world: &World, labels: &Grid<u16>) {
     r["rooms"] = if world.rooms.is_empty() {
         labels.cells().iter().copied().max().unwrap_or(0) as usize
@@ -35,6 +37,9 @@ pub fn add_rooms(r: &mut serde_json::Value, world: &World, labels: &Grid<u16>) {
         *types.entry(room.kind.name()).or_insert(0u32) += 1;
     }
     r["room_types"] = serde_json::json!(types);
+    // Doors within one room (super::openings): openings, and doors of rooms merged across them.
+    r["openings"] = world.doors.iter().filter(|d| d.opening).count().into();
+    r["doors_in_one_room"] = super::openings::doors_in_one_room(world).into();
 }
 
 /// [`report`] without `rooms`, which needs the room labels: a caller short of memory can

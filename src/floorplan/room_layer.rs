@@ -236,7 +236,23 @@ pub fn explain_rooms_edited(
     edits.apply_to_labels(&mut labels, map);
     rooms_of_segments(world, &labels, map, resolution, knowledge)?;
     edits.apply_to_rooms(&mut world.rooms, &labels);
+    mark_openings(world, map, c, resolution);
     Ok(labels)
+}
+
+/// Marks the doors of `world` that are openings within one of its rooms
+/// ([`super::openings::mark_openings`]), the walls of `map` (in its own frame) read as the
+/// room layer reads them.
+fn mark_openings(world: &mut World, map: &Grid<Cell>, c: &RoomCells, resolution: f64) {
+    let walls = super::rooms::without_clutter(map, c.min_wall_len);
+    super::openings::mark_openings(world, &walls, resolution);
+}
+
+/// [`mark_openings`] for a world composed after its rooms were found (the wings' world,
+/// [`super::wings::WingLayout::compose`]), with the room layer's settings `rooms` on a map of
+/// `resolution` metres per cell.
+pub fn mark_world_openings(world: &mut World, map: &Grid<Cell>, rooms: &RoomConfig, resolution: f64) {
+    mark_openings(world, map, &rooms.cells(resolution), resolution);
 }
 
 /// Fills in `world.rooms` from the room `labels`: the rooms read off the labels
@@ -299,6 +315,7 @@ pub fn explain_rooms_by_walls(
     let groups: Vec<u16> = join(world, world_map, []).into_iter().map(|g| u16::from(g > 0)).collect();
     let labels = super::rooms::labels_of_groups_along(world, &groups, map, world_map, c, angles);
     rooms_of_segments(world, &labels, map, resolution, knowledge)?;
+    mark_openings(world, map, c, resolution);
     Ok(labels)
 }
 
@@ -736,7 +753,7 @@ mod tests {
             unit(2, 50, 0, 51, 40, UnitType::Room),
             unit(3, 100, 0, 50, 40, UnitType::Room),
         ];
-        world.doors = vec![Door { id: 7, units: [2, 3], x0: 100, y0: 15, x1: 100, y1: 24 }];
+        world.doors = vec![Door { id: 7, units: [2, 3], x0: 100, y0: 15, x1: 100, y1: 24, opening: false }];
         // The wall's two pieces are 15 cells long, with nothing else in this small map to
         // join them to: walls of 10 cells and more are walls here.
         let c = RoomConfig { door_half_width_m: 0.0, min_wall_len_m: 1.0, ..RoomConfig::default() };

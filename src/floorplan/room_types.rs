@@ -222,7 +222,7 @@ fn infer_rooms(
         x = x.saturating_add(w.saturating_add(1000));
         for &b in r.opens_to.iter().filter(|&&b| b > r.id) {
             let id = pseudo.doors.len() as u32 + 1;
-            pseudo.doors.push(super::world::Door { id, units: [r.id, b], x0: 0, y0: 0, x1: 0, y1: 0 });
+            pseudo.doors.push(super::world::Door { id, units: [r.id, b], x0: 0, y0: 0, x1: 0, y1: 0, opening: false });
         }
     }
     Ok(Knowledge::new(config)?.infer(&pseudo, resolution)?.types)

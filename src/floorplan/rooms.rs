@@ -926,7 +926,7 @@ fn split_open_at_doorways(labels: &mut Grid<u16>, open: &Grid<Cell>, c: &RoomCel
 /// drawn free: chairs, the dots of a drawn table, a bin, cells a scan missed. A doorway
 /// is a narrowing between walls; the gaps between the chairs round a table are none, and
 /// the free space they ring is part of the room, not a room behind a door.
-fn without_clutter(map: &Grid<Cell>, min_wall_len: u32) -> Grid<Cell> {
+pub(crate) fn without_clutter(map: &Grid<Cell>, min_wall_len: u32) -> Grid<Cell> {
     let wall = super::wall_gaps::walls(map, min_wall_len as usize);
     let specks = unknown_specks(map, min_wall_len as usize);
     let mut out = map.clone();
@@ -1154,7 +1154,8 @@ pub(crate) mod tests {
         }
         let mut world = World::empty(81, 40);
         world.units = vec![unit(1, 0, 0, 41, 40), unit(2, 40, 0, 41, 40)];
-        world.doors = vec![crate::floorplan::Door { id: 1, units: [1, 2], x0: 40, y0: 3, x1: 40, y1: 36 }];
+        world.doors =
+            vec![crate::floorplan::Door { id: 1, units: [1, 2], x0: 40, y0: 3, x1: 40, y1: 36, opening: false }];
         let c = RoomCells::default();
         assert_eq!(open_pairs(&world, &map, &c), vec![OpenPair { a: 0, b: 1, flush: true, closed: false }]);
         // Not when wide doors are doors (the wall band is 15 % occupied: no opening by itself).
@@ -1184,7 +1185,8 @@ pub(crate) mod tests {
         let mut world = World::empty(90, 40);
         world.wall_thickness = 3;
         world.units = vec![unit(1, 0, 0, 41, 40), unit(2, 49, 0, 41, 40)];
-        world.doors = vec![crate::floorplan::Door { id: 1, units: [1, 2], x0: 38, y0: 3, x1: 51, y1: 36 }];
+        world.doors =
+            vec![crate::floorplan::Door { id: 1, units: [1, 2], x0: 38, y0: 3, x1: 51, y1: 36, opening: false }];
         let c = RoomCells::default();
         assert_eq!(open_pairs(&world, &map, &c), vec![OpenPair { a: 0, b: 1, flush: true, closed: false }]);
         // A narrow door through the same wall stays a door.

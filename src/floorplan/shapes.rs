@@ -544,10 +544,10 @@ mod tests {
         let mut world = World::empty(40, 40);
         world.units = vec![unit(1, 0, 0, 11, 11), unit(2, 10, 0, 11, 11), unit(3, 0, 10, 11, 11)];
         world.doors = vec![
-            Door { id: 4, units: [1, 2], x0: 10, y0: 3, x1: 10, y1: 6 },
-            Door { id: 5, units: [1, 3], x0: 3, y0: 10, x1: 7, y1: 10 },
-            Door { id: 6, units: [1, 2], x0: 10, y0: 8, x1: 10, y1: 8 },
-            Door { id: 7, units: [1, 3], x0: 8, y0: 10, x1: 8, y1: 10 },
+            Door { id: 4, units: [1, 2], x0: 10, y0: 3, x1: 10, y1: 6, opening: false },
+            Door { id: 5, units: [1, 3], x0: 3, y0: 10, x1: 7, y1: 10, opening: false },
+            Door { id: 6, units: [1, 2], x0: 10, y0: 8, x1: 10, y1: 8, opening: false },
+            Door { id: 7, units: [1, 3], x0: 8, y0: 10, x1: 8, y1: 10, opening: false },
         ];
         let s = floor_shapes(&world, &Grid::new(40, 40, 0)).unwrap();
         let ends: Vec<[MapPoint; 2]> = s.doors.iter().map(|d| d.ends).collect();

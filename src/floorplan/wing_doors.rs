@@ -88,7 +88,7 @@ pub fn join_wings(world: &mut World, map: &Grid<Cell>, limits: &DoorLimits) -> u
     let first_id = world.doors.iter().map(|d| d.id).max().unwrap_or(0) + 1;
     for (id, (r, a, b)) in (first_id..).zip(found) {
         let units = [world.units[a].id, world.units[b].id];
-        world.doors.push(Door { id, units, x0: r.x, y0: r.y, x1: r.right() - 1, y1: r.bottom() - 1 });
+        world.doors.push(Door { id, units, x0: r.x, y0: r.y, x1: r.right() - 1, y1: r.bottom() - 1, opening: false });
         link_rooms(&mut world.rooms, id, room_of[a], room_of[b]);
     }
     added

@@ -37,7 +37,9 @@
 //!   between the two units named by id (a straight run of cells where they share a thin wall),
 //!   in the first unit's frame. A door between units of two angles (where two wings meet,
 //!   [`super::wing_doors`]) crosses the first unit's wall and the second's, up to the second's
-//!   interior.
+//!   interior. `"opening": true` (absent otherwise) marks a door whose two units the room
+//!   layer found in one room, meeting along a passage at least 1.2 m wide: open floor within
+//!   the room, not a door between rooms ([`super::openings`]).
 //! * `object_cells`: unknown map cells inside units (furniture), optional.
 //! * `rooms`: the room layer, optional (written by `ksmcmc floorplan`): what a person would
 //!   call one space, one or more units each. `id` is the room's value in `labels.pgm`; `type`
@@ -196,7 +198,17 @@ pub struct Door {
     pub x1: i32,
     /// Last cell (inclusive), row.
     pub y1: i32,
+    /// Whether the room layer found the two units in one room with a passage between them at
+    /// least [`OPENING_MIN_M`] wide: an opening within a room (where two units of a hall meet),
+    /// not a door between rooms. Written to world.json only when true.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub opening: bool,
 }
+
+/// The narrowest passage between two units of one room that makes the door between them an
+/// opening ([`Door::opening`]), m: 1.2 m, the widest single door leaf building codes provide
+/// for (an accessible door); a wider passage inside one room is open floor, not a door.
+pub const OPENING_MIN_M: f64 = 1.2;
 
 impl Door {
     /// The door's width along the wall, in cells (the longer side of its rectangle).

@@ -41,7 +41,7 @@ pub fn graph_node_radius(width: u32, height: u32) -> f32 {
 /// let mut w = World::empty(60, 30);
 /// w.units.push(Unit::new(1, 0, 0, 30, 30, UnitType::Room));
 /// w.units.push(Unit::new(2, 29, 0, 31, 30, UnitType::Corridor));
-/// w.doors.push(Door { id: 1, units: [1, 2], x0: 29, y0: 10, x1: 29, y1: 20 });
+/// w.doors.push(Door { id: 1, units: [1, 2], x0: 29, y0: 10, x1: 29, y1: 20, opening: false });
 /// let picture = render_scene_graph(&w, 240, 120).unwrap();
 /// // The room's node is a disc in the room colour at the room's centre.
 /// let layout = ksmcmc::render::scene_graph_layout(&w, 240, 120).unwrap();
@@ -212,7 +212,7 @@ mod tests {
         w.units.push(Unit::new(1, 0, 0, 30, 30, UnitType::Room));
         w.units.push(Unit::new(2, 29, 0, 31, 30, UnitType::Corridor));
         w.units.push(Unit::new(3, 59, 0, 31, 30, UnitType::Hall));
-        w.doors.push(Door { id: 1, units: [1, 2], x0: 29, y0: 10, x1: 29, y1: 20 });
+        w.doors.push(Door { id: 1, units: [1, 2], x0: 29, y0: 10, x1: 29, y1: 20, opening: false });
         w
     }
 
@@ -277,7 +277,7 @@ mod tests {
         let mut odd = world();
         odd.units[0].x = i32::MIN;
         odd.frame.angle = 0.5;
-        odd.doors.push(Door { id: 9, units: [7, 8], x0: 0, y0: 0, x1: 0, y1: 0 });
+        odd.doors.push(Door { id: 9, units: [7, 8], x0: 0, y0: 0, x1: 0, y1: 0, opening: false });
         render_scene_graph(&odd, 20, 20).unwrap();
         render_scene_graph(&odd, 3, 3).unwrap();
         odd.frame.angle = f64::NAN;

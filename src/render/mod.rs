@@ -235,7 +235,7 @@ impl Default for RenderOptions {
 /// let mut world = World::empty(30, 12);
 /// world.units.push(Unit::new(1, 1, 1, 14, 10, UnitType::Room));
 /// world.units.push(Unit::new(2, 14, 1, 15, 10, UnitType::Corridor));
-/// world.doors.push(Door { id: 1, units: [1, 2], x0: 14, y0: 4, x1: 14, y1: 6 });
+/// world.doors.push(Door { id: 1, units: [1, 2], x0: 14, y0: 4, x1: 14, y1: 6, opening: false });
 ///
 /// let pixmap = render(&map, Some(&world), &RenderOptions { scale: 4, labels: false, legend: false });
 /// assert_eq!((pixmap.width(), pixmap.height()), (120, 48));

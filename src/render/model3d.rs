@@ -27,7 +27,7 @@
 //!     Unit::new(1, 0, 0, 21, 20, UnitType::Room),
 //!     Unit::new(2, 20, 0, 21, 20, UnitType::Corridor),
 //! ];
-//! world.doors = vec![Door { id: 1, units: [1, 2], x0: 20, y0: 8, x1: 20, y1: 11 }];
+//! world.doors = vec![Door { id: 1, units: [1, 2], x0: 20, y0: 8, x1: 20, y1: 11, opening: false }];
 //! let glb = world_glb(&world, 0.05, &Model3dOptions::default()).unwrap();
 //! assert_eq!(&glb[..4], b"glTF");
 //! // A door taller than the walls is refused.

@@ -231,7 +231,7 @@ mod tests {
     fn layers_hold_rooms_walls_doors_and_labels() {
         let mut world = World::empty(40, 20);
         world.units = vec![Unit::new(1, 0, 0, 21, 20, UnitType::Room), Unit::new(2, 20, 0, 20, 20, UnitType::Corridor)];
-        world.doors = vec![Door { id: 9, units: [1, 2], x0: 20, y0: 5, x1: 20, y1: 10 }];
+        world.doors = vec![Door { id: 9, units: [1, 2], x0: 20, y0: 5, x1: 20, y1: 10, opening: false }];
         world.rooms = vec![
             Room {
                 id: 1,

@@ -184,7 +184,8 @@ fn hand_made() -> (OccupancyMap, World, Grid<u16>) {
         unit(2, 0, 10, 11, 20, UnitType::Corridor),
         unit(3, 10, 10, 21, 20, UnitType::Room),
     ];
-    world.doors = vec![ksmcmc::floorplan::Door { id: 1, units: [1, 3], x0: 15, y0: 10, x1: 19, y1: 10 }];
+    world.doors =
+        vec![ksmcmc::floorplan::Door { id: 1, units: [1, 3], x0: 15, y0: 10, x1: 19, y1: 10, opening: false }];
     let room = |id, kind, units: Vec<u32>, area_m2| Room {
         id,
         kind,

@@ -119,7 +119,7 @@ fn units_at_ten_thousand_angles_are_grouped_not_searched() {
     w.doors = (1..=MAX_DOORS as u32)
         .map(|id| {
             let u = 1 + (id - 1) % MAX_UNITS as u32;
-            Door { id, units: [u, u], x0: 70, y0: 50, x1: 75, y1: 50 }
+            Door { id, units: [u, u], x0: 70, y0: 50, x1: 75, y1: 50, opening: false }
         })
         .collect();
     w.validate().unwrap();

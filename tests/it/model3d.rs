@@ -90,7 +90,7 @@ fn boxes(p: &[[f32; 3]]) -> Vec<[[f32; 3]; 2]> {
 fn two_rooms() -> World {
     let mut world = World::empty(41, 20);
     world.units = vec![Unit::new(1, 0, 0, 21, 20, UnitType::Room), Unit::new(2, 20, 0, 21, 20, UnitType::Corridor)];
-    world.doors = vec![Door { id: 1, units: [1, 2], x0: 20, y0: 8, x1: 20, y1: 11 }];
+    world.doors = vec![Door { id: 1, units: [1, 2], x0: 20, y0: 8, x1: 20, y1: 11, opening: false }];
     let room = |id: u32, kind, opens_to| Room {
         id,
         kind,

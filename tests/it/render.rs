@@ -44,7 +44,7 @@ fn small_world() -> World {
     let mut w = World::empty(16, 12);
     w.units.push(Unit::new(1, 1, 1, 8, 7, UnitType::Room));
     w.units.push(Unit::new(2, 8, 1, 7, 7, UnitType::Corridor));
-    w.doors.push(Door { id: 1, units: [1, 2], x0: 8, y0: 3, x1: 8, y1: 5 });
+    w.doors.push(Door { id: 1, units: [1, 2], x0: 8, y0: 3, x1: 8, y1: 5, opening: false });
     w.object_cells = vec![[3, 3], [4, 3], [5, 3], [6, 3]];
     w.validate().expect("the test world is valid");
     w
@@ -242,7 +242,7 @@ fn rotated_doors_and_objects_follow_the_frame() {
     world.frame.angle = -0.5;
     world.units.push(Unit::new(1, 5, 5, 15, 30, UnitType::Room));
     world.units.push(Unit::new(2, 19, 5, 15, 30, UnitType::Room));
-    world.doors.push(Door { id: 1, units: [1, 2], x0: 19, y0: 15, x1: 19, y1: 20 });
+    world.doors.push(Door { id: 1, units: [1, 2], x0: 19, y0: 15, x1: 19, y1: 20, opening: false });
     world.object_cells = vec![[10, 25], [11, 25]];
     world.validate().expect("valid world");
     let pixmap = render(&map, Some(&world), &no_labels(5));
@@ -485,8 +485,8 @@ fn unchecked_worlds_do_not_panic() {
     world.units.push(Unit::new(7, i32::MAX - 1, i32::MIN, i32::MAX, i32::MAX, UnitType::Hall));
     world.units.push(Unit::new(8, 2, 2, 0, -4, UnitType::Other));
     world.units.push(Unit::new(9, -100, -100, 120, 3, UnitType::Other));
-    world.doors.push(Door { id: 2, units: [1, 99], x0: 0, y0: 0, x1: 5, y1: 5 });
-    world.doors.push(Door { id: 3, units: [1, 2], x0: i32::MIN, y0: 3, x1: i32::MAX, y1: 3 });
+    world.doors.push(Door { id: 2, units: [1, 99], x0: 0, y0: 0, x1: 5, y1: 5, opening: false });
+    world.doors.push(Door { id: 3, units: [1, 2], x0: i32::MIN, y0: 3, x1: i32::MAX, y1: 3, opening: false });
     world.object_cells.extend([[i32::MIN, i32::MAX], [-1, -1], [16, 12]]);
     let options = RenderOptions { scale: 2, labels: true, legend: true };
     for frame in [
@@ -614,7 +614,7 @@ fn the_legend_lists_the_colours_drawn_in_the_emptiest_corner() {
     world.units.push(Unit::new(1, 2, 2, 40, 30, UnitType::Room));
     world.units.push(Unit::new(2, 41, 2, 77, 30, UnitType::Corridor));
     world.units.push(Unit::new(3, 2, 45, 38, 33, UnitType::Hall));
-    world.doors.push(Door { id: 1, units: [1, 2], x0: 41, y0: 10, x1: 41, y1: 14 });
+    world.doors.push(Door { id: 1, units: [1, 2], x0: 41, y0: 10, x1: 41, y1: 14, opening: false });
     let entries = render::legend_entries(&world);
     let names: Vec<&str> = entries.iter().map(|e| e.0).collect();
     assert_eq!(names, ["room", "corridor", "hall", "wall", "door"]);

@@ -66,7 +66,7 @@ fn floor() -> (Grid<Cell>, World, Grid<u16>) {
         unit(3, 33, 20, 34, 40, UnitType::Room),
         unit(4, 66, 20, 34, 40, UnitType::Room),
     ];
-    let door = |id, units, x0, y0, x1, y1| Door { id, units, x0, y0, x1, y1 };
+    let door = |id, units, x0, y0, x1, y1| Door { id, units, x0, y0, x1, y1, opening: false };
     world.doors =
         vec![door(11, [1, 2], 10, 20, 14, 20), door(12, [1, 4], 80, 20, 84, 20), door(13, [2, 3], 33, 40, 33, 44)];
     (map, world, labels)

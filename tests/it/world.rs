@@ -6,7 +6,7 @@ fn world() -> World {
     let mut w = World::empty(40, 30);
     w.units.push(Unit::new(1, 0, 0, 20, 30, Default::default()));
     w.units.push(Unit::new(2, 19, 0, 21, 12, Default::default()));
-    w.doors.push(Door { id: 1, units: [1, 2], x0: 19, y0: 4, x1: 19, y1: 8 });
+    w.doors.push(Door { id: 1, units: [1, 2], x0: 19, y0: 4, x1: 19, y1: 8, opening: false });
     w.object_cells = vec![[3, 4], [3, 5]];
     w.unexplained.push(UnexplainedArea {
         id: 1,
@@ -152,7 +152,7 @@ fn floor_shapes_draw_units_at_their_own_angle() {
     };
     let frame = Frame::turned(200, 150, angle);
     let units = vec![Unit::new(1, 60, 50, 31, 40, UnitType::Room), Unit::new(2, 90, 50, 31, 40, UnitType::Room)];
-    let door = Door { id: 1, units: [1, 2], x0: 90, y0: 65, x1: 90, y1: 72 };
+    let door = Door { id: 1, units: [1, 2], x0: 90, y0: 65, x1: 90, y1: 72, opening: false };
     // Labels: each turned unit's interior, and an upright square room 3.
     let mut labels = Grid::new(200, 150, 0u16);
     for my in 0..150 {

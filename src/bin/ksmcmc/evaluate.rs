@@ -37,6 +37,18 @@ Prints the quality tables of BENCHMARKS.md:
   scale      the bormann maps resampled to 0.025, 0.05 and 0.10 m a cell (the darkest cell of
              each 2x2 block; each cell repeated 2x2), read as a map.yaml of that resolution,
              explained as `ksmcmc floorplan` does, labels taken back and scored; with the time
+  doors      doors the chain found whose two units the room layer put in one room, as
+             `ksmcmc floorplan` (wings and all) finds them at seed 1: openings (a passage of
+             1.2 m or more within the room) and the rest (rooms merged across a door), on the
+             bormann maps, Cartesium and the generated rooms kinds
+  format     each bormann map and Cartesium as a 16-bit PNG, a PGM and a PGM with a map.yaml
+             (0.05 m, map_server's usual thresholds) of the same pixels (transparent ones
+             written as map_saver's unknown gray): whether the cells and the labels of
+             `ksmcmc floorplan` at seed 1 are the same from all three
+  loo        leave-one-floor-out over the ten bormann floors for the room layer's lengths
+             set with these floors in view (min_wall_len_m, max_wall_gap_m, door_half_width_m,
+             three values each): per floor, the settings that score best on the other nine and
+             the held-out floor's figures under them, beside its figures under the defaults
   routes     route length over the shortest free path (floorplan::route::study) between
              200 pairs of free cells in different rooms per floor, on the explained floors
              of the rooms set's kinds
@@ -54,7 +66,7 @@ the same chains, in either mode, one more table each.
 ";
 
 /// The sets `--only` can name.
-const SETS: [&str; 11] = [
+const SETS: [&str; 14] = [
     "cartesium",
     "synthetic",
     "bormann",
@@ -66,6 +78,9 @@ const SETS: [&str; 11] = [
     "routes",
     "wings",
     "scale",
+    "doors",
+    "format",
+    "loo",
 ];
 
 struct Opts {
@@ -311,6 +326,200 @@ fn scale(dir: &Path, o: &Opts) -> Result<(), CliError> {
             m[6]
         );
     }
+    Ok(())
+}
+
+/// Doors within one room (floorplan::openings) on the maps in `dir` and generated floors, as
+/// `ksmcmc floorplan` explains them (a chain per wing where the walls follow several
+/// directions), chain seed 1.
+fn doors(dir: &Path, o: &Opts) -> Result<(), CliError> {
+    use ksmcmc::floorplan::openings::doors_in_one_room;
+    use ksmcmc::floorplan::wings::{WingConfig, Wings};
+    let mut maps: Vec<(String, OccupancyMap)> = Vec::new();
+    let bormann = dir.join("bormann2016");
+    for name in bormann_names(&bormann)? {
+        for suffix in ["", "_furnitures"] {
+            maps.push((
+                format!("{name}{suffix}"),
+                args::load_classified(&bormann.join(format!("{name}{suffix}.png")), "auto")?,
+            ));
+        }
+    }
+    maps.push(("Cartesium".into(), args::load_classified(&dir.join("radish/ubremen-cartesium.png"), "auto")?));
+    for (kind, config) in room_kinds() {
+        for seed in 300..302u64 {
+            maps.push((format!("{kind} {seed}"), generate(&config, seed).map_err(|e| args::failed(kind, e))?.map));
+        }
+    }
+    println!("\n### Doors within one room ({} iterations, seed 1, as `ksmcmc floorplan`)\n", o.iterations);
+    println!("| map | doors | openings | doors in one room | share of the doors that are no opening |");
+    println!("|---|---|---|---|---|");
+    let mut worst: f64 = 0.0;
+    for (name, map) in &maps {
+        let wings = Wings::run(map, &o.config, &WingConfig::default(), 1, o.iterations, &o.rooms)
+            .map_err(|e| args::failed(name, e))?;
+        let w = &wings.world;
+        let openings = w.doors.iter().filter(|d| d.opening).count();
+        let inside = doors_in_one_room(w);
+        let share = inside as f64 / (w.doors.len() - openings).max(1) as f64;
+        worst = worst.max(share);
+        println!("| {name} | {} | {openings} | {inside} | {share:.2} |", w.doors.len());
+    }
+    println!("| **worst** | | | | {worst:.2} |");
+    Ok(())
+}
+
+/// The same pixels as a PNG, a PGM and a map.yaml (issue 31): the three files of `raster`
+/// (16-bit gray, transparent pixels as 205 of 255, map_saver's unknown).
+fn three_formats(raster: &Raster) -> Result<[OccupancyMap; 3], CliError> {
+    use ksmcmc::grid::Limits;
+    let (w, h) = (raster.width(), raster.height());
+    let opaque = |i: usize| raster.alpha.as_ref().is_none_or(|a| a.cells()[i] >= 32768);
+    let gray: Vec<u16> =
+        raster.gray.cells().iter().enumerate().map(|(i, &g)| if opaque(i) { g } else { 205 * 257 }).collect();
+    let be: Vec<u8> = gray.iter().flat_map(|g| g.to_be_bytes()).collect();
+    let mut pgm = format!("P5\n{w} {h}\n65535\n").into_bytes();
+    pgm.extend_from_slice(&be);
+    let mut png_bytes = Vec::new();
+    {
+        let mut enc = png::Encoder::new(&mut png_bytes, w as u32, h as u32);
+        enc.set_color(png::ColorType::Grayscale);
+        enc.set_depth(png::BitDepth::Sixteen);
+        let mut writer = enc.write_header().map_err(|e| args::failed("PNG", e))?;
+        writer.write_image_data(&be).map_err(|e| args::failed("PNG", e))?;
+    }
+    let yaml = "image: map.pgm\nresolution: 0.05\norigin: [0.0, 0.0, 0.0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n";
+    let limits = Limits::default();
+    let read = |map: Result<OccupancyMap, ksmcmc::grid::MapError>| -> Result<OccupancyMap, CliError> {
+        let mut map = map.map_err(|e| args::failed("map", e))?;
+        let rule = Classifier::for_map(map.yaml());
+        map.set_classifier(rule).map_err(|e| args::failed("map", e))?;
+        Ok(map)
+    };
+    Ok([
+        read(OccupancyMap::from_image_bytes(&png_bytes, Classifier::default(), &limits))?,
+        read(OccupancyMap::from_image_bytes(&pgm, Classifier::default(), &limits))?,
+        read(OccupancyMap::from_yaml_and_image(yaml, &pgm, &limits))?,
+    ])
+}
+
+/// Whether the same pixels give the same cells and rooms from a PNG, a PGM and a map.yaml.
+fn format(dir: &Path, o: &Opts) -> Result<(), CliError> {
+    use ksmcmc::floorplan::export::RoomInput;
+    let bormann = dir.join("bormann2016");
+    let mut paths: Vec<(String, PathBuf)> = Vec::new();
+    for name in bormann_names(&bormann)? {
+        for suffix in ["", "_furnitures"] {
+            paths.push((format!("{name}{suffix}"), bormann.join(format!("{name}{suffix}.png"))));
+        }
+    }
+    paths.push(("Cartesium".into(), dir.join("radish/ubremen-cartesium.png")));
+    println!("\n### The same pixels as PNG, PGM and map.yaml ({} iterations, seed 1)\n", o.iterations);
+    println!("| map | cells the same | labels the same | rooms |");
+    println!("|---|---|---|---|");
+    let mut same = 0;
+    for (name, path) in &paths {
+        let maps = three_formats(args::load_map(path)?.raster())?;
+        let cells = maps.iter().all(|m| m.classified() == maps[0].classified());
+        let mut labels = Vec::new();
+        for map in &maps {
+            let mut chain = explain(map, o, 1)?;
+            labels.push(floorplan_labels(map, RoomInput::of(&mut chain), &o.rooms));
+        }
+        let equal = labels.iter().all(|l| *l == labels[0]);
+        same += equal as usize;
+        let rooms = labels[0].cells().iter().copied().max().unwrap_or(0);
+        println!("| {name} | {} | {} | {rooms} |", yes(cells), yes(equal));
+    }
+    println!("| **all** | | {same} of {} | |", paths.len());
+    Ok(())
+}
+
+fn yes(b: bool) -> &'static str {
+    if b {
+        "yes"
+    } else {
+        "**no**"
+    }
+}
+
+/// The room-layer settings `loo` chooses among: every combination of three values of the
+/// three lengths that were set with the benchmark floors in view, the defaults first.
+fn loo_grid(base: &RoomConfig) -> Vec<RoomConfig> {
+    let mut grid = vec![*base];
+    for wall in [1.5, 2.0, 2.5] {
+        for gap in [2.0, 2.5, 3.0] {
+            for door in [0.5, 0.6, 0.7] {
+                let c = RoomConfig { min_wall_len_m: wall, max_wall_gap_m: gap, door_half_width_m: door, ..*base };
+                if c != *base {
+                    grid.push(c);
+                }
+            }
+        }
+    }
+    grid
+}
+
+/// Leave-one-floor-out (issue 31): for each benchmark floor, the room-layer settings of
+/// [`loo_grid`] whose mean of the eight figures (plain and furnished) is best on the other
+/// floors, and the held-out floor's figures under them, beside the defaults' (in-sample).
+fn loo(dir: &Path, o: &Opts) -> Result<(), CliError> {
+    let bormann = dir.join("bormann2016");
+    let names = bormann_names(&bormann)?;
+    let grid = loo_grid(&o.rooms);
+    let variants = Opts {
+        more_rules: Vec::new(),
+        more_rooms: grid[1..].iter().map(|c| (String::new(), *c)).collect(),
+        ..o.with_knowledge(o.config.knowledge.enabled)
+    };
+    // scores[floor][variant]: the eight figures, plain then furnished.
+    let mut scores: Vec<Vec<[f64; 8]>> = Vec::new();
+    for name in &names {
+        let per = bormann_map_variants(&bormann, name, &variants, 1)?;
+        scores.push(
+            per.iter()
+                .map(|[p, f]| {
+                    let (a, b) = (p.figures(), f.figures());
+                    [a[0], a[1], a[2], a[3], b[0], b[1], b[2], b[3]]
+                })
+                .collect(),
+        );
+    }
+    let total = |f: &[f64; 8]| f.iter().sum::<f64>();
+    println!(
+        "\n### Leave-one-floor-out: the room layer's lengths ({} iterations, seed 1, {} settings)\n",
+        o.iterations,
+        grid.len()
+    );
+    println!("Each floor's figures under the defaults (in-sample: set with all ten floors in view) and under the settings that score best on the other nine (held out).\n");
+    println!("| floor | chosen on the other nine (wall, gap, door half-width, m) | in-sample P / R / LP / LR (plain) | held-out (plain) | in-sample (furnished) | held-out (furnished) |");
+    println!("|---|---|---|---|---|---|");
+    let (mut ins, mut out) = ([0.0; 8], [0.0; 8]);
+    for (f, name) in names.iter().enumerate() {
+        let score_without = |v: usize| (0..names.len()).filter(|&g| g != f).map(|g| total(&scores[g][v])).sum::<f64>();
+        let best = (0..grid.len()).fold(0, |b, v| if score_without(v) > score_without(b) + 1e-12 { v } else { b });
+        let c = grid[best];
+        let (a, h) = (scores[f][0], scores[f][best]);
+        for k in 0..8 {
+            ins[k] += a[k];
+            out[k] += h[k];
+        }
+        let four = |x: &[f64; 8], i: usize| fmt4([x[i], x[i + 1], x[i + 2], x[i + 3]]).replace(" | ", " / ");
+        println!(
+            "| {name} | {}, {}, {} | {} | {} | {} | {} |",
+            c.min_wall_len_m,
+            c.max_wall_gap_m,
+            c.door_half_width_m,
+            four(&a, 0),
+            four(&h, 0),
+            four(&a, 4),
+            four(&h, 4)
+        );
+    }
+    let n = names.len().max(1) as f64;
+    let (ins, out) = (ins.map(|v| v / n), out.map(|v| v / n));
+    let four = |x: &[f64; 8], i: usize| fmt4([x[i], x[i + 1], x[i + 2], x[i + 3]]).replace(" | ", " / ");
+    println!("| **mean** | | {} | {} | {} | {} |", four(&ins, 0), four(&out, 0), four(&ins, 4), four(&out, 4));
     Ok(())
 }
 
@@ -935,6 +1144,15 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     }
     if want("scale") {
         scale(&dir, &o)?;
+    }
+    if want("doors") {
+        doors(&dir, &o)?;
+    }
+    if want("format") {
+        format(&dir, &o)?;
+    }
+    if want("loo") {
+        loo(&dir, &o)?;
     }
 
     Ok(())

@@ -36,7 +36,7 @@
 //!     Unit::new(1, 0, 0, 21, 20, UnitType::Room),
 //!     Unit::new(2, 20, 0, 21, 20, UnitType::Room),
 //! ];
-//! world.doors = vec![Door { id: 7, units: [1, 2], x0: 20, y0: 8, x1: 20, y1: 11 }];
+//! world.doors = vec![Door { id: 7, units: [1, 2], x0: 20, y0: 8, x1: 20, y1: 11, opening: false }];
 //! // The room labels: room 1 up to the wall (and in its doorway), room 2 beyond it.
 //! let labels = Grid::from_vec(41, 20, (0..41 * 20).map(|i| match i % 41 {
 //!     20 => u16::from(map.cells()[i] == Cell::Free),

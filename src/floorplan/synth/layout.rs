@@ -63,7 +63,7 @@ impl Opening {
         let c = self.wall + (wall - 1) / 2;
         let end = self.along + self.len - 1;
         let (x0, y0, x1, y1) = if self.vertical { (c, self.along, c, end) } else { (self.along, c, end, c) };
-        Door { id, units: [self.a as u32 + 1, self.b as u32 + 1], x0, y0, x1, y1 }
+        Door { id, units: [self.a as u32 + 1, self.b as u32 + 1], x0, y0, x1, y1, opening: false }
     }
 
     /// The other space of the opening.

@@ -26,7 +26,7 @@ use super::explain::Explanation;
 use super::kernels::{Candidates, KernelConfig, Proposer};
 use super::posterior::{Posterior, PosteriorConfig};
 use super::schedule::{Kernel, Schedule};
-use super::state::{DoorLimits, DoorSpec, Move, State};
+use super::state::{DoorLimits, DoorSizes, DoorSpec, Move, State};
 use super::trace::Trace;
 use super::world::{Door, Frame, Rect, Unit, UnitType, World};
 use crate::grid::{Cell, Grid, OccupancyMap};
@@ -41,14 +41,15 @@ pub use update::MapUpdate;
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct DetectorConfig {
-    /// The wall-based unit detector.
-    pub walls: vision::walls::WallConfig,
+    /// The wall-based unit detector, lengths in metres.
+    pub walls: vision::walls::WallSizes,
     /// Iteration after which the free-space unit detector runs (4000 in the dissertation).
     pub free_space_start: u64,
     /// How often (iterations) it runs after that.
     pub free_space_every: u64,
-    /// Smallest unexplained free component it proposes, in cells.
-    pub free_space_min_cells: usize,
+    /// Smallest unexplained free component it proposes, m². 0.15 m²: a few cells of a
+    /// scan's noise are no space to explain.
+    pub free_space_min_m2: f64,
     /// Map rotation in degrees; `None` estimates the dominant wall orientation.
     pub rotation_deg: Option<f64>,
 }
@@ -59,8 +60,35 @@ impl Default for DetectorConfig {
             walls: Default::default(),
             free_space_start: 4000,
             free_space_every: 500,
-            free_space_min_cells: 60,
+            free_space_min_m2: 0.15,
             rotation_deg: None,
+        }
+    }
+}
+
+/// A configuration's lengths in cells of one map, turned once from its resolution: what the
+/// chain's state, kernels and detectors read.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct ChainCells {
+    /// The door limits ([`ChainConfig::doors`]).
+    pub(crate) doors: DoorLimits,
+    /// The smallest unit side ([`KernelConfig::min_side_cells`]).
+    pub(crate) min_side: i32,
+    /// The wall detector ([`DetectorConfig::walls`]).
+    pub(crate) walls: vision::walls::WallConfig,
+    /// The free-space detector's smallest component ([`DetectorConfig::free_space_min_m2`]).
+    pub(crate) free_space_min: usize,
+}
+
+impl ChainConfig {
+    /// This configuration's lengths in cells of a map of `resolution` metres.
+    pub(crate) fn cells(&self, resolution: f64) -> ChainCells {
+        let r = if resolution.is_finite() && resolution > 0.0 { resolution } else { 0.05 };
+        ChainCells {
+            doors: self.doors.cells(r),
+            min_side: self.kernels.min_side_cells(r),
+            walls: self.detectors.walls.cells(r),
+            free_space_min: libm::round(self.detectors.free_space_min_m2 / (r * r)).min(1e12) as usize,
         }
     }
 }
@@ -76,8 +104,8 @@ pub struct ChainConfig {
     pub schedule: Schedule,
     /// Proposal distributions.
     pub kernels: KernelConfig,
-    /// Door geometry.
-    pub doors: DoorLimits,
+    /// Door geometry, metres (turned into cells from the map's resolution).
+    pub doors: DoorSizes,
     /// Detectors.
     pub detectors: DetectorConfig,
     /// Depth of every unit's wall ring in cells; `None` estimates it from the map's walls
@@ -118,19 +146,11 @@ impl ChainConfig {
         self.posterior.validate().or_else(|m| bad(format!("posterior: {m}")))?;
         self.schedule.validate().or_else(|m| bad(format!("schedule: {m}")))?;
         self.kernels.validate().or_else(|m| bad(format!("kernels: {m}")))?;
-        let d = &self.doors;
-        if d.min_len < 1 || d.max_len < d.min_len || d.max_gap < 0 || d.max_gap > 100 {
-            return bad(format!(
-                "doors: need 1 <= min_len <= max_len and 0 <= max_gap <= 100, got {} / {} / {}",
-                d.min_len, d.max_len, d.max_gap
-            ));
-        }
-        let w = &self.detectors.walls;
-        if w.min_segment < 2
-            || w.max_gap < 0
-            || !(w.min_wall_weight.is_finite() && (0.0..=1.0).contains(&w.min_wall_weight))
-        {
-            return bad("detectors.walls: min_segment >= 2, max_gap >= 0, min_wall_weight in [0, 1]".into());
+        self.doors.validate().or_else(|m| bad(format!("doors: {m}")))?;
+        self.detectors.walls.validate().or_else(|m| bad(format!("detectors.walls: {m}")))?;
+        let a = self.detectors.free_space_min_m2;
+        if !(a.is_finite() && (0.0..=1e6).contains(&a)) {
+            return bad(format!("detectors.free_space_min_m2 {a} must be an area from 0 to 1e6 m²"));
         }
         if let Some(t) = self.wall_thickness {
             if !(1..=10).contains(&t) {
@@ -226,9 +246,9 @@ impl ChainConfig {
 
 /// The wall detector's unit candidates on a world-frame map, those that fit a unit with rings
 /// `wall` deep ([`super::state::fits_unit`]).
-fn wall_candidates(world_map: &Grid<Cell>, config: &ChainConfig, wall: i32) -> Candidates {
-    let min_side = config.kernels.min_side;
-    let found = vision::walls::candidates(world_map, min_side, &config.detectors.walls);
+fn wall_candidates(world_map: &Grid<Cell>, cells: &ChainCells, wall: i32) -> Candidates {
+    let min_side = cells.min_side;
+    let found = vision::walls::candidates(world_map, min_side, &cells.walls);
     Candidates::new(found.into_iter().filter(|&(r, _)| super::state::fits_unit(r, min_side, wall)))
 }
 
@@ -346,6 +366,8 @@ pub struct Chain {
     knowledge: Option<super::knowledge::Knowledge>,
     inferred: super::knowledge::Inferred,
     resolution: f64,
+    /// The configuration's lengths in cells of this map ([`ChainConfig::cells`]).
+    cells: ChainCells,
     /// `log p(C_M | object) - log p(C_M | free)` for unknown and occupied map cells, floored at
     /// zero: a cell is an object only where that explains it better.
     object_gain: [f64; 2],
@@ -372,7 +394,9 @@ impl Chain {
     pub fn new(map: &OccupancyMap, config: ChainConfig, seed: u64) -> Result<Chain, ChainError> {
         config.validate()?;
         let classified = map.classified();
-        let min = config.kernels.min_side as usize;
+        let resolution = map.yaml().resolution;
+        let cells = config.cells(resolution);
+        let min = cells.min_side as usize;
         if classified.width() < min || classified.height() < min {
             return Err(ChainError::Map(format!(
                 "the map is {}x{} cells, smaller than the smallest unit ({min}x{min}); \
@@ -402,9 +426,8 @@ impl Chain {
         };
         let (world_map, frame) = vision::orientation::to_world_frame(classified, angle);
         let wall = config.wall_thickness.unwrap_or_else(|| vision::walls::ring_depth(classified, angle));
-        let candidates = wall_candidates(&world_map, &config, wall);
-        let resolution = map.yaml().resolution;
-        let faces = vision::walls::faces_of(&world_map, &config.detectors.walls);
+        let candidates = wall_candidates(&world_map, &cells, wall);
+        let faces = vision::walls::faces_of(&world_map, &cells.walls);
         let mut chain =
             Self::with_parts(config, frame, world_map, classified.clone(), candidates, wall, resolution, seed)?;
         chain.faces = Some(faces);
@@ -453,8 +476,9 @@ impl Chain {
             (libm::log(k.object[2]) - libm::log(sensor[0][2])).max(0.0) * w,
         ];
         let objects = knowledge.is_some().then(|| object_cells(&world_map, resolution, &config, object_gain));
-        let state = State::new(&world_map, config.doors, wall);
-        let proposer = Proposer::new(config.kernels, candidates, state.width(), state.height(), wall);
+        let cells = config.cells(resolution);
+        let state = State::new(&world_map, cells.doors, wall);
+        let proposer = Proposer::new(config.kernels, resolution, candidates, state.width(), state.height(), wall);
         let posterior = Posterior::at_resolution(&config.posterior, resolution);
         let log_target = posterior.log_target(&state.explanation, 0);
         let phase_tables = config.schedule.phases.iter().map(|p| Cumulative::new(p.weights.0)).collect();
@@ -482,6 +506,7 @@ impl Chain {
             knowledge,
             inferred: Default::default(),
             resolution,
+            cells,
             object_gain,
             objects,
             knowledge_error: None,
@@ -587,7 +612,7 @@ impl Chain {
         let rect_of = |id: u32| units.iter().find(|u| u.id == id).map(|u| u.rect());
         for (k, d) in doors.iter().enumerate() {
             let (Some(lo), Some(hi)) = (rect_of(d.lo), rect_of(d.hi)) else { continue };
-            if let Some(r) = super::state::door_rect(lo, hi, d, &self.config.doors, self.state.wall) {
+            if let Some(r) = super::state::door_rect(lo, hi, d, &self.cells.doors, self.state.wall) {
                 w.doors.push(Door {
                     id: k as u32 + 1,
                     units: [d.lo, d.hi],
@@ -868,10 +893,10 @@ impl Chain {
     fn refresh_free_space(&mut self) {
         let rects = vision::freespace::unexplained_with(
             &self.state.explanation,
-            self.config.detectors.free_space_min_cells,
+            self.cells.free_space_min,
             &mut self.free_space_scratch,
         );
-        let (min, wall) = (self.config.kernels.min_side, self.state.wall);
+        let (min, wall) = (self.cells.min_side, self.state.wall);
         let items: Vec<(Rect, f64)> = rects
             .into_iter()
             .filter(|&r| super::state::fits_unit(r, min, wall))
@@ -967,7 +992,7 @@ impl Chain {
     fn try_kernel(&mut self, kernel: Kernel, phi_fwd: f64, phi_rev: f64) -> bool {
         let Some((mv, q_fwd)) = self.proposer.propose(kernel, &self.state, &mut self.rng) else { return false };
         let k = &self.config.kernels;
-        if q_fwd <= 0.0 || phi_rev <= 0.0 || !self.state.is_valid(&mv, k.min_side, k.max_units) {
+        if q_fwd <= 0.0 || phi_rev <= 0.0 || !self.state.is_valid(&mv, self.cells.min_side, k.max_units) {
             return false;
         }
         let (undo, generation, next_id) = self.state.apply(&mv);

@@ -32,8 +32,9 @@ use std::collections::HashMap;
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct KernelConfig {
-    /// Smallest unit side in cells (two walls and at least one free cell: 3 or more).
-    pub min_side: i32,
+    /// Smallest unit side, m (in cells: two walls and at least one free cell, 3 or more).
+    /// 0.5 m: narrower than a closet a person steps into.
+    pub min_side_m: f64,
     /// Largest number of units.
     pub max_units: usize,
     /// `h_b` of eq. 3.21: cap on `1/ω_r` when choosing units to change or remove.
@@ -42,8 +43,9 @@ pub struct KernelConfig {
     pub h_v: f64,
     /// `h_g` of eq. 3.28: cap on `1/ω_g` when choosing a door to delete.
     pub h_g: f64,
-    /// Standard deviation of the SHRINK/DILATE wall shift, in cells.
-    pub shift_sigma: f64,
+    /// Standard deviation of the SHRINK/DILATE wall shift, m (at least 0.3 cells). 0.15 m: a
+    /// wall's thickness, the scale on which a unit's wall misses the map's.
+    pub shift_sigma_m: f64,
     /// Share of ADD proposals drawn uniformly from all rectangles instead of the candidates.
     pub uniform_add: f64,
     /// Share of ALLOCATE proposals drawn uniformly from all possible doors.
@@ -56,12 +58,12 @@ pub struct KernelConfig {
 impl Default for KernelConfig {
     fn default() -> Self {
         KernelConfig {
-            min_side: 10,
+            min_side_m: 0.5,
             max_units: 200,
             h_b: 20.0,
             h_v: 20.0,
             h_g: 20.0,
-            shift_sigma: 3.0,
+            shift_sigma_m: 0.15,
             uniform_add: 0.02,
             uniform_door: 0.05,
             split_epsilon: 0.25,
@@ -72,8 +74,8 @@ impl Default for KernelConfig {
 impl KernelConfig {
     /// Checks every number.
     pub fn validate(&self) -> Result<(), String> {
-        if self.min_side < 3 {
-            return Err(format!("min_side {} must be at least 3 (two walls and free space)", self.min_side));
+        if !(self.min_side_m.is_finite() && self.min_side_m > 0.0 && self.min_side_m <= 100.0) {
+            return Err(format!("min_side_m {} must be a length above 0 and at most 100 m", self.min_side_m));
         }
         if self.max_units == 0 || self.max_units > 250 {
             return Err(format!("max_units {} must be between 1 and 250", self.max_units));
@@ -83,8 +85,8 @@ impl KernelConfig {
                 return Err(format!("{name} {v} must be a positive number"));
             }
         }
-        if !(self.shift_sigma.is_finite() && self.shift_sigma >= 0.3 && self.shift_sigma <= 1000.0) {
-            return Err(format!("shift_sigma {} must be between 0.3 and 1000 cells", self.shift_sigma));
+        if !(self.shift_sigma_m.is_finite() && self.shift_sigma_m > 0.0 && self.shift_sigma_m <= 50.0) {
+            return Err(format!("shift_sigma_m {} must be a length above 0 and at most 50 m", self.shift_sigma_m));
         }
         for (name, v) in [("uniform_add", self.uniform_add), ("uniform_door", self.uniform_door)] {
             if !(v.is_finite() && v > 0.0 && v <= 1.0) {
@@ -95,6 +97,33 @@ impl KernelConfig {
             return Err(format!("split_epsilon {} must be a positive number", self.split_epsilon));
         }
         Ok(())
+    }
+
+    /// The smallest unit side in cells of `resolution` metres: rounded, at least 3.
+    ///
+    /// ```
+    /// use ksmcmc::floorplan::KernelConfig;
+    /// let k = KernelConfig::default();
+    /// assert_eq!((k.min_side_cells(0.05), k.min_side_cells(0.1), k.min_side_cells(0.5)), (10, 5, 3));
+    /// assert_eq!((k.shift_sigma_cells(0.05), k.shift_sigma_cells(0.025)), (3.0, 6.0));
+    /// ```
+    pub fn min_side_cells(&self, resolution: f64) -> i32 {
+        (libm::round(self.min_side_m / cell_m(resolution)).min(1e6) as i32).max(3)
+    }
+
+    /// The wall shift's standard deviation in cells of `resolution` metres (to a millionth of a
+    /// cell, so that 0.15 m at 0.05 m is 3 exactly), at least 0.3.
+    pub fn shift_sigma_cells(&self, resolution: f64) -> f64 {
+        (libm::round(self.shift_sigma_m / cell_m(resolution) * 1e6) / 1e6).clamp(0.3, 1e6)
+    }
+}
+
+/// `resolution`, or 0.05 m where it is not a positive number.
+fn cell_m(resolution: f64) -> f64 {
+    if resolution.is_finite() && resolution > 0.0 {
+        resolution
+    } else {
+        0.05
     }
 }
 
@@ -178,6 +207,8 @@ struct DoorCache {
 #[derive(Debug, Clone)]
 pub struct Proposer {
     config: KernelConfig,
+    /// The configuration's smallest unit side in cells of the map.
+    base_min_side: i32,
     /// The ADD pool.
     pub candidates: Candidates,
     doors: DoorCache,
@@ -297,14 +328,13 @@ pub fn shifted(r: Rect, side: usize, d: i32) -> Rect {
 /// The smallest unit side for rings `wall` deep (two rings and a free cell at least), and how
 /// many rectangles with sides of at least that fit a `width` x `height` grid (the uniform ADD
 /// proposal's count).
-fn sizes(config: &KernelConfig, wall: i32, width: i32, height: i32) -> (i32, f64) {
-    let min_side = config.min_side.max(2 * wall + 1);
+fn sizes(base_min_side: i32, wall: i32, width: i32, height: i32) -> (i32, f64) {
+    let min_side = base_min_side.max(2 * wall + 1);
     let n = min_side as i64;
     (min_side, (interval_count(width as i64, n) * interval_count(height as i64, n)) as f64)
 }
 
 impl Proposer {
-    /// A proposer for a `width` x `height` world with the given ADD candidates.
     /// Forgets the doors detected so far: they were found on a map that has since changed.
     pub fn forget_doors(&mut self) {
         self.doors.generation = None;
@@ -314,17 +344,29 @@ impl Proposer {
     /// world-frame grid), as [`Proposer::new`] would have.
     pub fn set_wall(&mut self, wall: i32, width: i32, height: i32) {
         self.wall = wall;
-        (self.min_side, self.uniform_count) = sizes(&self.config, wall, width, height);
+        (self.min_side, self.uniform_count) = sizes(self.base_min_side, wall, width, height);
         self.forget_doors();
     }
 
-    pub fn new(config: KernelConfig, candidates: Candidates, width: i32, height: i32, wall: i32) -> Self {
-        let (min_side, uniform_count) = sizes(&config, wall, width, height);
-        let m = libm::ceil(4.0 * config.shift_sigma).max(1.0) as i32;
-        let s2 = 2.0 * config.shift_sigma * config.shift_sigma;
+    /// A proposer for a `width` x `height` world of `resolution` metres a cell with the given
+    /// ADD candidates.
+    pub fn new(
+        config: KernelConfig,
+        resolution: f64,
+        candidates: Candidates,
+        width: i32,
+        height: i32,
+        wall: i32,
+    ) -> Self {
+        let base_min_side = config.min_side_cells(resolution);
+        let (min_side, uniform_count) = sizes(base_min_side, wall, width, height);
+        let sigma = config.shift_sigma_cells(resolution);
+        let m = libm::ceil(4.0 * sigma).max(1.0) as i32;
+        let s2 = 2.0 * sigma * sigma;
         let shift = Cumulative::new((1..=m).map(|d| libm::exp(-((d * d) as f64) / s2)));
         Proposer {
             config,
+            base_min_side,
             candidates,
             doors: DoorCache::default(),
             shift,

@@ -47,6 +47,6 @@ pub use chain::{Chain, ChainConfig, ChainError, DetectorConfig, OutputConfig};
 pub use explain::Explanation;
 pub use kernels::KernelConfig;
 pub use schedule::{Kernel, KernelWeights, Phase, Schedule};
-pub use state::DoorLimits;
+pub use state::{DoorLimits, DoorSizes};
 pub use trace::Trace;
 pub use world::{Door, Frame, Rect, Room, UnexplainedArea, Unit, UnitType, World, WorldError, WORLD_FORMAT};

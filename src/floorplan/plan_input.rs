@@ -31,7 +31,7 @@ use super::report::{self, ChainSummary};
 use super::rooms::RoomConfig;
 use super::wings::{wing_rotation_deg, WingConfig, WingLayout};
 use super::world::World;
-use super::{Chain, DoorLimits};
+use super::{Chain, DoorSizes};
 use crate::grid::{Grid, OccupancyMap};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -68,7 +68,7 @@ pub struct PlanInput {
     /// units of two wings ([`PlanInput::explain_wings`]) keep to them too (default: the
     /// default limits).
     #[serde(default)]
-    pub doors: DoorLimits,
+    pub doors: DoorSizes,
 }
 
 fn no_edits() -> String {
@@ -218,7 +218,8 @@ impl PlanInput {
             *world = found;
             labels
         };
-        let (mut world, labels) = layout.compose(map.classified(), world, labels, &worlds, &self.doors, by_walls);
+        let doors = self.doors.cells(map.yaml().resolution);
+        let (mut world, labels) = layout.compose(map.classified(), world, labels, &worlds, &doors, by_walls);
         super::room_layer::mark_world_openings(
             &mut world,
             map.classified(),

@@ -248,7 +248,7 @@ fn mark_openings(world: &mut World, map: &Grid<Cell>, c: &RoomCells, resolution:
     super::openings::mark_openings(world, &walls, resolution);
 }
 
-/// [`mark_openings`] for a world composed after its rooms were found (the wings' world,
+/// [`super::openings::mark_openings`] for a world composed after its rooms were found (the wings' world,
 /// [`super::wings::WingLayout::compose`]), with the room layer's settings `rooms` on a map of
 /// `resolution` metres per cell.
 pub fn mark_world_openings(world: &mut World, map: &Grid<Cell>, rooms: &RoomConfig, resolution: f64) {
@@ -331,7 +331,7 @@ pub const STANDING_CLEARANCE_M: f64 = 0.2;
 /// truth draws such fans as regions too), but a person draws no room there and cannot say
 /// what it is. The dissertation marks the same places as unexplored (Fig. 3.32-d). Rooms of
 /// floor, furnished or not, keep far more than a third: on Cartesium 0.39 and over, the fans
-/// 0.23 and under. [`RoomConfig::min_room_depth`] judges the free regions beyond every unit
+/// 0.23 and under. [`RoomConfig::min_room_depth_m`] judges the free regions beyond every unit
 /// by their deep cells too, but deeper (6 cells) and by count, to decide whether they are
 /// rooms at all; at that depth several rooms of floor on Cartesium (half-seen offices, a
 /// junction) keep only 0.23 - 0.30 of their cells, so the two are not one test.

@@ -26,7 +26,8 @@ pub struct DoorSpec {
     pub end: i32,
 }
 
-/// Geometry limits for doors, in cells.
+/// Geometry limits for doors in cells of one map: [`DoorSizes`] turned into cells from the
+/// map's resolution ([`DoorSizes::cells`]). The chain's state and kernels read these.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct DoorLimits {
@@ -39,9 +40,67 @@ pub struct DoorLimits {
 }
 
 impl Default for DoorLimits {
-    /// 0.5 - 2.0 m doors through walls up to 0.5 m thick, at 5 cm per cell.
+    /// [`DoorSizes::default`] on a map of 5 cm cells (the benchmark floors' and the generated
+    /// floors' cell), for examples and tests that draw their maps in cells.
     fn default() -> Self {
-        DoorLimits { min_len: 10, max_len: 40, max_gap: 10 }
+        DoorSizes::default().cells(0.05)
+    }
+}
+
+/// The sizes a door may have, metres: the chain's door limits as the configuration gives them
+/// (`ChainConfig::doors`), turned into cells once from the map's resolution.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct DoorSizes {
+    /// Shortest door, m. 0.5 m: narrower than any door a person walks through (interior door
+    /// leaves are 0.6 m and more) with room for a laser's noise at the jambs.
+    pub min_m: f64,
+    /// Longest door, m. 2.0 m: a double door; a wider passage is open floor.
+    pub max_m: f64,
+    /// Largest distance between the two walls a door crosses, m. 0.5 m: the thickest interior
+    /// walls and the unseen cores of walls seen from both sides.
+    pub max_gap_m: f64,
+}
+
+impl Default for DoorSizes {
+    fn default() -> Self {
+        DoorSizes { min_m: 0.5, max_m: 2.0, max_gap_m: 0.5 }
+    }
+}
+
+impl DoorSizes {
+    /// These sizes in cells of `resolution` metres, rounded to whole cells (a door at least one
+    /// cell long). A resolution that is not a positive number is read as 0.05 m.
+    ///
+    /// ```
+    /// use ksmcmc::floorplan::{DoorLimits, DoorSizes};
+    /// assert_eq!(DoorSizes::default().cells(0.05), DoorLimits { min_len: 10, max_len: 40, max_gap: 10 });
+    /// assert_eq!(DoorSizes::default().cells(0.1), DoorLimits { min_len: 5, max_len: 20, max_gap: 5 });
+    /// ```
+    pub fn cells(&self, resolution: f64) -> DoorLimits {
+        let r = if resolution.is_finite() && resolution > 0.0 { resolution } else { 0.05 };
+        let cells = |m: f64| libm::round(m / r).clamp(0.0, 1e6) as i32;
+        DoorLimits {
+            min_len: cells(self.min_m).max(1),
+            max_len: cells(self.max_m).max(1),
+            max_gap: cells(self.max_gap_m),
+        }
+    }
+
+    /// Checks the sizes: finite, `0 < min_m <= max_m`, and `0 <= max_gap_m <= 5`.
+    pub fn validate(&self) -> Result<(), String> {
+        let ok = |v: f64| v.is_finite();
+        if !(ok(self.min_m) && ok(self.max_m) && ok(self.max_gap_m))
+            || self.min_m <= 0.0
+            || self.max_m < self.min_m
+            || !(0.0..=5.0).contains(&self.max_gap_m)
+        {
+            return Err(format!(
+                "need 0 < min_m <= max_m and 0 <= max_gap_m <= 5 (metres), got {} / {} / {}",
+                self.min_m, self.max_m, self.max_gap_m
+            ));
+        }
+        Ok(())
     }
 }
 

@@ -115,7 +115,8 @@ impl Wings {
             chains.push(chain);
         }
         let by_walls = |world: &mut World, others: &[f64]| first.rooms_by_walls(world, rooms, others);
-        (world, labels) = layout.compose(map.classified(), world, labels, &units, &config.doors, by_walls);
+        let doors = config.doors.cells(map.yaml().resolution);
+        (world, labels) = layout.compose(map.classified(), world, labels, &units, &doors, by_walls);
         super::room_layer::mark_world_openings(&mut world, map.classified(), rooms, map.yaml().resolution);
         chains.insert(0, first);
         Ok(Wings { chains, wing_of: layout.wing_of, world, labels })

@@ -49,6 +49,83 @@ impl Default for WallConfig {
     }
 }
 
+/// The wall detector's settings as a chain's configuration gives them, lengths in metres:
+/// [`WallConfig`] in cells of one map comes from them ([`WallSizes::cells`]).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct WallSizes {
+    /// Shortest run of occupied cells that counts as a wall segment, m. 0.6 m: longer than a
+    /// door jamb or a table's edge seen by a laser.
+    pub min_segment_m: f64,
+    /// Largest gap bridged inside a wall segment (scan dropouts), m. 0.1 m.
+    pub max_gap_m: f64,
+    /// Most wall lines kept per axis, strongest first.
+    pub max_lines: usize,
+    /// Smallest wall weight `ω_w` a candidate's walls may have.
+    pub min_wall_weight: f64,
+    /// Most candidates kept, best weights first.
+    pub max_candidates: usize,
+    /// Tolerance across a wall when scoring it, m. 0.1 m: a wall's thickness and a laser's
+    /// noise.
+    pub tolerance_m: f64,
+    /// Exponent applied to candidate weights before ADD draws from them.
+    pub sharpness: f64,
+}
+
+impl Default for WallSizes {
+    fn default() -> Self {
+        let c = WallConfig::default();
+        WallSizes {
+            min_segment_m: 0.6,
+            max_gap_m: 0.1,
+            max_lines: c.max_lines,
+            min_wall_weight: c.min_wall_weight,
+            max_candidates: c.max_candidates,
+            tolerance_m: 0.1,
+            sharpness: c.sharpness,
+        }
+    }
+}
+
+impl WallSizes {
+    /// These settings in cells of `resolution` metres (lengths rounded; a segment at least 2
+    /// cells). A resolution that is not a positive number is read as 0.05 m.
+    ///
+    /// ```
+    /// use ksmcmc::vision::walls::{WallConfig, WallSizes};
+    /// assert_eq!(WallSizes::default().cells(0.05), WallConfig::default());
+    /// assert_eq!(WallSizes::default().cells(0.1).min_segment, 6);
+    /// ```
+    pub fn cells(&self, resolution: f64) -> WallConfig {
+        let r = if resolution.is_finite() && resolution > 0.0 { resolution } else { 0.05 };
+        let cells = |m: f64| libm::round(m / r).clamp(0.0, 1e6) as i32;
+        WallConfig {
+            min_segment: cells(self.min_segment_m).max(2),
+            max_gap: cells(self.max_gap_m),
+            max_lines: self.max_lines,
+            min_wall_weight: self.min_wall_weight,
+            max_candidates: self.max_candidates,
+            tolerance: cells(self.tolerance_m),
+            sharpness: self.sharpness,
+        }
+    }
+
+    /// Checks the settings, naming the field at fault.
+    pub fn validate(&self) -> Result<(), String> {
+        for (name, v) in
+            [("min_segment_m", self.min_segment_m), ("max_gap_m", self.max_gap_m), ("tolerance_m", self.tolerance_m)]
+        {
+            if !(v.is_finite() && (0.0..=100.0).contains(&v)) {
+                return Err(format!("{name} {v} must be a length from 0 to 100 m"));
+            }
+        }
+        if !(self.min_wall_weight.is_finite() && (0.0..=1.0).contains(&self.min_wall_weight)) {
+            return Err(format!("min_wall_weight {} must be in [0, 1]", self.min_wall_weight));
+        }
+        Ok(())
+    }
+}
+
 /// A wall line: consecutive rows (or columns) `lo..=hi` holding wall segments.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct WallLine {

@@ -45,12 +45,12 @@ fn rooms_map() -> Grid<Cell> {
 fn all_kernels_config() -> ChainConfig {
     let mut c = ChainConfig::default();
     c.schedule = Schedule::constant(KernelWeights([0.15, 0.1, 0.1, 0.1, 0.1, 0.1, 0.1, 0.15, 0.1]));
-    c.doors.min_len = 4;
+    c.doors.min_m = 0.2;
     c.detectors.free_space_start = 200;
     c.detectors.free_space_every = 150;
     // Hot, so that the chain keeps moving and every kernel applies and undoes many moves.
     c.posterior.temperature = 30.0;
-    c.kernels.min_side = 6;
+    c.kernels.min_side_m = 0.3;
     c.detectors.rotation_deg = Some(0.0);
     c
 }
@@ -139,11 +139,11 @@ fn bad_maps_and_configs_are_errors() {
     c.posterior.sensor.table[0][0] = 0.0;
     cases.push((c, "sensor"));
     let mut c = ChainConfig::default();
-    c.kernels.shift_sigma = f64::INFINITY;
-    cases.push((c, "shift_sigma"));
+    c.kernels.shift_sigma_m = f64::INFINITY;
+    cases.push((c, "shift_sigma_m"));
     let mut c = ChainConfig::default();
-    c.kernels.min_side = 1;
-    cases.push((c, "min_side"));
+    c.kernels.min_side_m = 0.0;
+    cases.push((c, "min_side_m"));
     let mut c = ChainConfig::default();
     c.schedule = Schedule::constant(KernelWeights([0.0; 9]));
     cases.push((c, "positive weight"));
@@ -151,7 +151,7 @@ fn bad_maps_and_configs_are_errors() {
     c.schedule = Schedule::constant(KernelWeights([1.0, -1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]));
     cases.push((c, "non-negative"));
     let mut c = ChainConfig::default();
-    c.doors.min_len = 50;
+    c.doors.min_m = 2.5;
     cases.push((c, "doors"));
     let mut c = ChainConfig::default();
     c.detectors.rotation_deg = Some(f64::NAN);
@@ -165,9 +165,9 @@ fn bad_maps_and_configs_are_errors() {
 #[test]
 fn config_json_accepts_partial_objects() {
     let c: ChainConfig =
-        serde_json::from_str(r#"{"posterior": {"temperature": 2.0}, "kernels": {"min_side": 4}}"#).unwrap();
+        serde_json::from_str(r#"{"posterior": {"temperature": 2.0}, "kernels": {"min_side_m": 0.2}}"#).unwrap();
     assert_eq!(c.posterior.temperature, 2.0);
-    assert_eq!(c.kernels.min_side, 4);
+    assert_eq!(c.kernels.min_side_cells(0.05), 4);
     assert_eq!(c.posterior.overlap_penalty, ChainConfig::default().posterior.overlap_penalty);
 }
 
@@ -177,8 +177,8 @@ fn config_json_accepts_partial_objects() {
 fn config_json_errors_name_the_problem() {
     assert_eq!(ChainConfig::from_json(" ").unwrap(), ChainConfig::default());
     assert_eq!(ChainConfig::from_json("{}").unwrap(), ChainConfig::default());
-    let c = ChainConfig::from_json(r#"{"posterior": {"temperature": 2.0}, "kernels": {"min_side": 4}}"#).unwrap();
-    assert_eq!((c.posterior.temperature, c.kernels.min_side), (2.0, 4));
+    let c = ChainConfig::from_json(r#"{"posterior": {"temperature": 2.0}, "kernels": {"min_side_m": 0.2}}"#).unwrap();
+    assert_eq!((c.posterior.temperature, c.kernels.min_side_cells(0.05)), (2.0, 4));
     let err = |json: &str| ChainConfig::from_json(json).unwrap_err().to_string();
     for (json, needle) in [
         ("{", "chain config"),
@@ -308,4 +308,16 @@ fn unexplained_areas_list_every_uncovered_free_cell() {
             );
         }
     }
+}
+
+/// Door sizes are metres, turned into cells from the map's resolution; the cell names of
+/// older versions are refused by name rather than read as metres.
+#[test]
+fn door_sizes_are_metres_and_cell_names_are_refused() {
+    let c = ChainConfig::from_json(r#"{"doors": {"min_m": 0.8}}"#).unwrap();
+    assert_eq!((c.doors.cells(0.05).min_len, c.doors.cells(0.1).min_len, c.doors.cells(0.025).min_len), (16, 8, 32));
+    let e = ChainConfig::from_json(r#"{"doors": {"min_len": 10}}"#).unwrap_err().to_string();
+    assert!(e.contains("min_len"), "{e}");
+    let e = ChainConfig::from_json(r#"{"doors": {"min_m": 0}}"#).unwrap_err().to_string();
+    assert!(e.contains("doors"), "{e}");
 }

@@ -50,10 +50,10 @@ fn key(mut rects: Vec<Rect>) -> Vec<(i32, i32, i32, i32)> {
 
 fn config(weights: [f64; 9], temperature: f64) -> ChainConfig {
     let mut c = ChainConfig::default();
-    c.kernels.min_side = 3;
+    c.kernels.min_side_m = 0.15;
     c.kernels.max_units = 2;
     c.kernels.uniform_add = 0.3;
-    c.kernels.shift_sigma = 1.0;
+    c.kernels.shift_sigma_m = 0.05;
     c.posterior.temperature = temperature;
     // The target enumerated here is the weak-prior posterior; knowledge supervision changes the
     // target whenever inference runs, so a chain under it has no fixed stationary law to test.

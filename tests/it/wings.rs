@@ -107,9 +107,9 @@ fn routes_cross_from_one_wing_to_the_other() {
 #[test]
 fn doors_between_the_wings_keep_to_the_door_limits() {
     use ksmcmc::floorplan::plan_input::PlanInput;
-    use ksmcmc::floorplan::DoorLimits;
+    use ksmcmc::floorplan::DoorSizes;
     let s = generate(&SynthConfig { wing_deg: 30.0, ..SynthConfig::default() }, 11).unwrap();
-    let doors = DoorLimits { min_len: 60, max_len: 80, ..DoorLimits::default() };
+    let doors = DoorSizes { min_m: 3.0, max_m: 4.0, ..DoorSizes::default() };
     let config = ChainConfig { doors, ..ChainConfig::default() };
     let w = Wings::run(&s.map, &config, &WingConfig::default(), 1, ITERATIONS, &Default::default()).unwrap();
     assert_eq!(w.chains.len(), 3);

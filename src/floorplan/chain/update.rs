@@ -195,8 +195,8 @@ impl Chain {
         self.proposer.set_wall(self.state.wall, self.state.width(), self.state.height());
         // The wall detector's candidates afresh, for rings of the new depth, as a new chain
         // finds them.
-        self.proposer.candidates = super::wall_candidates(&self.world_map, &self.config, self.state.wall);
-        self.faces = Some(vision::walls::faces_of(&self.world_map, &self.config.detectors.walls));
+        self.proposer.candidates = super::wall_candidates(&self.world_map, &self.cells, self.state.wall);
+        self.faces = Some(vision::walls::faces_of(&self.world_map, &self.cells.walls));
         true
     }
 
@@ -243,7 +243,7 @@ impl Chain {
     /// vanished on a side or inside. Returns how many were dropped and added.
     fn redetect(&mut self, window: Rect) -> (usize, usize) {
         let Some((old_xs, old_ys)) = self.faces.take() else { return (0, 0) };
-        let c = self.config.detectors.walls;
+        let c = self.cells.walls;
         let (xs, ys) = vision::walls::faces_of(&self.world_map, &c);
         let (dx, dy) = (symmetric_difference(&old_xs, &xs), symmetric_difference(&old_ys, &ys));
         let g = c.tolerance.max(0) + 1;
@@ -253,7 +253,7 @@ impl Chain {
                 || dx.iter().any(|&x| x >= r.x && x < r.right())
                 || dy.iter().any(|&y| y >= r.y && y < r.bottom())
         };
-        let (min_side, wall) = (self.config.kernels.min_side, self.state.wall);
+        let (min_side, wall) = (self.cells.min_side, self.state.wall);
         let found = vision::walls::candidates_where(&self.world_map, min_side, &c, &reached);
         let items: Vec<(Rect, f64)> =
             found.into_iter().filter(|&(r, _)| crate::floorplan::state::fits_unit(r, min_side, wall)).collect();

@@ -553,3 +553,28 @@ fn resolution_sets_the_cell_size_of_a_plain_image() {
         assert!(String::from_utf8_lossy(&out.stderr).contains("--resolution"));
     }
 }
+
+/// A reader that closes the pipe (`ksmcmc info MAP | head -1`) ends the command as it ends
+/// other tools, by SIGPIPE, never with "internal error".
+#[cfg(all(target_os = "linux", target_env = "gnu"))]
+#[test]
+fn a_closed_pipe_ends_the_command_quietly() {
+    use std::os::fd::FromRawFd;
+    use std::os::unix::process::ExitStatusExt;
+    let mut fds = [0i32; 2];
+    // SAFETY: a fresh pipe; its read end is closed at once and its write end handed to the child.
+    let writer = unsafe {
+        assert_eq!(libc::pipe(fds.as_mut_ptr()), 0);
+        libc::close(fds[0]);
+        std::process::Stdio::from_raw_fd(fds[1])
+    };
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_ksmcmc"))
+        .arg("help")
+        .stdout(writer)
+        .stderr(std::process::Stdio::piped())
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!stderr.contains("internal error"), "{stderr}");
+    assert_eq!(out.status.signal(), Some(libc::SIGPIPE), "{:?}", out.status);
+}

@@ -594,7 +594,9 @@ pub fn rooms_of_labels(world: &World, labels: &Grid<u16>, resolution: f64) -> Ve
                 id: l as u32,
                 kind: room_type(world, t, &units),
                 units: units.iter().map(|&k| world.units[k].id).collect(),
-                area_m2: t.cells as f64 * resolution * resolution,
+                // To a square centimetre: the cells' area, without float noise (65.46, not
+                // 65.46000000000001), exact for 5 cm cells (25 cm² each).
+                area_m2: libm::round(t.cells as f64 * resolution * resolution * 1e4) / 1e4,
                 doors: door_rooms.iter().filter(|(_, r)| r.contains(&l)).map(|(&d, _)| d).collect(),
                 opens_to: links
                     .iter()
@@ -800,6 +802,19 @@ mod tests {
     fn room_rules_must_declare_the_query() {
         let e = RoomKnowledge::parse("Open(unit, unit)\n").unwrap_err();
         assert!(e.to_string().contains("SameRoom"), "{e}");
+    }
+
+    #[test]
+    fn room_areas_are_square_centimetres_without_float_noise() {
+        // 26,184 cells of 5 cm: 65.46 m², where the product of floats is 65.46000000000001.
+        let mut world = World::empty(200, 131);
+        world.units.push(unit(1, 0, 0, 200, 131, UnitType::Room));
+        let mut labels = Grid::new(200, 131, 0u16);
+        for l in labels.cells_mut().iter_mut().take(26_184) {
+            *l = 1;
+        }
+        let rooms = rooms_of_labels(&world, &labels, 0.05);
+        assert_eq!(rooms[0].area_m2.to_string(), "65.46");
     }
 
     #[test]

@@ -28,8 +28,7 @@ pub struct DoorSpec {
 
 /// Geometry limits for doors in cells of one map: [`DoorSizes`] turned into cells from the
 /// map's resolution ([`DoorSizes::cells`]). The chain's state and kernels read these.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
-#[serde(default, deny_unknown_fields)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DoorLimits {
     /// Shortest door.
     pub min_len: i32,

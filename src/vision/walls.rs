@@ -10,11 +10,9 @@
 
 use crate::geometry::{AreaCounts, Rect};
 use crate::grid::{Cell, Grid};
-use serde::{Deserialize, Serialize};
 
-/// Parameters of the WBU detector.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
+/// Parameters of the WBU detector, in cells of one map ([`WallSizes::cells`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct WallConfig {
     /// Shortest run of occupied cells that counts as a wall segment.
     pub min_segment: i32,

@@ -60,7 +60,7 @@ DIR defaults to ../shared/datasets, N to 20000 iterations, K to 6. --only runs o
 --also-room-rules FILE (repeatable): bormann-seeds in knowledge mode also scores these room
 rules on the same chains, one more table each.
 --room-config FILE: the room layer's settings (floorplan::rooms::RoomConfig as JSON, for
-example {\"max_wall_gap\": 0}; default: the built-in ones).
+example {\"max_wall_gap_m\": 0}, lengths in metres; default: the built-in ones).
 --also-room-config FILE (repeatable): bormann-seeds also scores these room-layer settings on
 the same chains, in either mode, one more table each.
 ";

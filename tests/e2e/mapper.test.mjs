@@ -795,7 +795,10 @@ describe('Live mapper: rooms and the weak prior beside the knowledge', () => {
     rows.forEach((row, i) => {
       const r = rooms[i];
       assert.deepEqual(row.slice(0, 2), [String(r.id), r.type], `row ${i}: id and type`);
-      assert.equal(Number(row[2].replace(/,/g, '')), Number(r.area_m2.toFixed(1)), `row ${i}: area ${row[2]} for ${r.area_m2}`);
+      // Rounded as the page rounds a number for reading (half up on its decimal digits: 16.65
+      // reads 16.7; toFixed would give 16.6, the binary double just under 16.65).
+      const shown = r.area_m2.toLocaleString('en-US', { minimumFractionDigits: 1, maximumFractionDigits: 1 });
+      assert.equal(row[2], shown, `row ${i}: area ${row[2]} for ${r.area_m2}`);
       assert.match(row[2], /^[\d,]+\.\d$/, 'one decimal');
       assert.equal(row[3], r.units.join(', '), `row ${i}: units`);
       assert.equal(row[4], r.opens_to.length ? r.opens_to.join(', ') : '–', `row ${i}: opens to`);

@@ -329,7 +329,9 @@ describe('The room under the pointer', () => {
       };
     });
     assert.equal(info.title, `Room ${room.id} · ${room.type}`);
-    assert.equal(info.area, `${room.area_m2.toFixed(1)} m²`);
+    // Rounded as the page rounds for reading (half up on the decimal digits, not toFixed's binary).
+    const area = room.area_m2.toLocaleString('en-US', { minimumFractionDigits: 1, maximumFractionDigits: 1 });
+    assert.equal(info.area, `${area} m²`);
     assert.equal(info.doors, `doors: ${room.doors.length ? room.doors.join(', ') : 'none'}`);
     assert.equal(info.opens, `opens to: ${room.opens_to.length ? room.opens_to.join(', ') : 'none'}`);
     assert.equal(info.units, `units: ${row.units[0].type} ${row.units[0].id}`, 'the unit label in full');

@@ -44,8 +44,9 @@ WASM_DIR := target/$(WASM_TARGET)/wasm-release
 WASM_SOURCES := Cargo.toml Cargo.lock .cargo/config.toml $(shell find src -name '*.rs' -not -path 'src/bin/*')
 # wasm-opt (binaryen) shrinks rustc's output before wasm-bindgen reads it: Debian's binaryen
 # 108 cannot parse the externref-table code wasm-bindgen adds (table.fill). It is told the
-# features rustc's wasm32 target uses, and drops the name section.
-WASM_OPT_FLAGS := -O3 --enable-bulk-memory --enable-nontrapping-float-to-int --enable-sign-ext \
+# features rustc's wasm32 target uses, and drops the name section. --converge runs -O3's passes
+# until they change nothing more (the mapper module 767 bytes smaller gzipped than one round).
+WASM_OPT_FLAGS := -O3 --converge --enable-bulk-memory --enable-nontrapping-float-to-int --enable-sign-ext \
 	--enable-mutable-globals --enable-reference-types --enable-multivalue --enable-simd
 # The most the mapper module may weigh gzipped (issue 12): what the live mapper page loads
 # before its first frame. `make pkg` warns above it; tests/e2e/size.test.mjs fails.

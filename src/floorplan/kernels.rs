@@ -74,8 +74,12 @@ impl Default for KernelConfig {
 impl KernelConfig {
     /// Checks every number.
     pub fn validate(&self) -> Result<(), String> {
-        if !(self.min_side_m.is_finite() && self.min_side_m > 0.0 && self.min_side_m <= 100.0) {
-            return Err(format!("min_side_m {} must be a length above 0 and at most 100 m", self.min_side_m));
+        if !(self.min_side_m > 0.0
+            && self.min_side_m <= 100.0
+            && self.shift_sigma_m > 0.0
+            && self.shift_sigma_m <= 50.0)
+        {
+            return Err("min_side_m (at most 100) and shift_sigma_m (at most 50) are metres above 0".into());
         }
         if self.max_units == 0 || self.max_units > 250 {
             return Err(format!("max_units {} must be between 1 and 250", self.max_units));
@@ -84,9 +88,6 @@ impl KernelConfig {
             if !(v.is_finite() && v > 0.0) {
                 return Err(format!("{name} {v} must be a positive number"));
             }
-        }
-        if !(self.shift_sigma_m.is_finite() && self.shift_sigma_m > 0.0 && self.shift_sigma_m <= 50.0) {
-            return Err(format!("shift_sigma_m {} must be a length above 0 and at most 50 m", self.shift_sigma_m));
         }
         for (name, v) in [("uniform_add", self.uniform_add), ("uniform_door", self.uniform_door)] {
             if !(v.is_finite() && v > 0.0 && v <= 1.0) {

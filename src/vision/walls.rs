@@ -110,17 +110,11 @@ impl WallSizes {
 
     /// Checks the settings, naming the field at fault.
     pub fn validate(&self) -> Result<(), String> {
-        for (name, v) in
-            [("min_segment_m", self.min_segment_m), ("max_gap_m", self.max_gap_m), ("tolerance_m", self.tolerance_m)]
-        {
-            if !(v.is_finite() && (0.0..=100.0).contains(&v)) {
-                return Err(format!("{name} {v} must be a length from 0 to 100 m"));
-            }
+        let lengths = [self.min_segment_m, self.max_gap_m, self.tolerance_m];
+        if lengths.iter().all(|v| (0.0..=100.0).contains(v)) && (0.0..=1.0).contains(&self.min_wall_weight) {
+            return Ok(());
         }
-        if !(self.min_wall_weight.is_finite() && (0.0..=1.0).contains(&self.min_wall_weight)) {
-            return Err(format!("min_wall_weight {} must be in [0, 1]", self.min_wall_weight));
-        }
-        Ok(())
+        Err("min_segment_m, max_gap_m and tolerance_m are metres from 0 to 100, min_wall_weight from 0 to 1".into())
     }
 }
 

@@ -83,7 +83,7 @@ pub(crate) struct ChainCells {
 impl ChainConfig {
     /// This configuration's lengths in cells of a map of `resolution` metres.
     pub(crate) fn cells(&self, resolution: f64) -> ChainCells {
-        let r = if resolution.is_finite() && resolution > 0.0 { resolution } else { 0.05 };
+        let r = crate::grid::cell_size_m(resolution);
         ChainCells {
             doors: self.doors.cells(r),
             min_side: self.kernels.min_side_cells(r),

@@ -109,22 +109,13 @@ impl KernelConfig {
     /// assert_eq!((k.shift_sigma_cells(0.05), k.shift_sigma_cells(0.025)), (3.0, 6.0));
     /// ```
     pub fn min_side_cells(&self, resolution: f64) -> i32 {
-        (libm::round(self.min_side_m / cell_m(resolution)).min(1e6) as i32).max(3)
+        (libm::round(self.min_side_m / crate::grid::cell_size_m(resolution)).min(1e6) as i32).max(3)
     }
 
     /// The wall shift's standard deviation in cells of `resolution` metres (to a millionth of a
     /// cell, so that 0.15 m at 0.05 m is 3 exactly), at least 0.3.
     pub fn shift_sigma_cells(&self, resolution: f64) -> f64 {
-        (libm::round(self.shift_sigma_m / cell_m(resolution) * 1e6) / 1e6).clamp(0.3, 1e6)
-    }
-}
-
-/// `resolution`, or 0.05 m where it is not a positive number.
-fn cell_m(resolution: f64) -> f64 {
-    if resolution.is_finite() && resolution > 0.0 {
-        resolution
-    } else {
-        0.05
+        (libm::round(self.shift_sigma_m / crate::grid::cell_size_m(resolution) * 1e6) / 1e6).clamp(0.3, 1e6)
     }
 }
 

@@ -146,12 +146,8 @@ pub const REFERENCE_CELL_M: f64 = 0.05;
 /// assert!((cell_weight(0.1) - 4.0).abs() < 1e-12 && (cell_weight(0.025) - 0.25).abs() < 1e-12);
 /// ```
 pub fn cell_weight(resolution: f64) -> f64 {
-    if resolution.is_finite() && resolution > 0.0 {
-        let k = resolution / REFERENCE_CELL_M;
-        k * k
-    } else {
-        1.0
-    }
+    let k = crate::grid::cell_size_m(resolution) / REFERENCE_CELL_M;
+    k * k
 }
 
 /// Evaluates the log posterior from an [`Explanation`]'s integer counts.

@@ -243,7 +243,7 @@ impl RoomConfig {
     /// assert_eq!(c.cells(0.025).door_half_width, 24);
     /// ```
     pub fn cells(&self, resolution: f64) -> RoomCells {
-        let r = if resolution.is_finite() && resolution > 0.0 { resolution } else { 0.05 };
+        let r = crate::grid::cell_size_m(resolution);
         let count = |v: f64| if v > 0.0 { libm::round(v).max(1.0) } else { 0.0 };
         let len = |m: f64| count(m / r) as u32;
         let area = |m2: f64| count(m2 / (r * r)) as usize;

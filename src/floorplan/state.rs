@@ -77,7 +77,7 @@ impl DoorSizes {
     /// assert_eq!(DoorSizes::default().cells(0.1), DoorLimits { min_len: 5, max_len: 20, max_gap: 5 });
     /// ```
     pub fn cells(&self, resolution: f64) -> DoorLimits {
-        let r = if resolution.is_finite() && resolution > 0.0 { resolution } else { 0.05 };
+        let r = crate::grid::cell_size_m(resolution);
         let cells = |m: f64| libm::round(m / r).clamp(0.0, 1e6) as i32;
         DoorLimits {
             min_len: cells(self.min_m).max(1),

@@ -32,6 +32,16 @@ mod raster;
 mod ros;
 
 pub use classify::{Cell, Classifier};
+
+/// The metres per cell that turn a length into cells: `resolution`, or the 5 cm of the
+/// benchmark maps (`MapYaml::for_image`'s default) where it is not a positive number.
+pub fn cell_size_m(resolution: f64) -> f64 {
+    if resolution.is_finite() && resolution > 0.0 {
+        resolution
+    } else {
+        0.05
+    }
+}
 pub use error::MapError;
 pub use raster::{Grid, Raster};
 pub use ros::{MapYaml, Mode, MAX_YAML_BYTES};

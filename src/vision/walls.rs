@@ -95,7 +95,7 @@ impl WallSizes {
     /// assert_eq!(WallSizes::default().cells(0.1).min_segment, 6);
     /// ```
     pub fn cells(&self, resolution: f64) -> WallConfig {
-        let r = if resolution.is_finite() && resolution > 0.0 { resolution } else { 0.05 };
+        let r = crate::grid::cell_size_m(resolution);
         let cells = |m: f64| libm::round(m / r).clamp(0.0, 1e6) as i32;
         WallConfig {
             min_segment: cells(self.min_segment_m).max(2),

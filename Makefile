@@ -246,7 +246,7 @@ soak: www-pkg browser-tools e2e-deps
 
 # ---------------------------------------------------------------- fuzzing
 
-# cargo-fuzz (libFuzzer) targets in fuzz/, one per reader; see the FUZZING section of README.md.
+# cargo-fuzz (libFuzzer) targets in fuzz/, one per reader; see docs/fuzzing.md.
 # One fuzzer process at a time (no -jobs): the machines are shared. New corpus entries go to
 # fuzz/corpus/TARGET (not committed), crashes to fuzz/artifacts/TARGET; the committed seeds
 # are fuzz/seeds/TARGET, and fixed crashes are kept in fuzz/regressions/TARGET, which

@@ -69,6 +69,7 @@ pub mod mln;
 pub mod render;
 pub mod sort;
 pub mod tabletop;
+pub mod union_find;
 pub mod vision;
 
 #[cfg(target_arch = "wasm32")]

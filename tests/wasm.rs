@@ -357,7 +357,7 @@ fn mapper_runs_and_finds_units() {
     chain.step(3000);
     let mut fresh = Mapper::new(&map, None, None).unwrap();
     fresh.step(3000.0).unwrap();
-    let (world, _) = chain.best_world_with_rooms(&Default::default());
+    let (world, _) = chain.best_world_with_rooms(&Default::default()).unwrap();
     assert_eq!(plan_of(&map, &mut fresh).world_json(), world.to_json(), "seed 1 is the default");
     assert_eq!(fresh.seed(), 1);
 }
@@ -376,7 +376,7 @@ fn mapper_matches_the_library_on_a_sample() {
     let mut chain = Chain::new(map.inner(), ChainConfig::default(), 3).unwrap();
     chain.step(2000);
     // The exports carry the room layer, as `ksmcmc floorplan` writes them.
-    let (world, labels) = chain.best_world_with_rooms(&Default::default());
+    let (world, labels) = chain.best_world_with_rooms(&Default::default()).unwrap();
     assert!(!world.rooms.is_empty());
     let plan = plan_of(&map, &mut m);
     assert_eq!(plan.world_json(), world.to_json());
@@ -402,7 +402,7 @@ fn office_small_after_2000() -> (Map, Mapper, Chain, World, ksmcmc::grid::Grid<u
     m.step(2000.0).unwrap();
     let mut chain = Chain::new(map.inner(), ChainConfig::default(), 3).unwrap();
     chain.step(2000);
-    let (world, labels) = chain.best_world_with_rooms(&Default::default());
+    let (world, labels) = chain.best_world_with_rooms(&Default::default()).unwrap();
     (map, m, chain, world, labels)
 }
 
@@ -466,7 +466,7 @@ fn mapper_gives_room_labels_and_type_marginals_as_the_library() {
     assert_eq!(plan.room_labels(), labels.cells().to_vec());
     assert_eq!(plan.rooms_json(), ksmcmc::floorplan::export::rooms_json(&world));
     let inferred = chain.best_world_inferred().1.unwrap();
-    use ksmcmc::floorplan::room_types::{room_marginals, room_types};
+    use ksmcmc::floorplan::rooms::{room_marginals, room_types};
     // Knowledge is on: the rooms' own marginals (the rules applied to each room).
     let own = room_marginals(&world, &world.rooms, &labels, 0.05, &Default::default()).unwrap();
     assert_eq!(own.len(), world.rooms.iter().filter(|r| !r.units.is_empty()).count());
@@ -492,7 +492,7 @@ fn plans_of_a_rotated_map_are_the_chains_bit_for_bit() {
     m.step(1500.0).unwrap();
     let mut chain = Chain::new(map.inner(), ChainConfig::default(), 2).unwrap();
     chain.step(1500);
-    let (world, labels) = chain.best_world_with_rooms(&Default::default());
+    let (world, labels) = chain.best_world_with_rooms(&Default::default()).unwrap();
     assert!(world.frame.angle != 0.0 && !world.rooms.is_empty());
     let plan = plan_of(&map, &mut m);
     assert_eq!(plan.world_json(), world.to_json());
@@ -543,7 +543,7 @@ fn plans_keep_room_ids_through_edits_with_the_previous_labels() {
     let (pgm, yaml) = (map.to_pgm(), map.to_yaml("map.pgm"));
     let second = Plan::new(&pgm, &yaml, &m.plan_input(), Some(first.room_labels()), None).unwrap();
     // The library: the chain's rooms, ids carried over from the labels shown before.
-    let (mut world, mut labels) = chain.best_world_with_rooms(&Default::default());
+    let (mut world, mut labels) = chain.best_world_with_rooms(&Default::default()).unwrap();
     let previous = ksmcmc::grid::Grid::from_vec(400, 300, first.room_labels()).unwrap();
     ksmcmc::floorplan::edits::carry_ids(&previous, &mut labels, &mut world.rooms);
     assert_eq!(second.world_json(), world.to_json());
@@ -910,7 +910,10 @@ fn update_map_follows_the_library_and_checks_sizes() {
     // The plan is made on the mapper's map, which is the new one.
     let now = m.map();
     assert_eq!(now.cells(), full.cells());
-    assert_eq!(plan_of(&now, &mut m).world_json(), chain.best_world_with_rooms(&Default::default()).0.to_json());
+    assert_eq!(
+        plan_of(&now, &mut m).world_json(),
+        chain.best_world_with_rooms(&Default::default()).unwrap().0.to_json()
+    );
     err_contains(m.update_map(&Map::from_cells(5, 5, &[0; 25]).unwrap()), "keep the map's size");
 }
 

@@ -8,7 +8,7 @@
 //! replay every input kept under `fuzz/regressions/TARGET/` through these same functions, so
 //! `cargo test` on stable covers the crashes found, without nightly or libFuzzer.
 
-use ksmcmc::floorplan::{knowledge, metrics, room_layer, rooms, Door, Frame, Unit, UnitType, World};
+use ksmcmc::floorplan::{knowledge, metrics, rooms, Door, Frame, Unit, UnitType, World};
 use ksmcmc::grid::{Cell, Grid, Limits, OccupancyMap};
 use ksmcmc::mln::{Database, GroundConfig, Mln, Network};
 
@@ -125,7 +125,12 @@ fn exercise_world(mut world: World) {
     let world_map = ksmcmc::vision::orientation::to_world_frame(&map, world.frame.angle).0;
     if world_map.width() == ww as usize && world_map.height() == wh as usize {
         let c = rooms::RoomConfig::default();
-        let _ = room_layer::explain_world_rooms(&mut world, &map, &world_map, &c, 0.05, false, &Default::default());
+        let maps = rooms::RoomMaps { map: &map, world_map: &world_map, resolution: 0.05 };
+        let _ = rooms::RoomLayer::without_knowledge(c).explain(
+            &mut world,
+            maps,
+            rooms::Grouping::Units(&Default::default()),
+        );
     }
 }
 

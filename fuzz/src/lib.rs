@@ -1,2 +1,2 @@
-//! Fuzz targets for ksmcmc's readers; see `harness` and the FUZZING section of the README.
+//! Fuzz targets for ksmcmc's readers; see `harness` and docs/fuzzing.md.
 pub mod harness;

@@ -303,6 +303,8 @@ pub enum ChainError {
     Map(String),
     /// A person's edits do not fit the map ([`Chain::set_edits`]).
     Edits(String),
+    /// The room layer could not find the rooms of the chain's world.
+    Rooms(super::rooms::RoomError),
 }
 
 impl std::fmt::Display for ChainError {
@@ -313,11 +315,25 @@ impl std::fmt::Display for ChainError {
             ChainError::Knowledge(m) => write!(f, "knowledge base: {m}"),
             ChainError::Map(m) => write!(f, "cannot explain this map: {m}"),
             ChainError::Edits(m) => write!(f, "{m}"),
+            ChainError::Rooms(e) => write!(f, "{e}"),
         }
     }
 }
 
-impl std::error::Error for ChainError {}
+impl std::error::Error for ChainError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            ChainError::Rooms(e) => Some(e),
+            _ => None,
+        }
+    }
+}
+
+impl From<super::rooms::RoomError> for ChainError {
+    fn from(e: super::rooms::RoomError) -> ChainError {
+        ChainError::Rooms(e)
+    }
+}
 
 /// A snapshot of units and doors.
 #[derive(Debug, Clone, Default)]
@@ -393,6 +409,9 @@ impl Chain {
     /// wall-based detector, and starts from the empty world.
     pub fn new(map: &OccupancyMap, config: ChainConfig, seed: u64) -> Result<Chain, ChainError> {
         config.validate()?;
+        // The room rules are read now, so that rules the room layer cannot use (no
+        // `SameRoom`) are refused before the chain runs, not after.
+        super::rooms::RoomLayer::new(Default::default(), &config.knowledge)?;
         let classified = map.classified();
         let resolution = map.yaml().resolution;
         let cells = config.cells(resolution);
@@ -1017,7 +1036,7 @@ impl Chain {
         }
     }
 
-    /// The room segmentation of the best world on the original map (see [`super::rooms`]).
+    /// The room segmentation of the best world on the original map (every open pair of units joined, [`super::rooms`]).
     pub fn best_labels(&self, rooms: &super::rooms::RoomConfig) -> Grid<u16> {
         self.labels(&self.best_world(), rooms)
     }
@@ -1028,37 +1047,46 @@ impl Chain {
         super::rooms::room_labels(world, &self.map, &self.world_map, &rooms.cells(self.resolution))
     }
 
+    /// The room layer of this chain's settings: `rooms`' lengths, and with knowledge
+    /// supervision the room rules (the configuration's `knowledge.room_kb`, by default the
+    /// built-in ones) and its indoor rules ([`super::rooms::RoomLayer::new`]).
+    pub fn room_layer(
+        &self,
+        rooms: &super::rooms::RoomConfig,
+    ) -> Result<super::rooms::RoomLayer, super::rooms::RoomError> {
+        super::rooms::RoomLayer::new(*rooms, &self.config.knowledge)
+    }
+
+    /// The maps the room layer reads for this chain's worlds.
+    fn room_maps(&self) -> super::rooms::RoomMaps<'_> {
+        super::rooms::RoomMaps { map: &self.map, world_map: &self.world_map, resolution: self.resolution }
+    }
+
     /// The typed best world ([`Chain::best_world_typed`]) with its room layer filled in, and
-    /// the room labels (one id per room, `labels.pgm`). With knowledge supervision the room
-    /// rules (the configuration's `knowledge.room_kb`, by default the built-in ones) decide which units are one room ([`super::room_layer`]); without it every
-    /// open boundary joins.
-    pub fn best_world_with_rooms(&mut self, rooms: &super::rooms::RoomConfig) -> (World, Grid<u16>) {
+    /// the room labels (one id per room, `labels.pgm`), grouped by units under the chain's
+    /// edits ([`super::rooms::RoomLayer::explain`], [`Chain::room_layer`]).
+    pub fn best_world_with_rooms(
+        &mut self,
+        rooms: &super::rooms::RoomConfig,
+    ) -> Result<(World, Grid<u16>), super::rooms::RoomError> {
         let mut world = self.best_world_typed();
-        let k = &self.config.knowledge;
-        let kb = if k.enabled { super::room_layer::RoomKnowledge::configured(k).ok() } else { None };
-        let labels = super::room_layer::explain_world_rooms_by(
-            &mut world,
-            &self.map,
-            &self.world_map,
-            rooms,
-            self.resolution,
-            kb.as_ref(),
-            &self.edits,
-        );
-        (world, labels)
+        let layer = self.room_layer(rooms)?;
+        let labels = layer.explain(&mut world, self.room_maps(), super::rooms::Grouping::Units(&self.edits))?;
+        Ok((world, labels))
     }
 
     /// Finds the rooms of `world` again (a typed world of this chain, such as the one
     /// [`Chain::best_world_with_rooms`] gave) for a building that none of its wall directions
     /// holds most of: the rooms are where the walls, their gaps along the directions `angles`
-    /// too and the doorways part the floor
-    /// ([`super::room_layer::explain_world_rooms_by_walls`]; [`super::wings`] decides when).
-    /// Returns the room labels.
-    pub fn rooms_by_walls(&self, world: &mut World, rooms: &super::rooms::RoomConfig, angles: &[f64]) -> Grid<u16> {
-        use super::room_layer::{explain_world_rooms_by_walls, RoomKnowledge};
-        let k = &self.config.knowledge;
-        let kb = if k.enabled { RoomKnowledge::configured(k).ok() } else { None };
-        explain_world_rooms_by_walls(world, &self.map, &self.world_map, rooms, self.resolution, kb.as_ref(), angles)
+    /// too and the doorways part the floor ([`super::rooms::Grouping::Walls`];
+    /// [`super::wings`] decides when). Returns the room labels.
+    pub fn rooms_by_walls(
+        &self,
+        world: &mut World,
+        rooms: &super::rooms::RoomConfig,
+        angles: &[f64],
+    ) -> Result<Grid<u16>, super::rooms::RoomError> {
+        self.room_layer(rooms)?.explain(world, self.room_maps(), super::rooms::Grouping::Walls(angles))
     }
 
     /// The classified map the chain explains, in the map's own frame.

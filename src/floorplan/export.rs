@@ -19,7 +19,7 @@
 //! let input = RoomInput::of(&mut chain);
 //! let mut summary = report::summary(&chain, &s.map, input.world(), 1.0);
 //! drop(chain);
-//! let (world, labels) = input.explain(&RoomConfig::default());
+//! let (world, labels) = input.explain(&RoomConfig::default()).unwrap();
 //! report::add_rooms(&mut summary, &world, &labels);
 //! let out = Outputs::new(&s.map, &world, &labels, &summary, trace, None, &Default::default()).unwrap();
 //! let names: Vec<&str> = out.files().iter().map(|(name, _)| *name).collect();
@@ -31,25 +31,26 @@
 //! ```
 
 use super::georef::{Georef, MapOrigin};
+use super::knowledge::KnowledgeConfig;
+use super::rooms::{Grouping, RoomConfig, RoomError, RoomLayer, RoomMaps};
 use super::shapes::{floor_shapes, ShapeError};
 use super::world::{World, WorldError};
-use super::{geojson, graph, room_layer, rooms::RoomConfig, Chain, Trace};
+use super::{geojson, graph, Chain, Trace};
 use crate::grid::{Cell, Grid, OccupancyMap};
 use crate::render::model3d::{world_glb, Model3dError, Model3dOptions};
 use crate::render::{self, RenderError};
 use std::fmt::Write as _;
 
 /// What the room labels need of a chain: its typed best world, the map in its own and in the
-/// world frame, the resolution and whether knowledge supervision is on.
+/// world frame, the resolution, its knowledge configuration (whether knowledge supervision is
+/// on, the room rules and the indoor rules that type the rooms) and a person's edits.
 #[derive(Debug, Clone)]
 pub struct RoomInput {
     world: World,
     map: Grid<Cell>,
     world_map: Grid<Cell>,
     resolution: f64,
-    knowledge: bool,
-    /// The room rules when not the built-in ones (the chain's `knowledge.room_kb`).
-    room_rules: Option<String>,
+    knowledge: KnowledgeConfig,
     edits: super::edits::Edits,
     /// Set by [`RoomInput::by_walls`]: the wall directions of the building's other wings.
     by_walls: Option<Vec<f64>>,
@@ -63,8 +64,7 @@ impl RoomInput {
             map: chain.map().clone(),
             world_map: chain.world_map().clone(),
             resolution: chain.resolution(),
-            knowledge: chain.config().knowledge.enabled,
-            room_rules: chain.config().knowledge.room_kb.clone(),
+            knowledge: chain.config().knowledge.clone(),
             edits: chain.edits().clone(),
             by_walls: None,
         }
@@ -106,8 +106,7 @@ impl RoomInput {
             map: map.classified().clone(),
             world_map,
             resolution,
-            knowledge,
-            room_rules: None,
+            knowledge: KnowledgeConfig { enabled: knowledge, ..KnowledgeConfig::default() },
             edits,
             by_walls: None,
         })
@@ -116,24 +115,18 @@ impl RoomInput {
     /// The same input with other room rules (`None`: the built-in ones); they apply when
     /// knowledge supervision is on.
     pub fn with_room_rules(mut self, rules: Option<String>) -> RoomInput {
-        self.room_rules = rules;
+        self.knowledge.room_kb = rules;
         self
     }
 
     /// The training world of the room rules for this input's world, with `truth` the truth
-    /// labels of the map ([`super::room_training::room_training`]).
+    /// labels of the map ([`super::rooms::room_training`]).
     pub fn room_training(
         &self,
         truth: &Grid<u16>,
         rooms: &RoomConfig,
-    ) -> Result<super::room_training::RoomTraining, super::room_training::RoomTrainingError> {
-        super::room_training::room_training(
-            &self.world,
-            &self.map,
-            &self.world_map,
-            truth,
-            &rooms.cells(self.resolution),
-        )
+    ) -> Result<super::rooms::RoomTraining, RoomError> {
+        super::rooms::room_training(&self.world, &self.map, &self.world_map, truth, rooms, self.resolution)
     }
 
     /// The typed best world, without rooms yet.
@@ -143,25 +136,25 @@ impl RoomInput {
 
     /// The same input with its rooms found where the walls part them, in a building that no
     /// wall direction holds most of, with `angles` the other wings' wall directions
-    /// ([`room_layer::explain_rooms_by_walls`], [`super::wings`]).
+    /// ([`Grouping::Walls`], [`super::wings`]).
     pub fn by_walls(mut self, angles: &[f64]) -> RoomInput {
         self.by_walls = Some(angles.to_vec());
         self
     }
 
     /// The world with its room layer and the room labels, as
-    /// [`Chain::best_world_with_rooms`] gives them ([`room_layer::explain_world_rooms`]), or
-    /// by the walls ([`RoomInput::by_walls`]).
-    pub fn explain(self, rooms: &RoomConfig) -> (World, Grid<u16>) {
-        let RoomInput { mut world, map, world_map, resolution, knowledge, room_rules, edits, by_walls } = self;
-        let text = room_rules.as_deref().unwrap_or(room_layer::BUILTIN_ROOM_RULES);
-        let kb = if knowledge { room_layer::RoomKnowledge::parse(text).ok() } else { None };
-        let (w, m, wm, kb) = (&mut world, &map, &world_map, kb.as_ref());
-        let labels = match by_walls {
-            Some(angles) => room_layer::explain_world_rooms_by_walls(w, m, wm, rooms, resolution, kb, &angles),
-            None => room_layer::explain_world_rooms_by(w, m, wm, rooms, resolution, kb, &edits),
+    /// [`Chain::best_world_with_rooms`] gives them ([`RoomLayer::explain`]), or by the walls
+    /// ([`RoomInput::by_walls`]).
+    pub fn explain(self, rooms: &RoomConfig) -> Result<(World, Grid<u16>), RoomError> {
+        let RoomInput { mut world, map, world_map, resolution, knowledge, edits, by_walls } = self;
+        let layer = RoomLayer::new(*rooms, &knowledge)?;
+        let maps = RoomMaps { map: &map, world_map: &world_map, resolution };
+        let grouping = match &by_walls {
+            Some(angles) => Grouping::Walls(angles),
+            None => Grouping::Units(&edits),
         };
-        (world, labels)
+        let labels = layer.explain(&mut world, maps, grouping)?;
+        Ok((world, labels))
     }
 }
 
@@ -273,10 +266,10 @@ pub fn rooms_json(world: &World) -> String {
     serde_json::to_string(&world.rooms).expect("rooms serialise")
 }
 
-/// The type marginals of the rooms ([`super::room_types::room_types`]) as compact JSON: per
+/// The type marginals of the rooms ([`super::rooms::room_types`]) as compact JSON: per
 /// room `{"id", "marginals": {"room", "corridor", "hall", "other"} | null, "units": [{"id",
 /// "type", "marginals"}]}`.
-pub fn room_types_json(rooms: &[super::room_types::RoomTypes]) -> String {
+pub fn room_types_json(rooms: &[super::rooms::RoomTypes]) -> String {
     serde_json::to_string(rooms).expect("room types serialise")
 }
 

@@ -435,8 +435,8 @@ pub struct KnowledgeConfig {
     /// are left to the open world.
     pub kb: Option<String>,
     /// The room rules in the Alchemy format (query `SameRoom`, see
-    /// [`super::room_layer::RoomKnowledge::parse`]); `None` is
-    /// [`super::room_layer::BUILTIN_ROOM_RULES`]. They decide which units are one room when
+    /// [`super::rooms::RoomKnowledge::parse`]); `None` is
+    /// [`super::rooms::BUILTIN_ROOM_RULES`]. They decide which units are one room when
     /// knowledge is on; the chain itself never uses them.
     pub room_kb: Option<String>,
     /// Share of the map's free cells the world must cover before knowledge switches on.
@@ -516,7 +516,10 @@ impl KnowledgeConfig {
             return Err("knowledge: object probabilities must be in (0, 1]".into());
         }
         if let Some(text) = &self.room_kb {
-            super::room_layer::RoomKnowledge::parse(text).map_err(|e| format!("knowledge: room_kb: {e}"))?;
+            // The room rules' own check (they must declare `SameRoom`) is the room layer's
+            // (`rooms::RoomKnowledge::parse`), which reads this configuration: here only that
+            // they are Markov logic, so that a mistake is caught when the settings are read.
+            crate::mln::Mln::parse(text).map_err(|e| format!("knowledge: room_kb: {e}"))?;
         }
         let g = &self.geometry;
         if !(g.hall_area_m2.is_finite()

@@ -20,16 +20,16 @@ pub(crate) mod kernels;
 pub mod knowledge;
 pub mod metrics;
 pub mod online;
-pub mod openings;
+
 pub mod outline;
 pub mod plan_input;
 pub mod posterior;
 pub mod report;
-pub mod room_layer;
-pub mod room_training;
-pub mod room_types;
+
 pub mod rooms;
 pub mod route;
+#[cfg(not(target_arch = "wasm32"))]
+pub mod run;
 mod schedule;
 pub mod settled;
 pub mod shapes;
@@ -38,7 +38,7 @@ pub mod synth;
 pub mod topology;
 mod trace;
 pub mod unexplained;
-pub mod wall_gaps;
+
 pub mod wing_doors;
 pub mod wings;
 pub mod world;

@@ -20,15 +20,16 @@
 //! chain.step(300);
 //! let text = PlanInput::of(&mut chain, 0.5).to_json();
 //! let input = PlanInput::from_json(&text)?;
-//! assert!(input.explain(&s.map, None)? == chain.best_world_with_rooms(&RoomConfig::default()));
+//! assert!(input.explain(&s.map, None)? == chain.best_world_with_rooms(&RoomConfig::default()).unwrap());
 //! # Ok::<(), ksmcmc::floorplan::plan_input::PlanInputError>(())
 //! ```
 
 use super::edits::{self, Edits};
 use super::export::RoomInput;
 use super::knowledge::Inferred;
+use super::knowledge::KnowledgeConfig;
 use super::report::{self, ChainSummary};
-use super::rooms::RoomConfig;
+use super::rooms::{RoomConfig, RoomError, RoomLayer};
 use super::wings::{wing_rotation_deg, WingConfig, WingLayout};
 use super::world::World;
 use super::{Chain, DoorSizes};
@@ -141,7 +142,7 @@ impl PlanInput {
         Edits::parse(&self.edits).map_err(|e| PlanInputError(format!("edits: {e}")))
     }
 
-    /// The inference as [`super::room_types::room_types`] reads it (types from the world).
+    /// The inference as [`super::rooms::room_types`] reads it (types from the world).
     pub fn inferred(&self) -> Option<Inferred> {
         let kind = |id: &u32| self.world.units.iter().find(|u| u.id == *id).map(|u| u.kind).unwrap_or_default();
         let types = self.marginals.as_ref()?.iter().map(|(id, p)| (*id, (kind(id), *p))).collect();
@@ -162,7 +163,8 @@ impl PlanInput {
         let carry = !edits.is_empty();
         let input = RoomInput::for_map(self.world.clone(), map, self.knowledge, edits)
             .map_err(|e| PlanInputError(e.to_string()))?;
-        let (mut world, mut labels) = input.explain(&RoomConfig::default());
+        let (mut world, mut labels) =
+            input.explain(&RoomConfig::default()).map_err(|e| PlanInputError(e.to_string()))?;
         if let Some(previous) = previous.filter(|_| carry) {
             edits::carry_ids(previous, &mut labels, &mut world.rooms);
         }
@@ -190,7 +192,8 @@ impl PlanInput {
         // those: the map turned into the world frame once.
         let input = RoomInput::for_map(self.world.clone(), map, self.knowledge, self.edits()?)
             .map_err(|e| PlanInputError(e.to_string()))?;
-        let (world, labels) = input.clone().explain(&RoomConfig::default());
+        let (world, labels) =
+            input.clone().explain(&RoomConfig::default()).map_err(|e| PlanInputError(e.to_string()))?;
         let layout = self.wing_layout(map, &labels).ok_or_else(|| {
             PlanInputError("wings: this map is explained by one chain (one wall direction, or edits in force)".into())
         })?;
@@ -214,16 +217,18 @@ impl PlanInput {
         }
         let worlds: Vec<World> = wings.iter().map(|w| w.world.clone()).collect();
         let by_walls = move |world: &mut World, others: &[f64]| {
-            let (found, labels) = input.by_walls(others).explain(&RoomConfig::default());
+            let (found, labels) = input.by_walls(others).explain(&RoomConfig::default())?;
             *world = found;
-            labels
+            Ok(labels)
         };
         let doors = self.doors.cells(map.yaml().resolution);
-        let (mut world, labels) = layout.compose(map.classified(), world, labels, &worlds, &doors, by_walls);
-        super::room_layer::mark_world_openings(
+        let room_error = |e: RoomError| PlanInputError(e.to_string());
+        let (mut world, labels) =
+            layout.compose(map.classified(), world, labels, &worlds, &doors, by_walls).map_err(room_error)?;
+        let knowledge = KnowledgeConfig { enabled: self.knowledge, ..KnowledgeConfig::default() };
+        RoomLayer::new(RoomConfig::default(), &knowledge).map_err(room_error)?.mark_openings(
             &mut world,
             map.classified(),
-            &RoomConfig::default(),
             map.yaml().resolution,
         );
         Ok((world, labels))

@@ -39,7 +39,7 @@ pub fn add_rooms(r: &mut serde_json::Value, world: &World, labels: &Grid<u16>) {
     r["room_types"] = serde_json::json!(types);
     // Doors within one room (super::openings): openings, and doors of rooms merged across them.
     r["openings"] = world.doors.iter().filter(|d| d.opening).count().into();
-    r["doors_in_one_room"] = super::openings::doors_in_one_room(world).into();
+    r["doors_in_one_room"] = super::rooms::doors_in_one_room(world).into();
 }
 
 /// [`report`] without `rooms`, which needs the room labels: a caller short of memory can

@@ -34,7 +34,7 @@
 //! the line between their centres.
 
 use super::outline::{self, Polygon};
-use super::room_layer::map_cell;
+use super::rooms::map_cell;
 use super::world::{Door, Frame, FrameGroup, Room, UnitType, World, WorldError};
 use crate::grid::Grid;
 
@@ -141,7 +141,7 @@ impl std::fmt::Display for ShapeError {
 impl std::error::Error for ShapeError {}
 
 /// The shapes of `world`'s rooms and doors, with `labels` the room id of every map cell
-/// (`labels.pgm`, as [`super::room_layer::explain_rooms`] returns it).
+/// (`labels.pgm`, as [`super::rooms::RoomLayer::explain`] returns it).
 ///
 /// ```
 /// use ksmcmc::floorplan::shapes::floor_shapes;

@@ -100,7 +100,7 @@ impl Wings {
     ) -> Result<Wings, ChainError> {
         let mut first = Chain::new(map, config.clone(), seed)?;
         first.step(iterations);
-        let (mut world, mut labels) = first.best_world_with_rooms(rooms);
+        let (mut world, mut labels) = first.best_world_with_rooms(rooms)?;
         let layout = WingLayout::find(map.classified(), &labels, first.frame().angle, wing);
         let Some(layout) = layout.filter(|_| config.detectors.rotation_deg.is_none()) else {
             let wing_of = labels.map(|&l| if l > 0 { 0 } else { NO_REGION });
@@ -116,8 +116,8 @@ impl Wings {
         }
         let by_walls = |world: &mut World, others: &[f64]| first.rooms_by_walls(world, rooms, others);
         let doors = config.doors.cells(map.yaml().resolution);
-        (world, labels) = layout.compose(map.classified(), world, labels, &units, &doors, by_walls);
-        super::room_layer::mark_world_openings(&mut world, map.classified(), rooms, map.yaml().resolution);
+        (world, labels) = layout.compose(map.classified(), world, labels, &units, &doors, by_walls)?;
+        first.room_layer(rooms)?.mark_openings(&mut world, map.classified(), map.yaml().resolution);
         chains.insert(0, first);
         Ok(Wings { chains, wing_of: layout.wing_of, world, labels })
     }
@@ -195,21 +195,22 @@ impl WingLayout {
     /// ([`Chain::rooms_by_walls`], [`super::export::RoomInput::by_walls`]). Passages of free
     /// cells of `map` between units of two wings become doors within `doors`, the chains'
     /// door limits ([`super::wing_doors`]).
-    pub fn compose(
+    /// Fails only where `by_walls` does.
+    pub fn compose<E>(
         &self,
         map: &Grid<Cell>,
         mut world: World,
         mut labels: Grid<u16>,
         wings: &[World],
         doors: &DoorLimits,
-        by_walls: impl FnOnce(&mut World, &[f64]) -> Grid<u16>,
-    ) -> (World, Grid<u16>) {
+        by_walls: impl FnOnce(&mut World, &[f64]) -> Result<Grid<u16>, E>,
+    ) -> Result<(World, Grid<u16>), E> {
         if let Some(others) = self.by_walls() {
-            labels = by_walls(&mut world, others);
+            labels = by_walls(&mut world, others)?;
         }
         let mut world = compose(world, &labels, wings, &self.wing_of);
         super::wing_doors::join_wings(&mut world, map, doors);
-        (world, labels)
+        Ok((world, labels))
     }
 }
 

@@ -285,7 +285,7 @@ impl Learner {
                 parts.push(pseudo_part(&net, &truth, &param_of));
                 continue;
             }
-            let groups = super::infer::UnionFind::groups(&net, |_| true);
+            let groups = super::infer::atom_groups(&net, |_| true);
             if groups.iter().all(|g| g.len() <= config.max_exact_atoms) {
                 parts.extend(groups.iter().map(|atoms| exact_part(&net, &truth, atoms, &param_of, params.len())));
             } else {

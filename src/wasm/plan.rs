@@ -26,7 +26,7 @@ use super::route::ends;
 use crate::floorplan::geojson::world_geojson;
 use crate::floorplan::georef::Georef;
 use crate::floorplan::plan_input::PlanInput;
-use crate::floorplan::room_types::{room_marginals, room_types};
+use crate::floorplan::rooms::{room_marginals, room_types};
 use crate::floorplan::route::RoutePlanner;
 use crate::floorplan::wings::{wing_rotation_deg, WingLayout};
 use crate::floorplan::{export, World};

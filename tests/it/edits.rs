@@ -84,7 +84,7 @@ fn survives(seed: u64, knowledge: bool, split: bool) {
     let mut chain = Chain::new(&s.map, config, 1).unwrap();
     chain.step(20_000);
     let rooms = RoomConfig::default();
-    let (world, labels) = chain.best_world_with_rooms(&rooms);
+    let (world, labels) = chain.best_world_with_rooms(&rooms).unwrap();
     let text = edits_for(&world, &labels, split);
     let edits = Edits::parse(&text).unwrap();
     // The control: the world as it was breaks the edits (else they would test nothing).
@@ -94,11 +94,11 @@ fn survives(seed: u64, knowledge: bool, split: bool) {
     }
     chain.set_edits(edits.clone()).unwrap();
     assert!(chain.check_consistency(), "the bookkeeping holds after removing crossing units");
-    let (world, labels) = chain.best_world_with_rooms(&rooms);
+    let (world, labels) = chain.best_world_with_rooms(&rooms).unwrap();
     assert_eq!(edits.respected_by(&world, &labels, s.map.classified()), Ok(()), "at once: {text}");
     chain.step(20_000);
     assert!(chain.check_consistency());
-    let (world, labels) = chain.best_world_with_rooms(&rooms);
+    let (world, labels) = chain.best_world_with_rooms(&rooms).unwrap();
     let got = edits.respected_by(&world, &labels, s.map.classified());
     assert_eq!(got, Ok(()), "seed {seed}, knowledge {knowledge}, after 20,000 more iterations: {text}");
     let named = world.rooms.iter().filter(|r| r.name.as_deref() == Some("Kitchen")).count();

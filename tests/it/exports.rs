@@ -20,7 +20,7 @@ fn run(map: &OccupancyMap, iterations: u64, georef: Option<&Georef>) -> (World, 
     let input = RoomInput::of(&mut chain);
     let mut summary = report::summary(&chain, map, input.world(), 1.0);
     drop(chain);
-    let (world, labels) = input.explain(&RoomConfig::default());
+    let (world, labels) = input.explain(&RoomConfig::default()).unwrap();
     report::add_rooms(&mut summary, &world, &labels);
     let out = Outputs::new(map, &world, &labels, &summary, trace, georef, &Default::default()).unwrap();
     (world, out)

@@ -71,11 +71,11 @@ fn knowledge_is_on_by_default_and_inference_keeps_to_its_time_share() {
 /// it changes nothing. The rules applied to the rooms themselves give each room its type.
 #[test]
 fn room_type_marginals_follow_the_units_inference() {
-    use ksmcmc::floorplan::room_types::{room_marginals, room_types};
+    use ksmcmc::floorplan::rooms::{room_marginals, room_types};
     let s = generate(&SynthConfig::default(), 201).unwrap();
     let mut chain = Chain::new(&s.map, ChainConfig::default(), 2).unwrap();
     chain.step(20_000);
-    let (world, labels) = chain.best_world_with_rooms(&Default::default());
+    let (world, labels) = chain.best_world_with_rooms(&Default::default()).unwrap();
     let (typed, inferred) = chain.best_world_inferred();
     let inferred = inferred.expect("the built-in rules infer");
     assert_eq!(typed.units, world.units, "the rooms' world is the inferred one");

@@ -21,6 +21,7 @@ mod mln_cli;
 mod model3d;
 mod online;
 mod pinned;
+mod readme;
 mod render;
 mod route;
 mod synth;

@@ -58,7 +58,7 @@ fn world_json(mut map: OccupancyMap, auto_classify: bool) -> String {
     while chain.iteration() < ITERATIONS {
         chain.step((ITERATIONS - chain.iteration()).min(500));
     }
-    chain.best_world_with_rooms(&Default::default()).0.to_json()
+    chain.best_world_with_rooms(&Default::default()).unwrap().0.to_json()
 }
 
 fn check(name: &str, json: &str, pinned: u64) {

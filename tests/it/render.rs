@@ -663,7 +663,7 @@ fn check_labels_on(path: &std::path::Path) {
     let map = OccupancyMap::load(path, &Default::default()).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     let mut chain = Chain::new(&map, ChainConfig::default(), 7).expect("chain");
     chain.step(3000);
-    let (with_rooms, _) = chain.best_world_with_rooms(&RoomConfig::default());
+    let (with_rooms, _) = chain.best_world_with_rooms(&RoomConfig::default()).unwrap();
     let units_only = World { rooms: Vec::new(), ..with_rooms.clone() };
     assert!(with_rooms.units.len() >= 5, "{}: {} units", path.display(), with_rooms.units.len());
     for (world, what) in [(&with_rooms, "rooms"), (&units_only, "units")] {

@@ -1,8 +1,8 @@
 //! Routes through rooms and doors (floorplan::route): valid paths, the rooms and doors they
 //! list, errors, and their length against the shortest free path on generated floors.
 
-use ksmcmc::floorplan::room_layer::explain_world_rooms;
-use ksmcmc::floorplan::rooms::RoomConfig;
+use ksmcmc::floorplan::knowledge::KnowledgeConfig;
+use ksmcmc::floorplan::rooms::{Grouping, RoomConfig, RoomLayer, RoomMaps};
 use ksmcmc::floorplan::route::study::{length, stretch};
 use ksmcmc::floorplan::route::{Planned, Route, RouteError, RoutePlanner};
 use ksmcmc::floorplan::synth::{generate, SynthConfig};
@@ -217,14 +217,19 @@ fn check_routes(
 }
 
 /// Routes on a generated floor's truth world, with its room layer.
+/// The rooms of `world` by the default room layer with knowledge supervision.
+fn rooms_with_knowledge(world: &mut World, maps: RoomMaps) -> Grid<u16> {
+    let layer = RoomLayer::new(RoomConfig::default(), &KnowledgeConfig::default()).unwrap();
+    layer.explain(world, maps, Grouping::Units(&Default::default())).unwrap()
+}
+
 fn routes_on_truth(config: &SynthConfig, seed: u64, pairs: usize) -> (f64, f64) {
     let s = generate(config, seed).unwrap();
     let map = s.map.classified();
     let resolution = s.map.yaml().resolution;
     let mut world = s.truth.clone();
     let world_map = in_frame(map, &world);
-    let labels =
-        explain_world_rooms(&mut world, map, &world_map, &RoomConfig::default(), resolution, true, &Default::default());
+    let labels = rooms_with_knowledge(&mut world, RoomMaps { map, world_map: &world_map, resolution });
     assert!(world.rooms.len() >= 3, "seed {seed}: {} rooms", world.rooms.len());
     check_routes(map, &world, labels, resolution, pairs, seed)
 }
@@ -250,7 +255,7 @@ fn the_stretch_study_measures_what_routes_are_measured_by() {
     let s = generate(&SynthConfig::default(), 5).unwrap();
     let map = s.map.classified();
     let mut world = s.truth.clone();
-    let labels = explain_world_rooms(&mut world, map, map, &RoomConfig::default(), 0.05, true, &Default::default());
+    let labels = rooms_with_knowledge(&mut world, RoomMaps { map, world_map: map, resolution: 0.05 });
     let mut planner = RoutePlanner::new(map.clone(), labels, &world, 0.05).unwrap();
     let st = stretch(&mut planner, 30, 2);
     assert_eq!(st.pairs + st.unreachable, 30);
@@ -274,7 +279,7 @@ fn routes_on_explained_floors_stay_close_to_the_shortest_path() {
         let s = generate(&SynthConfig::default(), seed).unwrap();
         let mut chain = Chain::new(&s.map, ChainConfig::default(), seed).unwrap();
         chain.step(6000);
-        let (world, labels) = chain.best_world_with_rooms(&RoomConfig::default());
+        let (world, labels) = chain.best_world_with_rooms(&RoomConfig::default()).unwrap();
         assert!(world.rooms.len() >= 3, "seed {seed}: {} rooms", world.rooms.len());
         let (mean, max) = check_routes(s.map.classified(), &world, labels, 0.05, 60, seed);
         println!("explained, seed {seed}: ratio mean {mean:.4} max {max:.4}");
@@ -290,14 +295,14 @@ fn saved_labels_are_found_again_only_for_the_worlds_own_rooms() {
     let s = generate(&SynthConfig::default(), 4).unwrap();
     let mut chain = Chain::new(&s.map, ChainConfig::default(), 4).unwrap();
     chain.step(3000);
-    let (mut world, labels) = chain.best_world_with_rooms(&RoomConfig::default());
+    let (mut world, labels) = chain.best_world_with_rooms(&RoomConfig::default()).unwrap();
     assert!(saved_labels(&world, &s.map).unwrap() == labels);
     // Without knowledge supervision the rooms are found by the rule without it: found too.
     let mut config = ChainConfig::default();
     config.knowledge.enabled = false;
     let mut weak = Chain::new(&s.map, config, 4).unwrap();
     weak.step(3000);
-    let (weak_world, weak_labels) = weak.best_world_with_rooms(&RoomConfig::default());
+    let (weak_world, weak_labels) = weak.best_world_with_rooms(&RoomConfig::default()).unwrap();
     assert!(saved_labels(&weak_world, &s.map).unwrap() == weak_labels);
     world.rooms[0].opens_to.push(9999);
     let e = saved_labels(&world, &s.map).unwrap_err();

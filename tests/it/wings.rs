@@ -22,7 +22,7 @@ fn two_wings_are_explained_each_in_its_own_frame() {
         // The segmentation is the one chain's, bit for bit.
         let mut one = Chain::new(&s.map, ChainConfig::default(), 1).unwrap();
         one.step(ITERATIONS);
-        let (single, labels) = one.best_world_with_rooms(&rooms);
+        let (single, labels) = one.best_world_with_rooms(&rooms).unwrap();
         assert!(w.labels == labels, "wing {wing}: the labels differ from the one chain's");
         assert_eq!(w.world.rooms.len(), single.rooms.len());
         // Units upright in each wing explain the map better than one frame's.
@@ -55,7 +55,7 @@ fn a_building_in_one_direction_is_one_chain() {
     assert_eq!(w.chains.len(), 1);
     let mut one = Chain::new(&s.map, ChainConfig::default(), 2).unwrap();
     one.step(3000);
-    let (world, labels) = one.best_world_with_rooms(&rooms);
+    let (world, labels) = one.best_world_with_rooms(&rooms).unwrap();
     assert_eq!(w.world, world);
     assert!(w.labels == labels);
 }
@@ -193,10 +193,10 @@ fn rooms_by_the_walls_are_the_same_from_a_chain_and_from_its_room_input() {
     chain.step(1500);
     let rooms = RoomConfig::default();
     let angles = [30f64.to_radians()];
-    let (mut world, _) = chain.best_world_with_rooms(&rooms);
-    let labels = chain.rooms_by_walls(&mut world, &rooms, &angles);
+    let (mut world, _) = chain.best_world_with_rooms(&rooms).unwrap();
+    let labels = chain.rooms_by_walls(&mut world, &rooms, &angles).unwrap();
     let input = RoomInput::for_map(chain.best_world_typed(), &s.map, true, Default::default()).unwrap();
-    let (other, other_labels) = input.by_walls(&angles).explain(&rooms);
+    let (other, other_labels) = input.by_walls(&angles).explain(&rooms).unwrap();
     assert!(other == world && other_labels == labels);
     assert!(world.rooms.len() > 3, "{} rooms", world.rooms.len());
 }

@@ -1,4 +1,4 @@
-// A person's corrections of the floor plan (README "Correcting a floor plan"), as the page
+// A person's corrections of the floor plan (docs/formats.md, "Correcting a floor plan"), as the page
 // keeps and shows them: the list `Mapper.setEdits` takes, in map cells. The wasm checks the
 // list and holds it as hard evidence; this module only makes edits and words them.
 

@@ -174,7 +174,7 @@ fn bormann_map_variants(dir: &Path, name: &str, o: &Opts, seed: u64) -> Result<V
         let input = RoomInput::of(&mut chain);
         let free = map.classified().map(|&c| c == Cell::Free);
         for (v, (r, rooms)) in rules.iter().enumerate() {
-            let labels = floorplan_labels(&map, input.clone().with_room_rules(r.clone()), rooms);
+            let labels = floorplan_labels(&map, input.clone().with_room_rules(r.clone()), rooms)?;
             out[v].push(MapScore {
                 seg: score_segmentation(&labels, &truth),
                 links: score_links(&labels, &truth, &free),
@@ -186,15 +186,24 @@ fn bormann_map_variants(dir: &Path, name: &str, o: &Opts, seed: u64) -> Result<V
 
 /// The room labels `ksmcmc floorplan` writes for `map` from the chain's `input`: by the
 /// walls where no wall direction holds most of the building (floorplan::wings).
-fn floorplan_labels(map: &OccupancyMap, input: ksmcmc::floorplan::export::RoomInput, rooms: &RoomConfig) -> Grid<u32> {
+fn floorplan_labels(
+    map: &OccupancyMap,
+    input: ksmcmc::floorplan::export::RoomInput,
+    rooms: &RoomConfig,
+) -> Result<Grid<u32>, CliError> {
     use ksmcmc::floorplan::wings::{WingConfig, WingLayout};
-    let (world, labels) = input.clone().explain(rooms);
+    let (world, labels) = input.clone().explain(rooms).map_err(rooms_failed)?;
     let layout = WingLayout::find(map.classified(), &labels, world.frame.angle, &WingConfig::default());
     let labels = match layout.as_ref().and_then(WingLayout::by_walls) {
-        Some(angles) => input.by_walls(angles).explain(rooms).1,
+        Some(angles) => input.by_walls(angles).explain(rooms).map_err(rooms_failed)?.1,
         None => labels,
     };
-    labels.map(|&l| l as u32)
+    Ok(labels.map(|&l| l as u32))
+}
+
+/// The room layer's failure, as the command's error.
+fn rooms_failed(e: ksmcmc::floorplan::rooms::RoomError) -> CliError {
+    args::failed("finding the rooms", e)
 }
 
 /// The cell sizes `scale` reads each benchmark floor at, metres, and how many cells of the
@@ -296,7 +305,7 @@ fn scale(dir: &Path, o: &Opts) -> Result<(), CliError> {
                 );
                 let t0 = std::time::Instant::now();
                 let mut chain = explain(&map, o, 1)?;
-                let labels = floorplan_labels(&map, RoomInput::of(&mut chain), &o.rooms);
+                let labels = floorplan_labels(&map, RoomInput::of(&mut chain), &o.rooms)?;
                 let seconds = t0.elapsed().as_secs_f64();
                 let naive = score_segmentation(&labels_back(&labels, factor, &free, false), &truth);
                 let labels = labels_back(&labels, factor, &free, true);
@@ -329,11 +338,11 @@ fn scale(dir: &Path, o: &Opts) -> Result<(), CliError> {
     Ok(())
 }
 
-/// Doors within one room (floorplan::openings) on the maps in `dir` and generated floors, as
+/// Doors within one room (floorplan::rooms::doors_in_one_room) on the maps in `dir` and generated floors, as
 /// `ksmcmc floorplan` explains them (a chain per wing where the walls follow several
 /// directions), chain seed 1.
 fn doors(dir: &Path, o: &Opts) -> Result<(), CliError> {
-    use ksmcmc::floorplan::openings::doors_in_one_room;
+    use ksmcmc::floorplan::rooms::doors_in_one_room;
     use ksmcmc::floorplan::wings::{WingConfig, Wings};
     let mut maps: Vec<(String, OccupancyMap)> = Vec::new();
     let bormann = dir.join("bormann2016");
@@ -424,7 +433,7 @@ fn format(dir: &Path, o: &Opts) -> Result<(), CliError> {
         let mut labels = Vec::new();
         for map in &maps {
             let mut chain = explain(map, o, 1)?;
-            labels.push(floorplan_labels(map, RoomInput::of(&mut chain), &o.rooms));
+            labels.push(floorplan_labels(map, RoomInput::of(&mut chain), &o.rooms)?);
         }
         let equal = labels.iter().all(|l| *l == labels[0]);
         same += equal as usize;
@@ -686,7 +695,7 @@ fn synthetic(o: &Opts) -> Result<(), CliError> {
             let world = chain.best_world();
             ks.push(prediction_rate(s.map.classified(), &world));
             furniture.push(s.truth.object_cells.len() as f64 / s.map.classified().cells().len() as f64);
-            let (_, labels) = chain.best_world_with_rooms(&o.rooms);
+            let (_, labels) = chain.best_world_with_rooms(&o.rooms).map_err(rooms_failed)?;
             let labels = labels.map(|&l| l as u32);
             let truth: Grid<u32> = s.labels.map(|&l| l as u32);
             let score = score_segmentation(&labels, &truth);
@@ -736,7 +745,7 @@ fn wings(dir: &Path, o: &Opts) -> Result<(), CliError> {
     for (name, map) in maps {
         let t0 = std::time::Instant::now();
         let mut one = explain(&map, o, 1)?;
-        let k_one = prediction_rate(map.classified(), &one.best_world_with_rooms(&o.rooms).0);
+        let k_one = prediction_rate(map.classified(), &one.best_world_with_rooms(&o.rooms).map_err(rooms_failed)?.0);
         let t_one = t0.elapsed().as_secs_f64();
         let t0 = std::time::Instant::now();
         let w = Wings::run(&map, &o.config, &WingConfig::default(), 1, o.iterations, &o.rooms)
@@ -898,7 +907,7 @@ fn room_kinds() -> Vec<(&'static str, SynthConfig)> {
 fn room_truth(s: &ksmcmc::floorplan::synth::Synthetic, o: &Opts, seed: u64) -> Result<[usize; 4], CliError> {
     use std::collections::BTreeMap;
     let mut chain = explain(&s.map, o, seed)?;
-    let (world, labels) = chain.best_world_with_rooms(&o.rooms);
+    let (world, labels) = chain.best_world_with_rooms(&o.rooms).map_err(rooms_failed)?;
     // Cells of each (truth unit index + 1, predicted room) pair.
     let mut overlap: BTreeMap<(u16, u16), u64> = BTreeMap::new();
     for (&t, &p) in s.labels.cells().iter().zip(labels.cells()) {
@@ -978,7 +987,7 @@ fn routes(o: &Opts) -> Result<(), CliError> {
         for seed in 0..o.seeds {
             let s = generate(&synth, 300 + seed).map_err(|e| args::failed(name, e))?;
             let mut chain = explain(&s.map, o, seed + 1)?;
-            let (world, labels) = chain.best_world_with_rooms(&o.rooms);
+            let (world, labels) = chain.best_world_with_rooms(&o.rooms).map_err(rooms_failed)?;
             let map = s.map.classified().clone();
             let mut planner =
                 RoutePlanner::new(map, labels, &world, s.map.yaml().resolution).map_err(|e| args::failed(name, e))?;
@@ -1018,7 +1027,7 @@ fn cartesium(dir: &Path, o: &Opts) -> Result<(), CliError> {
     for seed in 1..=o.seeds {
         let mut chain = explain(&auto, o, seed)?;
         let k = prediction_rate(auto.classified(), &chain.best_world());
-        rooms.push((k, chain.best_world_with_rooms(&o.rooms).0.rooms));
+        rooms.push((k, chain.best_world_with_rooms(&o.rooms).map_err(rooms_failed)?.0.rooms));
     }
     let min = ks.iter().cloned().fold(f64::INFINITY, f64::min);
     let max = ks.iter().cloned().fold(0.0, f64::max);

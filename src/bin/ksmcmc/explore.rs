@@ -83,7 +83,7 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     let cold_k = metrics::prediction_rate(truth.classified(), &cold.best_world());
     let snapshot = run.explorer.snapshot();
     let input = export::RoomInput::of(&mut run.chain);
-    let (world, labels) = input.explain(&RoomConfig::default());
+    let (world, labels) = input.explain(&RoomConfig::default()).map_err(|e| args::failed("finding the rooms", e))?;
     let k = metrics::prediction_rate(snapshot.classified(), &world);
     let report = serde_json::json!({
         "map": o.map.display().to_string(),

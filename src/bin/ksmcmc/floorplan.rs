@@ -2,10 +2,9 @@
 
 use crate::args::{self, CliError};
 use ksmcmc::floorplan::georef::Georef;
-use ksmcmc::floorplan::rooms::RoomConfig;
+use ksmcmc::floorplan::run::{Run, RunOptions};
 use ksmcmc::floorplan::settled::{self, Settled};
-use ksmcmc::floorplan::wings::{WingConfig, Wings};
-use ksmcmc::floorplan::{export, metrics, Chain, ChainConfig};
+use ksmcmc::floorplan::{export, metrics, Chain, ChainConfig, ChainError};
 use ksmcmc::grid::Cell;
 use ksmcmc::render::model3d::Model3dOptions;
 use std::ffi::OsString;
@@ -59,7 +58,7 @@ Options:
   --edits FILE       a person's corrections as hard evidence: a JSON list of merges
                      (the rooms at two points are one), splits (a wall runs along a line),
                      types and names of the room at a point, in map cells (column, row);
-                     see the README's \"Correcting a floor plan\"
+                     see docs/formats.md, \"Correcting a floor plan\"
   --wall-height M    height of the walls in world.glb, metres (default 2.5)
   --door-height M    height of the door openings in world.glb, metres (default 2.0; at most
                      the wall height)
@@ -103,15 +102,24 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     let config = chain_config(&o)?;
     let map = args::at_resolution(args::load_classified(&o.map, &o.classify)?, &o.map, o.resolution);
     let region = load_region(&o, &map)?;
-    let t0 = Instant::now();
-    // A chain per wing where the walls follow several directions, unless a setting asks for
-    // what only the one chain does so far.
-    if o.wings && o.edits.is_none() && !o.until_settled && o.time_limit.is_none() && o.rotation.is_none() {
-        return run_wings(&o, &map, &config, region.as_ref(), t0);
+    let edits = o.edits.as_deref().map(load_edits).transpose()?;
+    // A failure names the file at fault: the edits where they do not fit the map.
+    let failed = |e: ChainError| match (&e, &o.edits) {
+        (ChainError::Edits(_), Some(path)) => args::failed(path.display(), e),
+        _ => args::failed(o.map.display(), e),
+    };
+    // The run of the library (a chain per wing where the walls follow several directions),
+    // unless a setting asks for what only the one chain does so far: stopping by a time
+    // limit or the settle rule.
+    if !o.until_settled && o.time_limit.is_none() {
+        let wings = o.wings && o.rotation.is_none();
+        let options = RunOptions { seed: o.seed, iterations: o.iterations, config, edits, wings };
+        return write_run(&o, &map, ksmcmc::floorplan::run::run(&map, &options).map_err(failed)?, region.as_ref());
     }
-    let mut chain = Chain::new(&map, config, o.seed).map_err(|e| args::failed(o.map.display(), e))?;
-    if let Some(path) = &o.edits {
-        chain.set_edits(load_edits(path)?).map_err(|e| args::failed(path.display(), e))?;
+    let t0 = Instant::now();
+    let mut chain = Chain::new(&map, config, o.seed).map_err(failed)?;
+    if let Some(edits) = edits {
+        chain.set_edits(edits).map_err(failed)?;
     }
     let deadline = o.time_limit.map(|t| t0 + std::time::Duration::from_secs_f64(t));
     let mut settled = Settled::for_map(map.count(Cell::Free));
@@ -123,48 +131,27 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
         let n = (o.iterations - chain.iteration()).min(chunk);
         settled.step(&mut chain, n);
     }
-    let seconds = t0.elapsed().as_secs_f64();
-    let trace = export::trace_csv(chain.trace());
-    let input = export::RoomInput::of(&mut chain);
-    let mut report = ksmcmc::floorplan::report::summary(&chain, &map, input.world(), seconds);
-    let iterations_done = chain.iteration();
-    // The room labels need the best world and the world-frame map, not the chain's tables:
-    // free those first (tens of MB on a large map) to keep the run's peak memory down.
-    drop(chain);
-    let (world, labels) = input.explain(&RoomConfig::default());
-    ksmcmc::floorplan::report::add_rooms(&mut report, &world, &labels);
+    let mut result = Run::of_chain(chain, &map, t0.elapsed().as_secs_f64()).map_err(failed)?;
     if o.until_settled {
-        report["settled_at"] = serde_json::json!(settled.settled_at());
+        result.report["settled_at"] = serde_json::json!(settled.settled_at());
     }
-    let run = Run { world: &world, labels: &labels, report, trace, iterations: iterations_done, seconds };
-    write_run(&o, &map, run, region.as_ref(), None)
-}
-
-/// What a run found, for [`write_run`].
-struct Run<'a> {
-    world: &'a ksmcmc::floorplan::World,
-    labels: &'a ksmcmc::grid::Grid<u16>,
-    report: serde_json::Value,
-    trace: String,
-    iterations: u64,
-    seconds: f64,
+    write_run(&o, &map, result, region.as_ref())
 }
 
 /// Writes the run's nine files to `o.out` and prints its summary line (with the number of
-/// `wings`, when there were several) and the note on several wall directions.
+/// wings, when there were several) and the note on several wall directions.
 fn write_run(
     o: &Opts,
     map: &ksmcmc::grid::OccupancyMap,
     run: Run,
     region: Option<&ksmcmc::grid::Grid<bool>>,
-    wings: Option<usize>,
 ) -> Result<(), CliError> {
-    let Run { world, labels, mut report, trace, iterations, seconds } = run;
+    let Run { world, labels, mut report, trace, iterations, seconds, wings } = run;
     report["map"] = o.map.display().to_string().into();
     report["cell_prediction_rate_region"] =
-        region.map(|r| metrics::prediction_rate_in(map.classified(), world, Some(r))).into();
+        region.map(|r| metrics::prediction_rate_in(map.classified(), &world, Some(r))).into();
     let k = report["cell_prediction_rate"].as_f64().unwrap_or(0.0);
-    let outputs = export::Outputs::new(map, world, labels, &report, trace, o.georef.as_ref(), &o.model)
+    let outputs = export::Outputs::new(map, &world, &labels, &report, trace, o.georef.as_ref(), &o.model)
         .map_err(|e| args::failed(o.out.display(), e))?;
     for (name, bytes) in outputs.files() {
         args::write(&o.out.join(name), bytes)?;
@@ -183,31 +170,6 @@ fn write_run(
         eprintln!("{note}");
     }
     Ok(())
-}
-
-/// `--wings` on a map whose walls follow several directions: a chain per wing, one world of
-/// units at several angles ([`ksmcmc::floorplan::wings`]).
-fn run_wings(
-    o: &Opts,
-    map: &ksmcmc::grid::OccupancyMap,
-    config: &ChainConfig,
-    region: Option<&ksmcmc::grid::Grid<bool>>,
-    t0: Instant,
-) -> Result<(), CliError> {
-    let wings = Wings::run(map, config, &WingConfig::default(), o.seed, o.iterations, &RoomConfig::default())
-        .map_err(|e| args::failed(o.map.display(), e))?;
-    let seconds = t0.elapsed().as_secs_f64();
-    let trace = export::trace_csv(wings.chains[0].trace());
-    let (world, labels) = (&wings.world, &wings.labels);
-    let mut report = ksmcmc::floorplan::report::summary(&wings.chains[0], map, world, seconds);
-    ksmcmc::floorplan::report::add_rooms(&mut report, world, labels);
-    let summaries: Vec<_> =
-        wings.chains[1..].iter().map(|c| ksmcmc::floorplan::report::ChainSummary::of(c, seconds)).collect();
-    ksmcmc::floorplan::report::add_wings(&mut report, world, &summaries, seconds);
-    let iterations = report["iterations"].as_u64().unwrap_or(0);
-    let several = summaries.len() > 1;
-    let run = Run { world, labels, report, trace, iterations, seconds };
-    write_run(o, map, run, region, several.then(|| wings.chains.len() - 1))
 }
 
 /// Parses and checks the arguments; `None` when `--help` was answered.
@@ -316,7 +278,7 @@ fn chain_config(o: &Opts) -> Result<ChainConfig, CliError> {
 /// The room rules of `--room-rules`, parsed now so that a broken file is named.
 pub fn room_rules(path: &std::path::Path) -> Result<String, CliError> {
     let text = std::fs::read_to_string(path).map_err(|e| args::failed(path.display(), e))?;
-    ksmcmc::floorplan::room_layer::RoomKnowledge::parse(&text).map_err(|e| args::failed(path.display(), e))?;
+    ksmcmc::floorplan::rooms::RoomKnowledge::parse(&text).map_err(|e| args::failed(path.display(), e))?;
     Ok(text)
 }
 

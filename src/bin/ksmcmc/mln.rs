@@ -366,7 +366,7 @@ fn progress(learned: &ksmcmc::mln::Learned, config: &LearnConfig) -> String {
 /// `mln evidence --rooms`: the room layer's evidence of a chain's world (and with
 /// --truth-labels the SameRoom atoms).
 fn room_evidence(o: &Options) -> Result<(), CliError> {
-    use ksmcmc::floorplan::{export::RoomInput, room_training, rooms::RoomConfig};
+    use ksmcmc::floorplan::{export::RoomInput, rooms};
     if o.truth || o.resolution.is_some() {
         return Err(CliError::Usage(
             "mln evidence --rooms takes --truth-labels, not --truth, and the map itself (--map), not --resolution"
@@ -383,13 +383,13 @@ fn room_evidence(o: &Options) -> Result<(), CliError> {
     let truth = match &o.truth_labels {
         Some(p) => {
             let bytes = std::fs::read(p).map_err(|e| args::failed(p.display(), e))?;
-            room_training::truth_labels_from_pgm(&bytes).map_err(|e| args::failed(p.display(), e))?
+            rooms::truth_labels_from_pgm(&bytes).map_err(|e| args::failed(p.display(), e))?
         }
         // Without truth no unit lies in a truth room: the SameRoom atoms are dropped below.
         None => ksmcmc::grid::Grid::new(map.width(), map.height(), 0),
     };
     let t = input
-        .room_training(&truth, &RoomConfig::default())
+        .room_training(&truth, &rooms::RoomConfig::default())
         .map_err(|e| args::failed(o.truth_labels.as_ref().map_or(world_path.display(), |p| p.display()), e))?;
     let mut facts = t.facts;
     if o.truth_labels.is_none() {

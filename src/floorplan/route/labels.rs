@@ -2,8 +2,8 @@
 //!
 //! Rooms are regions of the label image, which `ksmcmc floorplan` writes as `labels.pgm`
 //! beside `world.json`. Without that file the labels are found again from the map and the
-//! world's units and doors, exactly as the run found them ([`crate::floorplan::room_layer`], through [`RoomInput::for_map`]): with the built-in
-//! room rules (knowledge supervision, the default) or without. The result is used only if its
+//! world's units and doors, exactly as the run found them ([`crate::floorplan::rooms::RoomLayer`], through [`RoomInput::for_map`]): with the
+//! built-in room rules (knowledge supervision, the default) or without. The result is used only if its
 //! rooms are the world's own (ids, types, units, doors and the rooms each opens to), so a route
 //! never names rooms the world does not have; otherwise the caller is told to pass the run's
 //! `labels.pgm`.
@@ -25,7 +25,7 @@ use crate::grid::{Grid, OccupancyMap};
 /// let s = synth::generate(&synth::SynthConfig { width: 160, height: 120, ..Default::default() }, 3).unwrap();
 /// let mut chain = Chain::new(&s.map, ChainConfig::default(), 1).unwrap();
 /// chain.step(300);
-/// let (world, labels) = chain.best_world_with_rooms(&RoomConfig::default());
+/// let (world, labels) = chain.best_world_with_rooms(&RoomConfig::default()).unwrap();
 /// assert!(saved_labels(&world, &s.map).unwrap() == labels);
 /// ```
 pub fn saved_labels(world: &World, map: &OccupancyMap) -> Result<Grid<u16>, RouteError> {
@@ -33,7 +33,7 @@ pub fn saved_labels(world: &World, map: &OccupancyMap) -> Result<Grid<u16>, Rout
     for knowledge in [true, false] {
         let input = RoomInput::for_map(bare.clone(), map, knowledge, Default::default())
             .map_err(|e| RouteError::Mismatch(e.to_string()))?;
-        let (found, labels) = input.explain(&RoomConfig::default());
+        let (found, labels) = input.explain(&RoomConfig::default()).map_err(|e| RouteError::Mismatch(e.to_string()))?;
         if world.rooms.is_empty() || same_rooms(&found.rooms, &world.rooms) {
             return Ok(labels);
         }

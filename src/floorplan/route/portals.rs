@@ -61,14 +61,7 @@ pub fn portals(labels: &Grid<u16>, linked: &dyn Fn(u16, u16) -> bool) -> Vec<Por
 /// are 8-neighbours (or the same cell) belong together. Each passage lists contact indices in
 /// increasing order; passages come in the order of their first contact.
 fn passages(contacts: &[(u32, u32)], w: usize) -> Vec<Vec<usize>> {
-    let mut parent: Vec<usize> = (0..contacts.len()).collect();
-    fn find(p: &mut [usize], mut i: usize) -> usize {
-        while p[i] != i {
-            p[i] = p[p[i]];
-            i = p[i];
-        }
-        i
-    }
+    let mut sets = crate::union_find::UnionFind::new(contacts.len());
     for side in 0..2 {
         let cell = |k: usize| if side == 0 { contacts[k].0 } else { contacts[k].1 };
         let mut first: HashMap<u32, usize> = HashMap::new();
@@ -85,10 +78,7 @@ fn passages(contacts: &[(u32, u32)], w: usize) -> Vec<Vec<usize>> {
                     }
                     let n = c + dy * w + dx;
                     if let Some(&other) = u32::try_from(n).ok().and_then(|n| first.get(&n)) {
-                        let (ra, rb) = (find(&mut parent, k), find(&mut parent, other));
-                        if ra != rb {
-                            parent[ra.max(rb)] = ra.min(rb);
-                        }
+                        sets.union(k, other);
                     }
                 }
             }
@@ -96,7 +86,7 @@ fn passages(contacts: &[(u32, u32)], w: usize) -> Vec<Vec<usize>> {
     }
     let mut groups: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
     for k in 0..contacts.len() {
-        let r = find(&mut parent, k);
+        let r = sets.find(k);
         groups.entry(r).or_default().push(k);
     }
     groups.into_values().collect()

@@ -34,11 +34,14 @@ pub struct Stretch {
 ///
 /// ```
 /// use ksmcmc::floorplan::route::{study::stretch, RoutePlanner};
-/// use ksmcmc::floorplan::{rooms::RoomConfig, room_layer, synth};
+/// use ksmcmc::floorplan::rooms::{Grouping, RoomConfig, RoomLayer, RoomMaps};
+/// use ksmcmc::floorplan::{knowledge::KnowledgeConfig, synth};
 /// let s = synth::generate(&synth::SynthConfig { width: 160, height: 120, ..Default::default() }, 3).unwrap();
 /// let mut world = s.truth.clone();
 /// let m = s.map.classified();
-/// let labels = room_layer::explain_world_rooms(&mut world, m, m, &RoomConfig::default(), 0.05, true, &Default::default());
+/// let layer = RoomLayer::new(RoomConfig::default(), &KnowledgeConfig::default()).unwrap();
+/// let maps = RoomMaps { map: m, world_map: m, resolution: 0.05 };
+/// let labels = layer.explain(&mut world, maps, Grouping::Units(&Default::default())).unwrap();
 /// let mut planner = RoutePlanner::new(m.clone(), labels, &world, 0.05).unwrap();
 /// let st = stretch(&mut planner, 20, 1);
 /// assert_eq!(st.pairs + st.unreachable, 20);

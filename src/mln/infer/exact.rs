@@ -9,12 +9,12 @@
 //! the second sums the weights. An atom's true mass is summed a whole run at a time: its value
 //! only changes when it flips, so the mass of a run is the difference of two running totals.
 
-use super::{unsatisfiable, Counts, UnionFind, NO_WORLD};
+use super::{atom_groups, unsatisfiable, Counts, NO_WORLD};
 use crate::mln::error::{ErrorKind, MlnError};
 use crate::mln::ground::Network;
 
 fn components(net: &Network, limit: usize) -> Result<Vec<Vec<u32>>, MlnError> {
-    let groups = UnionFind::groups(net, |_| true);
+    let groups = atom_groups(net, |_| true);
     let largest = groups.iter().map(Vec::len).max().unwrap_or(0);
     if largest > limit || largest > 30 {
         return Err(MlnError::new(ErrorKind::TooManyUnknownAtoms { atoms: largest, limit }, None));

@@ -493,7 +493,7 @@ pub(crate) fn satisfy_hard(net: &Network, flips: u64, rng: &mut Rng) -> Result<V
 /// `max_block` atoms stay together, larger groups are split into single atoms.
 pub(crate) fn hard_blocks(net: &Network, max_block: usize) -> Vec<Vec<u32>> {
     let mut blocks = Vec::new();
-    for g in UnionFind::groups(net, |f| net.feature_weight[f].is_infinite()) {
+    for g in atom_groups(net, |f| net.feature_weight[f].is_infinite()) {
         if g.len() <= max_block.max(1) {
             blocks.push(g);
         } else {
@@ -503,61 +503,36 @@ pub(crate) fn hard_blocks(net: &Network, max_block: usize) -> Vec<Vec<u32>> {
     blocks
 }
 
-/// Disjoint-set forest over atoms.
-pub(crate) struct UnionFind(Vec<u32>);
-
-impl UnionFind {
-    pub fn new(n: usize) -> Self {
-        UnionFind((0..n as u32).collect())
-    }
-
-    pub fn find(&mut self, mut a: u32) -> u32 {
-        while self.0[a as usize] != a {
-            let p = self.0[a as usize];
-            self.0[a as usize] = self.0[p as usize];
-            a = p;
-        }
-        a
-    }
-
-    pub fn union(&mut self, a: u32, b: u32) {
-        let (ra, rb) = (self.find(a), self.find(b));
-        if ra != rb {
-            // The smaller root wins, so groups are numbered by their first atom.
-            let (lo, hi) = if ra < rb { (ra, rb) } else { (rb, ra) };
-            self.0[hi as usize] = lo;
-        }
-    }
-
-    /// Groups of atoms, each sorted, ordered by their first atom; only features passing
-    /// `include` tie their atoms together.
-    pub fn groups(net: &Network, include: impl Fn(usize) -> bool) -> Vec<Vec<u32>> {
-        let n = net.atom_count();
-        let mut uf = UnionFind::new(n);
-        for f in (0..net.feature_count()).filter(|&f| include(f)) {
-            let mut first = None;
-            for c in net.clauses_of(f) {
-                for &l in net.clause_lits(c) {
-                    let a = l >> 1;
-                    match first {
-                        None => first = Some(a),
-                        Some(b) => uf.union(a, b),
+/// Groups of atoms, each sorted, ordered by their first atom; only features passing
+/// `include` tie their atoms together.
+pub(crate) fn atom_groups(net: &Network, include: impl Fn(usize) -> bool) -> Vec<Vec<u32>> {
+    let n = net.atom_count();
+    let mut uf = crate::union_find::UnionFind::new(n);
+    for f in (0..net.feature_count()).filter(|&f| include(f)) {
+        let mut first = None;
+        for c in net.clauses_of(f) {
+            for &l in net.clause_lits(c) {
+                let a = l >> 1;
+                match first {
+                    None => first = Some(a),
+                    Some(b) => {
+                        uf.union(a as usize, b as usize);
                     }
                 }
             }
         }
-        let mut index = vec![u32::MAX; n];
-        let mut groups: Vec<Vec<u32>> = Vec::new();
-        for a in 0..n as u32 {
-            let r = uf.find(a) as usize;
-            if index[r] == u32::MAX {
-                index[r] = groups.len() as u32;
-                groups.push(Vec::new());
-            }
-            groups[index[r] as usize].push(a);
-        }
-        groups
     }
+    let mut index = vec![u32::MAX; n];
+    let mut groups: Vec<Vec<u32>> = Vec::new();
+    for a in 0..n as u32 {
+        let r = uf.find(a as usize);
+        if index[r] == u32::MAX {
+            index[r] = groups.len() as u32;
+            groups.push(Vec::new());
+        }
+        groups[index[r] as usize].push(a);
+    }
+    groups
 }
 
 pub(crate) const NO_WORLD: &str = "no world satisfies the hard formulas given the evidence";

@@ -1,7 +1,7 @@
 //! Training worlds for the room rules: the evidence the room layer gives the rules about a
 //! chain's world, with the `SameRoom` answer a person's drawing gives.
 //!
-//! The room rules (`samples/knowledge/rooms.mln`, [`super::room_layer::RoomKnowledge`]) decide
+//! The room rules (`samples/knowledge/rooms.mln`, [`super::RoomKnowledge`]) decide
 //! which units with no wall between them are one room. Their weights can be learned
 //! (`ksmcmc mln learn`) only from worlds like those they judge: the chain's, with its seams,
 //! slivers and rectangles across slanted rooms, not the synthetic truth, whose units are
@@ -13,10 +13,14 @@
 //! (a sliver over a wall, or over space the truth leaves unlabelled) lies in none, and is one
 //! room with no neighbour.
 
-use super::knowledge::{constant, Fact};
-use super::room_layer::{mark_closed, room_evidence, unit_rooms};
-use super::rooms::{open_pairs, RoomCells};
-use super::world::World;
+use super::config::RoomConfig;
+use super::error::RoomError;
+use super::knowledge::room_evidence;
+use super::layer::mark_closed;
+use super::pairs::open_pairs;
+use super::read::unit_rooms;
+use crate::floorplan::knowledge::{constant, Fact};
+use crate::floorplan::world::World;
 use crate::grid::{Cell, Grid};
 use std::collections::BTreeMap;
 
@@ -24,7 +28,7 @@ use std::collections::BTreeMap;
 #[derive(Debug, Clone, PartialEq)]
 pub struct RoomTraining {
     /// The evidence ([`room_evidence`]) and every `SameRoom` atom of the world's units, true
-    /// or false; [`super::knowledge::database_text`] writes the true ones (the rest are false
+    /// or false; [`crate::floorplan::knowledge::database_text`] writes the true ones (the rest are false
     /// by the closed world of training databases).
     pub facts: Vec<Fact>,
     /// Per unit of the world (in order), the truth room it lies in (its truth label), if any.
@@ -35,27 +39,14 @@ pub struct RoomTraining {
     pub same_room: usize,
 }
 
-/// Why a training world cannot be made.
-#[derive(Debug, Clone, PartialEq)]
-pub struct RoomTrainingError(pub String);
-
-impl std::fmt::Display for RoomTrainingError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(&self.0)
-    }
-}
-
-impl std::error::Error for RoomTrainingError {}
-
-/// The training world of `world`, a chain's typed world (as [`super::Chain::best_world_typed`]
+/// The training world of `world`, a chain's typed world (as [`crate::floorplan::Chain::best_world_typed`]
 /// gives it), with `world_map` the classified map in the world frame and `truth` the truth
 /// labels in the map's frame (per map cell the truth room's id, 0 for none: the
 /// `truth_labels.pgm` of `ksmcmc synth`). Refused if the grids are not the sizes the world's
-/// frame gives.
+/// frame gives. `rooms` are the room layer's settings, `resolution` the map's metres per cell.
 ///
 /// ```
-/// use ksmcmc::floorplan::room_training::room_training;
-/// use ksmcmc::floorplan::rooms::RoomCells;
+/// use ksmcmc::floorplan::rooms::{room_training, RoomConfig};
 /// use ksmcmc::floorplan::{Unit, UnitType, World};
 /// use ksmcmc::grid::{Cell, Grid};
 ///
@@ -66,22 +57,24 @@ impl std::error::Error for RoomTrainingError {}
 /// for (id, x) in [(1, 0), (2, 40)] {
 ///     world.units.push(Unit::new(id, x, 0, 40, 40, UnitType::Room));
 /// }
-/// let t = room_training(&world, &map, &map, &truth, &RoomCells::default())?;
+/// let t = room_training(&world, &map, &map, &truth, &RoomConfig::default(), 0.05)?;
 /// assert_eq!((t.open_pairs, t.same_room), (1, 1));
 /// assert!(t.facts.contains(&("SameRoom", vec!["U1".to_string(), "U2".to_string()], true)));
-/// # Ok::<(), ksmcmc::floorplan::room_training::RoomTrainingError>(())
+/// # Ok::<(), ksmcmc::floorplan::rooms::RoomError>(())
 /// ```
 pub fn room_training(
     world: &World,
     map: &Grid<Cell>,
     world_map: &Grid<Cell>,
     truth: &Grid<u16>,
-    c: &RoomCells,
-) -> Result<RoomTraining, RoomTrainingError> {
-    world.require_one_direction("learning which units are one room").map_err(|e| RoomTrainingError(e.to_string()))?;
+    rooms: &RoomConfig,
+    resolution: f64,
+) -> Result<RoomTraining, RoomError> {
+    let c = &rooms.cells(resolution);
+    world.require_one_direction("learning which units are one room").map_err(|e| RoomError::training(e.to_string()))?;
     let size = |g: (usize, usize)| [g.0 as u32, g.1 as u32];
     if size((truth.width(), truth.height())) != world.frame.map_size {
-        return Err(RoomTrainingError(format!(
+        return Err(RoomError::training(format!(
             "the truth labels are {}x{} cells, but the world explains a {}x{} map (frame.map_size): they \
              belong to another map",
             truth.width(),
@@ -91,7 +84,7 @@ pub fn room_training(
         )));
     }
     if size((world_map.width(), world_map.height())) != world.frame.world_size {
-        return Err(RoomTrainingError(format!(
+        return Err(RoomError::training(format!(
             "the world-frame map is {}x{} cells, but the world's frame.world_size is {}x{}",
             world_map.width(),
             world_map.height(),
@@ -123,16 +116,16 @@ pub fn room_training(
 /// share a value matters, so an 8-bit image's scaled values do as well.
 ///
 /// ```
-/// use ksmcmc::floorplan::room_training::truth_labels_from_pgm;
+/// use ksmcmc::floorplan::rooms::truth_labels_from_pgm;
 /// let labels = truth_labels_from_pgm(b"P2\n2 1\n65535\n0 7\n")?;
 /// assert_eq!(labels.cells(), &[0, 7]);
 /// assert!(truth_labels_from_pgm(b"P6\n").is_err());
-/// # Ok::<(), ksmcmc::floorplan::room_training::RoomTrainingError>(())
+/// # Ok::<(), ksmcmc::floorplan::rooms::RoomError>(())
 /// ```
-pub fn truth_labels_from_pgm(bytes: &[u8]) -> Result<Grid<u16>, RoomTrainingError> {
+pub fn truth_labels_from_pgm(bytes: &[u8]) -> Result<Grid<u16>, RoomError> {
     crate::grid::pgm::decode(bytes, &Default::default())
         .map(|r| r.gray)
-        .map_err(|e| RoomTrainingError(format!("truth labels: {e} (expected a PGM such as truth_labels.pgm)")))
+        .map_err(|e| RoomError::training(format!("truth labels: {e} (expected a PGM such as truth_labels.pgm)")))
 }
 
 #[cfg(test)]
@@ -167,8 +160,8 @@ mod tests {
     #[test]
     fn two_units_of_one_truth_room_are_one_room_and_the_corridor_is_apart() {
         let (map, truth, world) = office_off_a_corridor();
-        let c = RoomCells { door_half_width: 0, ..RoomCells::default() };
-        let t = room_training(&world, &map, &map, &truth, &c).unwrap();
+        let c = RoomConfig { door_half_width_m: 0.0, ..RoomConfig::default() };
+        let t = room_training(&world, &map, &map, &truth, &c, 0.05).unwrap();
         assert_eq!(t.truth_rooms, vec![Some(1), Some(2), Some(2)]);
         assert_eq!(t.open_pairs, 3, "{:?}", t.facts);
         assert_eq!(t.same_room, 1);
@@ -190,8 +183,8 @@ mod tests {
                 *truth.at_mut(x, y) = 0;
             }
         }
-        let t = room_training(&world, &map, &map, &truth, &RoomCells { door_half_width: 0, ..RoomCells::default() })
-            .unwrap();
+        let c = RoomConfig { door_half_width_m: 0.0, ..RoomConfig::default() };
+        let t = room_training(&world, &map, &map, &truth, &c, 0.05).unwrap();
         assert_eq!(t.truth_rooms[2], None);
         assert!(!same_room(&t, "U2", "U3"));
         assert_eq!(t.same_room, 0);
@@ -201,9 +194,10 @@ mod tests {
     fn grids_of_another_map_are_refused() {
         let (map, truth, world) = office_off_a_corridor();
         let small = Grid::new(100, 100, 1u16);
-        let e = room_training(&world, &map, &map, &small, &RoomCells::default()).unwrap_err();
+        let e = room_training(&world, &map, &map, &small, &RoomConfig::default(), 0.05).unwrap_err();
         assert!(e.to_string().contains("truth labels are 100x100"), "{e}");
-        let e = room_training(&world, &map, &Grid::new(20, 20, Cell::Free), &truth, &RoomCells::default()).unwrap_err();
+        let e = room_training(&world, &map, &Grid::new(20, 20, Cell::Free), &truth, &RoomConfig::default(), 0.05)
+            .unwrap_err();
         assert!(e.to_string().contains("world-frame map is 20x20"), "{e}");
     }
 }

@@ -22,36 +22,21 @@
 //!   [`RoomCells::min_wall_len`] long are no walls (a wall's parts join through the unseen
 //!   cells beside them, so a wall a scan saw in pieces is still one wall).
 //!
-//! The gaps are drawn into a copy of the map as occupied cells ([`close_wall_gaps`]), and the
+//! The gaps are drawn into a copy of the map as occupied cells ([`close_wall_gaps_along`]), and the
 //! room layer splits a room whose cells the gaps part into two or more parts of a room core's
-//! size ([`super::rooms::split_at_wall_gaps`]); a gap that closes nothing changes nothing.
+//! size ([`super::segments::split_at_wall_gaps`]); a gap that closes nothing changes nothing.
 //! The gaps never reach the chain, its likelihood or K(W,M): they are a reading of the walls,
 //! not an observation.
 
-use super::rooms::{frame_cell, RoomCells};
-use super::world::World;
+use super::config::RoomCells;
+use super::segments::frame_cell;
+use crate::floorplan::world::World;
 use crate::geometry::Frame;
 use crate::grid::{Cell, Grid};
 
 /// Cells of the world frame (row-major, `world_map`'s size) that close a wall gap. `depth` is
 /// the thickest a wall stub may be across its line, in cells (furniture along a line is
 /// deeper than a wall).
-///
-/// ```
-/// use ksmcmc::floorplan::rooms::RoomCells;
-/// use ksmcmc::floorplan::wall_gaps::wall_gaps;
-/// use ksmcmc::grid::{Cell, Grid};
-///
-/// // A wall along row 5 with a 4-cell gap between two 10-cell stubs.
-/// let mut map = Grid::new(24, 11, Cell::Free);
-/// for x in (0..10).chain(14..24) {
-///     *map.at_mut(x, 5) = Cell::Occupied;
-/// }
-/// let c = RoomCells { max_wall_gap: 6, min_wall_stub: 6, min_wall_len: 8, ..RoomCells::default() };
-/// let gaps = wall_gaps(&map, &c, 3);
-/// assert!((10..14).all(|x| gaps[5 * 24 + x]));
-/// assert_eq!(gaps.iter().filter(|&&g| g).count(), 4);
-/// ```
 pub fn wall_gaps(world_map: &Grid<Cell>, c: &RoomCells, depth: usize) -> Vec<bool> {
     let (w, h) = (world_map.width(), world_map.height());
     let mut gaps = vec![false; w * h];
@@ -281,14 +266,10 @@ pub fn stub_depth(t: i32) -> usize {
 }
 
 /// The map (in the map frame) with every wall gap ([`wall_gaps`], found in the world frame)
-/// drawn as occupied; `None` when there is none, or gaps are off.
-pub fn close_wall_gaps(world: &World, map: &Grid<Cell>, world_map: &Grid<Cell>, c: &RoomCells) -> Option<Grid<Cell>> {
-    close_wall_gaps_along(world, map, world_map, c, &[])
-}
-
-/// [`close_wall_gaps`] with the gaps of the walls that run along further directions too:
+/// drawn as occupied; `None` when there is none, or gaps are off. With the gaps of the walls
+/// that run along further directions too:
 /// `angles` (radians, in the convention of the frame's angle, [`Frame::turned`]) are the
-/// wall directions of a building's other wings ([`super::wings`]). A person closes a room
+/// wall directions of a building's other wings ([`crate::floorplan::wings`]). A person closes a room
 /// along its wall whichever way the wall runs; a gap is found in a frame turned by its
 /// wall's direction, where that wall runs along the rows or columns, and drawn back onto the
 /// map. Walls of other directions run along no row of that frame for a stub's length, so a
@@ -343,9 +324,22 @@ fn close_in_frame(
 
 #[cfg(test)]
 mod tests {
+    use super::super::segments::{labels_of_groups, labels_of_groups_along};
     use super::*;
-    use crate::floorplan::rooms::{labels_of_groups, labels_of_groups_along};
     use crate::floorplan::{Unit, UnitType};
+
+    #[test]
+    fn a_gap_between_two_stubs_of_one_line_is_closed() {
+        // A wall along row 5 with a 4-cell gap between two 10-cell stubs.
+        let mut map = Grid::new(24, 11, Cell::Free);
+        for x in (0..10).chain(14..24) {
+            *map.at_mut(x, 5) = Cell::Occupied;
+        }
+        let c = RoomCells { max_wall_gap: 6, min_wall_stub: 6, min_wall_len: 8, ..RoomCells::default() };
+        let gaps = wall_gaps(&map, &c, 3);
+        assert!((10..14).all(|x| gaps[5 * 24 + x]));
+        assert_eq!(gaps.iter().filter(|&&g| g).count(), 4);
+    }
 
     fn config(gap: u32, stub: u32) -> RoomCells {
         RoomCells { max_wall_gap: gap, min_wall_stub: stub, min_wall_len: 1, ..RoomCells::default() }

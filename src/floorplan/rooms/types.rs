@@ -2,7 +2,7 @@
 //!
 //! Markov logic types units: inference gives every unit four marginals, `P(Room)`,
 //! `P(Corr)`, `P(Hall)` and `P(Other)` ([`Inferred`]), and the unit's type is the most
-//! probable. A room of the room layer is one or more units ([`super::room_layer`]). A person
+//! probable. A room of the room layer is one or more units ([`super::RoomLayer`]). A person
 //! types the room as one space, so with knowledge supervision the same rules are applied to
 //! the rooms themselves ([`room_marginals`], [`type_rooms`]): a foyer of many small units is a
 //! hall, not a room of "other" pieces. Without it (or for a room the rules were not applied
@@ -14,8 +14,8 @@
 //! values: the rules make them exclude each other only softly, so the four numbers need not
 //! add up to 1. They are given as inferred, not normalised.
 
-use super::knowledge::{Inferred, Knowledge, KnowledgeConfig};
-use super::world::{Room, Unit, UnitType, World};
+use crate::floorplan::knowledge::{Inferred, Knowledge, KnowledgeConfig};
+use crate::floorplan::world::{Room, Unit, UnitType, World};
 use crate::grid::Grid;
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -64,13 +64,13 @@ impl TypeMarginals {
 }
 
 /// The type marginals of every room of `world` (whose room layer is filled in, as
-/// [`super::Chain::best_world_with_rooms`] gives it), in the order of `world.rooms`: those
+/// [`crate::floorplan::Chain::best_world_with_rooms`] gives it), in the order of `world.rooms`: those
 /// in `rooms` (room ids to the room-level marginals of [`room_marginals`]) where given, else
 /// from the inference `inferred` on its units. Its units come with their own marginals.
 ///
 /// ```
 /// use ksmcmc::floorplan::knowledge::Inferred;
-/// use ksmcmc::floorplan::room_types::room_types;
+/// use ksmcmc::floorplan::rooms::room_types;
 /// use ksmcmc::floorplan::{Room, Unit, UnitType, World};
 ///
 /// let mut world = World::empty(100, 40);
@@ -159,7 +159,7 @@ fn room_extents(world: &World, labels: &Grid<u16>) -> BTreeMap<u16, (usize, f64)
 /// spread along its longer world axis and as wide as its area allows; `MulDoor` holds
 /// when it opens to two rooms or more (`opens_to`: through doors or openings). Rooms with
 /// units are typed, and so are pieces the room layer parted from their units' room (a room
-/// with no unit of its own but a type, [`super::room_layer::rooms_of_labels`]: a small
+/// with no unit of its own but a type, [`super::read::rooms_of_labels`]: a small
 /// office the walls part from the big unit that spans it is an office, not a piece of a
 /// hall). Free space no unit covers (type `unknown`) is not a space the chain has explained,
 /// and is not typed. A room of several small units is typed as the one space it is: on
@@ -167,7 +167,7 @@ fn room_extents(world: &World, labels: &Grid<u16>) -> BTreeMap<u16, (usize, f64)
 ///
 /// ```
 /// use ksmcmc::floorplan::knowledge::KnowledgeConfig;
-/// use ksmcmc::floorplan::room_types::room_marginals;
+/// use ksmcmc::floorplan::rooms::room_marginals;
 /// use ksmcmc::floorplan::{Room, UnitType, World};
 /// use ksmcmc::grid::Grid;
 ///
@@ -222,7 +222,15 @@ fn infer_rooms(
         x = x.saturating_add(w.saturating_add(1000));
         for &b in r.opens_to.iter().filter(|&&b| b > r.id) {
             let id = pseudo.doors.len() as u32 + 1;
-            pseudo.doors.push(super::world::Door { id, units: [r.id, b], x0: 0, y0: 0, x1: 0, y1: 0, opening: false });
+            pseudo.doors.push(crate::floorplan::world::Door {
+                id,
+                units: [r.id, b],
+                x0: 0,
+                y0: 0,
+                x1: 0,
+                y1: 0,
+                opening: false,
+            });
         }
     }
     Ok(Knowledge::new(config)?.infer(&pseudo, resolution)?.types)

@@ -1,460 +1,23 @@
-//! From units to rooms: the segmentation a room-segmentation benchmark scores.
+//! From grouped units to the label image: the segmentation a room-segmentation benchmark
+//! scores.
 //!
-//! A unit is a rectangle; a real room may be L-shaped or cut by furniture into several units.
-//! Going beyond the dissertation, units that touch along an *open* boundary (no wall cells in
-//! the band between them; chairs and other clutter are no walls) are one room. Every free map cell inside a room's units gets the
-//! room's id; free cells outside all units (door openings, corners the units miss, scan rays)
-//! join the nearest room by a wavefront through free space, as room-segmentation tools do.
+//! Every free map cell inside a room's units gets the room's id; free cells outside all units
+//! (door openings, corners the units miss, scan rays) join the nearest room by a wavefront
+//! through free space, as room-segmentation tools do; free regions beyond every unit's reach
+//! become rooms of their own when they are deep enough; then rooms are split at doorways and
+//! at wall gaps, and small segments join their neighbours.
 
-use super::state::{facing, Axis};
-use super::world::{Rect, World};
+use super::config::RoomCells;
+use super::pairs::group_units;
+use crate::floorplan::world::World;
 use crate::geometry::Rotation;
 use crate::grid::{Cell, Grid};
 use std::collections::VecDeque;
 
-/// The room layer's settings, every length in metres and every area in square metres, each
-/// default with its physical reason. A map's resolution turns them into cells once
-/// ([`RoomConfig::cells`]), so that the same building gives the same rooms at any cell size.
-///
-/// The JSON names carry their unit (`_m`, `_m2`): settings written in cells by an older
-/// version are refused by name rather than read as metres.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct RoomConfig {
-    /// Largest share of occupied cells in the band between two units for their boundary to
-    /// count as open. 5 %: a laser's stray hits on a boundary that no wall runs along.
-    pub max_wall_share: f64,
-    /// Shortest open boundary that joins two units, m; shorter ones are doors. 1.5 m: wider
-    /// than the widest single door leaf (1.2 m) with its frame.
-    pub min_open_m: f64,
-    /// How far through free space the wavefront carries a room's label beyond its units, m.
-    /// 1 m: a door's depth and the corners a rectangle misses; farther free space is a room
-    /// of its own.
-    pub max_reach_m: f64,
-    /// Smallest free region beyond every unit's reach that counts as a room, m². 1 m²: a
-    /// closet a person can stand in; smaller are specks and scan rays.
-    pub min_room_m2: f64,
-    /// Half the widest doorway, m: free space narrower than twice this parts the cores of two
-    /// rooms. 0.6 m: a door up to 1.2 m wide (a wide single leaf, as building codes allow for
-    /// accessible doors) parts two rooms, while a corridor (at least 1.2 m, usually 1.5 m and
-    /// more) keeps a core of its own. 0 turns the split off.
-    pub door_half_width_m: f64,
-    /// Smallest room core a doorway split keeps as a room of its own, m². 2.5 m²: the core of
-    /// a room of about 2.8 m x 2.8 m; smaller cores (a nook behind furniture) stay with the
-    /// room around them.
-    pub min_core_m2: f64,
-    /// Free regions beyond every unit's reach are rooms only if a quarter of their
-    /// `min_room_m2` lies deeper than this in free space, m. 0.3 m: a person's half-width;
-    /// fans of scan rays are thinner. 0 keeps every region.
-    pub min_room_depth_m: f64,
-    /// Segments smaller than this join the neighbour they share the longest boundary with, m²:
-    /// a sliver between two units. 2.5 m², as `min_core_m2`. 0 keeps them.
-    pub min_segment_m2: f64,
-    /// A door at least this share as wide as the stretch along which its two units face each
-    /// other is an opening, not a door. Above 1 no door is.
-    pub wide_door_share: f64,
-    /// Longest gap between two collinear wall stubs that the doorway split closes, m. 2.5 m:
-    /// a double door or the open front of a small office. 0 turns it off.
-    pub max_wall_gap_m: f64,
-    /// Shortest wall stub on each side of such a gap along its line, m. 0.3 m: longer than a
-    /// wall is thick (a wall crossed at right angles is no stub).
-    pub min_wall_stub_m: f64,
-    /// Smallest extent of a connected occupied part that is a wall, m. 2 m: the side of a
-    /// small room; chairs, the legs of a table and a SLAM map's clutter are smaller.
-    pub min_wall_len_m: f64,
-    /// Whether the clutter inside a room gets the room's label, as a person colours a room on
-    /// a floor plan under its furniture ([`RoomCells::clutter_in_rooms`]).
-    pub clutter_in_rooms: bool,
-}
-
-impl Default for RoomConfig {
-    fn default() -> Self {
-        RoomConfig {
-            max_wall_share: 0.05,
-            min_open_m: 1.5,
-            max_reach_m: 1.0,
-            min_room_m2: 1.0,
-            door_half_width_m: 0.6,
-            min_core_m2: 2.5,
-            min_room_depth_m: 0.3,
-            min_segment_m2: 2.5,
-            wide_door_share: 0.8,
-            max_wall_gap_m: 2.5,
-            min_wall_stub_m: 0.3,
-            min_wall_len_m: 2.0,
-            clutter_in_rooms: true,
-        }
-    }
-}
-
-/// The room layer's settings in cells of one map: [`RoomConfig`] turned into cells once, from
-/// the map's resolution ([`RoomConfig::cells`]). The stages of the room layer read these.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct RoomCells {
-    /// Largest share of occupied cells in the band between two units for their boundary to
-    /// count as open.
-    pub max_wall_share: f64,
-    /// Shortest open boundary, in cells, that joins two units (shorter ones are doors).
-    pub min_open_len: i32,
-    /// How far (cells, through free space) the wavefront carries a room's label beyond its
-    /// units. Free regions farther from every unit are rooms of their own, numbered after
-    /// the units' rooms: a room the chain left unexplained is still a room, not an annex of
-    /// its neighbour through the door.
-    pub max_reach: u32,
-    /// Smallest free region (cells) beyond every unit's reach that counts as a room; smaller
-    /// ones (specks, scan rays) are not part of any room.
-    pub min_room_cells: usize,
-    /// Half the widest doorway, in cells: free space narrower than twice this separates the
-    /// cores of two rooms ([`split_at_doorways`]). 0 turns the split off.
-    /// ([`RoomConfig::door_half_width_m`]).
-    pub door_half_width: u32,
-    /// Smallest room core, in cells, that a doorway split keeps as a room of its own; smaller
-    /// cores (a nook behind furniture, the gap between a cupboard and a desk) stay with the
-    /// room around them. ([`RoomConfig::min_core_m2`]).
-    pub min_core_cells: usize,
-    /// Free regions beyond every unit's reach are rooms only if at least `min_room_cells / 4`
-    /// of their cells lie deeper than this (cells) in free space: the fans of scan rays a
-    /// robot sees through windows and doors are thin, rooms are not. 0 keeps every region.
-    pub min_room_depth: u32,
-    /// Segments smaller than this (cells) join the neighbour they share the longest boundary
-    /// with: a sliver between two units, a nook cut off by a cupboard. 0 keeps them.
-    pub min_segment_cells: usize,
-    /// A door at least this share as wide as the stretch along which its two units face each
-    /// other is an opening, not a door: the units have an open boundary ([`open_pairs`]).
-    /// Above 1 no door is.
-    pub wide_door_share: f64,
-    /// Longest gap, in cells, between two collinear wall stubs that the doorway split closes
-    /// ([`super::wall_gaps`]): a room open onto a corridor over its width is closed along the
-    /// corridor's wall, as a person draws it. 0 turns it off. ([`RoomConfig::max_wall_gap_m`])
-    pub max_wall_gap: u32,
-    /// Shortest wall stub, in cells, on each side of such a gap along its line: a wall crossed
-    /// at right angles (as thick as a wall) is no stub. ([`RoomConfig::min_wall_stub_m`])
-    pub min_wall_stub: u32,
-    /// Smallest extent, in cells, of a connected occupied part that is a wall (its parts
-    /// joined through the unseen cells beside them, [`super::wall_gaps`]): chairs, the dots
-    /// of a drawn table and the clutter of a SLAM map are no walls. Wall gaps close onto
-    /// walls only, a doorway is a narrowing between walls ([`split_at_doorways`]), and only
-    /// walls close the boundary between two units ([`open_pairs`]). ([`RoomConfig::min_wall_len_m`])
-    pub min_wall_len: u32,
-    /// Whether the clutter inside a room (occupied parts that are no walls, and unseen specks:
-    /// [`RoomCells::min_wall_len`]) gets the room's label, as a person colours a room on a
-    /// floor plan under its furniture. Only parts that one room's cells enclose are labelled,
-    /// so no two rooms come to touch through clutter. Off, only free cells
-    /// are labelled, as the room-segmentation tools of Bormann et al. (2016) do.
-    pub clutter_in_rooms: bool,
-}
-
-impl Default for RoomCells {
-    /// The default settings on a map of 5 cm cells (the benchmark floors' and the generated
-    /// floors' cell), for examples and tests that draw their maps in cells.
-    fn default() -> Self {
-        RoomConfig::default().cells(0.05)
-    }
-}
-
-/// Why room-layer settings ([`RoomConfig`]) cannot be read.
-#[derive(Debug, Clone, PartialEq)]
-pub struct RoomConfigError(pub String);
-
-impl std::fmt::Display for RoomConfigError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(&self.0)
-    }
-}
-
-impl std::error::Error for RoomConfigError {}
-
-/// The longest room-layer settings text read ([`RoomConfig::from_json`]): a dozen fields.
-pub const MAX_ROOM_CONFIG_JSON_BYTES: usize = 64 * 1024;
-
-impl RoomConfig {
-    /// Room-layer settings from JSON: any subset of the fields (the rest keep their
-    /// defaults). Unknown fields, text over [`MAX_ROOM_CONFIG_JSON_BYTES`] and shares outside
-    /// their range are refused with a message that names them.
-    ///
-    /// ```
-    /// use ksmcmc::floorplan::rooms::RoomConfig;
-    ///
-    /// let c = RoomConfig::from_json(r#"{"max_wall_gap_m": 0}"#).unwrap();
-    /// assert_eq!((c.max_wall_gap_m, c.min_wall_len_m), (0.0, RoomConfig::default().min_wall_len_m));
-    /// let e = RoomConfig::from_json(r#"{"max_wall_gap": 50}"#).unwrap_err();
-    /// assert!(e.to_string().contains("unknown field `max_wall_gap`"), "{e}");
-    /// let e = RoomConfig::from_json(r#"{"min_wall_len_m": -1}"#).unwrap_err();
-    /// assert!(e.to_string().contains("min_wall_len_m"), "{e}");
-    /// let e = RoomConfig::from_json(r#"{"max_wall_share": 1.5}"#).unwrap_err();
-    /// assert!(e.to_string().contains("max_wall_share"), "{e}");
-    /// ```
-    pub fn from_json(text: &str) -> Result<RoomConfig, RoomConfigError> {
-        if text.len() > MAX_ROOM_CONFIG_JSON_BYTES {
-            return Err(RoomConfigError(format!(
-                "the room-layer settings are {} bytes, over the limit of {MAX_ROOM_CONFIG_JSON_BYTES} bytes; \
-                 they are a dozen fields",
-                text.len()
-            )));
-        }
-        let c: RoomConfig = serde_json::from_str(text).map_err(|e| RoomConfigError(e.to_string()))?;
-        if !(0.0..=1.0).contains(&c.max_wall_share) {
-            return Err(RoomConfigError(format!(
-                "max_wall_share is {}: it is a share of the band between two units, from 0 to 1",
-                c.max_wall_share
-            )));
-        }
-        for (name, v) in c.lengths() {
-            if !(v.is_finite() && (0.0..=MAX_ROOM_LENGTH_M).contains(&v)) {
-                return Err(RoomConfigError(format!(
-                    "{name} is {v}: give metres (or square metres) from 0 to {MAX_ROOM_LENGTH_M}"
-                )));
-            }
-        }
-        if !(c.wide_door_share.is_finite() && c.wide_door_share >= 0.0) {
-            return Err(RoomConfigError(format!(
-                "wide_door_share is {}: give a share of 0 or more (above 1, no door is an opening)",
-                c.wide_door_share
-            )));
-        }
-        Ok(c)
-    }
-
-    /// The lengths and areas by their JSON names.
-    fn lengths(&self) -> [(&'static str, f64); 10] {
-        [
-            ("min_open_m", self.min_open_m),
-            ("max_reach_m", self.max_reach_m),
-            ("min_room_m2", self.min_room_m2),
-            ("door_half_width_m", self.door_half_width_m),
-            ("min_core_m2", self.min_core_m2),
-            ("min_room_depth_m", self.min_room_depth_m),
-            ("min_segment_m2", self.min_segment_m2),
-            ("max_wall_gap_m", self.max_wall_gap_m),
-            ("min_wall_stub_m", self.min_wall_stub_m),
-            ("min_wall_len_m", self.min_wall_len_m),
-        ]
-    }
-
-    /// These settings in cells of `resolution` metres: lengths rounded to whole cells, areas
-    /// to whole cells of `resolution`² (a setting above 0 is at least one cell, so that only
-    /// 0 turns a stage off). A resolution that is not a positive number is read as 0.05 m.
-    ///
-    /// ```
-    /// use ksmcmc::floorplan::rooms::RoomConfig;
-    /// let c = RoomConfig::default();
-    /// assert_eq!((c.cells(0.05).min_wall_len, c.cells(0.05).min_core_cells), (40, 1000));
-    /// assert_eq!((c.cells(0.1).min_wall_len, c.cells(0.1).min_core_cells), (20, 250));
-    /// assert_eq!(c.cells(0.025).door_half_width, 24);
-    /// ```
-    pub fn cells(&self, resolution: f64) -> RoomCells {
-        let r = crate::grid::cell_size_m(resolution);
-        let count = |v: f64| if v > 0.0 { libm::round(v).max(1.0) } else { 0.0 };
-        let len = |m: f64| count(m / r) as u32;
-        let area = |m2: f64| count(m2 / (r * r)) as usize;
-        RoomCells {
-            max_wall_share: self.max_wall_share,
-            min_open_len: len(self.min_open_m) as i32,
-            max_reach: len(self.max_reach_m),
-            min_room_cells: area(self.min_room_m2),
-            door_half_width: len(self.door_half_width_m),
-            min_core_cells: area(self.min_core_m2),
-            min_room_depth: len(self.min_room_depth_m),
-            min_segment_cells: area(self.min_segment_m2),
-            wide_door_share: self.wide_door_share,
-            max_wall_gap: len(self.max_wall_gap_m),
-            min_wall_stub: len(self.min_wall_stub_m),
-            min_wall_len: len(self.min_wall_len_m),
-            clutter_in_rooms: self.clutter_in_rooms,
-        }
-    }
-}
-
-/// The longest length (or largest area) a room-layer setting may have: 10 km, far beyond any
-/// building, and few enough cells at any resolution to count in a `u32`.
-pub const MAX_ROOM_LENGTH_M: f64 = 10_000.0;
-
-/// Whether a unit encloses space: at least half of its interior (inside the wall ring) is free
-/// in the map. Units lying on thick walls or over unexplored space are not rooms.
-pub fn encloses_space(u: &super::world::Unit, t: i32, world_map: &Grid<Cell>) -> bool {
-    let (mut free, mut total) = (0u64, 0u64);
-    for y in (u.y + t).max(0)..(u.y + u.h - t).min(world_map.height() as i32) {
-        for x in (u.x + t).max(0)..(u.x + u.w - t).min(world_map.width() as i32) {
-            total += 1;
-            free += (*world_map.at(x as usize, y as usize) == Cell::Free) as u64;
-        }
-    }
-    total > 0 && 2 * free >= total
-}
-
-/// Two units with an open boundary between them (no wall in the band between their facing
-/// walls, or overlapping interiors): candidates for one room.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct OpenPair {
-    /// Index of the first unit in `world.units`.
-    pub a: usize,
-    /// Index of the second unit (`a < b`).
-    pub b: usize,
-    /// Whether the open boundary spans most ([`FLUSH_SHARE`]) of both units' facing sides: one
-    /// space cut in two by a unit seam, rather than a room opening off the side of a longer
-    /// corridor or hall.
-    pub flush: bool,
-    /// Whether the room layer's geometry parts the two units even when they are joined: a
-    /// wall gap or a doorway lies between them ([`super::room_layer::mark_closed`]; false
-    /// until marked).
-    pub closed: bool,
-}
-
-/// The share of both facing sides an open boundary must span to be [`OpenPair::flush`].
-pub const FLUSH_SHARE: f64 = 0.5;
-
-/// Occupied and total cells of `r` in `map` (clipped to the map).
-fn occupied(map: &Grid<Cell>, r: Rect) -> (i64, i64) {
-    let (mut occ, mut total) = (0, 0);
-    for y in r.y.max(0)..r.bottom().min(map.height() as i32) {
-        for x in r.x.max(0)..r.right().min(map.width() as i32) {
-            total += 1;
-            occ += (*map.at(x as usize, y as usize) == Cell::Occupied) as i64;
-        }
-    }
-    (occ, total)
-}
-
-/// Whether the stretch `s..=e` along which `lo` and `hi` face each other (across `axis`, walls
-/// `t` deep) spans at least [`FLUSH_SHARE`] of both units' facing sides ([`OpenPair::flush`]).
-fn is_flush(lo: Rect, hi: Rect, axis: Axis, (s, e): (i32, i32), t: i32) -> bool {
-    let side = |r: Rect| match axis {
-        Axis::Horizontal => r.h,
-        Axis::Vertical => r.w,
-    };
-    let span = (e - s + 1) as f64;
-    let share = |r: Rect| span / (side(r) - 2 * t).max(1) as f64;
-    share(lo).min(share(hi)) >= FLUSH_SHARE
-}
-
-/// Whether units `a` and `b` (rectangles, walls `t` deep) have an open boundary, and whether
-/// it is flush: `None` if there is none.
-fn open_boundary(a: Rect, b: Rect, t: i32, world_map: &Grid<Cell>, c: &RoomCells) -> Option<bool> {
-    let mut found: Option<bool> = None;
-    for (lo, hi) in [(a, b), (b, a)] {
-        for axis in [Axis::Horizontal, Axis::Vertical] {
-            let Some((s, e)) = facing(lo, hi, axis, t, t) else { continue };
-            if e - s + 1 < c.min_open_len {
-                continue;
-            }
-            let band = match axis {
-                Axis::Horizontal => Rect::new(lo.right() - t, s, hi.x - lo.right() + 2 * t, e - s + 1),
-                Axis::Vertical => Rect::new(s, lo.bottom() - t, e - s + 1, hi.y - lo.bottom() + 2 * t),
-            };
-            let (occ, total) = occupied(world_map, band);
-            if total > 0 && (occ as f64) <= c.max_wall_share * total as f64 {
-                found = Some(found.unwrap_or(false) || is_flush(lo, hi, axis, (s, e), t));
-            }
-        }
-    }
-    // Units overlapping by more than their walls are parts of one space.
-    if let Some(inter) = a.intersection(&b) {
-        if inter.w > 2 * t && inter.h > 2 * t {
-            let (occ, total) = occupied(world_map, inter);
-            if (occ as f64) <= c.max_wall_share * total as f64 {
-                found = Some(true);
-            }
-        }
-    }
-    found
-}
-
-/// Whether units `a` and `b` (indices) are joined by a door nearly as wide as the stretch they
-/// face each other along ([`RoomCells::wide_door_share`]), and whether that stretch is flush
-/// (as in [`OpenPair::flush`]); `None` if not.
-fn wide_door(world: &World, a: usize, b: usize, c: &RoomCells) -> Option<bool> {
-    let t = world.wall_thickness;
-    let (ua, ub) = (&world.units[a], &world.units[b]);
-    let (door, across) = world
-        .doors
-        .iter()
-        .filter(|d| d.units.contains(&ua.id) && d.units.contains(&ub.id))
-        .map(|d| (d.len(), d.rect().w.min(d.rect().h)))
-        .max()?;
-    for (lo, hi) in [(ua.rect(), ub.rect()), (ub.rect(), ua.rect())] {
-        for axis in [Axis::Horizontal, Axis::Vertical] {
-            // Facing across the door: the walls as far apart as the door is deep.
-            let Some((s, e)) = facing(lo, hi, axis, across.max(2 * t), t) else { continue };
-            if (door as f64) >= c.wide_door_share * (e - s + 1) as f64 {
-                return Some(is_flush(lo, hi, axis, (s, e), t));
-            }
-        }
-    }
-    None
-}
-
-/// Every pair of space-enclosing units ([`encloses_space`]) with an open boundary, or joined
-/// by a door as wide as their shared stretch ([`RoomCells::wide_door_share`]).
-pub fn open_pairs(world: &World, world_map: &Grid<Cell>, c: &RoomCells) -> Vec<OpenPair> {
-    let t = world.wall_thickness;
-    let space: Vec<bool> = world.units.iter().map(|u| encloses_space(u, t, world_map)).collect();
-    let walls = without_clutter(world_map, c.min_wall_len);
-    let mut pairs = Vec::new();
-    for a in 0..world.units.len() {
-        for b in a + 1..world.units.len() {
-            if !space[a] || !space[b] {
-                continue;
-            }
-            let (ra, rb) = (world.units[a].rect(), world.units[b].rect());
-            let open = open_boundary(ra, rb, t, &walls, c).or_else(|| wide_door(world, a, b, c));
-            if let Some(flush) = open {
-                pairs.push(OpenPair { a, b, flush, closed: false });
-            }
-        }
-    }
-    pairs
-}
-
-/// Room id (1-based) of every unit, by unit index; 0 for units that enclose no space
-/// ([`encloses_space`]). Units with an open boundary ([`open_pairs`]) are one room: the rule
-/// without knowledge supervision ([`super::room_layer`] lets the knowledge base decide).
-pub fn group_units(world: &World, world_map: &Grid<Cell>, c: &RoomCells) -> Vec<u16> {
-    let pairs = open_pairs(world, world_map, c);
-    join(world, world_map, pairs.iter().map(|p| (p.a, p.b)))
-}
-
-/// Room ids (1-based, numbered by first unit) when the given pairs of unit indices are joined;
-/// units that enclose no space get 0.
-pub fn join(world: &World, world_map: &Grid<Cell>, pairs: impl IntoIterator<Item = (usize, usize)>) -> Vec<u16> {
-    let n = world.units.len();
-    let space: Vec<bool> = world.units.iter().map(|u| encloses_space(u, world.wall_thickness, world_map)).collect();
-    let mut parent: Vec<usize> = (0..n).collect();
-    fn find(p: &mut [usize], mut i: usize) -> usize {
-        while p[i] != i {
-            p[i] = p[p[i]];
-            i = p[i];
-        }
-        i
-    }
-    for (i, j) in pairs {
-        if i < n && j < n && space[i] && space[j] {
-            let (ri, rj) = (find(&mut parent, i), find(&mut parent, j));
-            if ri != rj {
-                parent[ri.max(rj)] = ri.min(rj);
-            }
-        }
-    }
-    let mut id_of_root = vec![0u16; n];
-    let mut next = 0u16;
-    (0..n)
-        .map(|i| {
-            if !space[i] {
-                return 0;
-            }
-            let r = find(&mut parent, i);
-            if id_of_root[r] == 0 {
-                next = next.saturating_add(1);
-                id_of_root[r] = next;
-            }
-            id_of_root[r]
-        })
-        .collect()
-}
-
-/// The segmentation in the map's frame: every free map cell of a room gets the room's id
-/// (1..=n), other cells 0. `world_map` is the classified map in the world frame, `map` in the
-/// map frame.
-pub fn room_labels(world: &World, map: &Grid<Cell>, world_map: &Grid<Cell>, c: &RoomCells) -> Grid<u16> {
+/// The segmentation in the map's frame with every open pair of units joined: every free map
+/// cell of a room gets the room's id (1..=n), other cells 0. `world_map` is the classified
+/// map in the world frame, `map` in the map frame.
+pub(crate) fn room_labels(world: &World, map: &Grid<Cell>, world_map: &Grid<Cell>, c: &RoomCells) -> Grid<u16> {
     labels_of_groups(world, &group_units(world, world_map, c), map, world_map, c)
 }
 
@@ -762,7 +325,8 @@ fn label_far_regions(labels: &mut Grid<u16>, map: &Grid<Cell>, last: u16, c: &Ro
 /// Joins every segment smaller than `min_cells` to the neighbouring segment it shares the
 /// longest boundary with (4-neighbours), smallest first, then numbers the segments 1..=n in
 /// scan order. Segments with no labelled neighbour stay.
-pub fn merge_small_segments(labels: &mut Grid<u16>, min_cells: usize) {
+#[cfg(test)]
+fn merge_small_segments(labels: &mut Grid<u16>, min_cells: usize) {
     merge_segments(labels, min_cells, &[], 0);
 }
 
@@ -783,7 +347,7 @@ fn merge_segments(labels: &mut Grid<u16>, min_cells: usize, fragment: &[bool], m
     }
     // Contacts both ways round, so that a label's neighbours are one range of the map.
     let mut contact: BTreeMap<(u16, u16), usize> = BTreeMap::new();
-    for ((a, b), k) in super::topology::contacts(&labels.map(|&l| l as u32)) {
+    for ((a, b), k) in crate::floorplan::topology::contacts(&labels.map(|&l| l as u32)) {
         contact.insert((a as u16, b as u16), k);
         contact.insert((b as u16, a as u16), k);
     }
@@ -900,16 +464,7 @@ pub fn free_depth(map: &Grid<Cell>) -> Vec<u32> {
 /// only a little keeps one. A room with two or more cores of `min_core_cells` or more is
 /// divided among them: each of its cells joins the core nearest to it through the room
 /// (wavefront), and cells no core reaches keep the room's label. Rooms are then numbered
-/// 1..=n in scan order. `labels` must be the size of `map` (otherwise nothing is split).
-pub fn split_at_doorways(labels: &mut Grid<u16>, map: &Grid<Cell>, c: &RoomCells) {
-    let (w, h) = (labels.width(), labels.height());
-    if c.door_half_width == 0 || w == 0 || h == 0 || (map.width(), map.height()) != (w, h) {
-        return;
-    }
-    split_open_at_doorways(labels, &without_clutter(map, c.min_wall_len), c);
-}
-
-/// [`split_at_doorways`] on `open`, the map with its clutter drawn free ([`without_clutter`]).
+/// 1..=n in scan order. `open` is the map with its clutter drawn free ([`without_clutter`]).
 fn split_open_at_doorways(labels: &mut Grid<u16>, open: &Grid<Cell>, c: &RoomCells) {
     let (w, h) = (labels.width(), labels.height());
     if c.door_half_width == 0 || w == 0 || h == 0 || (open.width(), open.height()) != (w, h) {
@@ -960,9 +515,9 @@ fn unknown_specks(map: &Grid<Cell>, min_len: usize) -> Vec<bool> {
 }
 
 /// Splits rooms along the wall gaps of `closed` (the map with every gap drawn as a wall,
-/// [`super::wall_gaps::close_wall_gaps`]): a room whose free cells, gaps left out, fall into
+/// [`super::wall_gaps::close_wall_gaps_along`]): a room whose free cells, gaps left out, fall into
 /// two or more 4-connected parts of `min_core_cells` or more is divided among those parts
-/// as [`split_at_doorways`] divides a room among its cores. A gap that closes nothing (two
+/// as [`split_open_at_doorways`] divides a room among its cores. A gap that closes nothing (two
 /// desks in a row, a notch) leaves one part and changes nothing.
 pub fn split_at_wall_gaps(labels: &mut Grid<u16>, closed: &Grid<Cell>, c: &RoomCells) {
     let (w, h) = (labels.width(), labels.height());
@@ -1071,6 +626,7 @@ fn divide_among_cores(labels: &mut Grid<u16>, seed: &[u32], cores: &[(u16, usize
 
 #[cfg(test)]
 pub(crate) mod tests {
+    use super::super::pairs::{open_pairs, OpenPair};
     use super::*;
     use crate::floorplan::{Unit, UnitType};
 

@@ -9,10 +9,10 @@
 //! the rest are counted ([`doors_in_one_room`]), so that the figure a reader of the plan cares
 //! about, rooms merged across doors, is measured on every map.
 //!
-//! [`Door::opening`]: super::world::Door::opening
+//! [`Door::opening`]: crate::floorplan::world::Door::opening
 
-use super::state::{facing, Axis};
-use super::world::{Rect, World, OPENING_MIN_M};
+use crate::floorplan::state::{facing, Axis};
+use crate::floorplan::world::{Rect, World, OPENING_MIN_M};
 use crate::grid::{Cell, Grid};
 use std::collections::HashMap;
 
@@ -35,8 +35,8 @@ fn within_rooms(world: &World) -> Vec<usize> {
 /// read in their frame; a door between units of two angles is never an opening. Returns how
 /// many doors are openings.
 ///
-/// [`Door::opening`]: super::world::Door::opening
-pub fn mark_openings(world: &mut World, walls: &Grid<Cell>, resolution: f64) -> usize {
+/// [`Door::opening`]: crate::floorplan::world::Door::opening
+pub(crate) fn mark_openings(world: &mut World, walls: &Grid<Cell>, resolution: f64) -> usize {
     let min_cells = libm::ceil(OPENING_MIN_M / resolution - 1e-9).max(1.0) as i32;
     let t = world.wall_thickness;
     for door in &mut world.doors {

@@ -54,15 +54,16 @@ MAPPER_GZIP_MAX := 500000
 
 .PHONY: help demo serve pkg www-pkg www-samples www-vendor test lint fmt fmt-check clippy doc-check test-native test-wasm \
 	test-e2e cli release-cli bench-wasm tools rust-tools wasm-tools wasm-opt-tool browser-tools e2e-deps vendor-deps clean-pkg \
-	fuzz fuzz-ci fuzz-tools fuzz-cpu soak
+	fuzz fuzz-ci fuzz-tools fuzz-cpu soak python python-tools test-python
 
 help:
 	@echo "make demo      build pkg/ and serve www/ on http://$(HOST):$(PORT)"
-	@echo "make test      fmt, clippy, native tests, wasm tests (headless Chromium), e2e tests"
+	@echo "make test      fmt, clippy, native tests, the Python package, wasm tests (headless Chromium), e2e tests"
 	@echo "make pkg       build the npm package in pkg/ (release wasm + wasm-bindgen + the mount embed)"
 	@echo "make bench-wasm  chain speed in headless Chromium (compare: ./target/release/ksmcmc bench)"
 	@echo "make lint      cargo fmt --check, clippy (native and wasm32) and the API docs without a warning"
-	@echo "make test-native | test-wasm | test-e2e    one part of make test"
+	@echo "make test-native | test-python | test-wasm | test-e2e    one part of make test"
+	@echo "make python    the Python package as a wheel in target/wheels (pip install ./python also works)"
 	@echo "make tools     install what the build and tests need"
 	@echo "make fuzz      run each fuzz target FUZZ_SECONDS (default 600) s, one at a time (needs nightly)"
 	@echo "make fuzz-cpu  run each fuzz target until it has used FUZZ_SECONDS of CPU time, at low priority"
@@ -211,11 +212,38 @@ clippy: rust-tools wasm-tools
 
 test: tools
 	@start=$$(date +%s); \
-	$(MAKE) --no-print-directory lint test-native test-wasm test-e2e fuzz-ci; \
+	$(MAKE) --no-print-directory lint test-native test-python test-wasm test-e2e fuzz-ci; \
 	echo "make test: all checks passed in $$(( $$(date +%s) - start )) s"
 
 test-native:
 	$(CARGO) test
+
+# ---------------------------------------------------------------- python
+#
+# The Python package (python/): a PyO3 extension built by maturin, its own Cargo workspace.
+# `make python` builds a wheel into target/wheels. `make test-python` checks the extension's
+# Rust (fmt, clippy), installs the package as a user would, `pip install ./python` (the PEP 517
+# build compiles it on the spot, about 3 minutes the first time on 2 cores), into a fresh
+# virtual environment, and runs its tests beside the command line of the same tree; the ROS 2
+# example is only compiled (no ROS 2 here). maturin, pytest and numpy come from PyPI.
+PYTHON ?= python3
+PY_TOOLS := target/python-tools
+PY_FRESH := target/python-fresh
+
+python-tools:
+	@test -x $(PY_TOOLS)/bin/python || $(PYTHON) -m venv $(PY_TOOLS) || \
+	  { echo "make: $(PYTHON) -m venv failed: install Python 3 with venv (Debian: python3-venv)" >&2; exit 1; }
+	@$(PY_TOOLS)/bin/pip install -q --disable-pip-version-check "maturin>=1.5,<2"
+
+python: python-tools
+	$(PY_TOOLS)/bin/maturin build --release -m python/Cargo.toml -o target/wheels
+
+test-python: rust-tools cli
+	cd python && $(CARGO) fmt --check && $(CARGO) clippy -- -D warnings
+	rm -rf $(PY_FRESH) && $(PYTHON) -m venv $(PY_FRESH)
+	$(PY_FRESH)/bin/pip install -q --disable-pip-version-check ./python "pytest>=7"
+	KSMCMC_BIN=$(CURDIR)/target/debug/ksmcmc $(PY_FRESH)/bin/python -m pytest -q -p no:cacheprovider python/tests
+	$(PY_FRESH)/bin/python -m py_compile python/examples/ros2_node.py
 
 # The CLI binary is native only; --no-default-features leaves it out of the wasm build, which
 # has every module's API (WASM_FEATURES).

@@ -39,7 +39,7 @@
 //!   [`super::wing_doors`]) crosses the first unit's wall and the second's, up to the second's
 //!   interior. `"opening": true` (absent otherwise) marks a door whose two units the room
 //!   layer found in one room, meeting along a passage at least 1.2 m wide: open floor within
-//!   the room, not a door between rooms ([`super::openings`]).
+//!   the room, not a door between rooms ([`super::rooms::doors_in_one_room`]).
 //! * `object_cells`: unknown map cells inside units (furniture), optional.
 //! * `rooms`: the room layer, optional (written by `ksmcmc floorplan`): what a person would
 //!   call one space, one or more units each. `id` is the room's value in `labels.pgm`; `type`

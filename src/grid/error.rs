@@ -93,6 +93,12 @@ pub enum MapError {
         /// Why it was refused.
         message: String,
     },
+    /// Cells handed over from memory (an array of pixels or of occupancy values, as the Python
+    /// package passes numpy arrays) are not a map.
+    BadCells {
+        /// Why they were refused.
+        message: String,
+    },
 }
 
 impl fmt::Display for MapError {
@@ -138,6 +144,7 @@ impl fmt::Display for MapError {
             MapError::BadThreshold { name, message } => {
                 write!(f, "classification threshold `{name}`: {message}")
             }
+            MapError::BadCells { message } => f.write_str(message),
         }
     }
 }

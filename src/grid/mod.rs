@@ -259,6 +259,91 @@ impl OccupancyMap {
         Self::from_yaml_and_image(text, &image, limits)
     }
 
+    /// Loads a map file exactly as `ksmcmc floorplan` reads it: [`OccupancyMap::load`] with
+    /// the one classification rule for every format ([`Classifier::for_map`]), so that a PNG,
+    /// a PGM and a `map.yaml` of the same pixels give the same cells.
+    #[cfg(not(target_arch = "wasm32"))]
+    pub fn open(path: &std::path::Path, limits: &Limits) -> Result<Self, MapError> {
+        let mut map = Self::load(path, limits)?;
+        map.set_classifier(Classifier::for_map(map.yaml()))?;
+        Ok(map)
+    }
+
+    /// A map from 8-bit pixels in memory, row-major from the top-left (as a PGM of the same
+    /// pixels: 0 black, 255 white), described by `yaml` (its `image` is not read), classified
+    /// by [`Classifier::for_map`]. Refused if `pixels` is not `width` x `height` or the map is
+    /// over `limits`.
+    ///
+    /// ```
+    /// use ksmcmc::grid::{Cell, Limits, MapYaml, OccupancyMap};
+    /// let map = OccupancyMap::from_pixels(3, 1, &[0, 205, 254], MapYaml::for_image("m.pgm"), &Limits::default())?;
+    /// assert_eq!(map.classified().cells(), &[Cell::Occupied, Cell::Unknown, Cell::Free]);
+    /// assert!(OccupancyMap::from_pixels(2, 2, &[0; 3], MapYaml::for_image("m.pgm"), &Limits::default()).is_err());
+    /// # Ok::<(), ksmcmc::grid::MapError>(())
+    /// ```
+    pub fn from_pixels(
+        width: usize,
+        height: usize,
+        pixels: &[u8],
+        yaml: MapYaml,
+        limits: &Limits,
+    ) -> Result<Self, MapError> {
+        let (w, h) = limits.check(width as u64, height as u64)?;
+        if pixels.len() != w * h {
+            return Err(MapError::BadCells {
+                message: format!("{} pixels for a {w}x{h} map: give one per cell, {} in all", pixels.len(), w * h),
+            });
+        }
+        let gray = Grid::from_vec(w, h, pixels.iter().map(|&v| u16::from(v) * 257).collect())
+            .expect("the size was checked above");
+        let classifier = Classifier::for_map(&yaml);
+        classifier.validate()?;
+        Ok(Self::from_raster(Raster { gray, alpha: None }, yaml, classifier))
+    }
+
+    /// A map from occupancy values in the ROS `nav_msgs/OccupancyGrid` convention (-1 unknown,
+    /// 0 - 100 the occupancy in percent), rows as an image's rows (from the top: a message's
+    /// `data` starts at the bottom row, so turn it upside down first). Each value becomes the
+    /// pixel `map_saver` writes for it under `yaml`'s thresholds (occupied 0 above
+    /// `occupied_thresh`, free 254 below `free_thresh`, unknown 205 otherwise), and the pixels
+    /// are read as [`OccupancyMap::from_pixels`] reads them: so a grid and the image
+    /// `map_saver` saves of it give the same map. Values outside -1..=100 are refused.
+    ///
+    /// ```
+    /// use ksmcmc::grid::{Cell, Limits, MapYaml, OccupancyMap};
+    /// let yaml = MapYaml::for_image("m.pgm");
+    /// let grid = OccupancyMap::from_occupancy(3, 1, &[100, -1, 0], yaml.clone(), &Limits::default())?;
+    /// assert_eq!(grid.classified().cells(), &[Cell::Occupied, Cell::Unknown, Cell::Free]);
+    /// let image = OccupancyMap::from_pixels(3, 1, &[0, 205, 254], yaml.clone(), &Limits::default())?;
+    /// assert_eq!(grid.classified(), image.classified());
+    /// assert!(OccupancyMap::from_occupancy(1, 1, &[101], yaml, &Limits::default()).is_err());
+    /// # Ok::<(), ksmcmc::grid::MapError>(())
+    /// ```
+    pub fn from_occupancy(
+        width: usize,
+        height: usize,
+        values: &[i8],
+        yaml: MapYaml,
+        limits: &Limits,
+    ) -> Result<Self, MapError> {
+        if let Some(i) = values.iter().position(|&v| !(-1..=100).contains(&v)) {
+            return Err(MapError::BadCells {
+                message: format!(
+                    "occupancy value {} at index {i}: an OccupancyGrid holds -1 (unknown) or 0 - 100 (percent)",
+                    values[i]
+                ),
+            });
+        }
+        let pixel = |v: i8| match v {
+            -1 => 205,
+            v if f64::from(v) / 100.0 > yaml.occupied_thresh => 0,
+            v if f64::from(v) / 100.0 < yaml.free_thresh => 254,
+            _ => 205,
+        };
+        let pixels: Vec<u8> = values.iter().map(|&v| pixel(v)).collect();
+        Self::from_pixels(width, height, &pixels, yaml, limits)
+    }
+
     /// Reclassifies every cell with another rule.
     pub fn set_classifier(&mut self, classifier: Classifier) -> Result<(), MapError> {
         classifier.validate()?;

@@ -7,8 +7,12 @@
 //!   are read from the repository root, outputs go under `out/` (gitignored) in the scratch
 //!   folder. Every `make TARGET` line names a target of the Makefile; they take minutes, so
 //!   they are not run. Any other line fails: the test could not run it.
+//!   The line `pip install ./python` is what `make test-python` runs, so it must be in the
+//!   Makefile.
 //! * The ```` ```html ```` block is the first ```` ```html ```` block of pkg/README.md byte for
 //!   byte, which `tests/e2e/embed.test.mjs` runs in headless Chromium.
+//! * The ```` ```python ```` block is the first ```` ```python ```` block of python/README.md
+//!   byte for byte, which `python/tests/test_ksmcmc.py` runs (`make test-python`).
 //! * A block in any other language fails, since nothing would run it.
 //! * Links from README.md and docs/*.md to files (and `#anchors` of their headings) resolve,
 //!   every docs page links back to the README, and the README links every docs page.
@@ -80,7 +84,7 @@ struct Run {
 
 /// What the README's code blocks ask for, checked without running anything: the commands to
 /// run, and the problems found (each naming the block and line).
-fn plan(readme: &str, pkg_readme: &str, makefile: &str, repo: &Path) -> (Vec<Run>, Vec<String>) {
+fn plan(readme: &str, pkg_readme: &str, python_readme: &str, makefile: &str, repo: &Path) -> (Vec<Run>, Vec<String>) {
     let mut runs = Vec::new();
     let mut problems = Vec::new();
     let readme_blocks = match blocks(readme) {
@@ -91,6 +95,13 @@ fn plan(readme: &str, pkg_readme: &str, makefile: &str, repo: &Path) -> (Vec<Run
         Ok(b) => b.into_iter().find(|b| b.lang == "html").map(|b| b.text()),
         Err(e) => {
             problems.push(format!("pkg/README.md: {e}"));
+            None
+        }
+    };
+    let python_snippet = match blocks(python_readme) {
+        Ok(b) => b.into_iter().find(|b| b.lang == "python").map(|b| b.text()),
+        Err(e) => {
+            problems.push(format!("python/README.md: {e}"));
             None
         }
     };
@@ -107,6 +118,17 @@ fn plan(readme: &str, pkg_readme: &str, makefile: &str, repo: &Path) -> (Vec<Run
                     Some(s) if *s != block.text() => problems.push(format!(
                         "{at} is not the first ```html block of pkg/README.md (which tests/e2e/embed.test.mjs \
                          runs): copy that block here byte for byte"
+                    )),
+                    Some(_) => {}
+                }
+                continue;
+            }
+            "python" => {
+                match &python_snippet {
+                    None => problems.push(format!("{at}: python/README.md has no ```python block to compare it with")),
+                    Some(s) if *s != block.text() => problems.push(format!(
+                        "{at} is not the first ```python block of python/README.md (which \
+                         python/tests/test_ksmcmc.py runs): copy that block here byte for byte"
                     )),
                     Some(_) => {}
                 }
@@ -133,6 +155,12 @@ fn plan(readme: &str, pkg_readme: &str, makefile: &str, repo: &Path) -> (Vec<Run
             };
             let command = strip_comment(command).trim();
             if command.is_empty() {
+                continue;
+            }
+            if command == "pip install ./python" {
+                if !makefile.lines().any(|l| l.contains("pip install") && l.contains(" ./python")) {
+                    problems.push(format!("{at}: `{command}`: no Makefile recipe runs it (make test-python should)"));
+                }
                 continue;
             }
             if let Some(rest) = command.strip_prefix("make ") {
@@ -348,8 +376,13 @@ fn all_link_problems(repo: &Path) -> Vec<String> {
 #[test]
 fn readme_code_blocks_are_what_the_tests_run() {
     let repo = root();
-    let (runs, problems) =
-        plan(&read(&repo.join("README.md")), &read(&repo.join("pkg/README.md")), &read(&repo.join("Makefile")), repo);
+    let (runs, problems) = plan(
+        &read(&repo.join("README.md")),
+        &read(&repo.join("pkg/README.md")),
+        &read(&repo.join("python/README.md")),
+        &read(&repo.join("Makefile")),
+        repo,
+    );
     assert!(problems.is_empty(), "README.md's code blocks:\n  {}", problems.join("\n  "));
     let scratch = crate::common::tmp_dir("readme", "commands");
     for run in &runs {
@@ -391,7 +424,8 @@ fn the_checks_catch_a_stale_readme() {
     let good =
         "```sh\nmake demo   # serve\nmake test\ncargo run --release -- info samples/office-small/map.yaml\n```\n\n\
                 ```html\n<p>hi</p>\n```\n";
-    let (runs, problems) = plan(good, pkg, makefile, repo);
+    let python = "y\n```python\nimport ksmcmc\n```\n";
+    let (runs, problems) = plan(good, pkg, python, makefile, repo);
     assert!(problems.is_empty(), "{problems:?}");
     assert_eq!(runs.len(), 1);
     assert_eq!(runs[0].line, 4);
@@ -400,6 +434,8 @@ fn the_checks_catch_a_stale_readme() {
     let cases: &[(&str, &str)] = &[
         ("```js\nmount()\n```\n", "nothing runs a ```js block"),
         ("```html\n<p>hello</p>\n```\n", "is not the first ```html block of pkg/README.md"),
+        ("```python\nimport numpy\n```\n", "is not the first ```python block of python/README.md"),
+        ("```sh\npip install ./python\n```\n", "no Makefile recipe runs it"),
         ("```sh\nmake demos\n```\n", "the Makefile has no target `demos`"),
         ("```sh\nnpm install ksmcmc\n```\n", "README.md line 2 (the ```sh block at line 1)"),
         ("```sh\nksmcmc floorplan samples/nowhere/map.yaml --out out/p\n```\n", "`samples/nowhere/map.yaml` is not in"),
@@ -413,11 +449,11 @@ fn the_checks_catch_a_stale_readme() {
         ("no code at all\n", "does not show `make demo`"),
     ];
     for (readme, needle) in cases {
-        let (_, problems) = plan(readme, pkg, makefile, repo);
+        let (_, problems) = plan(readme, pkg, python, makefile, repo);
         assert!(problems.iter().any(|p| p.contains(needle)), "{readme:?} should give {needle:?}, gave {problems:?}");
     }
     // Console output lines are not commands; comments are not arguments.
-    let (runs, _) = plan("```console\n$ ksmcmc help   # all\nUsage: ...\n```\n", pkg, makefile, repo);
+    let (runs, _) = plan("```console\n$ ksmcmc help   # all\nUsage: ...\n```\n", pkg, python, makefile, repo);
     assert_eq!(runs.len(), 1);
     assert_eq!(runs[0].args, ["help"]);
 

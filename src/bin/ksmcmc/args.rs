@@ -61,16 +61,11 @@ pub fn path(v: OsString) -> PathBuf {
 /// PNG, a PGM and a map.yaml of the same pixels give the same cells; or `fixed` (a map.yaml's
 /// own thresholds, eq. 3.7's defaults for a plain image).
 pub fn load_classified(path: &Path, classify: &str) -> Result<ksmcmc::grid::OccupancyMap, CliError> {
-    let mut map = load_map(path)?;
     match classify {
-        "auto" => {
-            let rule = ksmcmc::grid::Classifier::for_map(map.yaml());
-            map.set_classifier(rule).map_err(|e| failed("--classify", e))?
-        }
-        "fixed" => {}
-        other => return Err(CliError::Usage(format!("--classify must be auto or fixed, not {other:?}"))),
+        "auto" => ksmcmc::grid::OccupancyMap::open(path, &Default::default()).map_err(|e| failed(path.display(), e)),
+        "fixed" => load_map(path),
+        other => Err(CliError::Usage(format!("--classify must be auto or fixed, not {other:?}"))),
     }
-    Ok(map)
 }
 
 /// `map` at `resolution` metres per cell when one is given. Without one, a plain image (no

@@ -6,7 +6,7 @@ use super::error::RoomError;
 
 /// The room layer's settings, every length in metres and every area in square metres, each
 /// default with its physical reason. A map's resolution turns them into cells once
-/// ([`RoomConfig::cells`]), so that the same building gives the same rooms at any cell size.
+/// (`RoomConfig::cells`), so that the same building gives the same rooms at any cell size.
 ///
 /// The JSON names carry their unit (`_m`, `_m2`): settings written in cells by an older
 /// version are refused by name rather than read as metres.
@@ -55,7 +55,7 @@ pub struct RoomConfig {
     /// small room; chairs, the legs of a table and a SLAM map's clutter are smaller.
     pub min_wall_len_m: f64,
     /// Whether the clutter inside a room gets the room's label, as a person colours a room on
-    /// a floor plan under its furniture ([`RoomCells::clutter_in_rooms`]).
+    /// a floor plan under its furniture (the room layer's `clutter_in_rooms` stage).
     pub clutter_in_rooms: bool,
 }
 

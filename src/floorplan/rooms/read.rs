@@ -10,7 +10,7 @@ use crate::grid::{Cell, Grid};
 use std::collections::{BTreeMap, BTreeSet};
 
 /// How far (m) from every wall, object or unseen cell a cell must be for a person (or a
-/// robot) to stand there: [`mark_unexplored`].
+/// robot) to stand there: the room layer types `unknown` the rooms where too few cells are.
 pub const STANDING_CLEARANCE_M: f64 = 0.2;
 
 /// Types `unknown` the rooms that are mostly rays, not floor: fewer than a third of their

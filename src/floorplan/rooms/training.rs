@@ -27,7 +27,7 @@ use std::collections::BTreeMap;
 /// A training world for the room rules.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RoomTraining {
-    /// The evidence ([`room_evidence`]) and every `SameRoom` atom of the world's units, true
+    /// The evidence (what the room layer gives the rules) and every `SameRoom` atom of the world's units, true
     /// or false; [`crate::floorplan::knowledge::database_text`] writes the true ones (the rest are false
     /// by the closed world of training databases).
     pub facts: Vec<Fact>,

@@ -159,7 +159,7 @@ fn room_extents(world: &World, labels: &Grid<u16>) -> BTreeMap<u16, (usize, f64)
 /// spread along its longer world axis and as wide as its area allows; `MulDoor` holds
 /// when it opens to two rooms or more (`opens_to`: through doors or openings). Rooms with
 /// units are typed, and so are pieces the room layer parted from their units' room (a room
-/// with no unit of its own but a type, [`super::read::rooms_of_labels`]: a small
+/// with no unit of its own but a type, as the room layer reads rooms off the labels: a small
 /// office the walls part from the big unit that spans it is an office, not a piece of a
 /// hall). Free space no unit covers (type `unknown`) is not a space the chain has explained,
 /// and is not typed. A room of several small units is typed as the one space it is: on

@@ -387,7 +387,7 @@ fn mapper_matches_the_library_on_a_sample() {
     js_sys::Reflect::set(&opts, &"world".into(), &plan.world_json().into()).unwrap();
     let r = wasm::render_mapper_rgba(&mut m, Some(opts.into())).unwrap();
     let png = wasm::encode_png(r.width(), r.height(), r.rgba_bytes()).unwrap();
-    assert_eq!(png, ksmcmc::floorplan::export::overlay_png(map.inner().classified(), &world).unwrap());
+    assert_eq!(png, ksmcmc::render::overlay_png(map.inner().classified(), &world).unwrap());
 }
 
 /// The office-small sample in a `Mapper` and in the library's chain, both seed 3 and 2,000

@@ -240,7 +240,7 @@ pub fn edits(data: &[u8]) {
     world.frame = Frame { angle: 0.3, world_size: [w as u32 + 20, h as u32 + 20], map_size: [w as u32, h as u32] };
     let _ = e.world_wall_cells(&map, &world.frame);
     world.units.push(Unit::new(1, 2, 2, 30, 20, UnitType::Room));
-    let _ = e.type_facts(&world);
+    let _ = knowledge::edit_facts(&e, &world);
     let _ = e.merged_units(&world);
     let _ = e.respected_by(&world, &labels, &map);
 }

@@ -8,7 +8,7 @@
 //! nothing panics across the boundary.
 
 use ksmcmc::floorplan::edits::Edits;
-use ksmcmc::floorplan::export::Outputs;
+use ksmcmc::render::Outputs;
 use ksmcmc::floorplan::georef::Georef;
 use ksmcmc::floorplan::knowledge::HAND_SET_INDOOR;
 use ksmcmc::floorplan::route::RoutePlanner;

@@ -12,8 +12,8 @@
 //!   units a cell the map does not see as free may be an *object* (furniture) and is scored
 //!   by `p(C_M | object)`; inside corridors it is a mismatch as before.
 
-use super::state::{facing, Axis};
 use super::world::{Unit, UnitType, World};
+use crate::geometry::{facing, Axis};
 use serde::{Deserialize, Serialize};
 
 /// The geometry classifier of Tab. 3.6.
@@ -92,22 +92,6 @@ pub fn adjacent(a: &Unit, b: &Unit, t: i32) -> bool {
     })
 }
 
-/// The lengths of the connecting walls of two adjacent units (their facing sides), cells.
-pub fn connecting_walls(a: &Unit, b: &Unit, t: i32) -> Option<(i32, i32)> {
-    let faces = |axis| {
-        facing(a.rect(), b.rect(), axis, 2 * t, t).is_some() || facing(b.rect(), a.rect(), axis, 2 * t, t).is_some()
-    };
-    // Side by side, the connecting walls are the vertical sides; one above the other, the
-    // horizontal ones.
-    if faces(Axis::Horizontal) {
-        Some((a.h, b.h))
-    } else if faces(Axis::Vertical) {
-        Some((a.w, b.w))
-    } else {
-        None
-    }
-}
-
 /// `log b(u_p, u_q)`, the same-length factor of eq. 3.34 for connecting walls differing by
 /// `d` cells, with the SaLe atom marginalised rather than thresholded:
 /// `b = P(SaLe) · exp(-d² / 2σ²) + (1 - P(SaLe))`.
@@ -159,16 +143,7 @@ pub fn evidence(world: &World, resolution: f64, classifier: &GeometryClassifier)
     facts
 }
 
-/// Connecting walls differing by at most this share of the longer one have the same length:
-/// the test of [`super::metrics::defect_pairs`] and of the `SaLe` atoms of [`training_facts`].
-pub const SAME_LENGTH_TOLERANCE: f64 = 0.1;
-
-/// Whether two units are adjacent and their connecting walls have the same length within
-/// [`SAME_LENGTH_TOLERANCE`]: the true value of `SaLe(a, b)`.
-pub fn same_length(a: &Unit, b: &Unit, t: i32) -> bool {
-    connecting_walls(a, b, t)
-        .is_some_and(|(la, lb)| (la - lb).abs() as f64 <= SAME_LENGTH_TOLERANCE * la.max(lb) as f64)
-}
+pub use super::metrics::{connecting_walls, same_length, SAME_LENGTH_TOLERANCE};
 
 /// A training world for weight learning: the [`evidence`] facts of a labelled world plus the
 /// true query atoms, `Room`/`Corr`/`Hall`/`Other` of every unit from its type (all false for
@@ -248,6 +223,17 @@ pub fn database_text(facts: &[Fact]) -> String {
         }
     }
     out
+}
+
+/// Type evidence from a person's edits: for every unit a type edit lies in
+/// ([`super::edits::Edits::typed_units`]), its four type atoms (`Room`, `Corr`, `Hall`,
+/// `Other`), true for the edit's type and false for the others.
+pub fn edit_facts(edits: &super::edits::Edits, world: &World) -> Vec<Fact> {
+    edits
+        .typed_units(world)
+        .into_iter()
+        .flat_map(|(id, kind)| TYPE_PREDICATES.map(|(p, t)| (p, vec![constant(id)], t == kind)))
+        .collect()
 }
 
 #[cfg(test)]
@@ -603,7 +589,7 @@ impl Knowledge {
     }
 
     /// [`Knowledge::infer`] with further evidence: `given` fixes query atoms, such as the types
-    /// a person set ([`super::edits::Edits::type_facts`]).
+    /// a person set ([`edit_facts`]).
     pub fn infer_given(
         &mut self,
         world: &World,

@@ -1,47 +1,44 @@
-//! Semantic floor plans: the world `W = {U, T, R}`, the chain that finds it (its kernels and
-//! their schedule, the posterior, knowledge supervision), what is measured of it, routes
-//! through its rooms and doors ([`route`]), and the synthetic generator.
+//! Semantic floor plans: the world `W = {U, T, R}`, the chain that finds it, the rooms a
+//! person would draw, what is made of them, and the synthetic generator.
+//!
+//! Data flows one way through the folders, and each imports only those before it:
+//!
+//! * [`world`]: the world (units, doors, rooms, the frame), `world.json`, a person's edits,
+//!   and what is measured of a world (K(W,M), contacts between regions);
+//! * [`knowledge`]: the Markov logic that types units and shapes the prior (a service to the
+//!   chain and the rooms);
+//! * [`chain`]: the Markov chain (its state over an incremental [`Explanation`], the kernels
+//!   and their schedule, the posterior, the trace and the settle rule), and the chain that
+//!   follows a growing map ([`online`]);
+//! * [`rooms`]: the room layer, units grouped into rooms and typed;
+//! * [`wings`]: a building whose walls run several ways, a chain per wing;
+//! * [`route`]: routes through the rooms and doors;
+//! * [`export`]: a finished run and its files (`world.json`, labels, the scene graph, GeoJSON,
+//!   SVG, the report), the same for the command line, the browser and Python ([`run`]);
+//! * [`synth`]: generated floors with their truth.
 //!
 //! A [`World`] is what the chain samples and what every exporter writes; `world.json` is its
-//! serialised form (schema in [`world`]). The chain's working state (units and doors over an
-//! incremental [`Explanation`], the moves that change it, the proposal distributions) is
-//! internal: callers drive a [`Chain`] and read worlds, traces and reports from it.
-//! [`export`] turns a finished run into its files, the same for the command line and the
-//! browser.
+//! serialised form (schema in [`world`]). Callers drive a [`Chain`] and read worlds, traces
+//! and reports from it.
 
 pub mod chain;
-pub mod edits;
-pub(crate) mod explain;
 pub mod export;
-pub mod geojson;
-pub mod georef;
-pub mod graph;
-pub(crate) mod kernels;
 pub mod knowledge;
-pub mod metrics;
-pub mod online;
-
-pub mod outline;
-pub mod plan_input;
-pub mod posterior;
-pub mod report;
-
 pub mod rooms;
 pub mod route;
-#[cfg(not(target_arch = "wasm32"))]
-pub mod run;
-mod schedule;
-pub mod settled;
-pub mod shapes;
-pub(crate) mod state;
 pub mod synth;
-pub mod topology;
-mod trace;
-pub mod unexplained;
-
-pub mod wing_doors;
 pub mod wings;
 pub mod world;
+
+// The modules of the folders that callers name, at the paths they have always had.
+pub use chain::{online, posterior, settled};
+#[cfg(not(target_arch = "wasm32"))]
+pub use export::run;
+pub use export::{geojson, georef, graph, outline, plan_input, report, shapes};
+pub use wings::wing_doors;
+pub use world::{edits, metrics, topology, unexplained};
+// The chain's internals, for the rest of the crate.
+pub(crate) use chain::{explain, kernels, schedule, state, trace};
 
 pub use chain::{Chain, ChainConfig, ChainError, DetectorConfig, OutputConfig};
 pub use explain::Explanation;

@@ -9,7 +9,7 @@
 //! the choice depends only on the pixels and is the same everywhere.
 
 use super::labels::LabelBox;
-use super::world::{room_fill_rgb, DOOR_RGBA, LABEL_OUTLINE_RGBA, OBJECT_RGBA, UNEXPLAINED_RGBA, WALL_RGBA};
+use super::palette::{room_fill_rgb, DOOR_RGBA, LABEL_OUTLINE_RGBA, OBJECT_RGBA, UNEXPLAINED_RGBA, WALL_RGBA};
 use super::{cell_rgb, font};
 use crate::floorplan::{UnitType, World};
 use crate::grid::Cell;

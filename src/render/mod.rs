@@ -63,17 +63,20 @@
 //! ```
 
 mod cloud;
+mod files;
 pub mod font;
 pub mod glb;
 mod graph;
 mod labels;
 mod legend;
 pub mod model3d;
+mod palette;
 pub mod svg;
 pub mod tabletop;
 mod world;
 
 pub use cloud::{cloud_alpha, draw_cloud, CLOUD_RGB};
+pub use files::{overlay_png, ExportError, Outputs};
 pub use graph::{
     draw_scene_graph, graph_node_radius, render_scene_graph, scene_graph_layout, separate_nodes, GraphLayout,
     GRAPH_ADJACENT_RGBA, GRAPH_BACKGROUND_RGBA, GRAPH_DOOR_RGBA, GRAPH_FRAME_RGBA,

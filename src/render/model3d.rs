@@ -36,7 +36,7 @@
 //! ```
 
 use super::glb::{linear, Glb, Primitive};
-use super::world::{unit_type_rgb, DOOR_RGBA};
+use super::palette::{unit_type_rgb, DOOR_RGBA};
 use crate::floorplan::world::FrameGroup;
 use crate::floorplan::{Frame, Rect, UnitType, World};
 use serde_json::json;

@@ -18,7 +18,7 @@
 //! Only the room shapes carry `data-room`, so that `[data-room]` selects one element per room.
 
 use super::labels::label_texts;
-use super::world::{room_fill_rgb, DOOR_RGBA, LABEL_TEXT_RGBA, WALL_RGBA};
+use super::palette::{room_fill_rgb, DOOR_RGBA, LABEL_TEXT_RGBA, WALL_RGBA};
 use crate::floorplan::shapes::{floor_shapes, frame_to_map, FloorShapes, MapPoint, RoomShape, ShapeError};
 use crate::floorplan::{Frame, World};
 use crate::grid::Grid;

@@ -24,7 +24,7 @@
 //! assert_eq!(json["nodes"].as_array().unwrap().len(), chain.scene().objects.len() + 1);
 //! ```
 
-use super::chain::{Decision, DecisionRule};
+use super::decision::{Decision, DecisionRule};
 use super::evidence::Evidence;
 use super::geometry::{contact_kind, ContactKind, Obb, Tolerances};
 use super::knowledge::QueryProbabilities;

@@ -59,6 +59,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 pub mod chain;
+mod decision;
 pub mod eval;
 pub mod evidence;
 pub mod geometry;

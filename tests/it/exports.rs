@@ -4,11 +4,12 @@
 //! the rooms'.
 
 use geojson::{feature::Id, Feature, GeoJson};
-use ksmcmc::floorplan::export::{Outputs, RoomInput};
+use ksmcmc::floorplan::export::RoomInput;
 use ksmcmc::floorplan::georef::Georef;
 use ksmcmc::floorplan::rooms::RoomConfig;
 use ksmcmc::floorplan::{report, synth, Chain, ChainConfig, Room, Unit, UnitType, World};
 use ksmcmc::grid::{Cell, Grid, Limits, OccupancyMap};
+use ksmcmc::render::Outputs;
 use std::collections::{BTreeMap, HashSet};
 use std::path::Path;
 

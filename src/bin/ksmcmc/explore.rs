@@ -105,7 +105,8 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
         "rooms": world.rooms.len(),
         "seconds": seconds,
     });
-    let overlay = export::overlay_png(snapshot.classified(), &world).map_err(|e| args::failed(o.out.display(), e))?;
+    let overlay =
+        ksmcmc::render::overlay_png(snapshot.classified(), &world).map_err(|e| args::failed(o.out.display(), e))?;
     let timeline = serde_json::to_string_pretty(&run.timeline).expect("records serialise");
     args::write(&o.out.join("world.json"), world.to_json().as_bytes())?;
     args::write(&o.out.join("labels.pgm"), &export::labels_pgm(&labels))?;

@@ -4,7 +4,7 @@ use crate::args::{self, CliError};
 use ksmcmc::floorplan::georef::Georef;
 use ksmcmc::floorplan::run::{Run, RunOptions};
 use ksmcmc::floorplan::settled::{self, Settled};
-use ksmcmc::floorplan::{export, metrics, Chain, ChainConfig, ChainError};
+use ksmcmc::floorplan::{metrics, Chain, ChainConfig, ChainError};
 use ksmcmc::grid::Cell;
 use ksmcmc::render::model3d::Model3dOptions;
 use std::ffi::OsString;
@@ -151,7 +151,7 @@ fn write_run(
     report["cell_prediction_rate_region"] =
         region.map(|r| metrics::prediction_rate_in(map.classified(), &world, Some(r))).into();
     let k = report["cell_prediction_rate"].as_f64().unwrap_or(0.0);
-    let outputs = export::Outputs::new(map, &world, &labels, &report, trace, o.georef.as_ref(), &o.model)
+    let outputs = ksmcmc::render::Outputs::new(map, &world, &labels, &report, trace, o.georef.as_ref(), &o.model)
         .map_err(|e| args::failed(o.out.display(), e))?;
     for (name, bytes) in outputs.files() {
         args::write(&o.out.join(name), bytes)?;

@@ -32,9 +32,10 @@
 use super::config::{RoomCells, RoomConfig};
 use super::error::RoomError;
 use super::knowledge::RoomKnowledge;
-use super::pairs::{join, open_pairs, OpenPair};
+use super::pairs::{group_units, join, open_pairs, OpenPair};
 use super::read::{mark_unexplored, rooms_of_labels, unit_rooms};
-use super::segments::{labels_of_groups, labels_of_groups_along, without_clutter};
+use super::segments::{labels_of_groups, labels_of_groups_along};
+use super::wall_gaps::without_clutter;
 use crate::floorplan::edits::Edits;
 use crate::floorplan::knowledge::KnowledgeConfig;
 use crate::floorplan::world::World;
@@ -226,6 +227,13 @@ fn rooms_of_segments(
     }
     mark_unexplored(&mut world.rooms, labels, maps.map, maps.resolution);
     Ok(())
+}
+
+/// The segmentation in the map's frame with every open pair of units joined: every free map
+/// cell of a room gets the room's id (1..=n), other cells 0. `world_map` is the classified
+/// map in the world frame, `map` in the map frame.
+pub(crate) fn room_labels(world: &World, map: &Grid<Cell>, world_map: &Grid<Cell>, c: &RoomCells) -> Grid<u16> {
+    labels_of_groups(world, &group_units(world, world_map, c), map, world_map, c)
 }
 
 /// Marks the open pairs whose units the room layer's geometry parts (`closed`): with every

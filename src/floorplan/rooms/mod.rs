@@ -17,6 +17,7 @@
 //!   beyond every unit, splits at doorways and wall gaps, small segments joined;
 //! * `wall_gaps`: where a person closes a room whose wall stops short;
 //! * `knowledge`: the room rules (`SameRoom`) and the evidence they are given;
+//! * `frame`: cells between the map's frame and the world's;
 //! * `layer`: the entry point, the grouping and the order of the stages;
 //! * `read`: the rooms read off the labels (units, type, doors, neighbours, rays unexplored);
 //! * `types`: the indoor rules applied to each room as one space;
@@ -29,6 +30,7 @@
 
 mod config;
 mod error;
+mod frame;
 mod knowledge;
 mod layer;
 mod openings;
@@ -48,5 +50,5 @@ pub use read::STANDING_CLEARANCE_M;
 pub use training::{room_training, truth_labels_from_pgm, RoomTraining};
 pub use types::{room_marginals, room_types, RoomTypes, TypeMarginals, UnitTypes};
 
+pub(crate) use layer::room_labels;
 pub(crate) use read::map_cell;
-pub(crate) use segments::room_labels;

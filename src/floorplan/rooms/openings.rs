@@ -11,8 +11,8 @@
 //!
 //! [`Door::opening`]: crate::floorplan::world::Door::opening
 
-use crate::floorplan::state::{facing, Axis};
 use crate::floorplan::world::{Rect, World, OPENING_MIN_M};
+use crate::geometry::{facing, Axis};
 use crate::grid::{Cell, Grid};
 use std::collections::HashMap;
 

@@ -7,9 +7,9 @@
 //! the rooms the joined pairs make.
 
 use super::config::RoomCells;
-use super::segments::without_clutter;
-use crate::floorplan::state::{facing, Axis};
+use super::wall_gaps::without_clutter;
 use crate::floorplan::world::{Rect, World};
+use crate::geometry::{facing, Axis};
 use crate::grid::{Cell, Grid};
 use crate::union_find::UnionFind;
 

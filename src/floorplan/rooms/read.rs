@@ -3,7 +3,7 @@
 //! cells it touches, it opens to every room it touches along a passable stretch
 //! ([`MIN_CONTACT_CELLS`]) or through a door, and rooms that are mostly rays are unexplored.
 
-use super::segments::world_cell;
+use super::frame::world_cell;
 use crate::floorplan::topology::{touching, MIN_CONTACT_CELLS};
 use crate::floorplan::world::{Room, UnitType, World};
 use crate::grid::{Cell, Grid};

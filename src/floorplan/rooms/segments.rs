@@ -8,18 +8,12 @@
 //! at wall gaps, and small segments join their neighbours.
 
 use super::config::RoomCells;
-use super::pairs::group_units;
+use super::frame::world_cell;
+use super::wall_gaps::without_clutter;
 use crate::floorplan::world::World;
-use crate::geometry::Rotation;
+
 use crate::grid::{Cell, Grid};
 use std::collections::VecDeque;
-
-/// The segmentation in the map's frame with every open pair of units joined: every free map
-/// cell of a room gets the room's id (1..=n), other cells 0. `world_map` is the classified
-/// map in the world frame, `map` in the map frame.
-pub(crate) fn room_labels(world: &World, map: &Grid<Cell>, world_map: &Grid<Cell>, c: &RoomCells) -> Grid<u16> {
-    labels_of_groups(world, &group_units(world, world_map, c), map, world_map, c)
-}
 
 /// [`room_labels`] for a given grouping of units into rooms (`rooms[i]` is unit `i`'s room,
 /// 1-based, 0 for none), as [`join`] makes it: the units' free cells, then a wavefront within
@@ -200,35 +194,6 @@ fn room_owner(world: &World, rooms: &[u16], world_map: &Grid<Cell>) -> Vec<u16> 
         }
     }
     owner
-}
-
-/// The world-frame cell under map cell `(mx, my)`, if inside a world grid of `size`
-/// (width, height); `rotation` is the world frame's ([`crate::geometry::Frame::rotation`]),
-/// worked out once for a loop over cells.
-pub(crate) fn world_cell(
-    world: &World,
-    rotation: &Rotation,
-    mx: usize,
-    my: usize,
-    size: (usize, usize),
-) -> Option<(usize, usize)> {
-    frame_cell(&world.frame, rotation, mx, my, size)
-}
-
-/// [`world_cell`] in any `frame` of the map, with its `rotation`.
-pub(crate) fn frame_cell(
-    frame: &crate::geometry::Frame,
-    rotation: &Rotation,
-    mx: usize,
-    my: usize,
-    (ww, wh): (usize, usize),
-) -> Option<(usize, usize)> {
-    let (wx, wy) = if frame.is_identity() {
-        (mx as f64 + 0.5, my as f64 + 0.5)
-    } else {
-        rotation.to_world(mx as f64 + 0.5, my as f64 + 0.5)
-    };
-    (wx >= 0.0 && wy >= 0.0 && (wx as usize) < ww && (wy as usize) < wh).then_some((wx as usize, wy as usize))
 }
 
 /// Labels every free map cell whose world cell has an owner room, and queues those cells.
@@ -476,44 +441,6 @@ fn split_open_at_doorways(labels: &mut Grid<u16>, open: &Grid<Cell>, c: &RoomCel
     divide_among_cores(labels, &seed, &cores, c.min_core_cells);
 }
 
-/// `map` with the occupied parts that are no walls ([`super::wall_gaps::walls`]: shorter
-/// than `min_wall_len` cells) and the unseen specks amid free space ([`unknown_specks`])
-/// drawn free: chairs, the dots of a drawn table, a bin, cells a scan missed. A doorway
-/// is a narrowing between walls; the gaps between the chairs round a table are none, and
-/// the free space they ring is part of the room, not a room behind a door.
-pub(crate) fn without_clutter(map: &Grid<Cell>, min_wall_len: u32) -> Grid<Cell> {
-    let wall = super::wall_gaps::walls(map, min_wall_len as usize);
-    let specks = unknown_specks(map, min_wall_len as usize);
-    let mut out = map.clone();
-    for ((cell, &is_wall), &speck) in out.cells_mut().iter_mut().zip(&wall).zip(&specks) {
-        if *cell == Cell::Occupied && !is_wall || speck {
-            *cell = Cell::Free;
-        }
-    }
-    out
-}
-
-/// Unknown cells of 8-connected unknown parts less than `min_len` cells long and wide that
-/// touch free space: the cells a scan missed amid a room (or the unseen holes in a chair),
-/// not the unexplored space around the building.
-fn unknown_specks(map: &Grid<Cell>, min_len: usize) -> Vec<bool> {
-    let (w, h) = (map.width(), map.height());
-    let cells = map.cells();
-    let by_free = |i: usize| {
-        let (x, y) = (i % w, i / w);
-        (y.saturating_sub(1)..=(y + 1).min(h - 1))
-            .any(|ny| (x.saturating_sub(1)..=(x + 1).min(w - 1)).any(|nx| cells[ny * w + nx] == Cell::Free))
-    };
-    let mut speck = vec![false; w * h];
-    let unknown = |i: usize| cells[i] == Cell::Unknown;
-    super::wall_gaps::each_part(w, h, unknown, unknown, |part, extent| {
-        if extent < min_len && part.iter().any(|&i| by_free(i)) {
-            part.iter().for_each(|&i| speck[i] = true);
-        }
-    });
-    speck
-}
-
 /// Splits rooms along the wall gaps of `closed` (the map with every gap drawn as a wall,
 /// [`super::wall_gaps::close_wall_gaps_along`]): a room whose free cells, gaps left out, fall into
 /// two or more 4-connected parts of `min_core_cells` or more is divided among those parts
@@ -626,7 +553,8 @@ fn divide_among_cores(labels: &mut Grid<u16>, seed: &[u32], cores: &[(u16, usize
 
 #[cfg(test)]
 pub(crate) mod tests {
-    use super::super::pairs::{open_pairs, OpenPair};
+    use super::super::layer::room_labels;
+    use super::super::pairs::{group_units, open_pairs, OpenPair};
     use super::*;
     use crate::floorplan::{Unit, UnitType};
 

@@ -29,7 +29,7 @@
 //! not an observation.
 
 use super::config::RoomCells;
-use super::segments::frame_cell;
+use super::frame::frame_cell;
 use crate::floorplan::world::World;
 use crate::geometry::Frame;
 use crate::grid::{Cell, Grid};
@@ -320,6 +320,44 @@ fn close_in_frame(
         }
     }
     true
+}
+
+/// `map` with the occupied parts that are no walls ([`walls`]: shorter
+/// than `min_wall_len` cells) and the unseen specks amid free space ([`unknown_specks`])
+/// drawn free: chairs, the dots of a drawn table, a bin, cells a scan missed. A doorway
+/// is a narrowing between walls; the gaps between the chairs round a table are none, and
+/// the free space they ring is part of the room, not a room behind a door.
+pub(crate) fn without_clutter(map: &Grid<Cell>, min_wall_len: u32) -> Grid<Cell> {
+    let wall = super::wall_gaps::walls(map, min_wall_len as usize);
+    let specks = unknown_specks(map, min_wall_len as usize);
+    let mut out = map.clone();
+    for ((cell, &is_wall), &speck) in out.cells_mut().iter_mut().zip(&wall).zip(&specks) {
+        if *cell == Cell::Occupied && !is_wall || speck {
+            *cell = Cell::Free;
+        }
+    }
+    out
+}
+
+/// Unknown cells of 8-connected unknown parts less than `min_len` cells long and wide that
+/// touch free space: the cells a scan missed amid a room (or the unseen holes in a chair),
+/// not the unexplored space around the building.
+fn unknown_specks(map: &Grid<Cell>, min_len: usize) -> Vec<bool> {
+    let (w, h) = (map.width(), map.height());
+    let cells = map.cells();
+    let by_free = |i: usize| {
+        let (x, y) = (i % w, i / w);
+        (y.saturating_sub(1)..=(y + 1).min(h - 1))
+            .any(|ny| (x.saturating_sub(1)..=(x + 1).min(w - 1)).any(|nx| cells[ny * w + nx] == Cell::Free))
+    };
+    let mut speck = vec![false; w * h];
+    let unknown = |i: usize| cells[i] == Cell::Unknown;
+    super::wall_gaps::each_part(w, h, unknown, unknown, |part, extent| {
+        if extent < min_len && part.iter().any(|&i| by_free(i)) {
+            part.iter().for_each(|&i| speck[i] = true);
+        }
+    });
+    speck
 }
 
 #[cfg(test)]

@@ -7,7 +7,7 @@
 //! world frame: 4-connected components of free map cells covered by no unit rectangle (wall
 //! ring included) and no door, listed as row runs so that a reader can redraw them exactly.
 
-use super::world::{Rect, UnexplainedArea};
+use crate::floorplan::world::{Rect, UnexplainedArea};
 use crate::grid::flood::{Flood, Neighbours};
 use crate::grid::{Cell, Grid};
 

@@ -2,7 +2,7 @@
 //! leads from a unit of one wing into a unit of the other, and a person draws a door there.
 //!
 //! Each wing's chain explains its own floor, the other wings' free cells unknown to it
-//! ([`super::wings`]), so no chain puts a door between two wings: the corridor that runs
+//! ([`crate::floorplan::wings`]), so no chain puts a door between two wings: the corridor that runs
 //! from one wing into the next would end at a closed wall in the drawings and the 3D model,
 //! and the scene graph would fall apart into one piece per wing. [`join_wings`] finds those
 //! passages on the map once the wings' units are composed: from each side of a unit it walks
@@ -17,8 +17,8 @@
 //! A passage between wings is an opening, so it has no longest door: a corridor that runs on
 //! into the next wing opens over its whole width.
 
-use super::state::DoorLimits;
-use super::world::{Door, Room, Unit, World};
+use crate::floorplan::state::DoorLimits;
+use crate::floorplan::world::{Door, Room, Unit, World};
 use crate::geometry::{Frame, Rect};
 use crate::grid::{Cell, Grid};
 use std::collections::BTreeMap;

@@ -28,7 +28,7 @@
 
 use super::georef::{Georef, MapOrigin};
 use super::shapes::{floor_shapes, FloorShapes, MapPoint, MapPolygon, ShapeError};
-use super::world::{UnitType, World};
+use crate::floorplan::world::{UnitType, World};
 use crate::grid::{Grid, OccupancyMap};
 use serde_json::{json, Value};
 
@@ -88,7 +88,7 @@ pub fn geojson(shapes: &FloorShapes, origin: &MapOrigin, georef: Option<&Georef>
     for room in &shapes.rooms {
         let geometry = out.geometry(&room.polygons);
         // A person's name for the room, with the generated one as its alternative.
-        let label = crate::render::label_texts(room.kind, room.id).swap_remove(0);
+        let label = format!("{} {}", room.kind.name(), room.id);
         let (name, alt_name) = match &room.name {
             Some(n) => (json!({"en": n}), json!({"en": label})),
             None => (json!({"en": label}), Value::Null),

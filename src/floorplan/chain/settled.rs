@@ -26,7 +26,7 @@
 //! assert!(settled.settled_at().is_some());
 //! ```
 
-use super::Chain;
+use crate::floorplan::Chain;
 
 /// The rule looks at the chain every `STRIDE` iterations (at multiples of it).
 pub const STRIDE: u64 = 100;

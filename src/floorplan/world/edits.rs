@@ -26,14 +26,14 @@
 //! * **merge**: the units under the two points get `SameRoom` as evidence, and the rooms at the
 //!   two points are joined.
 //! * **type**: the unit under the point gets its type as evidence in the Markov logic
-//!   inference, which types the units and shapes the prior ([`super::knowledge`]); the room at
+//!   inference, which types the units and shapes the prior ([`crate::floorplan::knowledge`]); the room at
 //!   the point takes the type.
 //! * **name**: the room at the point carries the name (`rooms[].name` in `world.json`).
 //!
 //! Edits apply in order: a later one wins where two disagree (a merge across an earlier split
 //! joins the two sides again).
 
-use super::world::{Room, UnitType, World};
+use crate::floorplan::world::{Room, UnitType, World};
 use crate::geometry::{Frame, Rect};
 use crate::grid::{Cell, Grid};
 use serde::{Deserialize, Serialize};
@@ -42,8 +42,7 @@ use serde::{Deserialize, Serialize};
 pub const MAX_EDITS_TEXT: usize = 1 << 20;
 /// Most edits in one list.
 pub const MAX_EDITS: usize = 10_000;
-/// Longest room name, characters.
-pub const MAX_NAME_CHARS: usize = 200;
+pub use super::MAX_NAME_CHARS;
 /// How far a split line is extended at each end to reach a wall, cells: a line drawn roughly
 /// from wall to wall closes the gaps at its ends, one drawn up to an opening stops soon after.
 pub const MAX_EXTENSION_CELLS: i64 = 12;
@@ -264,10 +263,10 @@ impl Edits {
         })
     }
 
-    /// Type evidence for the Markov logic inference: for every type edit whose point lies in a
-    /// unit of `world`, the unit's four type atoms (`Room`, `Corr`, `Hall`, `Other`), true for
-    /// the edit's type and false for the others. Later edits win.
-    pub fn type_facts(&self, world: &World) -> Vec<super::knowledge::Fact> {
+    /// The type a person gave each unit of `world` (by unit id): for every type edit whose
+    /// point lies in a unit, that unit; later edits win. The Markov logic inference takes these
+    /// as evidence ([`crate::floorplan::knowledge::edit_facts`]).
+    pub fn typed_units(&self, world: &World) -> std::collections::BTreeMap<u32, UnitType> {
         let mut by_unit = std::collections::BTreeMap::new();
         for e in &self.list {
             if let Edit::Type { at, kind } = e {
@@ -276,11 +275,7 @@ impl Edits {
                 }
             }
         }
-        let preds = super::knowledge::TYPE_PREDICATES;
         by_unit
-            .into_iter()
-            .flat_map(|(id, kind)| preds.map(|(p, t)| (p, vec![super::knowledge::constant(id)], t == kind)))
-            .collect()
     }
 
     /// Pairs of units (indices into `world.units`) that merges join: the units under the two

@@ -52,7 +52,7 @@ impl SensorModel {
     /// cell exactly what a ring on the face and the free cells in front of it costs
     /// (`p(free | wall)`, the unseen cells predicted unknown), and the inward ring is shorter
     /// around the corners: the chain eats floor along every outer wall. `ksmcmc explore` uses this table
-    /// ([`super::ChainConfig::online`]).
+    /// ([`crate::floorplan::ChainConfig::online`]).
     ///
     /// ```
     /// use ksmcmc::floorplan::posterior::SensorModel;

@@ -1,3 +1,9 @@
+//! **The chain folder** owns the Markov chain: its state over an incremental
+//! [`Explanation`] (`state`, `explain`), the kernels and their schedule, the posterior and
+//! sensor model ([`posterior`]), the trace, the settle rule ([`settled`]) and the chain that
+//! follows a growing map ([`online`]). It may import the world, knowledge, the room layer (for
+//! a chain's rooms), vision and the grid; nothing of the exports or the wings.
+//!
 //! The data-driven Markov chain (Algorithm 1): propose with a kernel chosen by the schedule
 //! (Tab. 3.2), accept by Metropolis-Hastings (eq. 3.9), remember the best world.
 //!
@@ -22,12 +28,21 @@
 //! assert!(chain.best_prediction_rate() > 0.99);
 //! ```
 
-use super::explain::Explanation;
-use super::kernels::{Candidates, KernelConfig, Proposer};
-use super::posterior::{Posterior, PosteriorConfig};
-use super::schedule::{Kernel, Schedule};
-use super::state::{DoorLimits, DoorSizes, DoorSpec, Move, State};
-use super::trace::Trace;
+pub(crate) mod explain;
+pub(crate) mod kernels;
+pub mod online;
+pub mod posterior;
+pub(crate) mod schedule;
+pub mod settled;
+pub(crate) mod state;
+pub(crate) mod trace;
+
+use self::explain::Explanation;
+use self::kernels::{Candidates, KernelConfig, Proposer};
+use self::posterior::{Posterior, PosteriorConfig};
+use self::schedule::{Kernel, Schedule};
+use self::state::{DoorLimits, DoorSizes, DoorSpec, Move, State};
+use self::trace::Trace;
 use super::world::{Door, Frame, Rect, Unit, UnitType, World};
 use crate::grid::{Cell, Grid, OccupancyMap};
 use crate::mcmc::{accept, Cumulative, Ring, Rng, TracePoint};
@@ -191,7 +206,7 @@ impl ChainConfig {
 
     /// The defaults for a chain that follows a robot's growing map (`ksmcmc explore`, the
     /// Exploration page): [`ChainConfig::default`] with the range-sensor table
-    /// ([`super::posterior::SensorModel::range_sensor`]), under which a wall's ring lies in the wall
+    /// ([`self::posterior::SensorModel::range_sensor`]), under which a wall's ring lies in the wall
     /// behind the face the robot saw, not in the floor before it.
     ///
     /// ```
@@ -205,7 +220,7 @@ impl ChainConfig {
     /// ```
     pub fn online() -> ChainConfig {
         let mut c = ChainConfig::default();
-        c.posterior.sensor = super::posterior::SensorModel::range_sensor();
+        c.posterior.sensor = self::posterior::SensorModel::range_sensor();
         c
     }
 
@@ -245,11 +260,11 @@ impl ChainConfig {
 }
 
 /// The wall detector's unit candidates on a world-frame map, those that fit a unit with rings
-/// `wall` deep ([`super::state::fits_unit`]).
+/// `wall` deep ([`self::state::fits_unit`]).
 fn wall_candidates(world_map: &Grid<Cell>, cells: &ChainCells, wall: i32) -> Candidates {
     let min_side = cells.min_side;
     let found = vision::walls::candidates(world_map, min_side, &cells.walls);
-    Candidates::new(found.into_iter().filter(|&(r, _)| super::state::fits_unit(r, min_side, wall)))
+    Candidates::new(found.into_iter().filter(|&(r, _)| self::state::fits_unit(r, min_side, wall)))
 }
 
 /// Writes `given`'s fields over `base`'s, object by object (other values replace).
@@ -489,7 +504,7 @@ impl Chain {
         let sensor = config.posterior.sensor.table;
         let k = &config.knowledge;
         // Per cell, so weighted as the likelihood's cells are (posterior::cell_weight).
-        let w = super::posterior::cell_weight(resolution);
+        let w = self::posterior::cell_weight(resolution);
         let object_gain = [
             (libm::log(k.object[1]) - libm::log(sensor[0][1])).max(0.0) * w,
             (libm::log(k.object[2]) - libm::log(sensor[0][2])).max(0.0) * w,
@@ -631,7 +646,7 @@ impl Chain {
         let rect_of = |id: u32| units.iter().find(|u| u.id == id).map(|u| u.rect());
         for (k, d) in doors.iter().enumerate() {
             let (Some(lo), Some(hi)) = (rect_of(d.lo), rect_of(d.hi)) else { continue };
-            if let Some(r) = super::state::door_rect(lo, hi, d, &self.cells.doors, self.state.wall) {
+            if let Some(r) = self::state::door_rect(lo, hi, d, &self.cells.doors, self.state.wall) {
                 w.doors.push(Door {
                     id: k as u32 + 1,
                     units: [d.lo, d.hi],
@@ -652,7 +667,7 @@ impl Chain {
     pub fn infer_knowledge(&mut self) -> Result<u64, ChainError> {
         let world = self.internal_world();
         let resolution = self.resolution;
-        let given = self.edits.type_facts(&world);
+        let given = super::knowledge::edit_facts(&self.edits, &world);
         let Some(k) = self.knowledge.as_mut() else { return Ok(0) };
         let inferred = k.infer_given(&world, resolution, &given).map_err(|e| ChainError::Knowledge(e.to_string()))?;
         let mut work = k.last_work;
@@ -674,7 +689,7 @@ impl Chain {
         // inference on itself (cached by evidence, so free while it stays the best).
         if !self.best.units.is_empty() {
             let best = self.internal_best_world();
-            let given = self.edits.type_facts(&best);
+            let given = super::knowledge::edit_facts(&self.edits, &best);
             if let Some(k) = self.knowledge.as_mut() {
                 let typed =
                     k.infer_given(&best, resolution, &given).map_err(|e| ChainError::Knowledge(e.to_string()))?;
@@ -705,7 +720,7 @@ impl Chain {
         if self.knowledge.is_none() && self.typer.is_none() {
             self.typer = super::knowledge::Knowledge::new(&Default::default()).ok();
         }
-        let given = self.edits.type_facts(&world);
+        let given = super::knowledge::edit_facts(&self.edits, &world);
         let typer = if self.knowledge.is_some() { self.knowledge.as_mut() } else { self.typer.as_mut() };
         let inferred = typer.and_then(|k| k.infer_given(&world, resolution, &given).ok());
         if let Some(inferred) = &inferred {
@@ -918,7 +933,7 @@ impl Chain {
         let (min, wall) = (self.cells.min_side, self.state.wall);
         let items: Vec<(Rect, f64)> = rects
             .into_iter()
-            .filter(|&r| super::state::fits_unit(r, min, wall))
+            .filter(|&r| self::state::fits_unit(r, min, wall))
             .map(|r| (r, self.state.unit_weight(r).max(0.2)))
             .collect();
         self.proposer.candidates.extend(items);

@@ -1,6 +1,7 @@
 //! Scores of a world against a map.
 
-use super::world::{Frame, FrameGroup, World};
+use crate::floorplan::world::{Frame, FrameGroup, Unit, World};
+use crate::geometry::{facing, Axis};
 use crate::grid::{Cell, Grid};
 
 /// The class a world predicts for every cell of the map (eq. 3.8), in the map's frame: wall
@@ -247,20 +248,47 @@ pub fn defects(world: &World) -> Option<f64> {
 /// worlds they weigh each pair alike, where averaging [`defects`] weighs each world alike.
 pub fn defect_pairs(world: &World) -> (u32, u32) {
     let t = world.wall_thickness;
-    let rooms: Vec<&super::world::Unit> =
-        world.units.iter().filter(|u| u.kind == super::world::UnitType::Room).collect();
+    let rooms: Vec<&crate::floorplan::world::Unit> =
+        world.units.iter().filter(|u| u.kind == crate::floorplan::world::UnitType::Room).collect();
     let (mut bad, mut pairs) = (0u32, 0u32);
     for (i, a) in rooms.iter().enumerate() {
         for b in &rooms[i + 1..] {
-            if let Some((la, lb)) = super::knowledge::connecting_walls(a, b, t) {
+            if let Some((la, lb)) = connecting_walls(a, b, t) {
                 pairs += 1;
-                if (la - lb).abs() as f64 > super::knowledge::SAME_LENGTH_TOLERANCE * la.max(lb) as f64 {
+                if (la - lb).abs() as f64 > SAME_LENGTH_TOLERANCE * la.max(lb) as f64 {
                     bad += 1;
                 }
             }
         }
     }
     (bad, pairs)
+}
+
+/// The lengths of the connecting walls of two adjacent units (their facing sides), cells.
+pub fn connecting_walls(a: &Unit, b: &Unit, t: i32) -> Option<(i32, i32)> {
+    let faces = |axis| {
+        facing(a.rect(), b.rect(), axis, 2 * t, t).is_some() || facing(b.rect(), a.rect(), axis, 2 * t, t).is_some()
+    };
+    // Side by side, the connecting walls are the vertical sides; one above the other, the
+    // horizontal ones.
+    if faces(Axis::Horizontal) {
+        Some((a.h, b.h))
+    } else if faces(Axis::Vertical) {
+        Some((a.w, b.w))
+    } else {
+        None
+    }
+}
+
+/// Connecting walls differing by at most this share of the longer one have the same length:
+/// the test of [`defect_pairs`] and of the `SaLe` atoms of [`crate::floorplan::knowledge::training_facts`].
+pub const SAME_LENGTH_TOLERANCE: f64 = 0.1;
+
+/// Whether two units are adjacent and their connecting walls have the same length within
+/// [`SAME_LENGTH_TOLERANCE`]: the true value of `SaLe(a, b)`.
+pub fn same_length(a: &Unit, b: &Unit, t: i32) -> bool {
+    connecting_walls(a, b, t)
+        .is_some_and(|(la, lb)| (la - lb).abs() as f64 <= SAME_LENGTH_TOLERANCE * la.max(lb) as f64)
 }
 
 #[cfg(test)]

@@ -24,22 +24,22 @@
 //! # Ok::<(), ksmcmc::floorplan::plan_input::PlanInputError>(())
 //! ```
 
-use super::edits::{self, Edits};
-use super::export::RoomInput;
-use super::knowledge::Inferred;
-use super::knowledge::KnowledgeConfig;
 use super::report::{self, ChainSummary};
-use super::rooms::{RoomConfig, RoomError, RoomLayer};
-use super::wings::{wing_rotation_deg, WingConfig, WingLayout};
-use super::world::World;
-use super::{Chain, DoorSizes};
+use crate::floorplan::edits::{self, Edits};
+use crate::floorplan::export::RoomInput;
+use crate::floorplan::knowledge::Inferred;
+use crate::floorplan::knowledge::KnowledgeConfig;
+use crate::floorplan::rooms::{RoomConfig, RoomError, RoomLayer};
+use crate::floorplan::wings::{wing_rotation_deg, WingConfig, WingLayout};
+use crate::floorplan::world::World;
+use crate::floorplan::{Chain, DoorSizes};
 use crate::grid::{Grid, OccupancyMap};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
-/// The longest plan input text read: a world of [`super::world::MAX_WORLD_JSON_BYTES`] and
+/// The longest plan input text read: a world of [`crate::floorplan::world::MAX_WORLD_JSON_BYTES`] and
 /// room for the rest.
-pub const MAX_PLAN_INPUT_BYTES: usize = super::world::MAX_WORLD_JSON_BYTES + (1 << 20);
+pub const MAX_PLAN_INPUT_BYTES: usize = crate::floorplan::world::MAX_WORLD_JSON_BYTES + (1 << 20);
 
 /// What the room layer and the exports need of a chain (see the module docs).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -65,7 +65,7 @@ pub struct PlanInput {
     /// `setup_seconds`.
     #[serde(default, deserialize_with = "crate::json::exact_opt")]
     pub setup_seconds: Option<f64>,
-    /// The chain's door limits ([`super::ChainConfig::doors`]): the doors found between the
+    /// The chain's door limits ([`crate::floorplan::ChainConfig::doors`]): the doors found between the
     /// units of two wings ([`PlanInput::explain_wings`]) keep to them too (default: the
     /// default limits).
     #[serde(default)]
@@ -142,7 +142,7 @@ impl PlanInput {
         Edits::parse(&self.edits).map_err(|e| PlanInputError(format!("edits: {e}")))
     }
 
-    /// The inference as [`super::rooms::room_types`] reads it (types from the world).
+    /// The inference as [`crate::floorplan::rooms::room_types`] reads it (types from the world).
     pub fn inferred(&self) -> Option<Inferred> {
         let kind = |id: &u32| self.world.units.iter().find(|u| u.id == *id).map(|u| u.kind).unwrap_or_default();
         let types = self.marginals.as_ref()?.iter().map(|(id, p)| (*id, (kind(id), *p))).collect();
@@ -171,7 +171,7 @@ impl PlanInput {
         Ok((world, labels))
     }
 
-    /// The wings of the building on `map` (a chain per wing, [`super::wings`]) given the room
+    /// The wings of the building on `map` (a chain per wing, [`crate::floorplan::wings`]) given the room
     /// `labels` of this input's world ([`PlanInput::explain`]), as `ksmcmc floorplan` finds
     /// them; `None` for a building of one wing, and while edits are in force (the edits are
     /// made on the one chain's world).
@@ -183,7 +183,7 @@ impl PlanInput {
     }
 
     /// The world of a building's wings and its room labels ([`WingLayout::compose`]), as
-    /// [`super::wings::Wings::run`] gives them: this input is the first chain's, `wings` the
+    /// [`crate::floorplan::wings::Wings::run`] gives them: this input is the first chain's, `wings` the
     /// inputs of the wings' chains, one per wing of [`PlanInput::wing_layout`] in order, each
     /// run on [`WingLayout::wing_map`] with [`WingLayout::wing_config`]. Refused if the map is
     /// one wing, or the wings' chains do not fit its layout.

@@ -1,3 +1,8 @@
+//! **The world folder** owns the world and what is read off a world alone: a person's
+//! [`edits`], K(W,M) and the other [`metrics`], contacts between regions ([`topology`]) and the
+//! free space no unit explains ([`unexplained`]). It imports only the geometry and the grid;
+//! everything else in the floor plan imports it.
+//!
 //! The semantic world `W = {U, T, R}` (section 3.4): units, their types, doors, object cells.
 //!
 //! A [`Unit`] is an axis-aligned rectangle of cells in the *world frame*; its outermost ring of
@@ -50,7 +55,7 @@
 //!   optional: each a 4-connected component with its cell count, bounding box `(x0, y0)` to
 //!   `(x1, y1)` inclusive, and its cells as row runs `[y, x_first, x_last]`, top to bottom.
 //!   The chain lists components of at least
-//!   [`MIN_UNEXPLAINED_CELLS`](super::unexplained::MIN_UNEXPLAINED_CELLS) cells.
+//!   [`MIN_UNEXPLAINED_CELLS`](self::unexplained::MIN_UNEXPLAINED_CELLS) cells.
 //!
 //! # Limits
 //!
@@ -75,7 +80,15 @@
 //! explained with a few thousand units at most; the caps leave a wide margin while keeping a
 //! hostile file from asking for gigabytes (or, in wasm32, from overflowing sizes).
 
+pub mod edits;
+pub mod metrics;
+pub mod topology;
+pub mod unexplained;
+
 pub use crate::geometry::{Frame, Rect};
+
+/// Longest room name, characters (a person's name for a room, [`edits`]).
+pub const MAX_NAME_CHARS: usize = 200;
 use serde::{Deserialize, Deserializer, Serialize};
 
 /// The format tag written into every `world.json`.
@@ -287,7 +300,7 @@ pub struct Room {
     /// Ids of the rooms it connects to, through a door or an open boundary.
     #[serde(deserialize_with = "caps::ids")]
     pub opens_to: Vec<u32>,
-    /// The name a person gave it ([`super::edits`]), if any.
+    /// The name a person gave it ([`self::edits`]), if any.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub name: Option<String>,
 }
@@ -756,8 +769,8 @@ impl World {
             if let Some(o) = r.opens_to.iter().find(|o| !room_ids.contains(o)) {
                 return bad(format!("room {} opens to room {o}, which does not exist", r.id));
             }
-            if r.name.as_ref().is_some_and(|n| n.chars().count() > super::edits::MAX_NAME_CHARS) {
-                return bad(format!("room {} has a name over {} characters", r.id, super::edits::MAX_NAME_CHARS));
+            if r.name.as_ref().is_some_and(|n| n.chars().count() > MAX_NAME_CHARS) {
+                return bad(format!("room {} has a name over {} characters", r.id, MAX_NAME_CHARS));
             }
         }
         Ok(())

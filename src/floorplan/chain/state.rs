@@ -6,8 +6,8 @@
 //! proposal leaves no trace and the chain stays deterministic.
 
 use super::explain::Explanation;
-use super::world::{Rect, Unit, UnitType};
-pub use crate::geometry::Axis;
+use crate::floorplan::world::{Rect, Unit, UnitType};
+pub use crate::geometry::{facing, Axis};
 use crate::geometry::{AreaCounts, CellCounts};
 use crate::grid::{Cell, Grid};
 
@@ -101,26 +101,6 @@ impl DoorSizes {
 pub fn fits_unit(r: Rect, min_side: i32, wall: i32) -> bool {
     let side = min_side.max(2 * wall + 1);
     r.w >= side && r.h >= side
-}
-
-/// The interior range two facing units share along their walls, if they face each other:
-/// `hi` lies beyond `lo` (their wall rings of depth `t` may overlap, their rectangles may be
-/// up to `max_gap` cells apart), and their interiors overlap along the walls.
-pub fn facing(lo: Rect, hi: Rect, axis: Axis, max_gap: i32, t: i32) -> Option<(i32, i32)> {
-    // In i64: unchecked worlds (a world.json from anywhere) may hold extreme coordinates.
-    let end = |a: i32, len: i32| a as i64 + len as i64;
-    let (gap, a0, a1, b0, b1) = match axis {
-        Axis::Horizontal => (hi.x as i64 - end(lo.x, lo.w), lo.y as i64, end(lo.y, lo.h), hi.y as i64, end(hi.y, hi.h)),
-        Axis::Vertical => (hi.y as i64 - end(lo.y, lo.h), lo.x as i64, end(lo.x, lo.w), hi.x as i64, end(hi.x, hi.w)),
-    };
-    let t = t as i64;
-    if gap < -t || gap > max_gap as i64 {
-        return None;
-    }
-    // Interior rows (or columns) of both: exclude each unit's corner walls.
-    let s = (a0 + t).max(b0 + t);
-    let e = (a1 - 1 - t).min(b1 - 1 - t);
-    (s <= e && s >= i32::MIN as i64 && e <= i32::MAX as i64).then_some((s as i32, e as i32))
 }
 
 /// The rectangle of a door between `lo` and `hi`, or `None` if they no longer face each other

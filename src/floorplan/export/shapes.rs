@@ -34,8 +34,8 @@
 //! the line between their centres.
 
 use super::outline::{self, Polygon};
-use super::rooms::map_cell;
-use super::world::{Door, Frame, FrameGroup, Room, UnitType, World, WorldError};
+use crate::floorplan::rooms::map_cell;
+use crate::floorplan::world::{Door, Frame, FrameGroup, Room, UnitType, World, WorldError};
 use crate::grid::Grid;
 
 /// A point on the map in cells: `x` right, `y` down, `(0, 0)` the top-left corner of the map's
@@ -141,7 +141,7 @@ impl std::fmt::Display for ShapeError {
 impl std::error::Error for ShapeError {}
 
 /// The shapes of `world`'s rooms and doors, with `labels` the room id of every map cell
-/// (`labels.pgm`, as [`super::rooms::RoomLayer::explain`] returns it).
+/// (`labels.pgm`, as [`crate::floorplan::rooms::RoomLayer::explain`] returns it).
 ///
 /// ```
 /// use ksmcmc::floorplan::shapes::floor_shapes;

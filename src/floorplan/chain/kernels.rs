@@ -22,7 +22,7 @@
 
 use super::schedule::Kernel;
 use super::state::{door_rect, facing, Axis, DoorLimits, DoorSpec, Move, State, Undo};
-use super::world::Rect;
+use crate::floorplan::world::Rect;
 use crate::mcmc::{Cumulative, Rng};
 use crate::vision::doors;
 use serde::{Deserialize, Serialize};

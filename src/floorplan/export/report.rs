@@ -1,11 +1,11 @@
 //! The summary of a run, `report.json`, shared by the command line and the browser so that
 //! both write the same fields.
 
-use super::metrics;
-use super::metrics::defects;
-use super::schedule::Kernel;
-use super::world::World;
-use super::Chain;
+use crate::floorplan::metrics;
+use crate::floorplan::metrics::defects;
+use crate::floorplan::schedule::Kernel;
+use crate::floorplan::world::World;
+use crate::floorplan::Chain;
 use crate::grid::{Grid, OccupancyMap};
 use serde::{Deserialize, Serialize};
 
@@ -37,13 +37,13 @@ pub fn add_rooms(r: &mut serde_json::Value, world: &World, labels: &Grid<u16>) {
         *types.entry(room.kind.name()).or_insert(0u32) += 1;
     }
     r["room_types"] = serde_json::json!(types);
-    // Doors within one room (super::openings): openings, and doors of rooms merged across them.
+    // Doors within one room (crate::floorplan::openings): openings, and doors of rooms merged across them.
     r["openings"] = world.doors.iter().filter(|d| d.opening).count().into();
-    r["doors_in_one_room"] = super::rooms::doors_in_one_room(world).into();
+    r["doors_in_one_room"] = crate::floorplan::rooms::doors_in_one_room(world).into();
 }
 
 /// [`report`] without `rooms`, which needs the room labels: a caller short of memory can
-/// drop the chain before computing them ([`super::export::RoomInput`]) and then
+/// drop the chain before computing them ([`crate::floorplan::export::RoomInput`]) and then
 /// [`add_rooms`].
 pub fn summary(chain: &Chain, map: &OccupancyMap, world: &World, seconds: f64) -> serde_json::Value {
     summary_of(&ChainSummary::of(chain, seconds), map, world)
@@ -108,7 +108,7 @@ impl ChainSummary {
     }
 }
 
-/// Adds a building's wings to the `report` of its first chain ([`super::wings`]): their
+/// Adds a building's wings to the `report` of its first chain ([`crate::floorplan::wings`]): their
 /// chains' summaries, one per wing in order, each with its direction, iterations and the
 /// units of `world` it explains (the first wing's units are those without an angle of their
 /// own), and `iterations` and `iterations_per_second` over all the chains in `seconds`.
@@ -154,7 +154,7 @@ pub fn add_wings(report: &mut serde_json::Value, world: &World, wings: &[ChainSu
 }
 
 /// A note for a report whose map has walls in several directions: whether its wings were
-/// explained each in its own direction (`report.json`'s `wings`, [`super::wings`]) or the
+/// explained each in its own direction (`report.json`'s `wings`, [`crate::floorplan::wings`]) or the
 /// units follow the map's one rotation; `None` for one direction or none.
 ///
 /// ```

@@ -3,21 +3,21 @@
 //!
 //! The command line and the Python package both call [`run`], so that the same map, seed and
 //! settings give the same `world.json` and `labels.pgm` from either (the files themselves are
-//! [`super::export::Outputs`] of the result). By default a map whose walls follow several
-//! directions is explained wing by wing ([`super::wings`]); with edits one chain explains it
+//! [`crate::render::Outputs`] of the result). By default a map whose walls follow several
+//! directions is explained wing by wing ([`crate::floorplan::wings`]); with edits one chain explains it
 //! under them. A caller that stops the chain by its own rule (a time limit, the settle rule)
 //! steps the chain itself and hands it to [`Run::of_chain`].
 //!
 //! Native only: the run is timed with the system clock, which WebAssembly lacks (the browser's
 //! plan comes through [`super::plan_input`]).
 
-use super::chain::{Chain, ChainConfig, ChainError};
-use super::edits::Edits;
-use super::export::{trace_csv, RoomInput};
 use super::report::{self, ChainSummary};
-use super::rooms::RoomConfig;
-use super::wings::{WingConfig, Wings};
-use super::world::World;
+use crate::floorplan::chain::{Chain, ChainConfig, ChainError};
+use crate::floorplan::edits::Edits;
+use crate::floorplan::export::{trace_csv, RoomInput};
+use crate::floorplan::rooms::RoomConfig;
+use crate::floorplan::wings::{WingConfig, Wings};
+use crate::floorplan::world::World;
 use crate::grid::{Grid, OccupancyMap};
 use std::time::Instant;
 

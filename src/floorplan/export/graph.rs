@@ -4,8 +4,8 @@
 //! their facing walls are at most two wall depths apart and they overlap along them; a door
 //! joins two units directly.
 
-use super::state::{facing, Axis};
-use super::world::{UnitType, World};
+use crate::floorplan::world::{UnitType, World};
+use crate::geometry::{facing, Axis};
 use petgraph::graph::{NodeIndex, UnGraph};
 use serde::Serialize;
 

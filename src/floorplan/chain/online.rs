@@ -16,8 +16,9 @@
 //! Pass [`ChainConfig::online`] for a robot's map, as `ksmcmc explore` does: its range-sensor
 //! table lays a wall's ring behind the face the robot saw.
 
-use super::{metrics, Chain, ChainConfig, ChainError};
+use super::{Chain, ChainConfig, ChainError};
 use crate::explore::{ExploreConfig, ExploreError, Explorer};
+use crate::floorplan::metrics;
 use crate::grid::{Cell, OccupancyMap};
 use serde::{Deserialize, Serialize};
 

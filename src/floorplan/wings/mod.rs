@@ -1,3 +1,7 @@
+//! **The wings folder** owns buildings whose walls run several ways: the wing layout, a chain
+//! per wing, and the doors between wings ([`wing_doors`]). It imports the chain, the room
+//! layer and the world.
+//!
 //! Buildings whose walls follow several directions (issue 13): a chain per wing, each in its
 //! own direction's frame, and one world of units at several angles.
 //!
@@ -23,7 +27,7 @@
 //!    whose interior lies mostly in its wing, in the room under most of it. The units of
 //!    every wing but the first carry their angle ([`World::unit_frame`]);
 //! 6. where a passage of free cells leads from a unit of one wing into a unit of another,
-//!    a door joins them ([`super::wing_doors`]).
+//!    a door joins them ([`self::wing_doors`]).
 //!
 //! Why the rooms stay the first chain's in a building of two wings: the wings' own chains
 //! find rooms whose labels move by 0.03 of precision with a chain's random path, and lose on
@@ -33,6 +37,8 @@
 //!
 //! The world's frame, object cells and room types are the first chain's; unexplained areas are
 //! left out. Each chain runs the given iterations, so a map of `n` wings costs `n + 1` chains.
+
+pub mod wing_doors;
 
 use super::rooms::RoomConfig;
 use super::world::{Door, Unit, World};
@@ -194,7 +200,7 @@ impl WingLayout {
     /// the other wings' directions and returns their labels
     /// ([`Chain::rooms_by_walls`], [`super::export::RoomInput::by_walls`]). Passages of free
     /// cells of `map` between units of two wings become doors within `doors`, the chains'
-    /// door limits ([`super::wing_doors`]).
+    /// door limits ([`self::wing_doors`]).
     /// Fails only where `by_walls` does.
     pub fn compose<E>(
         &self,
@@ -209,7 +215,7 @@ impl WingLayout {
             labels = by_walls(&mut world, others)?;
         }
         let mut world = compose(world, &labels, wings, &self.wing_of);
-        super::wing_doors::join_wings(&mut world, map, doors);
+        self::wing_doors::join_wings(&mut world, map, doors);
         Ok((world, labels))
     }
 }

@@ -69,13 +69,13 @@ impl Model3dOptions {
     pub fn validate(&self) -> Result<(), Model3dError> {
         let ok = |h: f64| h.is_finite() && h > 0.0 && h <= MAX_HEIGHT_M;
         if !ok(self.wall_height) {
-            return Err(Model3dError(format!(
+            return Err(Model3dError::new(format!(
                 "wall height {} m: give a positive number of metres, at most {MAX_HEIGHT_M}",
                 self.wall_height
             )));
         }
         if !ok(self.door_height) || self.door_height > self.wall_height {
-            return Err(Model3dError(format!(
+            return Err(Model3dError::new(format!(
                 "door height {} m: give a positive number of metres, at most the wall height ({} m)",
                 self.door_height, self.wall_height
             )));
@@ -86,11 +86,20 @@ impl Model3dOptions {
 
 /// Why no 3D world was made.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Model3dError(pub String);
+pub struct Model3dError {
+    message: String,
+}
+
+impl Model3dError {
+    /// The error with `message`, which says what was refused and how to put it right.
+    pub(crate) fn new(message: impl Into<String>) -> Model3dError {
+        Model3dError { message: message.into() }
+    }
+}
 
 impl std::fmt::Display for Model3dError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(&self.0)
+        f.write_str(&self.message)
     }
 }
 
@@ -100,9 +109,9 @@ impl std::error::Error for Model3dError {}
 pub fn world_glb(world: &World, resolution: f64, options: &Model3dOptions) -> Result<Vec<u8>, Model3dError> {
     options.validate()?;
     if !(resolution.is_finite() && resolution > 0.0) {
-        return Err(Model3dError(format!("resolution {resolution}: give a positive number of metres per cell")));
+        return Err(Model3dError::new(format!("resolution {resolution}: give a positive number of metres per cell")));
     }
-    world.validate().map_err(|e| Model3dError(e.to_string()))?;
+    world.validate().map_err(|e| Model3dError::new(e.to_string()))?;
     let groups = world.frame_groups();
     let places: Vec<Place> = groups.iter().map(|g| Place { frame: g.frame, r: resolution }).collect();
     let mut glb = Glb::new();

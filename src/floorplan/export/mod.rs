@@ -83,7 +83,7 @@ impl RoomInput {
         let resolution = map.yaml().resolution;
         let (world_map, frame) = crate::vision::orientation::to_world_frame(map.classified(), world.frame.angle);
         if frame.world_size != world.frame.world_size {
-            return Err(WorldError(format!(
+            return Err(WorldError::new(format!(
                 "world.json: frame.world_size is {:?}, but this map turned by frame.angle gives {:?}: the \
                  world was made for another map",
                 world.frame.world_size, frame.world_size

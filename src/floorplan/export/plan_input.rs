@@ -82,11 +82,20 @@ fn on() -> bool {
 
 /// Why a plan input was refused, or its world does not fit the map.
 #[derive(Debug, Clone, PartialEq)]
-pub struct PlanInputError(pub String);
+pub struct PlanInputError {
+    message: String,
+}
+
+impl PlanInputError {
+    /// The error with `message`, which says what was refused and how to put it right.
+    pub(crate) fn new(message: impl Into<String>) -> PlanInputError {
+        PlanInputError { message: message.into() }
+    }
+}
 
 impl std::fmt::Display for PlanInputError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "plan input: {}", self.0)
+        write!(f, "plan input: {}", self.message)
     }
 }
 
@@ -126,20 +135,20 @@ impl PlanInput {
     /// its edits as [`Edits::parse`] checks them.
     pub fn from_json(text: &str) -> Result<PlanInput, PlanInputError> {
         if text.len() > MAX_PLAN_INPUT_BYTES {
-            return Err(PlanInputError(format!(
+            return Err(PlanInputError::new(format!(
                 "the text is {} bytes, over the limit of {MAX_PLAN_INPUT_BYTES}",
                 text.len()
             )));
         }
-        let input: PlanInput = serde_json::from_str(text).map_err(|e| PlanInputError(e.to_string()))?;
-        input.world.validate().map_err(|e| PlanInputError(e.to_string()))?;
+        let input: PlanInput = serde_json::from_str(text).map_err(|e| PlanInputError::new(e.to_string()))?;
+        input.world.validate().map_err(|e| PlanInputError::new(e.to_string()))?;
         input.edits()?;
         Ok(input)
     }
 
     /// The edits.
     pub fn edits(&self) -> Result<Edits, PlanInputError> {
-        Edits::parse(&self.edits).map_err(|e| PlanInputError(format!("edits: {e}")))
+        Edits::parse(&self.edits).map_err(|e| PlanInputError::new(format!("edits: {e}")))
     }
 
     /// The inference as [`crate::floorplan::rooms::room_types`] reads it (types from the world).
@@ -159,12 +168,12 @@ impl PlanInput {
         previous: Option<&Grid<u16>>,
     ) -> Result<(World, Grid<u16>), PlanInputError> {
         let edits = self.edits()?;
-        edits.check_map(map.width(), map.height()).map_err(|e| PlanInputError(format!("edits: {e}")))?;
+        edits.check_map(map.width(), map.height()).map_err(|e| PlanInputError::new(format!("edits: {e}")))?;
         let carry = !edits.is_empty();
         let input = RoomInput::for_map(self.world.clone(), map, self.knowledge, edits)
-            .map_err(|e| PlanInputError(e.to_string()))?;
+            .map_err(|e| PlanInputError::new(e.to_string()))?;
         let (mut world, mut labels) =
-            input.explain(&RoomConfig::default()).map_err(|e| PlanInputError(e.to_string()))?;
+            input.explain(&RoomConfig::default()).map_err(|e| PlanInputError::new(e.to_string()))?;
         if let Some(previous) = previous.filter(|_| carry) {
             edits::carry_ids(previous, &mut labels, &mut world.rooms);
         }
@@ -191,14 +200,14 @@ impl PlanInput {
         // One room input for the rooms the rules group and, where they go by the walls, for
         // those: the map turned into the world frame once.
         let input = RoomInput::for_map(self.world.clone(), map, self.knowledge, self.edits()?)
-            .map_err(|e| PlanInputError(e.to_string()))?;
+            .map_err(|e| PlanInputError::new(e.to_string()))?;
         let (world, labels) =
-            input.clone().explain(&RoomConfig::default()).map_err(|e| PlanInputError(e.to_string()))?;
+            input.clone().explain(&RoomConfig::default()).map_err(|e| PlanInputError::new(e.to_string()))?;
         let layout = self.wing_layout(map, &labels).ok_or_else(|| {
-            PlanInputError("wings: this map is explained by one chain (one wall direction, or edits in force)".into())
+            PlanInputError::new("wings: this map is explained by one chain (one wall direction, or edits in force)")
         })?;
         if wings.len() != layout.angles.len() {
-            return Err(PlanInputError(format!(
+            return Err(PlanInputError::new(format!(
                 "wings: the map has {} wings, but {} wing chains were given",
                 layout.angles.len(),
                 wings.len()
@@ -207,13 +216,13 @@ impl PlanInput {
         for (k, w) in wings.iter().enumerate() {
             let want = wing_rotation_deg(layout.angles[k]);
             if w.world.frame.angle != want.to_radians() {
-                return Err(PlanInputError(format!(
+                return Err(PlanInputError::new(format!(
                     "wings: wing {k}'s chain is turned by {} degrees, but its direction is {want}: \
                      configure it with detectors.rotation_deg {want}",
                     w.world.frame.angle.to_degrees()
                 )));
             }
-            w.world.fits(map.width(), map.height()).map_err(|e| PlanInputError(format!("wing {k}: {e}")))?;
+            w.world.fits(map.width(), map.height()).map_err(|e| PlanInputError::new(format!("wing {k}: {e}")))?;
         }
         let worlds: Vec<World> = wings.iter().map(|w| w.world.clone()).collect();
         let by_walls = move |world: &mut World, others: &[f64]| {
@@ -222,7 +231,7 @@ impl PlanInput {
             Ok(labels)
         };
         let doors = self.doors.cells(map.yaml().resolution);
-        let room_error = |e: RoomError| PlanInputError(e.to_string());
+        let room_error = |e: RoomError| PlanInputError::new(e.to_string());
         let (mut world, labels) =
             layout.compose(map.classified(), world, labels, &worlds, &doors, by_walls).map_err(room_error)?;
         let knowledge = KnowledgeConfig { enabled: self.knowledge, ..KnowledgeConfig::default() };

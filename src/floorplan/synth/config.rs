@@ -169,7 +169,7 @@ impl SynthConfig {
     pub fn from_json(text: &str) -> Result<SynthConfig, SynthError> {
         let max = crate::floorplan::chain::MAX_CONFIG_JSON_BYTES;
         if text.len() > max {
-            return Err(SynthError(format!(
+            return Err(SynthError::new(format!(
                 "synth config: the text is {} bytes, over the limit of {max} bytes (MAX_CONFIG_JSON_BYTES)",
                 text.len()
             )));
@@ -190,7 +190,7 @@ impl SynthConfig {
     /// assert_eq!(e, r#"synth config: expected a JSON object such as {"width": 200}"#);
     /// ```
     pub fn parse_json(text: &str) -> Result<SynthConfig, SynthError> {
-        crate::json::settings(text, r#"{"width": 200}"#).map_err(|m| SynthError(format!("synth config: {m}")))
+        crate::json::settings(text, r#"{"width": 200}"#).map_err(|m| SynthError::new(format!("synth config: {m}")))
     }
 
     /// The config as pretty JSON.
@@ -385,14 +385,14 @@ impl SynthConfig {
 }
 
 fn config_err<T>(field: &str, m: String) -> Result<T, SynthError> {
-    Err(SynthError(format!("synth config: {field} {m}")))
+    Err(SynthError::new(format!("synth config: {field} {m}")))
 }
 
 /// A `[low, high]` range of metres in cells at `resolution` metres per cell.
 fn span(name: &str, r: [f64; 2], resolution: f64) -> Result<Span, SynthError> {
     let [lo, hi] = r;
     if !lo.is_finite() || !hi.is_finite() || lo <= 0.0 || lo > hi || hi > 1000.0 {
-        return Err(SynthError(format!(
+        return Err(SynthError::new(format!(
             "synth config: {name} is [{lo}, {hi}]; accepted: [low, high] metres with 0 < low <= high <= 1000"
         )));
     }
@@ -400,7 +400,7 @@ fn span(name: &str, r: [f64; 2], resolution: f64) -> Result<Span, SynthError> {
     let s = Span { lo: to_cells(lo), hi: to_cells(hi) };
     let least = if name == "door_width" { 2 } else { 3 };
     if s.lo < least {
-        return Err(SynthError(format!(
+        return Err(SynthError::new(format!(
                 "synth config: {name} [{lo}, {hi}] m is [{}, {}] cells at {resolution} m per cell; accepted: at least {least} cells",
                 s.lo, s.hi
             )));

@@ -125,7 +125,7 @@ enum Failure {
 }
 
 fn fatal(m: String) -> Failure {
-    Failure::Fatal(SynthError(format!("synth config: {m}")))
+    Failure::Fatal(SynthError::new(format!("synth config: {m}")))
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -384,7 +384,7 @@ fn place_others(c: &Cells, segments: &mut [Segment], rng: &mut Rng) -> Result<()
         let w = rng.between(c.other.lo, c.other.hi);
         let fits: Vec<usize> = (0..segments.len()).filter(|&i| segments[i].rest(t) - (w + t) >= c.room.lo).collect();
         if fits.is_empty() {
-            return Err(Failure::Unlucky(SynthError(format!(
+            return Err(Failure::Unlucky(SynthError::new(format!(
                 "synth config: others: {} small units do not fit beside the rooms (this building held {placed}); \
                  accepted: fewer others or a larger canvas",
                 c.others
@@ -402,7 +402,7 @@ fn room_counts(c: &Cells, segments: &[Segment], rng: &mut Rng) -> Result<Vec<i32
     let (fewest, most) = bounds.iter().fold((0i64, 0i64), |(a, b), (lo, hi)| (a + *lo as i64, b + *hi as i64));
     let (lo, hi) = (fewest.max(c.rooms[0] as i64), most.min(c.rooms[1] as i64));
     if lo > hi {
-        return Err(Failure::Unlucky(SynthError(format!(
+        return Err(Failure::Unlucky(SynthError::new(format!(
             "synth config: rooms is [{}, {}]; this building holds {fewest} to {most} rooms \
              (change rooms, room_width or the canvas)",
             c.rooms[0], c.rooms[1]
@@ -533,8 +533,8 @@ fn doors(spaces: &[Space], c: &Cells, extra_doors: f64, rng: &mut Rng) -> Result
     }
     let r0 = root(&mut parent, 0);
     if (1..n).any(|i| root(&mut parent, i) != r0) {
-        return Err(Failure::Fatal(SynthError(
-            "synth: internal error: the layout is not connected (a bug: please report the config and seed)".into(),
+        return Err(Failure::Fatal(SynthError::new(
+            "synth: internal error: the layout is not connected (a bug: please report the config and seed)",
         )));
     }
     for ch in chosen.iter_mut() {

@@ -62,11 +62,20 @@ use crate::mcmc::Rng;
 
 /// Why a configuration was refused: the message names the field and the accepted range.
 #[derive(Debug, Clone, PartialEq)]
-pub struct SynthError(pub String);
+pub struct SynthError {
+    message: String,
+}
+
+impl SynthError {
+    /// The error with `message`, which says what was refused and how to put it right.
+    pub(crate) fn new(message: impl Into<String>) -> SynthError {
+        SynthError { message: message.into() }
+    }
+}
 
 impl std::fmt::Display for SynthError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(&self.0)
+        f.write_str(&self.message)
     }
 }
 

@@ -433,11 +433,20 @@ impl FrameGroup {
 
 /// Why a `world.json` was refused.
 #[derive(Debug, Clone, PartialEq)]
-pub struct WorldError(pub String);
+pub struct WorldError {
+    message: String,
+}
+
+impl WorldError {
+    /// The error with `message`, which says what was refused and how to put it right.
+    pub(crate) fn new(message: impl Into<String>) -> WorldError {
+        WorldError { message: message.into() }
+    }
+}
 
 impl std::fmt::Display for WorldError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "{}", self.0)
+        f.write_str(&self.message)
     }
 }
 
@@ -544,7 +553,7 @@ impl World {
     /// angle of its own: `what` names the tool.
     pub fn require_one_direction(&self, what: &str) -> Result<(), WorldError> {
         match self.units.iter().find(|u| self.unit_frame(u) != self.frame) {
-            Some(u) => Err(WorldError(format!(
+            Some(u) => Err(WorldError::new(format!(
                 "world.json: unit {} has an angle of its own ({} rad, the frame's is {}); {what} handles \
                  units in the world frame only so far (issue 13)",
                 u.id,
@@ -572,13 +581,13 @@ impl World {
     /// ```
     pub fn from_json(text: &str) -> Result<World, WorldError> {
         if text.len() > MAX_WORLD_JSON_BYTES {
-            return Err(WorldError(format!(
+            return Err(WorldError::new(format!(
                 "world.json: the text is {} bytes, over the limit of {MAX_WORLD_JSON_BYTES} bytes \
                  (MAX_WORLD_JSON_BYTES); a world of this size is damaged or not a ksmcmc world",
                 text.len()
             )));
         }
-        let w: World = serde_json::from_str(text).map_err(|e| WorldError(format!("world.json: {e}")))?;
+        let w: World = serde_json::from_str(text).map_err(|e| WorldError::new(format!("world.json: {e}")))?;
         w.validate()?;
         Ok(w)
     }
@@ -602,14 +611,14 @@ impl World {
     pub fn fits(&self, map_width: usize, map_height: usize) -> Result<(), WorldError> {
         let [fw, fh] = self.frame.map_size;
         if [fw as usize, fh as usize] != [map_width, map_height] {
-            return Err(WorldError(format!(
+            return Err(WorldError::new(format!(
                 "world.json: this world explains a {fw}x{fh} map, but the map is {map_width}x{map_height} \
                  cells (see frame.map_size): it was made for a different map (or the map was cropped or \
                  resized since)"
             )));
         }
         match self.units.iter().find(|u| !self.touches_map(u, map_width, map_height)) {
-            Some(u) => Err(WorldError(format!(
+            Some(u) => Err(WorldError::new(format!(
                 "world.json: unit {} ({}x{} at {},{}) lies entirely outside the {map_width}x{map_height} map",
                 u.id, u.w, u.h, u.x, u.y
             ))),
@@ -625,7 +634,7 @@ impl World {
 
     /// Checks the format tag, frame, unit geometry and door references.
     pub fn validate(&self) -> Result<(), WorldError> {
-        let bad = |m: String| Err(WorldError(m));
+        let bad = |m: String| Err(WorldError::new(m));
         if self.format != WORLD_FORMAT {
             return bad(format!("world.json: format is {:?}, expected {WORLD_FORMAT:?}", self.format));
         }
@@ -713,14 +722,14 @@ impl World {
         ];
         for (n, max, what) in counts {
             if n > max {
-                return Err(WorldError(format!("world.json: {n} {what}, over the limit of {max} {what}")));
+                return Err(WorldError::new(format!("world.json: {n} {what}, over the limit of {max} {what}")));
             }
         }
         let f = &self.frame;
         let [ww, wh] = f.world_size;
         let cells = ww as u64 * wh as u64;
         if cells > MAX_WORLD_CELLS {
-            return Err(WorldError(format!(
+            return Err(WorldError::new(format!(
                 "world.json: frame.world_size {ww}x{wh} is {cells} cells, over the limit of {MAX_WORLD_CELLS} \
                  (MAX_WORLD_CELLS)"
             )));
@@ -731,7 +740,7 @@ impl World {
         let (s, c) = (libm::fabs(libm::sin(f.angle)), libm::fabs(libm::cos(f.angle)));
         let need = [libm::ceil(mw * c + mh * s), libm::ceil(mw * s + mh * c)].map(|v| WORLD_FRAME_SLACK * (v + 2.0));
         if ww as f64 > need[0] || wh as f64 > need[1] {
-            return Err(WorldError(format!(
+            return Err(WorldError::new(format!(
                 "world.json: frame.world_size {ww}x{wh} is far larger than the {}x{} map (frame.map_size) \
                  turned by frame.angle {} needs (at most {}x{}); the frame is damaged",
                 f.map_size[0], f.map_size[1], f.angle, need[0], need[1]
@@ -739,18 +748,18 @@ impl World {
         }
         for r in &self.rooms {
             if r.units.len().max(r.doors.len()).max(r.opens_to.len()) > MAX_ROOMS {
-                return Err(WorldError(format!("world.json: room {} lists over {MAX_ROOMS} ids", r.id)));
+                return Err(WorldError::new(format!("world.json: room {} lists over {MAX_ROOMS} ids", r.id)));
             }
         }
         match self.unexplained.iter().find(|a| a.runs.len() > MAX_RUNS) {
-            Some(a) => Err(WorldError(format!("world.json: unexplained area {} has over {MAX_RUNS} runs", a.id))),
+            Some(a) => Err(WorldError::new(format!("world.json: unexplained area {} has over {MAX_RUNS} runs", a.id))),
             None => Ok(()),
         }
     }
 
     /// Room ids unique and non-zero; the units, doors and rooms each room names exist.
     fn validate_rooms(&self, unit_ids: &std::collections::HashSet<u32>) -> Result<(), WorldError> {
-        let bad = |m: String| Err(WorldError(format!("world.json: {m}")));
+        let bad = |m: String| Err(WorldError::new(format!("world.json: {m}")));
         let room_ids: std::collections::HashSet<u32> = self.rooms.iter().map(|r| r.id).collect();
         let door_ids: std::collections::HashSet<u32> = self.doors.iter().map(|d| d.id).collect();
         if room_ids.len() != self.rooms.len() || room_ids.contains(&0) {

@@ -189,17 +189,21 @@ function draw() {
   g.fillStyle = '#000';
   g.font = '12px sans-serif';
   for (let t = 0; t <= XMAX; t += 2) g.fillText(String(t), X(t) - 3, H - 6);
-  const curve = (ys, color) => {
+  // The likelihood wide and solid, the posterior narrow and dashed on top: where the prior is
+  // flat the two are the same curve, and both stay visible.
+  const curve = (ys, color, width, dash) => {
     g.strokeStyle = color;
-    g.lineWidth = 2;
+    g.lineWidth = width;
+    g.setLineDash(dash);
     g.beginPath();
     ys.forEach((y, i) => (i ? g.lineTo(X(state.xs[i]), Y(y)) : g.moveTo(X(state.xs[i]), Y(y))));
     g.stroke();
+    g.setLineDash([]);
     g.lineWidth = 1;
   };
-  curve(state.likelihood, '#1f77b4');
-  curve(state.prior, '#2ca02c');
-  curve(state.posterior, '#d62728');
+  curve(state.likelihood, '#1f77b4', 5, []);
+  curve(state.prior, '#2ca02c', 2, []);
+  curve(state.posterior, '#d62728', 2, [8, 5]);
   ui.mass.textContent = state.mass.map((m) => m.toFixed(3)).join(' / ');
   ui.samples.textContent = String(state.samples);
   ui.acceptance.textContent = state.samples ? (state.accepted / state.samples).toFixed(2) : '–';

@@ -81,6 +81,25 @@ async function learn() {
   }
 }
 
+/**
+ * The built-in rules as a person reads them: learned weights to three decimals (the file,
+ * samples/knowledge/indoor-learned.mln, keeps them to the last bit, and the command line
+ * reads the file), and the list of training files, paths of the build that learned them,
+ * said in words.
+ */
+function forReading(text) {
+  return text
+    .split('\n')
+    .map((line) => {
+      if (/^\/\/ Training worlds \(\d+\):/.test(line)) {
+        const n = line.match(/\((\d+)\)/)[1];
+        return `// Training worlds (${n}): generated floors, samples/knowledge/learn-indoor.sh makes them.`;
+      }
+      return line.replace(/^(-?\d+\.\d{4,})(?=\s)/, (w) => String(Number(Number(w).toFixed(3))));
+    })
+    .join('\n');
+}
+
 /** A good text becomes the knowledge base; a bad one is reported and the last good one stays. */
 function checked(text, err) {
   state.error = err;
@@ -199,10 +218,10 @@ async function main() {
     state.source = { kind: 'yaml', yaml, image: pgm };
     state.chain = new RemoteChain(showError, () => {});
     state.resolution = Number(yaml.match(/resolution:\s*([0-9.eE+-]+)/)?.[1] ?? 0.05);
-    ui.kb.value = builtinIndoorRules();
+    ui.kb.value = forReading(builtinIndoorRules());
     state.editor = rulesEditor(ui.kb, { check: checkRules, status: ui.error, okText: 'Knowledge base OK', gutterId: 'gutter', onCheck: checked });
     $('rerun').addEventListener('click', () => run());
-    $('builtin').addEventListener('click', () => replaceRules(builtinIndoorRules()));
+    $('builtin').addEventListener('click', () => replaceRules(forReading(builtinIndoorRules())));
     $('handset').addEventListener('click', () => replaceRules(handSetIndoorRules()));
     $('learn').addEventListener('click', () => learn());
     $('truth').addEventListener('click', async () => {

@@ -54,7 +54,7 @@ MAPPER_GZIP_MAX := 500000
 
 .PHONY: help demo serve pkg www-pkg www-samples www-vendor test lint fmt fmt-check clippy doc-check test-native test-wasm \
 	test-e2e cli release-cli bench-wasm tools rust-tools wasm-tools wasm-opt-tool browser-tools e2e-deps vendor-deps clean-pkg \
-	fuzz fuzz-ci fuzz-tools fuzz-cpu soak python python-tools test-python
+	fuzz fuzz-ci fuzz-tools fuzz-cpu soak python python-tools test-python demo-plan
 
 help:
 	@echo "make demo      build pkg/ and serve www/ on http://$(HOST):$(PORT)"
@@ -116,6 +116,7 @@ tests/e2e/node_modules/.package-lock.json: tests/e2e/package.json tests/e2e/pack
 vendor-deps: vendor/node_modules/.package-lock.json
 
 vendor/node_modules/.package-lock.json: vendor/package.json vendor/package-lock.json
+	@echo "installing three.js from npm into vendor/ (under a minute)"
 	cd vendor && npm ci --no-audit --no-fund --loglevel=error
 	@touch $@
 
@@ -144,6 +145,7 @@ pkg: wasm-tools wasm-opt-tool $(foreach n,$(WASM_NAMES),$(WASM_DIR)/$(n).opt.was
 # module to the same ksmcmc.wasm, so each is copied out at once (do not build them with -j).
 FEATURE_OF = $(lastword $(subst :, ,$(filter $(1):%,$(WASM_MODULES))))
 $(WASM_DIR)/%.opt.wasm: $(WASM_SOURCES) | wasm-tools wasm-opt-tool
+	@echo "building the WebAssembly module $* (module $$(( $$(echo ' $(WASM_NAMES) ' | sed 's/ $* .*//' | wc -w) + 1 )) of $(words $(WASM_NAMES)))"
 	$(CARGO) build --lib --profile wasm-release --target $(WASM_TARGET) --no-default-features \
 	  --features $(call FEATURE_OF,$*)
 	wasm-opt $(WASM_OPT_FLAGS) $(WASM_DIR)/ksmcmc.wasm -o $@
@@ -185,7 +187,11 @@ clean-pkg:
 
 # ---------------------------------------------------------------- demo
 
-demo: www-pkg serve
+demo: demo-plan www-pkg serve
+
+# Says up front what `make demo` will install and build, and roughly how long that takes.
+demo-plan:
+	@scripts/demo-plan.sh $(WASM_TARGET) $(WASM_BINDGEN_VERSION) $(WASM_DIR) $(WASM_NAMES)
 
 # Python's http.server, sending .wasm as application/wasm and nothing cached.
 serve: www-samples www-vendor

@@ -112,14 +112,8 @@ impl Wings {
             let wing_of = labels.map(|&l| if l > 0 { 0 } else { NO_REGION });
             return Ok(Wings { chains: vec![first], wing_of, world, labels });
         };
-        let mut chains = Vec::new();
-        let mut units = Vec::new();
-        for k in 0..layout.angles.len() {
-            let mut chain = Chain::new(&layout.wing_map(map, k), layout.wing_config(config, k), seed)?;
-            chain.step(iterations);
-            units.push(chain.best_world_typed());
-            chains.push(chain);
-        }
+        let (mut chains, units): (Vec<Chain>, Vec<World>) =
+            wing_chains(&layout, map, config, seed, iterations)?.into_iter().unzip();
         let by_walls = |world: &mut World, others: &[f64]| first.rooms_by_walls(world, rooms, others);
         let doors = config.doors.cells(map.yaml().resolution);
         (world, labels) = layout.compose(map.classified(), world, labels, &units, &doors, by_walls)?;
@@ -361,6 +355,36 @@ fn mostly_in(world: &World, unit: &Unit, wing_of: &Grid<u8>, k: u8) -> bool {
         }
     });
     2 * inside > free
+}
+
+/// The wings' chains of `layout`, each on its wing's map in its own direction, stepped
+/// `iterations` times, with its typed best world. Natively they run side by side, a thread
+/// each (a building of five wings on a laptop's cores takes the time of its slowest wing, not
+/// of all five); in WebAssembly one after another. Each chain has its own seed and random
+/// stream and shares nothing, so the worlds are the same either way.
+fn wing_chains(
+    layout: &WingLayout,
+    map: &OccupancyMap,
+    config: &ChainConfig,
+    seed: u64,
+    iterations: u64,
+) -> Result<Vec<(Chain, World)>, ChainError> {
+    let one = |k: usize| -> Result<(Chain, World), ChainError> {
+        let mut chain = Chain::new(&layout.wing_map(map, k), layout.wing_config(config, k), seed)?;
+        chain.step(iterations);
+        let world = chain.best_world_typed();
+        Ok((chain, world))
+    };
+    let n = layout.angles.len();
+    #[cfg(not(target_arch = "wasm32"))]
+    if n > 1 && std::thread::available_parallelism().is_ok_and(|p| p.get() > 1) {
+        return std::thread::scope(|s| {
+            let one = &one;
+            let handles: Vec<_> = (0..n).map(|k| s.spawn(move || one(k))).collect();
+            handles.into_iter().map(|h| h.join().unwrap_or_else(|e| std::panic::resume_unwind(e))).collect()
+        });
+    }
+    (0..n).map(one).collect()
 }
 
 #[cfg(test)]

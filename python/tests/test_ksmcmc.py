@@ -84,6 +84,27 @@ def test_a_path_gives_the_command_lines_labels_and_world():
     assert {r["id"] for r in plan.rooms} == set(np.unique(plan.labels)) - {0}
 
 
+def test_save_writes_the_command_lines_files_byte_for_byte():
+    plan = ksmcmc.floorplan(SAMPLE, seed=1, iterations=ITERATIONS)
+    with tempfile.TemporaryDirectory() as out, tempfile.TemporaryDirectory() as mine:
+        cli("floorplan", SAMPLE, "--seed", "1", "--iterations", str(ITERATIONS), "--out", out)
+        names = sorted(os.path.basename(p) for p in plan.save(mine))
+        assert names == sorted(os.listdir(out))
+        for name in names:
+            with open(os.path.join(out, name), "rb") as a, open(os.path.join(mine, name), "rb") as b:
+                theirs, ours = a.read(), b.read()
+            if name == "report.json":
+                # The same report but for the clock: seconds and rates differ run to run.
+                timed = ("seconds", "iterations_per_second")
+                t, o = json.loads(theirs), json.loads(ours)
+                for k in timed:
+                    t.pop(k, None)
+                    o.pop(k, None)
+                assert t == o
+            else:
+                assert theirs == ours, name
+
+
 def test_the_same_seed_gives_the_same_plan():
     a = ksmcmc.floorplan(SAMPLE, seed=5, iterations=ITERATIONS)
     b = ksmcmc.floorplan(SAMPLE, seed=5, iterations=ITERATIONS)

@@ -114,33 +114,14 @@ impl MapYaml {
                     }
                     image = Some(value.to_string())
                 }
-                "resolution" => {
-                    let r = number(value).map_err(|m| err(format!("resolution: {m}")))?;
-                    if !(r > 0.0 && r.is_finite()) {
-                        return Err(err(format!("resolution must be a positive number of metres per cell, not {r}")));
-                    }
-                    resolution = Some(r)
-                }
+                "resolution" => resolution = Some(parse_resolution(value).map_err(err)?),
                 "origin" => origin = Some(triple(value).map_err(|m| err(format!("origin: {m}")))?),
-                "negate" => {
-                    negate = match value {
-                        "0" | "false" | "False" => false,
-                        "1" | "true" | "True" => true,
-                        _ => return Err(err(format!("negate must be 0 or 1, not {value:?}"))),
-                    }
-                }
+                "negate" => negate = parse_negate(value).map_err(err)?,
                 "occupied_thresh" => {
                     occupied_thresh = probability(value).map_err(|m| err(format!("occupied_thresh: {m}")))?
                 }
                 "free_thresh" => free_thresh = probability(value).map_err(|m| err(format!("free_thresh: {m}")))?,
-                "mode" => {
-                    mode = match value {
-                        "trinary" => Mode::Trinary,
-                        "scale" => Mode::Scale,
-                        "raw" => Mode::Raw,
-                        _ => return Err(err(format!("mode must be trinary, scale or raw, not {value:?}"))),
-                    }
-                }
+                "mode" => mode = parse_mode(value).map_err(err)?,
                 // Other keys (e.g. Nav2's extra fields) are harmless; ignore them as map_server does.
                 _ => {}
             }
@@ -208,6 +189,34 @@ fn unquote(v: &str) -> &str {
         &v[1..v.len() - 1]
     } else {
         v
+    }
+}
+
+/// The value of `resolution:`: a positive number of metres per cell.
+fn parse_resolution(v: &str) -> Result<f64, String> {
+    let r = number(v).map_err(|m| format!("resolution: {m}"))?;
+    if !(r > 0.0 && r.is_finite()) {
+        return Err(format!("resolution must be a positive number of metres per cell, not {r}"));
+    }
+    Ok(r)
+}
+
+/// The value of `negate:`: 0 or 1 (or false or true, as YAML writes them).
+fn parse_negate(v: &str) -> Result<bool, String> {
+    match v {
+        "0" | "false" | "False" => Ok(false),
+        "1" | "true" | "True" => Ok(true),
+        _ => Err(format!("negate must be 0 or 1, not {v:?}")),
+    }
+}
+
+/// The value of `mode:`: trinary, scale or raw.
+fn parse_mode(v: &str) -> Result<Mode, String> {
+    match v {
+        "trinary" => Ok(Mode::Trinary),
+        "scale" => Ok(Mode::Scale),
+        "raw" => Ok(Mode::Raw),
+        _ => Err(format!("mode must be trinary, scale or raw, not {v:?}")),
     }
 }
 

@@ -80,6 +80,16 @@ pub(crate) struct Space {
     pub total: u64,
 }
 
+/// The numbering of all possible ground atoms, as [`Space`] keeps it.
+struct AtomNumbering {
+    /// Per predicate: the key of its first ground atom.
+    pred_offset: Vec<u64>,
+    /// Per predicate: the key step of each argument.
+    pred_strides: Vec<Vec<u64>>,
+    /// The number of possible ground atoms.
+    total: u64,
+}
+
 impl Space {
     pub fn new(mln: &Mln, db: &Database, extra: &[(String, Vec<String>)]) -> Result<Space, MlnError> {
         let mut names = mln.constants.clone();
@@ -136,6 +146,22 @@ impl Space {
                 }
             }
         }
+        let AtomNumbering { pred_offset, pred_strides, total } = Space::numbering(mln, &domains)?;
+        Ok(Space {
+            names,
+            domains,
+            local,
+            pred_names: mln.predicates.iter().map(|p| p.name.clone()).collect(),
+            pred_types: mln.predicates.iter().map(|p| p.arg_types.clone()).collect(),
+            pred_offset,
+            pred_strides,
+            total,
+        })
+    }
+
+    /// Numbers all possible ground atoms, predicate after predicate, each row-major over its
+    /// arguments' domains: per predicate its first key and its arguments' strides, and the total.
+    fn numbering(mln: &Mln, domains: &[Vec<u32>]) -> Result<AtomNumbering, MlnError> {
         let mut total: u64 = 0;
         let mut pred_offset = Vec::new();
         let mut pred_strides = Vec::new();
@@ -155,16 +181,7 @@ impl Space {
             pred_strides.push(strides);
             total = total.checked_add(count).ok_or_else(overflow)?;
         }
-        Ok(Space {
-            names,
-            domains,
-            local,
-            pred_names: mln.predicates.iter().map(|p| p.name.clone()).collect(),
-            pred_types: mln.predicates.iter().map(|p| p.arg_types.clone()).collect(),
-            pred_offset,
-            pred_strides,
-            total,
-        })
+        Ok(AtomNumbering { pred_offset, pred_strides, total })
     }
 
     /// The key of an evidence atom (all constants are in the domains by construction).
@@ -773,31 +790,42 @@ impl<'a> Builder<'a> {
             Expr::Exists(slots, body) | Expr::Forall(slots, body) => {
                 // EXIST is a disjunction over the domain, FORALL a conjunction; negation swaps.
                 let conj = matches!(e, Expr::Forall(..)) != negate;
-                let sizes: Vec<u32> =
-                    slots.iter().map(|&s| self.space.domains[types[s as usize] as usize].len() as u32).collect();
-                let mut items = Vec::new();
-                if !sizes.contains(&0) {
-                    let count = sizes.iter().try_fold(1u64, |acc, &s| acc.checked_mul(s as u64)).unwrap_or(u64::MAX);
-                    self.count_groundings(count)?;
-                    for &s in slots {
-                        assign[s as usize] = 0;
-                    }
-                    loop {
-                        let g = self.ground_nnf(body, negate, assign, types)?;
-                        let decided = if conj { g == Nnf::False } else { g == Nnf::True };
-                        items.push(g);
-                        if decided || !next_assignment(assign, slots, &sizes) {
-                            break;
-                        }
-                    }
-                }
-                if conj {
-                    Nnf::and(items)
-                } else {
-                    Nnf::or(items)
-                }
+                self.ground_quantifier(slots, body, conj, negate, assign, types)?
             }
         })
+    }
+
+    /// The expansion of a quantifier over the domains of the variables in `slots`: the
+    /// conjunction (`conj`) or disjunction of the groundings of `body`, stopping at the first
+    /// that decides it.
+    fn ground_quantifier(
+        &mut self,
+        slots: &[u32],
+        body: &Expr,
+        conj: bool,
+        negate: bool,
+        assign: &mut [u32],
+        types: &[u32],
+    ) -> Result<Nnf<Pending>, MlnError> {
+        let sizes: Vec<u32> =
+            slots.iter().map(|&s| self.space.domains[types[s as usize] as usize].len() as u32).collect();
+        let mut items = Vec::new();
+        if !sizes.contains(&0) {
+            let count = sizes.iter().try_fold(1u64, |acc, &s| acc.checked_mul(s as u64)).unwrap_or(u64::MAX);
+            self.count_groundings(count)?;
+            for &s in slots {
+                assign[s as usize] = 0;
+            }
+            loop {
+                let g = self.ground_nnf(body, negate, assign, types)?;
+                let decided = if conj { g == Nnf::False } else { g == Nnf::True };
+                items.push(g);
+                if decided || !next_assignment(assign, slots, &sizes) {
+                    break;
+                }
+            }
+        }
+        Ok(if conj { Nnf::and(items) } else { Nnf::or(items) })
     }
 
     /// Adds the grounding in `pending` as a feature (or folds it into the offset).
@@ -949,19 +977,7 @@ impl<'a> Builder<'a> {
             feature_start.push(clause_feature.len() as u32);
         }
         let (occ_start, occ) = occurrences(atom_key.len(), &lits, &clause_start);
-        let mut query: Vec<QueryAtom> = query
-            .into_iter()
-            .map(|(p, key)| {
-                let value = match self.table.get(key) {
-                    TRUE => QueryValue::Known(true),
-                    FALSE => QueryValue::Known(false),
-                    a if fixed[a as usize] != 0 => QueryValue::Known(fixed[a as usize] == 2),
-                    a => QueryValue::Unknown(renumber[a as usize]),
-                };
-                QueryAtom { atom: self.space.atom(p, key), value }
-            })
-            .collect();
-        crate::sort::sort_by(&mut query, |a, b| a.atom.cmp(&b.atom));
+        let query = self.resolve_queries(query, &fixed, &renumber);
         Ok(Network {
             space: self.space,
             atom_key,
@@ -977,6 +993,25 @@ impl<'a> Builder<'a> {
             offset: self.offset,
             query,
         })
+    }
+
+    /// The query atoms with their values: known from evidence or from propagation (`fixed`),
+    /// or unknown with their atom's new number; sorted by atom.
+    fn resolve_queries(&self, query: Vec<(u32, u64)>, fixed: &[u8], renumber: &[u32]) -> Vec<QueryAtom> {
+        let mut query: Vec<QueryAtom> = query
+            .into_iter()
+            .map(|(p, key)| {
+                let value = match self.table.get(key) {
+                    TRUE => QueryValue::Known(true),
+                    FALSE => QueryValue::Known(false),
+                    a if fixed[a as usize] != 0 => QueryValue::Known(fixed[a as usize] == 2),
+                    a => QueryValue::Unknown(renumber[a as usize]),
+                };
+                QueryAtom { atom: self.space.atom(p, key), value }
+            })
+            .collect();
+        crate::sort::sort_by(&mut query, |a, b| a.atom.cmp(&b.atom));
+        query
     }
 
     /// Unit propagation of the hard clauses: fixes atoms (`fixed`: 1 false, 2 true), marks the

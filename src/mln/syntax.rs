@@ -81,6 +81,42 @@ fn number_end(chars: &[(usize, char)], i: usize) -> usize {
     j
 }
 
+/// The index of the `*/` closing the block comment that opens at `i`, and whether the comment
+/// spans lines; `line` and `col` follow the characters inside it.
+fn block_comment_end(
+    chars: &[(usize, char)],
+    i: usize,
+    at: Position,
+    line: &mut u32,
+    col: &mut u32,
+) -> Result<(usize, bool), MlnError> {
+    let mut j = i + 2;
+    let mut newline = false;
+    while j < chars.len() && !(chars[j].1 == '*' && chars.get(j + 1).map(|c| c.1) == Some('/')) {
+        if chars[j].1 == '\n' {
+            newline = true;
+            *line += 1;
+            *col = 0;
+        }
+        j += 1;
+        *col += 1;
+    }
+    if j >= chars.len() {
+        return Err(MlnError::syntax(at, "'*/' to close this comment", "end of input"));
+    }
+    Ok((j, newline))
+}
+
+/// The error for a character `c` at `at` that starts no token.
+fn unexpected_char(at: Position, c: char) -> MlnError {
+    let hint = if c == '#' { " (directives such as #include are not supported)" } else { "" };
+    MlnError::syntax(
+        at,
+        format!("a name, a number, a connective (! ^ v => <=>) or a parenthesis{hint}"),
+        format!("'{c}'"),
+    )
+}
+
 /// Splits a text into tokens; `//` and `/* */` comments are dropped, line ends kept.
 pub(crate) fn lex(src: &str) -> Result<Vec<Token>, MlnError> {
     let mut out = Vec::new();
@@ -106,28 +142,9 @@ pub(crate) fn lex(src: &str) -> Result<Vec<Token>, MlnError> {
                 continue;
             }
             c if c.is_whitespace() => 1,
-            '/' if next == Some('/') => {
-                let mut j = i;
-                while j < chars.len() && chars[j].1 != '\n' {
-                    j += 1;
-                }
-                j - i
-            }
+            '/' if next == Some('/') => digits_end(&chars, i, |c| c != '\n') - i,
             '/' if next == Some('*') => {
-                let mut j = i + 2;
-                let mut newline = false;
-                while j < chars.len() && !(chars[j].1 == '*' && chars.get(j + 1).map(|c| c.1) == Some('/')) {
-                    if chars[j].1 == '\n' {
-                        newline = true;
-                        line += 1;
-                        col = 0;
-                    }
-                    j += 1;
-                    col += 1;
-                }
-                if j >= chars.len() {
-                    return Err(MlnError::syntax(at, "'*/' to close this comment", "end of input"));
-                }
+                let (j, newline) = block_comment_end(&chars, i, at, &mut line, &mut col)?;
                 if newline {
                     out.push(Token { tok: Tok::Newline, at, start, end: byte(j + 2) });
                 }
@@ -162,14 +179,7 @@ pub(crate) fn lex(src: &str) -> Result<Vec<Token>, MlnError> {
                 let name = src[start..byte(j)].to_string();
                 push(Tok::Ident(name), j - i, &mut out)
             }
-            c => {
-                let hint = if c == '#' { " (directives such as #include are not supported)" } else { "" };
-                return Err(MlnError::syntax(
-                    at,
-                    format!("a name, a number, a connective (! ^ v => <=>) or a parenthesis{hint}"),
-                    format!("'{c}'"),
-                ));
-            }
+            c => return Err(unexpected_char(at, c)),
         };
         i += n;
         col += n as u32;

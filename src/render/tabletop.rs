@@ -25,8 +25,9 @@
 
 use super::draw_tag;
 use super::font;
-use crate::tabletop::graph::{levels, EdgeKind, SceneGraph};
-use crate::tabletop::scene::{Pose, Scene, NEAR};
+use crate::tabletop::geometry::Obb;
+use crate::tabletop::graph::{levels, EdgeKind, GraphNode, SceneGraph};
+use crate::tabletop::scene::{Pose, Projector, Scene, NEAR};
 use crate::tabletop::{Analysis, Decision};
 use nalgebra::{Vector2, Vector3};
 use petgraph::visit::EdgeRef;
@@ -197,6 +198,61 @@ pub fn probability_text_factor(width: f32) -> u32 {
     (wanted.ceil() as u32).clamp(2, 8)
 }
 
+/// Draws an edge of the graph: a support arrow from the supporting node to the supported one,
+/// or a plain gray line for other contact.
+fn draw_edge(pixmap: &mut Pixmap, from: (f32, f32), to: (f32, f32), kind: EdgeKind) {
+    match kind {
+        EdgeKind::Support => {
+            line(pixmap, from, to, 2.0, INK_RGBA);
+            let (dx, dy) = (to.0 - from.0, to.1 - from.1);
+            let len = (dx * dx + dy * dy).sqrt().max(1e-3);
+            let (ux, uy) = (dx / len, dy / len);
+            let (bx, by) = (to.0 - ux * 12.0, to.1 - uy * 12.0);
+            let head = [to, (bx - uy * 6.0, by + ux * 6.0), (bx + uy * 6.0, by - ux * 6.0)];
+            polygon(pixmap, &head, Some(INK_RGBA), None);
+        }
+        EdgeKind::Contact => line(pixmap, from, to, 2.0, CONTACT_RGBA),
+    }
+}
+
+/// Draws the table node: a white rectangle labelled "Table", centred at `(x, y)`.
+fn draw_table_node(pixmap: &mut Pixmap, (x, y): (f32, f32)) {
+    let rect = [
+        (x - TABLE_W / 2.0, y - TABLE_H / 2.0),
+        (x + TABLE_W / 2.0, y - TABLE_H / 2.0),
+        (x + TABLE_W / 2.0, y + TABLE_H / 2.0),
+        (x - TABLE_W / 2.0, y + TABLE_H / 2.0),
+    ];
+    polygon(pixmap, &rect, Some(NODE_RGBA), Some((INK_RGBA, 2.0)));
+    let (tw, th) = font::text_size("Table", 2);
+    font::draw_text(pixmap, (x - tw as f32 / 2.0) as i32, (y - th as f32 / 2.0) as i32, "Table", 2, INK_RGBA);
+}
+
+/// Draws an object node at `(x, y)`: a circle coloured by its flags (red false estimate, cyan
+/// hidden object under it), with its id inside, or in a tag below when it does not fit.
+fn draw_object_node(pixmap: &mut Pixmap, n: &GraphNode, (x, y): (f32, f32)) {
+    let fill = if n.false_flag() {
+        FALSE_RGBA
+    } else if n.hidden_flag() {
+        HIDDEN_RGBA
+    } else {
+        NODE_RGBA
+    };
+    if let Some(circle) = PathBuilder::from_circle(x, y, NODE_RADIUS) {
+        pixmap.fill_path(&circle, &paint(fill), FillRule::Winding, Transform::identity(), None);
+        // A false estimate that also implies a hidden object gets a cyan ring.
+        let (ring, width) = if n.false_flag() && n.hidden_flag() { (HIDDEN_RGBA, 5.0) } else { (INK_RGBA, 2.0) };
+        pixmap.stroke_path(&circle, &paint(ring), &stroke(width), Transform::identity(), None);
+    }
+    let factor = if font::text_size(&n.id, 2).0 as f32 <= 2.0 * NODE_RADIUS - 8.0 { 2 } else { 1 };
+    let (tw, th) = font::text_size(&n.id, factor);
+    if tw as f32 <= 2.0 * NODE_RADIUS - 4.0 {
+        font::draw_text(pixmap, (x - tw as f32 / 2.0) as i32, (y - th as f32 / 2.0) as i32, &n.id, factor, INK_RGBA);
+    } else {
+        draw_tag(pixmap, x as f64, (y + NODE_RADIUS + 10.0) as f64, &n.id, 1);
+    }
+}
+
 /// Draws a scene graph: the table on top, objects below their supporters, support arrows,
 /// contact lines, red false estimates, cyan objects with hidden objects under them, and the
 /// query probabilities underneath, in text that scales with the picture
@@ -225,67 +281,14 @@ pub fn draw_graph(g: &SceneGraph) -> Pixmap {
         let (s, t) = (e.source().index(), e.target().index());
         let from = clip_to_node(pos[t], pos[s], g[e.source()].is_table);
         let to = clip_to_node(pos[s], pos[t], g[e.target()].is_table);
-        match e.weight().kind {
-            EdgeKind::Support => {
-                line(&mut pixmap, from, to, 2.0, INK_RGBA);
-                let (dx, dy) = (to.0 - from.0, to.1 - from.1);
-                let len = (dx * dx + dy * dy).sqrt().max(1e-3);
-                let (ux, uy) = (dx / len, dy / len);
-                let (bx, by) = (to.0 - ux * 12.0, to.1 - uy * 12.0);
-                let head = [to, (bx - uy * 6.0, by + ux * 6.0), (bx + uy * 6.0, by - ux * 6.0)];
-                polygon(&mut pixmap, &head, Some(INK_RGBA), None);
-            }
-            EdgeKind::Contact => line(&mut pixmap, from, to, 2.0, CONTACT_RGBA),
-        }
+        draw_edge(&mut pixmap, from, to, e.weight().kind);
     }
 
     for (i, n) in g.node_weights().enumerate() {
-        let (x, y) = pos[i];
         if n.is_table {
-            let rect = [
-                (x - TABLE_W / 2.0, y - TABLE_H / 2.0),
-                (x + TABLE_W / 2.0, y - TABLE_H / 2.0),
-                (x + TABLE_W / 2.0, y + TABLE_H / 2.0),
-                (x - TABLE_W / 2.0, y + TABLE_H / 2.0),
-            ];
-            polygon(&mut pixmap, &rect, Some(NODE_RGBA), Some((INK_RGBA, 2.0)));
-            let (tw, th) = font::text_size("Table", 2);
-            font::draw_text(
-                &mut pixmap,
-                (x - tw as f32 / 2.0) as i32,
-                (y - th as f32 / 2.0) as i32,
-                "Table",
-                2,
-                INK_RGBA,
-            );
-            continue;
-        }
-        let fill = if n.false_flag() {
-            FALSE_RGBA
-        } else if n.hidden_flag() {
-            HIDDEN_RGBA
+            draw_table_node(&mut pixmap, pos[i]);
         } else {
-            NODE_RGBA
-        };
-        if let Some(circle) = PathBuilder::from_circle(x, y, NODE_RADIUS) {
-            pixmap.fill_path(&circle, &paint(fill), FillRule::Winding, Transform::identity(), None);
-            // A false estimate that also implies a hidden object gets a cyan ring.
-            let (ring, width) = if n.false_flag() && n.hidden_flag() { (HIDDEN_RGBA, 5.0) } else { (INK_RGBA, 2.0) };
-            pixmap.stroke_path(&circle, &paint(ring), &stroke(width), Transform::identity(), None);
-        }
-        let factor = if font::text_size(&n.id, 2).0 as f32 <= 2.0 * NODE_RADIUS - 8.0 { 2 } else { 1 };
-        let (tw, th) = font::text_size(&n.id, factor);
-        if tw as f32 <= 2.0 * NODE_RADIUS - 4.0 {
-            font::draw_text(
-                &mut pixmap,
-                (x - tw as f32 / 2.0) as i32,
-                (y - th as f32 / 2.0) as i32,
-                &n.id,
-                factor,
-                INK_RGBA,
-            );
-        } else {
-            draw_tag(&mut pixmap, x as f64, (y + NODE_RADIUS + 10.0) as f64, &n.id, 1);
+            draw_object_node(&mut pixmap, n, pos[i]);
         }
     }
 
@@ -348,10 +351,55 @@ pub fn draw_view(scene: &Scene, poses: &[Pose], marks: &[Mark], options: &ViewOp
     };
     let [r, g, b, a] = BACKGROUND_RGBA;
     pixmap.fill(Color::from_rgba8(r, g, b, a));
-    let proj = cam.projector();
-    let to_px = |p: Vector2<f64>| ((p.x * scale) as f32, (p.y * scale) as f32);
-    // A polygon of table-frame points, clipped to the space in front of the camera, in pixels.
-    let project_polygon = |pts: &[Vector3<f64>]| -> Vec<(f32, f32)> {
+    let view = ViewCamera { proj: cam.projector(), scale };
+
+    let [sx, sy] = scene.table.size;
+    let top = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
+        .map(|(u, v)| Vector3::new(u * sx / 2.0, v * sy / 2.0, 0.0));
+    polygon(&mut pixmap, &view.polygon(&top), Some(TABLE_RGBA), Some(([150, 130, 100, 255], 1.0)));
+
+    let n = scene.objects.len().min(poses.len());
+    let eye = Vector3::from(cam.pose.t);
+    let mut order: Vec<usize> = (0..n).collect();
+    let depth = |i: usize| view.proj.to_camera(&Vector3::from(poses[i].t)).z;
+    order.sort_by(|&i, &j| depth(j).total_cmp(&depth(i)));
+    for &i in &order {
+        let obb = scene.objects[i].obb_at(&poses[i].isometry());
+        let mark = marks.get(i).copied().unwrap_or_default();
+        draw_box(&mut pixmap, &view, &obb, eye, mark_rgb(mark, i));
+    }
+
+    if options.keypoints {
+        draw_keypoints(&mut pixmap, &view, scene, poses, n);
+    }
+    if options.labels {
+        for (i, o) in scene.objects.iter().enumerate().take(n) {
+            if let Some(px) = view.proj.project(&Vector3::from(poses[i].t)) {
+                let (x, y) = view.px(px);
+                draw_tag(&mut pixmap, x as f64, y as f64, &o.id, 2);
+            }
+        }
+    }
+    pixmap
+}
+
+/// The camera of the view, its image scaled by `scale` to the picture.
+struct ViewCamera {
+    /// The camera's projection of table-frame points into its image.
+    proj: Projector,
+    /// Picture pixels per camera image pixel.
+    scale: f64,
+}
+
+impl ViewCamera {
+    /// A point of the camera image in pixels of the picture.
+    fn px(&self, p: Vector2<f64>) -> (f32, f32) {
+        ((p.x * self.scale) as f32, (p.y * self.scale) as f32)
+    }
+
+    /// A polygon of table-frame points, clipped to the space in front of the camera, in pixels.
+    fn polygon(&self, pts: &[Vector3<f64>]) -> Vec<(f32, f32)> {
+        let proj = &self.proj;
         let cams: Vec<Vector3<f64>> = pts.iter().map(|p| proj.to_camera(p)).collect();
         let mut out = Vec::new();
         for k in 0..cams.len() {
@@ -364,76 +412,61 @@ pub fn draw_view(scene: &Scene, poses: &[Pose], marks: &[Mark], options: &ViewOp
                 out.push(p + (q - p) * t);
             }
         }
-        out.iter().map(|c| to_px(Vector2::new(proj.fx * c.x / c.z + proj.cx, proj.fy * c.y / c.z + proj.cy))).collect()
-    };
+        out.iter()
+            .map(|c| self.px(Vector2::new(proj.fx * c.x / c.z + proj.cx, proj.fy * c.y / c.z + proj.cy)))
+            .collect()
+    }
+}
 
-    let [sx, sy] = scene.table.size;
-    let top = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
-        .map(|(u, v)| Vector3::new(u * sx / 2.0, v * sy / 2.0, 0.0));
-    polygon(&mut pixmap, &project_polygon(&top), Some(TABLE_RGBA), Some(([150, 130, 100, 255], 1.0)));
+/// The colour of object `i`'s box: red for a false estimate, cyan for a hidden object under
+/// it, otherwise its colour of [`OBJECT_PALETTE`].
+fn mark_rgb(mark: Mark, i: usize) -> [u8; 3] {
+    if mark.false_estimate {
+        [FALSE_RGBA[0], FALSE_RGBA[1], FALSE_RGBA[2]]
+    } else if mark.hidden {
+        [HIDDEN_RGBA[0], HIDDEN_RGBA[1], HIDDEN_RGBA[2]]
+    } else {
+        OBJECT_PALETTE[i % OBJECT_PALETTE.len()]
+    }
+}
 
-    let n = scene.objects.len().min(poses.len());
-    let eye = Vector3::from(cam.pose.t);
-    let mut order: Vec<usize> = (0..n).collect();
-    let depth = |i: usize| proj.to_camera(&Vector3::from(poses[i].t)).z;
-    order.sort_by(|&i, &j| depth(j).total_cmp(&depth(i)));
-    for &i in &order {
-        let obb = scene.objects[i].obb_at(&poses[i].isometry());
-        let mark = marks.get(i).copied().unwrap_or_default();
-        let rgb = if mark.false_estimate {
-            [FALSE_RGBA[0], FALSE_RGBA[1], FALSE_RGBA[2]]
-        } else if mark.hidden {
-            [HIDDEN_RGBA[0], HIDDEN_RGBA[1], HIDDEN_RGBA[2]]
-        } else {
-            OBJECT_PALETTE[i % OBJECT_PALETTE.len()]
-        };
-        let v = obb.vertices();
-        for k in 0..3 {
-            for bit in [0usize, 1] {
-                // The face where vertex bit k equals `bit`, its corners in cyclic order.
-                let (k1, k2) = ((k + 1) % 3, (k + 2) % 3);
-                let base = bit << k;
-                let face = [base, base | 1 << k1, base | 1 << k1 | 1 << k2, base | 1 << k2].map(|j| v[j]);
-                let normal = obb.axis(k) * if bit == 1 { 1.0 } else { -1.0 };
-                let center = (face[0] + face[2]) / 2.0;
-                if normal.dot(&(eye - center)) <= 0.0 {
-                    continue;
-                }
-                let outline = [rgb[0] / 2, rgb[1] / 2, rgb[2] / 2, 255];
-                polygon(
-                    &mut pixmap,
-                    &project_polygon(&face),
-                    Some([rgb[0], rgb[1], rgb[2], 170]),
-                    Some((outline, 1.5)),
-                );
+/// Draws a box's faces that face the camera at `eye`, filled semi-transparent in `rgb` and
+/// outlined in a darker shade of it.
+fn draw_box(pixmap: &mut Pixmap, view: &ViewCamera, obb: &Obb, eye: Vector3<f64>, rgb: [u8; 3]) {
+    let v = obb.vertices();
+    for k in 0..3 {
+        for bit in [0usize, 1] {
+            // The face where vertex bit k equals `bit`, its corners in cyclic order.
+            let (k1, k2) = ((k + 1) % 3, (k + 2) % 3);
+            let base = bit << k;
+            let face = [base, base | 1 << k1, base | 1 << k1 | 1 << k2, base | 1 << k2].map(|j| v[j]);
+            let normal = obb.axis(k) * if bit == 1 { 1.0 } else { -1.0 };
+            let center = (face[0] + face[2]) / 2.0;
+            if normal.dot(&(eye - center)) <= 0.0 {
+                continue;
             }
+            let outline = [rgb[0] / 2, rgb[1] / 2, rgb[2] / 2, 255];
+            polygon(pixmap, &view.polygon(&face), Some([rgb[0], rgb[1], rgb[2], 170]), Some((outline, 1.5)));
         }
     }
+}
 
-    if options.keypoints {
-        for (i, o) in scene.objects.iter().enumerate().take(n) {
-            let iso = poses[i].isometry();
-            for kp in &o.keypoints {
-                let seen = to_px(Vector2::new(kp.image[0], kp.image[1]));
-                let p = iso * nalgebra::Point3::from(Vector3::from(kp.model));
-                if let Some(px) = proj.project(&p.coords) {
-                    let at = to_px(px);
-                    line(&mut pixmap, seen, at, 1.0, MATCH_RGBA);
-                    dot(&mut pixmap, at, PROJECTED_RGBA);
-                }
-                dot(&mut pixmap, seen, OBSERVED_RGBA);
+/// Draws the keypoints of the first `n` objects: each observed one, the model one projected
+/// at the object's pose, and the line matching them (Fig. 4.15 b).
+fn draw_keypoints(pixmap: &mut Pixmap, view: &ViewCamera, scene: &Scene, poses: &[Pose], n: usize) {
+    for (i, o) in scene.objects.iter().enumerate().take(n) {
+        let iso = poses[i].isometry();
+        for kp in &o.keypoints {
+            let seen = view.px(Vector2::new(kp.image[0], kp.image[1]));
+            let p = iso * nalgebra::Point3::from(Vector3::from(kp.model));
+            if let Some(px) = view.proj.project(&p.coords) {
+                let at = view.px(px);
+                line(pixmap, seen, at, 1.0, MATCH_RGBA);
+                dot(pixmap, at, PROJECTED_RGBA);
             }
+            dot(pixmap, seen, OBSERVED_RGBA);
         }
     }
-    if options.labels {
-        for (i, o) in scene.objects.iter().enumerate().take(n) {
-            if let Some(px) = proj.project(&Vector3::from(poses[i].t)) {
-                let (x, y) = to_px(px);
-                draw_tag(&mut pixmap, x as f64, y as f64, &o.id, 2);
-            }
-        }
-    }
-    pixmap
 }
 
 /// A 3 x 3 pixel dot.

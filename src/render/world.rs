@@ -89,33 +89,46 @@ pub fn draw_world(
     // Merged into rectangles: a furnished building has thousands, and one quad per cell made
     // them the slowest part of a frame.
     place.fill(pixmap, &object_rects(&world.object_cells), OBJECT_RGBA);
-    let unexplained: Vec<CellRect> = world
-        .unexplained
-        .iter()
-        .flat_map(|a| a.runs.iter())
-        .filter(|r| r[1] <= r[2])
-        .map(|&[y, x0, x1]| CellRect { x0: x0 as i64, y0: y as i64, x1: x1 as i64 + 1, y1: y as i64 + 1 })
-        .collect();
-    place.fill(pixmap, &unexplained, UNEXPLAINED_RGBA);
+    place.fill(pixmap, &unexplained_rects(world), UNEXPLAINED_RGBA);
 
     for (g, p) in &groups {
         let walls: Vec<CellRect> = units(g).into_iter().flat_map(|u| cells(u).ring(t)).collect();
         p.fill(pixmap, &walls, WALL_RGBA);
     }
     for (g, p) in &groups {
-        let doors: Vec<CellRect> = g
-            .doors
-            .iter()
-            .map(|&i| {
-                let d = &world.doors[i];
-                let (x0, x1) = (d.x0.min(d.x1) as i64, d.x0.max(d.x1) as i64);
-                let (y0, y1) = (d.y0.min(d.y1) as i64, d.y0.max(d.y1) as i64);
-                CellRect { x0, y0, x1: x1 + 1, y1: y1 + 1 }
-            })
-            .collect();
-        p.fill(pixmap, &doors, DOOR_RGBA);
+        p.fill(pixmap, &door_rects(world, g), DOOR_RGBA);
     }
+    draw_labels_and_legend(pixmap, world, options)
+}
 
+/// The unexplained areas as cell rectangles, one per run of cells (empty runs skipped).
+fn unexplained_rects(world: &World) -> Vec<CellRect> {
+    world
+        .unexplained
+        .iter()
+        .flat_map(|a| a.runs.iter())
+        .filter(|r| r[1] <= r[2])
+        .map(|&[y, x0, x1]| CellRect { x0: x0 as i64, y0: y as i64, x1: x1 as i64 + 1, y1: y as i64 + 1 })
+        .collect()
+}
+
+/// The doors of frame group `g` as cell rectangles, whichever way round their end points are.
+fn door_rects(world: &World, g: &FrameGroup) -> Vec<CellRect> {
+    g.doors
+        .iter()
+        .map(|&i| {
+            let d = &world.doors[i];
+            let (x0, x1) = (d.x0.min(d.x1) as i64, d.x0.max(d.x1) as i64);
+            let (y0, y1) = (d.y0.min(d.y1) as i64, d.y0.max(d.y1) as i64);
+            CellRect { x0, y0, x1: x1 + 1, y1: y1 + 1 }
+        })
+        .collect()
+}
+
+/// Draws the labels (with `options.labels`, kept clear of the legend) and the legend (with
+/// `options.legend`) on top of the drawn world, and returns the labels placed.
+fn draw_labels_and_legend(pixmap: &mut Pixmap, world: &World, options: &RenderOptions) -> Vec<LabelBox> {
+    let scale = options.scale;
     let factor = label_text_scale(scale);
     let entries = if options.legend { legend_entries(world) } else { Vec::new() };
     // One step smaller than the labels: the legend is read once, the plan is what matters.

@@ -1120,48 +1120,53 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     if let Some(set) = only.as_deref().filter(|s| !SETS.contains(s)) {
         return Err(CliError::Usage(format!("--only {set}: no such set (one of {})", SETS.join(", "))));
     }
-    let want = |s: &str| only.as_deref().is_none_or(|o| o == s);
+    run_sets(&dir, &o, only.as_deref())
+}
+
+/// Runs the evaluation of each set, in the order of the report, or only of set `only`.
+fn run_sets(dir: &Path, o: &Opts, only: Option<&str>) -> Result<(), CliError> {
+    let want = |s: &str| only.is_none_or(|set| set == s);
     if want("cartesium") {
-        cartesium(&dir, &o)?;
+        cartesium(dir, o)?;
     }
     if want("synthetic") {
-        synthetic(&o)?;
+        synthetic(o)?;
     }
     if want("bormann") {
-        bormann(&dir, &o)?;
+        bormann(dir, o)?;
     }
     if want("knowledge") {
-        knowledge(&dir, &o)?;
+        knowledge(dir, o)?;
     }
     if want("paired") {
-        paired(&o)?;
+        paired(o)?;
     }
     if want("paired-bormann") {
-        paired_bormann(&dir, &o)?;
+        paired_bormann(dir, o)?;
     }
     if want("bormann-seeds") {
-        bormann_seeds(&dir, &o)?;
+        bormann_seeds(dir, o)?;
     }
     if want("rooms") {
-        rooms(&o)?;
+        rooms(o)?;
     }
     if want("routes") {
-        routes(&o)?;
+        routes(o)?;
     }
     if want("wings") {
-        wings(&dir, &o)?;
+        wings(dir, o)?;
     }
     if want("scale") {
-        scale(&dir, &o)?;
+        scale(dir, o)?;
     }
     if want("doors") {
-        doors(&dir, &o)?;
+        doors(dir, o)?;
     }
     if want("format") {
-        format(&dir, &o)?;
+        format(dir, o)?;
     }
     if want("loo") {
-        loo(&dir, &o)?;
+        loo(dir, o)?;
     }
 
     Ok(())

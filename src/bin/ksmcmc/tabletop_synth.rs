@@ -3,6 +3,7 @@
 use crate::args::{self, CliError};
 use ksmcmc::tabletop::synth::{generate, SynthConfig};
 use std::ffi::OsString;
+use std::path::Path;
 
 const HELP: &str = "\
 Usage: ksmcmc tabletop-synth --seed N --out scene.json [options]
@@ -42,14 +43,7 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
             Long("config") => config_path = Some(args::path(parser.value()?)),
             Long("objects") => {
                 let v: String = args::value("--objects", parser.value()?)?;
-                let bad = || CliError::Usage(format!("--objects: {v:?} is not MIN-MAX, e.g. 3-10"));
-                let (lo, hi) = v.split_once('-').ok_or_else(bad)?;
-                let (lo, hi): (u32, u32) =
-                    (lo.trim().parse().map_err(|_| bad())?, hi.trim().parse().map_err(|_| bad())?);
-                overrides.push(Box::new(move |c| {
-                    c.min_objects = lo;
-                    c.max_objects = hi;
-                }));
+                overrides.push(objects_override(&v)?);
             }
             Long("hovering") => {
                 let v = args::value("--hovering", parser.value()?)?;
@@ -80,17 +74,7 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
             _ => return Err(arg.unexpected().into()),
         }
     }
-    let mut config = match &config_path {
-        Some(p) => {
-            let text = std::fs::read_to_string(p).map_err(|e| args::failed(p.display(), e))?;
-            SynthConfig::parse_json(&text).map_err(|e| args::failed(p.display(), e))?
-        }
-        None => SynthConfig::default(),
-    };
-    for o in overrides {
-        o(&mut config);
-    }
-    config.validate().map_err(|m| CliError::Usage(format!("invalid configuration: {m}")))?;
+    let config = effective_config(config_path.as_deref(), overrides)?;
     if print_config {
         println!("{}", serde_json::to_string_pretty(&config).unwrap_or_default());
         return Ok(());
@@ -110,4 +94,32 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
         out.display()
     );
     Ok(())
+}
+
+/// The override of `--objects MIN-MAX`: the least and the most visible objects.
+fn objects_override(v: &str) -> Result<Override, CliError> {
+    let bad = || CliError::Usage(format!("--objects: {v:?} is not MIN-MAX, e.g. 3-10"));
+    let (lo, hi) = v.split_once('-').ok_or_else(bad)?;
+    let (lo, hi): (u32, u32) = (lo.trim().parse().map_err(|_| bad())?, hi.trim().parse().map_err(|_| bad())?);
+    Ok(Box::new(move |c| {
+        c.min_objects = lo;
+        c.max_objects = hi;
+    }))
+}
+
+/// The config to generate with: the file's (or the defaults), then the command line's
+/// overrides in order, validated.
+fn effective_config(config_path: Option<&Path>, overrides: Vec<Override>) -> Result<SynthConfig, CliError> {
+    let mut config = match config_path {
+        Some(p) => {
+            let text = std::fs::read_to_string(p).map_err(|e| args::failed(p.display(), e))?;
+            SynthConfig::parse_json(&text).map_err(|e| args::failed(p.display(), e))?
+        }
+        None => SynthConfig::default(),
+    };
+    for o in overrides {
+        o(&mut config);
+    }
+    config.validate().map_err(|m| CliError::Usage(format!("invalid configuration: {m}")))?;
+    Ok(config)
 }

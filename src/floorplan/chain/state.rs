@@ -456,60 +456,10 @@ impl State {
                 self.bump();
                 Undo::Removed { index: i, unit: u }
             }
-            Move::Split { index, first, second } => {
-                let len = self.units.len();
-                let old = self.units[index];
-                self.explanation.apply_unit(old.rect(), self.wall, -1);
-                self.explanation.apply_unit(first, self.wall, 1);
-                self.explanation.apply_unit(second, self.wall, 1);
-                self.units[index] = self.new_unit(first);
-                let s = self.new_unit(second);
-                self.units.push(s);
-                self.bump();
-                Undo::Replaced { old: [(index, old), (index, old)], count: 1, len }
-            }
-            Move::Merge { i, j, merged } => {
-                let (ui, uj) = (self.units[i], self.units[j]);
-                self.explanation.apply_unit(ui.rect(), self.wall, -1);
-                self.explanation.apply_unit(uj.rect(), self.wall, -1);
-                self.explanation.apply_unit(merged, self.wall, 1);
-                self.units[i] = self.new_unit(merged);
-                self.units.remove(j);
-                self.bump();
-                Undo::Merged { i, j, ui, uj }
-            }
-            Move::Reshape { index, rect } => {
-                let len = self.units.len();
-                let old = self.units[index];
-                let id = old.id;
-                let doors: Vec<usize> =
-                    (0..self.doors.len()).filter(|&k| self.doors[k].lo == id || self.doors[k].hi == id).collect();
-                for &k in &doors {
-                    let r = self.door_rect_of(&self.doors[k]).expect("valid before the move");
-                    self.explanation.apply_door(r, -1);
-                }
-                self.explanation.apply_unit(old.rect(), self.wall, -1);
-                self.explanation.apply_unit(rect, self.wall, 1);
-                self.units[index] = Unit { x: rect.x, y: rect.y, w: rect.w, h: rect.h, ..old };
-                for &k in &doors {
-                    let r = self.door_rect_of(&self.doors[k]).expect("checked by is_valid");
-                    self.explanation.apply_door(r, 1);
-                }
-                self.bump();
-                Undo::Replaced { old: [(index, old), (index, old)], count: 1, len }
-            }
-            Move::Repartition { i, j, a, b } => {
-                let len = self.units.len();
-                let (ui, uj) = (self.units[i], self.units[j]);
-                self.explanation.apply_unit(ui.rect(), self.wall, -1);
-                self.explanation.apply_unit(uj.rect(), self.wall, -1);
-                self.explanation.apply_unit(a, self.wall, 1);
-                self.explanation.apply_unit(b, self.wall, 1);
-                self.units[i] = Unit { x: a.x, y: a.y, w: a.w, h: a.h, ..ui };
-                self.units[j] = Unit { x: b.x, y: b.y, w: b.w, h: b.h, ..uj };
-                self.bump();
-                Undo::Replaced { old: [(i, ui), (j, uj)], count: 2, len }
-            }
+            Move::Split { index, first, second } => self.apply_split(index, first, second),
+            Move::Merge { i, j, merged } => self.apply_merge(i, j, merged),
+            Move::Reshape { index, rect } => self.apply_reshape(index, rect),
+            Move::Repartition { i, j, a, b } => self.apply_repartition(i, j, a, b),
             Move::Allocate(d) => {
                 let r = self.door_rect_of(&d).expect("checked by is_valid");
                 self.explanation.apply_door(r, 1);
@@ -524,6 +474,73 @@ impl State {
             }
         };
         (undo, saved.0, saved.1)
+    }
+
+    /// SPLIT: unit `index` becomes `first` (in its slot) and `second` (appended), both new ids.
+    #[inline]
+    fn apply_split(&mut self, index: usize, first: Rect, second: Rect) -> Undo {
+        let len = self.units.len();
+        let old = self.units[index];
+        self.explanation.apply_unit(old.rect(), self.wall, -1);
+        self.explanation.apply_unit(first, self.wall, 1);
+        self.explanation.apply_unit(second, self.wall, 1);
+        self.units[index] = self.new_unit(first);
+        let s = self.new_unit(second);
+        self.units.push(s);
+        self.bump();
+        Undo::Replaced { old: [(index, old), (index, old)], count: 1, len }
+    }
+
+    /// MERGE: units `i` and `j` become one new unit `merged` in slot `i`; slot `j` is removed.
+    #[inline]
+    fn apply_merge(&mut self, i: usize, j: usize, merged: Rect) -> Undo {
+        let (ui, uj) = (self.units[i], self.units[j]);
+        self.explanation.apply_unit(ui.rect(), self.wall, -1);
+        self.explanation.apply_unit(uj.rect(), self.wall, -1);
+        self.explanation.apply_unit(merged, self.wall, 1);
+        self.units[i] = self.new_unit(merged);
+        self.units.remove(j);
+        self.bump();
+        Undo::Merged { i, j, ui, uj }
+    }
+
+    /// SHRINK or DILATE: unit `index` takes rectangle `rect`, keeping its id and type; its doors
+    /// move with its walls.
+    #[inline]
+    fn apply_reshape(&mut self, index: usize, rect: Rect) -> Undo {
+        let len = self.units.len();
+        let old = self.units[index];
+        let id = old.id;
+        let doors: Vec<usize> =
+            (0..self.doors.len()).filter(|&k| self.doors[k].lo == id || self.doors[k].hi == id).collect();
+        for &k in &doors {
+            let r = self.door_rect_of(&self.doors[k]).expect("valid before the move");
+            self.explanation.apply_door(r, -1);
+        }
+        self.explanation.apply_unit(old.rect(), self.wall, -1);
+        self.explanation.apply_unit(rect, self.wall, 1);
+        self.units[index] = Unit { x: rect.x, y: rect.y, w: rect.w, h: rect.h, ..old };
+        for &k in &doors {
+            let r = self.door_rect_of(&self.doors[k]).expect("checked by is_valid");
+            self.explanation.apply_door(r, 1);
+        }
+        self.bump();
+        Undo::Replaced { old: [(index, old), (index, old)], count: 1, len }
+    }
+
+    /// INTERCHANGE: units `i` and `j` take rectangles `a` and `b`, keeping their ids and types.
+    #[inline]
+    fn apply_repartition(&mut self, i: usize, j: usize, a: Rect, b: Rect) -> Undo {
+        let len = self.units.len();
+        let (ui, uj) = (self.units[i], self.units[j]);
+        self.explanation.apply_unit(ui.rect(), self.wall, -1);
+        self.explanation.apply_unit(uj.rect(), self.wall, -1);
+        self.explanation.apply_unit(a, self.wall, 1);
+        self.explanation.apply_unit(b, self.wall, 1);
+        self.units[i] = Unit { x: a.x, y: a.y, w: a.w, h: a.h, ..ui };
+        self.units[j] = Unit { x: b.x, y: b.y, w: b.w, h: b.h, ..uj };
+        self.bump();
+        Undo::Replaced { old: [(i, ui), (j, uj)], count: 2, len }
     }
 
     /// Reverts a move applied by [`State::apply`].

@@ -59,79 +59,11 @@ fn fill<T: Copy>(g: &mut Grid<T>, r: Rect, v: T) {
 pub(super) fn observe(plan: &Plan, explored: &[bool], c: &Cells, noise: &Noise, rng: &mut Rng) -> Observed {
     let (w, h) = (c.canvas.0 as usize, c.canvas.1 as usize);
     let t = c.wall;
-    let mut kind = Grid::new(w, h, OUTSIDE);
-    let mut labels = Grid::new(w, h, 0u16);
-    fill(&mut kind, plan.building, WALL);
-    for (i, s) in plan.spaces.iter().enumerate() {
-        fill(&mut kind, s.inner, INTERIOR);
-        fill(&mut labels, s.inner, i as u16 + 1);
-    }
-    for o in &plan.openings {
-        fill(&mut kind, o.rect(t), OPENING);
-    }
-
-    // Free space the robot saw: explored interiors, openings next to them, peeks.
-    let mut cells = Grid::new(w, h, Cell::Unknown);
-    for (s, _) in plan.spaces.iter().zip(explored).filter(|(_, &e)| e) {
-        fill(&mut cells, s.inner, Cell::Free);
-    }
-    for o in &plan.openings {
-        if explored[o.a] || explored[o.b] {
-            fill(&mut cells, o.rect(t), Cell::Free);
-        }
-    }
-    for (u, s) in plan.spaces.iter().enumerate() {
-        if explored[u] {
-            continue;
-        }
-        for o in plan.openings.iter().filter(|o| o.a == u || o.b == u) {
-            let v = o.other(u);
-            if explored[v] && rng.chance(noise.peek) {
-                peek(&mut cells, o, s, &plan.spaces[v], v == o.a, t);
-            }
-        }
-    }
-
-    // Walls read occupied where seen from free space.
-    let free = cells.map(|c| *c == Cell::Free);
-    let seen = dilate(&free, t as usize);
-    for ((cell, k), s) in cells.cells_mut().iter_mut().zip(kind.cells()).zip(seen.cells()) {
-        if *k == WALL && *s {
-            *cell = Cell::Occupied;
-        }
-    }
-
-    // Gaps: runs along each unit side, across the whole wall.
+    let (kind, labels) = rasterise(plan, w, h, t);
+    let mut cells = seen_free(plan, explored, noise, (w, h), t, rng);
+    mark_seen_walls(&mut cells, &kind, t);
     if noise.wall_gaps > 0.0 {
-        for s in &plan.spaces {
-            let r = s.inner;
-            // (start, step along, offset across outwards, length)
-            let sides = [
-                ((r.x, r.y - 1), (1, 0), (0, -1), r.w),
-                ((r.x, r.bottom()), (1, 0), (0, 1), r.w),
-                ((r.x - 1, r.y), (0, 1), (-1, 0), r.h),
-                ((r.right(), r.y), (0, 1), (1, 0), r.h),
-            ];
-            for ((x0, y0), (dx, dy), (ox, oy), len) in sides {
-                let mut i = 0;
-                while i < len {
-                    if !rng.chance(noise.wall_gaps) {
-                        i += 1;
-                        continue;
-                    }
-                    let g = rng.between(2, 8);
-                    for j in i..(i + g).min(len) {
-                        for k in 0..t {
-                            let (x, y) = (x0 + dx * j + ox * k, y0 + dy * j + oy * k);
-                            if kind.get(x as i64, y as i64) == Some(&WALL) {
-                                *cells.at_mut(x as usize, y as usize) = Cell::Unknown;
-                            }
-                        }
-                    }
-                    i += g;
-                }
-            }
-        }
+        cut_wall_gaps(&mut cells, &kind, plan, noise.wall_gaps, t, rng);
     }
 
     // Furniture in explored rooms and halls.
@@ -154,6 +86,101 @@ pub(super) fn observe(plan: &Plan, explored: &[bool], c: &Cells, noise: &Noise, 
         }
     }
     Observed { cells, labels, objects }
+}
+
+/// The truth, `w` x `h` cells: what each cell is (outside, wall, interior, opening) and the
+/// space it belongs to (index + 1 on interiors, 0 elsewhere).
+fn rasterise(plan: &Plan, w: usize, h: usize, t: i32) -> (Grid<u8>, Grid<u16>) {
+    let mut kind = Grid::new(w, h, OUTSIDE);
+    let mut labels = Grid::new(w, h, 0u16);
+    fill(&mut kind, plan.building, WALL);
+    for (i, s) in plan.spaces.iter().enumerate() {
+        fill(&mut kind, s.inner, INTERIOR);
+        fill(&mut labels, s.inner, i as u16 + 1);
+    }
+    for o in &plan.openings {
+        fill(&mut kind, o.rect(t), OPENING);
+    }
+    (kind, labels)
+}
+
+/// Free space the robot saw, everything else unknown: explored interiors, openings next to
+/// them, and peeks through doors into unexplored spaces (each with chance `noise.peek`).
+fn seen_free(
+    plan: &Plan,
+    explored: &[bool],
+    noise: &Noise,
+    (w, h): (usize, usize),
+    t: i32,
+    rng: &mut Rng,
+) -> Grid<Cell> {
+    let mut cells = Grid::new(w, h, Cell::Unknown);
+    for (s, _) in plan.spaces.iter().zip(explored).filter(|(_, &e)| e) {
+        fill(&mut cells, s.inner, Cell::Free);
+    }
+    for o in &plan.openings {
+        if explored[o.a] || explored[o.b] {
+            fill(&mut cells, o.rect(t), Cell::Free);
+        }
+    }
+    for (u, s) in plan.spaces.iter().enumerate() {
+        if explored[u] {
+            continue;
+        }
+        for o in plan.openings.iter().filter(|o| o.a == u || o.b == u) {
+            let v = o.other(u);
+            if explored[v] && rng.chance(noise.peek) {
+                peek(&mut cells, o, s, &plan.spaces[v], v == o.a, t);
+            }
+        }
+    }
+    cells
+}
+
+/// Walls read occupied where they are within `t` cells of seen free space: a laser sees the
+/// faces of walls from where the robot was.
+fn mark_seen_walls(cells: &mut Grid<Cell>, kind: &Grid<u8>, t: i32) {
+    let free = cells.map(|c| *c == Cell::Free);
+    let seen = dilate(&free, t as usize);
+    for ((cell, k), s) in cells.cells_mut().iter_mut().zip(kind.cells()).zip(seen.cells()) {
+        if *k == WALL && *s {
+            *cell = Cell::Occupied;
+        }
+    }
+}
+
+/// Gaps (glass, dark surfaces): runs of 2 to 8 cells along each unit side, starting at each
+/// cell with chance `rate`, read unknown across the whole wall.
+fn cut_wall_gaps(cells: &mut Grid<Cell>, kind: &Grid<u8>, plan: &Plan, rate: f64, t: i32, rng: &mut Rng) {
+    for s in &plan.spaces {
+        let r = s.inner;
+        // (start, step along, offset across outwards, length)
+        let sides = [
+            ((r.x, r.y - 1), (1, 0), (0, -1), r.w),
+            ((r.x, r.bottom()), (1, 0), (0, 1), r.w),
+            ((r.x - 1, r.y), (0, 1), (-1, 0), r.h),
+            ((r.right(), r.y), (0, 1), (1, 0), r.h),
+        ];
+        for ((x0, y0), (dx, dy), (ox, oy), len) in sides {
+            let mut i = 0;
+            while i < len {
+                if !rng.chance(rate) {
+                    i += 1;
+                    continue;
+                }
+                let g = rng.between(2, 8);
+                for j in i..(i + g).min(len) {
+                    for k in 0..t {
+                        let (x, y) = (x0 + dx * j + ox * k, y0 + dy * j + oy * k);
+                        if kind.get(x as i64, y as i64) == Some(&WALL) {
+                            *cells.at_mut(x as usize, y as usize) = Cell::Unknown;
+                        }
+                    }
+                }
+                i += g;
+            }
+        }
+    }
 }
 
 /// Marks free the cells of unexplored space `s` visible from inside `v` (the opening's `a` side

@@ -25,7 +25,7 @@ impl UnionFind {
     /// `n` singleton sets. `n` must fit in a `u32` (every caller indexes cells or atoms of
     /// structures already held in memory, far fewer).
     pub fn new(n: usize) -> UnionFind {
-        assert!(u32::try_from(n).is_ok(), "UnionFind over {n} elements: at most u32::MAX");
+        assert!(n <= u32::MAX as usize, "a UnionFind holds at most u32::MAX elements");
         UnionFind { parent: (0..n as u32).collect() }
     }
 

@@ -236,6 +236,16 @@ pub fn edit_facts(edits: &super::edits::Edits, world: &World) -> Vec<Fact> {
         .collect()
 }
 
+/// Whether `mln` can serve as the room rules: it declares the query `SameRoom(unit, unit)`
+/// (the room layer's [`super::rooms::RoomKnowledge`] reads rules only through this check, so
+/// that a configuration is refused as soon as it is read, by the same words).
+pub fn check_room_rules(mln: &crate::mln::Mln) -> Result<(), crate::mln::MlnError> {
+    match mln.predicate("SameRoom") {
+        Some(_) => Ok(()),
+        None => Err(crate::mln::MlnError::config("the room rules must declare the query SameRoom(unit, unit)")),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -502,10 +512,8 @@ impl KnowledgeConfig {
             return Err("knowledge: object probabilities must be in (0, 1]".into());
         }
         if let Some(text) = &self.room_kb {
-            // The room rules' own check (they must declare `SameRoom`) is the room layer's
-            // (`rooms::RoomKnowledge::parse`), which reads this configuration: here only that
-            // they are Markov logic, so that a mistake is caught when the settings are read.
-            crate::mln::Mln::parse(text).map_err(|e| format!("knowledge: room_kb: {e}"))?;
+            let mln = crate::mln::Mln::parse(text).map_err(|e| format!("knowledge: room_kb: {e}"))?;
+            check_room_rules(&mln).map_err(|e| format!("knowledge: room_kb: {e}"))?;
         }
         let g = &self.geometry;
         if !(g.hall_area_m2.is_finite()

@@ -424,9 +424,6 @@ impl Chain {
     /// wall-based detector, and starts from the empty world.
     pub fn new(map: &OccupancyMap, config: ChainConfig, seed: u64) -> Result<Chain, ChainError> {
         config.validate()?;
-        // The room rules are read now, so that rules the room layer cannot use (no
-        // `SameRoom`) are refused before the chain runs, not after.
-        super::rooms::RoomLayer::new(Default::default(), &config.knowledge)?;
         let classified = map.classified();
         let resolution = map.yaml().resolution;
         let cells = config.cells(resolution);

@@ -46,9 +46,7 @@ impl RoomKnowledge {
     /// indoor rules type the rooms.
     pub fn parse(text: &str) -> Result<RoomKnowledge, MlnError> {
         let mln = Mln::parse(text)?;
-        if mln.predicate("SameRoom").is_none() {
-            return Err(MlnError::config("the room rules must declare the query SameRoom(unit, unit)"));
-        }
+        crate::floorplan::knowledge::check_room_rules(&mln)?;
         Ok(RoomKnowledge { mln, types: Default::default() })
     }
 

@@ -427,10 +427,11 @@ mod tests {
         config.room_kb = None;
         explain_rooms(&mut world, &map, &map, &c, 0.05, Some(&RoomKnowledge::configured(&config).unwrap())).unwrap();
         assert_eq!(world.rooms.len(), 1, "{:?}", world.rooms);
-        // Rules without the query are refused when the layer is made of the configuration
-        // (the configuration's own check reads them only as Markov logic).
+        // Rules without the query are refused when the configuration is checked, and by the
+        // layer made of it.
         config.room_kb = Some("Open(unit, unit)\n".into());
-        config.validate().unwrap();
+        let e = config.validate().unwrap_err();
+        assert!(e.contains("room_kb") && e.contains("SameRoom"), "{e}");
         let e = RoomLayer::new(c, &config).unwrap_err().to_string();
         assert!(e.contains("room rules") && e.contains("SameRoom"), "{e}");
     }

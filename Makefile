@@ -37,7 +37,7 @@ WASM_TEST_ENV := CARGO_TARGET_WASM32_UNKNOWN_UNKNOWN_RUNNER=wasm-bindgen-test-ru
 # alone in the wasm-release profile of Cargo.toml (no debug names, fat LTO), with simd128
 # (.cargo/config.toml), then wasm-opt.
 WASM_MODULES := ksmcmc:wasm-mapper ksmcmc_plan:wasm-plan ksmcmc_synth:wasm-synth ksmcmc_rules:wasm-rules \
-	ksmcmc_tabletop:wasm-tabletop
+	ksmcmc_tabletop:wasm-tabletop ksmcmc_explore:wasm-explore
 WASM_FEATURES := $(subst $(eval) ,$(comma),$(foreach m,$(WASM_MODULES),$(lastword $(subst :, ,$(m)))))
 WASM_NAMES := $(foreach m,$(WASM_MODULES),$(firstword $(subst :, ,$(m))))
 WASM_DIR := target/$(WASM_TARGET)/wasm-release

@@ -393,7 +393,6 @@ function save(name, data, type) {
 // ---------------------------------------------------------------- wiring
 
 function wire() {
-  ui.messageClose.addEventListener('click', clearError);
   ui.generateForm.addEventListener('submit', (e) => {
     e.preventDefault();
     generate();

@@ -5,7 +5,7 @@
 // with `Mapper.updateMap` and goes on from its world. This thread only draws the pictures the
 // worker sends, at most one per animation frame, with the robot's path over them.
 
-import init, { version } from './pkg/ksmcmc.js';
+import init, { version } from './pkg/ksmcmc_explore.js';
 import { parseSeed, onDroppedFiles, readPickedMap } from './lib/files.js';
 import { SampleList, fetchSampleMap } from './lib/samples.js';
 import { formatNumber } from './lib/plot.js';
@@ -438,7 +438,6 @@ function onKey(e) {
 }
 
 function wire() {
-  ui.messageClose.addEventListener('click', clearError);
   ui.run.addEventListener('click', toggle);
   ui.reset.addEventListener('click', reset);
   ui.speed.addEventListener('input', () => setSpeed(ui.speed.value));

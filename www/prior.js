@@ -33,7 +33,7 @@ Middle(x) => !Right(x).
 `;
 
 const $ = (id) => document.getElementById(id);
-const { showError } = messages({ message: $('message'), messageText: $('message-text') });
+const { showError } = messages({ message: $('message'), messageText: $('message-text'), messageClose: $('message-close') });
 const ui = { kb: $('kb'), error: $('kb-error'), plot: $('plot'), mass: $('mass'), samples: $('samples'), acceptance: $('acceptance') };
 
 const state = {

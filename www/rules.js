@@ -14,7 +14,7 @@ const SAMPLE = 'office-small';
 const INFER_EVERY_MS = 400;
 
 const $ = (id) => document.getElementById(id);
-const { showError } = messages({ message: $('message'), messageText: $('message-text') });
+const { showError } = messages({ message: $('message'), messageText: $('message-text'), messageClose: $('message-close') });
 const ui = { kb: $('kb'), error: $('kb-error'), map: $('map'), evidence: $('evidence'), marginals: $('marginals').tBodies[0], sale: $('salele').tBodies[0] };
 
 const state = {

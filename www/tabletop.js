@@ -234,7 +234,6 @@ function wire() {
   state.graphZoom = new Viewport(ui.graph, { onChange: viewMoved, controls: { className: 'zoom-controls', label: 'Zoom the scene graph' } });
   ui.view.after(state.viewZoom.controls);
   ui.graph.after(state.graphZoom.controls);
-  ui.messageClose.addEventListener('click', clearError);
   ui.run.addEventListener('click', () => (state.running ? pause() : play()));
   ui.step.addEventListener('click', () => attempt(() => {
     state.tt?.step(100);

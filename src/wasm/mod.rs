@@ -12,8 +12,10 @@
 //!
 //! * `wasm-mapper`, `ksmcmc.js`: maps ([`map`]), their pictures and the live floor-plan chain
 //!   ([`mapper`]), with the built-in rules and their syntax check: what the live mapper needs
-//!   for its first frame, and the one module most pages start with. The simulated robot of the
-//!   Exploration page ([`explore`]) is here too: it runs beside a `Mapper` and hands it maps.
+//!   for its first frame, and the one module most pages start with.
+//! * `wasm-explore`, `ksmcmc_explore.js`: all of `ksmcmc.js` and the simulated robot of the
+//!   Exploration page ([`explore`]), which runs beside a `Mapper` and hands it maps (objects of
+//!   one module): the robot is 8 kB gzipped that the live mapper's first frame does without.
 //! * `wasm-plan`, `ksmcmc_plan.js`: the room layer of a best world and everything made from it
 //!   ([`plan`]: `world.json`, labels, room types, GeoJSON, SVG, glTF, routes, the report, PNG
 //!   encoding), and routes and models of saved worlds. The live mapper's worker imports it
@@ -43,7 +45,7 @@
 //! live in wasm memory; call `.free()` on them when done, or let the garbage collector's
 //! finaliser do it.
 
-#[cfg(feature = "wasm-mapper")]
+#[cfg(feature = "wasm-explore")]
 mod explore;
 #[cfg(any(feature = "wasm-mapper", feature = "wasm-rules"))]
 pub mod knowledge;
@@ -62,7 +64,7 @@ mod synth;
 #[cfg(feature = "wasm-tabletop")]
 pub mod tabletop;
 
-#[cfg(feature = "wasm-mapper")]
+#[cfg(feature = "wasm-explore")]
 pub use explore::Explorer;
 #[cfg(feature = "wasm-mapper")]
 pub use map::{draw_to_canvas, render_rgba, Counts, Map, Rendered};

@@ -269,3 +269,70 @@ test('zoomed pictures get more pixels per cell within their limits', () => {
   assert.equal(detailScale(1, 1, 1e9), 1, 'never below 1');
   assert.equal(detailScale(NaN, 2, 10), 1);
 });
+
+// ---------------------------------------------------------------- the pages' house
+
+import { readdirSync } from 'node:fs';
+import { fileURLToPath } from 'node:url';
+import { checkShells, PAGES } from '../../scripts/check-shell.mjs';
+import { pictureDue, scheduler } from '../../www/lib/scheduler.js';
+
+const WWW_DIR = fileURLToPath(new URL('../../www/', import.meta.url));
+
+test('the seven pages share one shell: head, skip link, header with the nav, message box (scripts/check-shell.mjs)', () => {
+  assert.equal(PAGES.length, 7);
+  assert.deepEqual(checkShells(WWW_DIR), []);
+});
+
+test('no module of the pages is over 900 lines', () => {
+  const long = [];
+  for (const dir of ['', 'lib', 'mapper']) {
+    for (const name of readdirSync(WWW_DIR + dir).filter((f) => f.endsWith('.js'))) {
+      const path = `${dir ? `${dir}/` : ''}${name}`;
+      const lines = readText(WWW_DIR + path, 'utf8').split('\n').length - 1;
+      if (lines > 900) long.push(`www/${path}: ${lines} lines`);
+    }
+  }
+  assert.deepEqual(long, []);
+});
+
+test("the workers' scheduler runs its loop once however often it is asked, and again when the loop asks", async () => {
+  // Node keeps a MessagePort with a listener open: the channels made here are closed after.
+  const Channel = globalThis.MessageChannel;
+  const made = [];
+  globalThis.MessageChannel = class extends Channel {
+    constructor() {
+      super();
+      made.push(this);
+    }
+  };
+  try {
+    let runs = 0;
+    let more = 2;
+    let finish;
+    const finished = new Promise((resolve) => {
+      finish = resolve;
+    });
+    const schedule = scheduler(() => {
+      runs++;
+      if (more-- > 0) schedule();
+      else finish();
+    });
+    schedule();
+    schedule();
+    schedule();
+    assert.equal(runs, 0, 'not at once: at the next macrotask');
+    await finished;
+    await new Promise((resolve) => setTimeout(resolve, 20));
+    assert.equal(runs, 3, 'three asks before the first run are one run, then the two the loop asked for');
+  } finally {
+    globalThis.MessageChannel = Channel;
+    for (const c of made) c.port1.close();
+  }
+  // A picture that took 1 s with a share of 0.5 waits 1 s of chain; 100 ms with 0.25, 300 ms.
+  assert.equal(pictureDue(performance.now(), 1000, 0.5), false);
+  assert.equal(pictureDue(performance.now() - 1e6, 1000, 0.5), true);
+  assert.equal(pictureDue(performance.now() - 100, 100, 0.25), false);
+  assert.equal(pictureDue(performance.now() - 301, 100, 0.25), true);
+  assert.equal(pictureDue(0, 0, 0.3), true, 'the first picture is due at once');
+});

@@ -26,10 +26,9 @@
 import init, { Map as OccMap, Mapper, renderMapperRgba, renderSceneGraphRgba, wasmHeapBytes } from '../pkg/ksmcmc.js';
 import { buildMap } from './map-source.js';
 import { loadModule } from './modules.js';
+import { pictureDue, scheduler, SLICE_MS } from './scheduler.js';
 import { runWingChains, wingSettings } from './wing-chains.js';
 
-/** Milliseconds of iterations between looking at the page's requests. */
-const SLICE_MS = 8;
 /**
  * While running, pictures take at most this share of the worker's time: a large map's picture
  * costs milliseconds, and the page would ask for one every frame.
@@ -58,7 +57,6 @@ const state = {
   ipf: 'auto',
   /** A `frame` request waiting for the next slice: { id, view }. */
   frame: null,
-  scheduled: false,
   /** Pause when the chain settles, and whether it was settled when it started running. */
   stopWhenSettled: false,
   wasSettled: false,
@@ -83,15 +81,8 @@ const state = {
   modules: new Set(),
 };
 
-// The loop yields to the event loop between slices through a MessageChannel (setTimeout would
-// be clamped to 4 ms).
-const tick = new MessageChannel();
-tick.port1.onmessage = loop;
-function schedule() {
-  if (state.scheduled) return;
-  state.scheduled = true;
-  tick.port2.postMessage(0);
-}
+// The loop yields to the event loop between slices (lib/scheduler.js).
+const schedule = scheduler(loop);
 
 /** Numbers the statistics in the order they are made. */
 let seq = 0;
@@ -210,13 +201,10 @@ function fail(err) {
 
 /** One slice of the running chain, then the waiting picture, if any. */
 function loop() {
-  state.scheduled = false;
   if (!state.running || !state.mapper) return;
   // In `auto` mode a waiting picture is drawn once the chain has had its share of the time.
   let waiting = state.frame;
-  if (waiting && state.ipf === 'auto' && performance.now() - state.drawnAt < (state.drawMs * (1 - DRAW_SHARE)) / DRAW_SHARE) {
-    waiting = null;
-  }
+  if (waiting && state.ipf === 'auto' && !pictureDue(state.drawnAt, state.drawMs, DRAW_SHARE)) waiting = null;
   try {
     if (state.ipf === 'auto') state.mapper.runFor(SLICE_MS);
     else if (waiting) state.mapper.step(state.ipf);
@@ -387,7 +375,7 @@ function noRooms(details) {
 
 const ops = {
   load({ source, ...args }) {
-    const map = buildMap(source);
+    const map = buildMap(source, OccMap);
     try {
       return start(map, args);
     } catch (err) {
@@ -405,7 +393,7 @@ const ops = {
    * cells changed and the chain's numbers; if the map is refused, nothing changes.
    */
   updateMap({ source }) {
-    const map = buildMap(source);
+    const map = buildMap(source, OccMap);
     let changed;
     try {
       changed = state.mapper.updateMap(map);

@@ -10,21 +10,29 @@
 // (`mapper.updateMap(snapshot)`); when no frontier is left it takes the last map and runs on
 // until it settles. The robot drives `speed` cells for each picture the page asks for (the
 // speed is in cells per frame shown), and between pictures the chain iterates in slices of
-// SLICE_MS, as in chain-worker.js. Requests and replies are those of chain-worker.js
-// ({ id, op, args } → { id, result } or { id, error }; events `error` and `settled`), so the
-// page talks to it through lib/remote-chain.js.
+// SLICE_MS, as in chain-worker.js (the run loop both share: lib/scheduler.js). Requests and
+// replies are those of chain-worker.js ({ id, op, args } → { id, result } or { id, error };
+// events `error` and `settled`), so the page talks to it through lib/remote-chain.js.
 //
-// The robot, the chain and the pictures are the mapper module's (ksmcmc.js), which is all the
-// page loads to run. The best world with its rooms (`bestWorldJson`) is the plan module's
-// `Plan` (ksmcmc_plan.js), imported when first asked for and made again after the chain's map
-// or best world changed.
+// The robot, the chain and the pictures are the exploration module's (ksmcmc_explore.js: the
+// mapper module's API with the robot, so that the robot's snapshots are that module's maps the
+// chain takes as they are), which is all the page loads to run. The best world with its rooms
+// (`bestWorldJson`) is the plan module's `Plan` (ksmcmc_plan.js), imported when first asked
+// for and made again after the chain's map or best world changed.
 
-import init, { chainConfigOnline, Explorer, Mapper, renderMapperRgba, renderRgba, wasmHeapBytes } from '../pkg/ksmcmc.js';
+import init, {
+  Map as OccMap,
+  chainConfigOnline,
+  Explorer,
+  Mapper,
+  renderMapperRgba,
+  renderRgba,
+  wasmHeapBytes,
+} from '../pkg/ksmcmc_explore.js';
 import { buildMap } from './map-source.js';
 import { loadModule } from './modules.js';
+import { pictureDue, scheduler, SLICE_MS } from './scheduler.js';
 
-/** Milliseconds of iterations between looking at the page's requests. */
-const SLICE_MS = 8;
 /**
  * While the chain runs, pictures (with the robot's driving) take at most this share of the
  * worker's time. More than the live mapper's 0.3: here the robot's motion is the show, and the
@@ -67,7 +75,6 @@ const state = {
   running: false,
   /** A `frame` request waiting for the end of the current slice: { id, view }. */
   frame: null,
-  scheduled: false,
   /**
    * Updates of the chain's map after its start, metres driven at the last one, where the next
    * one is due (null: `updateEveryM` from the start), and the last one's changed cells.
@@ -99,13 +106,8 @@ const state = {
   planModule: null,
 };
 
-const tick = new MessageChannel();
-tick.port1.onmessage = loop;
-function schedule() {
-  if (state.scheduled) return;
-  state.scheduled = true;
-  tick.port2.postMessage(0);
-}
+// The loop yields to the event loop between slices (lib/scheduler.js).
+const schedule = scheduler(loop);
 
 /** Numbers the statistics in the order they are made. */
 let seq = 0;
@@ -375,12 +377,9 @@ function fail(err) {
 
 /** One slice of the chain, then the waiting picture, if any; stops once the chain has settled on the last map. */
 function loop() {
-  state.scheduled = false;
   if (!state.running) return;
   let waiting = state.frame;
-  if (waiting && state.mapper && performance.now() - state.drawnAt < (state.drawMs * (1 - DRAW_SHARE)) / DRAW_SHARE) {
-    waiting = null;
-  }
+  if (waiting && state.mapper && !pictureDue(state.drawnAt, state.drawMs, DRAW_SHARE)) waiting = null;
   try {
     if (state.mapper) state.mapper.runFor(SLICE_MS);
     if (waiting) {
@@ -410,7 +409,7 @@ function resolutionOf(map) {
 const ops = {
   /** A new true map (`source`, as lib/map-source.js reads it) and a robot on it. */
   load({ source, ...args }) {
-    const truth = buildMap(source);
+    const truth = buildMap(source, OccMap);
     if (truth.width * truth.height > MAX_CELLS) {
       const size = `${truth.width}x${truth.height}`;
       truth.free();

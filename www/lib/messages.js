@@ -1,6 +1,8 @@
 // The page's alert and status line, the same on every page.
 //
-// `ui.message` is the role="alert" box, `ui.messageText` its text, `ui.status` the status line.
+// `ui.message` is the role="alert" box, `ui.messageText` its text, `ui.messageClose` its
+// Dismiss button, `ui.status` the status line: the box is the same on every page (the pages'
+// shell, which scripts/check-shell.mjs keeps the same), and its button is wired here.
 
 /** Error and status helpers bound to a page's `ui` elements. */
 export function messages(ui) {
@@ -50,6 +52,8 @@ export function messages(ui) {
       return false;
     }
   }
+
+  ui.messageClose?.addEventListener('click', clearError);
 
   return { showError, clearError, say, attempt, loadWasm };
 }

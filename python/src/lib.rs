@@ -8,7 +8,6 @@
 //! nothing panics across the boundary.
 
 use ksmcmc::floorplan::edits::Edits;
-use ksmcmc::render::Outputs;
 use ksmcmc::floorplan::georef::Georef;
 use ksmcmc::floorplan::knowledge::HAND_SET_INDOOR;
 use ksmcmc::floorplan::route::RoutePlanner;
@@ -16,6 +15,7 @@ use ksmcmc::floorplan::run::{run, Run, RunOptions};
 use ksmcmc::floorplan::ChainConfig;
 use ksmcmc::grid::{Limits, MapError, MapYaml, OccupancyMap};
 use ksmcmc::mln::{learn_weights, Database, GroundConfig, InferenceConfig, LearnConfig, Mln, Network};
+use ksmcmc::render::Outputs;
 use pyo3::exceptions::{PyOSError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyBytes;

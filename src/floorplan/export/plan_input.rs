@@ -28,7 +28,6 @@ use super::report::{self, ChainSummary};
 use crate::floorplan::edits::{self, Edits};
 use crate::floorplan::export::RoomInput;
 use crate::floorplan::knowledge::Inferred;
-use crate::floorplan::knowledge::KnowledgeConfig;
 use crate::floorplan::rooms::{RoomConfig, RoomError, RoomLayer};
 use crate::floorplan::wings::{wing_rotation_deg, WingConfig, WingLayout};
 use crate::floorplan::world::World;
@@ -234,8 +233,8 @@ impl PlanInput {
         let room_error = |e: RoomError| PlanInputError::new(e.to_string());
         let (mut world, labels) =
             layout.compose(map.classified(), world, labels, &worlds, &doors, by_walls).map_err(room_error)?;
-        let knowledge = KnowledgeConfig { enabled: self.knowledge, ..KnowledgeConfig::default() };
-        RoomLayer::new(RoomConfig::default(), &knowledge).map_err(room_error)?.mark_openings(
+        // Openings need only the layer's lengths, not its rules.
+        RoomLayer::without_knowledge(RoomConfig::default()).mark_openings(
             &mut world,
             map.classified(),
             map.yaml().resolution,

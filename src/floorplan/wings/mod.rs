@@ -40,7 +40,7 @@
 
 pub mod wing_doors;
 
-use super::rooms::RoomConfig;
+use super::rooms::{RoomConfig, RoomLayer};
 use super::world::{Door, Unit, World};
 use super::{Chain, ChainConfig, ChainError, DoorLimits};
 use crate::grid::{Cell, Grid, OccupancyMap};
@@ -117,7 +117,8 @@ impl Wings {
         let by_walls = |world: &mut World, others: &[f64]| first.rooms_by_walls(world, rooms, others);
         let doors = config.doors.cells(map.yaml().resolution);
         (world, labels) = layout.compose(map.classified(), world, labels, &units, &doors, by_walls)?;
-        first.room_layer(rooms)?.mark_openings(&mut world, map.classified(), map.yaml().resolution);
+        // Openings need only the layer's lengths, not its rules.
+        RoomLayer::without_knowledge(*rooms).mark_openings(&mut world, map.classified(), map.yaml().resolution);
         chains.insert(0, first);
         Ok(Wings { chains, wing_of: layout.wing_of, world, labels })
     }

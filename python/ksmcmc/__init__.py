@@ -56,7 +56,7 @@ class FloorPlan:
 
     @property
     def world(self) -> Dict[str, Any]:
-        """``world.json``: the units, doors, rooms and the frame, as a dict."""
+        """``world.json``: the units, doors, rooms, placeholders and the frame, as a dict."""
         if self._world is None:
             self._world = json.loads(self._native.world_json())
         return self._world
@@ -65,6 +65,15 @@ class FloorPlan:
     def rooms(self) -> List[Dict[str, Any]]:
         """The rooms of ``world.json``: id (its value in ``labels``), type, units, area, doors."""
         return self.world["rooms"]
+
+    @property
+    def placeholders(self) -> List[Dict[str, Any]]:
+        """The placeholders of ``world.json``: where seen space meets unseen space, each with its
+        cell ``x``, ``y`` (column, row), ``width_m``, the ``room`` it opens from (0: none),
+        ``p_new_room`` (the probability that it leads to a room not yet in the map) and
+        ``types`` (the probability of each type for the space beyond). Empty for a map with no
+        frontier."""
+        return self.world.get("placeholders", [])
 
     @property
     def report(self) -> Dict[str, Any]:

@@ -123,6 +123,23 @@ def test_pixels_and_an_occupancy_grid_of_the_same_cells_give_the_same_labels():
     assert a.labels[30, 120] != a.labels[100, 47]
 
 
+def test_a_room_nobody_entered_leaves_placeholders_on_free_cells():
+    pixels = drawn_office()
+    pixels[50:138, 158:228] = 205  # the third room never entered: unknown behind its door
+    plan = ksmcmc.floorplan(pixels, resolution=0.05, iterations=ITERATIONS)
+    assert plan.placeholders == plan.world["placeholders"]
+    assert plan.placeholders, "the unseen room's doorway is a frontier"
+    for p in plan.placeholders:
+        assert pixels[p["y"], p["x"]] == 254, p
+        assert 0.0 <= p["p_new_room"] <= 1.0
+        assert math.isclose(sum(p["types"].values()), 1.0, abs_tol=0.01)
+    # One stands in that room's doorway (columns 183 - 203, row 48 - 49), within 1 m.
+    assert any(abs(p["x"] - 193) <= 20 and abs(p["y"] - 49) <= 20 for p in plan.placeholders)
+    # The fully seen office has none inside its walls.
+    seen = ksmcmc.floorplan(drawn_office(), resolution=0.05, iterations=ITERATIONS)
+    assert all(not (10 <= p["y"] < 140 and 10 <= p["x"] < 230) for p in seen.placeholders)
+
+
 def test_a_uint8_array_is_the_image_of_the_same_pixels():
     pixels = drawn_office()
     with tempfile.TemporaryDirectory() as d:

@@ -435,6 +435,11 @@ pub struct KnowledgeConfig {
     /// [`super::rooms::BUILTIN_ROOM_RULES`]. They decide which units are one room when
     /// knowledge is on; the chain itself never uses them.
     pub room_kb: Option<String>,
+    /// The frontier rules in the Alchemy format (queries `NewRoom` and the `Beyond*` kinds,
+    /// see [`crate::floorplan::frontier::FrontierRules::parse`]); `None` is
+    /// [`crate::floorplan::frontier::BUILTIN_FRONTIER_RULES`]. They weigh the placeholders of
+    /// every plan, with knowledge supervision or without.
+    pub frontier_kb: Option<String>,
     /// Share of the map's free cells the world must cover before knowledge switches on.
     pub coverage: f64,
     /// Iterations between inferences (results are cached by their evidence), at least.
@@ -475,6 +480,7 @@ impl Default for KnowledgeConfig {
             enabled: true,
             kb: None,
             room_kb: None,
+            frontier_kb: None,
             coverage: 0.8,
             every: 500,
             time_share: 0.2,
@@ -514,6 +520,10 @@ impl KnowledgeConfig {
         if let Some(text) = &self.room_kb {
             let mln = crate::mln::Mln::parse(text).map_err(|e| format!("knowledge: room_kb: {e}"))?;
             check_room_rules(&mln).map_err(|e| format!("knowledge: room_kb: {e}"))?;
+        }
+        if let Some(text) = &self.frontier_kb {
+            crate::floorplan::frontier::FrontierRules::parse(text)
+                .map_err(|e| format!("knowledge: frontier_kb: {e}"))?;
         }
         let g = &self.geometry;
         if !(g.hall_area_m2.is_finite()

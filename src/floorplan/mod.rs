@@ -23,6 +23,7 @@
 
 pub mod chain;
 pub mod export;
+pub mod frontier;
 pub mod knowledge;
 pub mod rooms;
 pub mod route;

@@ -42,6 +42,10 @@ pub fn legend_entries(world: &World) -> Vec<(&'static str, [u8; 4])> {
     if !world.unexplained.is_empty() {
         out.push(("unexplained", UNEXPLAINED_RGBA));
     }
+    // The pies' dark rim: a placeholder more likely than not to lead to a new room.
+    if world.placeholders.iter().any(|p| p.p_new_room >= super::pie::NEW_ROOM_RIM) {
+        out.push(("new room likely", LABEL_OUTLINE_RGBA));
+    }
     out
 }
 

@@ -71,6 +71,7 @@ mod labels;
 mod legend;
 pub mod model3d;
 mod palette;
+mod pie;
 pub mod svg;
 pub mod tabletop;
 mod world;

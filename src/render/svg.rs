@@ -18,7 +18,7 @@
 //! Only the room shapes carry `data-room`, so that `[data-room]` selects one element per room.
 
 use super::labels::label_texts;
-use super::palette::{room_fill_rgb, DOOR_RGBA, LABEL_TEXT_RGBA, WALL_RGBA};
+use super::palette::{room_fill_rgb, DOOR_RGBA, LABEL_OUTLINE_RGBA, LABEL_TEXT_RGBA, WALL_RGBA};
 use crate::floorplan::shapes::{floor_shapes, frame_to_map, FloorShapes, MapPoint, RoomShape, ShapeError};
 use crate::floorplan::{Frame, World};
 use crate::grid::Grid;
@@ -65,6 +65,7 @@ pub fn svg(shapes: &FloorShapes, world: &World, resolution: f64) -> String {
     rooms(&mut s, shapes);
     walls(&mut s, world);
     doors(&mut s, world);
+    placeholders(&mut s, world);
     room_labels(&mut s, shapes);
     s.push_str("</svg>\n");
     s
@@ -120,6 +121,50 @@ fn doors(s: &mut String, world: &World) {
         let mut d = String::new();
         path_rect(&mut d, &world.door_frame(door), (r.x as f64, r.y as f64, r.right() as f64, r.bottom() as f64));
         let _ = writeln!(s, r#"<path data-door="{}" d="{d}"/>"#, door.id);
+    }
+    s.push_str("</g>\n");
+}
+
+/// The placeholders as pies (`render::pie`), each with its figures in `data-` attributes and a
+/// title a reader sees on hovering.
+fn placeholders(s: &mut String, world: &World) {
+    if world.placeholders.is_empty() {
+        return;
+    }
+    layer(s, "placeholders", "Placeholders", r#" stroke-linejoin="round""#);
+    let r = super::pie::PIE_RADIUS_CELLS;
+    for p in &world.placeholders {
+        let (cx, cy) = (f64::from(p.x) + 0.5, f64::from(p.y) + 0.5);
+        let t = p.types;
+        let title = format!(
+            "placeholder {}: {:.0} % a new room; beyond: room {:.0} %, corridor {:.0} %, hall {:.0} %, other {:.0} %; {} m wide",
+            p.id,
+            100.0 * p.p_new_room,
+            100.0 * t.room,
+            100.0 * t.corridor,
+            100.0 * t.hall,
+            100.0 * t.other,
+            num(p.width_m)
+        );
+        let _ = writeln!(
+            s,
+            r#"<g data-placeholder="{}" data-room="{}" data-p-new-room="{}"><title>{title}</title>"#,
+            p.id,
+            p.room,
+            num(p.p_new_room)
+        );
+        for (kind, ring) in super::pie::sectors(cx, cy, r, p) {
+            let mut d = String::new();
+            path_ring(&mut d, &ring);
+            let [red, green, blue] = room_fill_rgb(kind);
+            let _ =
+                writeln!(s, r##"<path data-type="{}" fill="#{red:02x}{green:02x}{blue:02x}" d="{d}"/>"##, kind.name());
+        }
+        let rim = match p.p_new_room >= super::pie::NEW_ROOM_RIM {
+            true => format!(r#"stroke="{}" stroke-width="{}""#, hex(LABEL_OUTLINE_RGBA), num(0.25 * r)),
+            false => r##"stroke="#787878" stroke-width="0.5""##.to_string(),
+        };
+        let _ = writeln!(s, r#"<circle cx="{}" cy="{}" r="{}" fill="none" {rim}/></g>"#, num(cx), num(cy), num(r));
     }
     s.push_str("</g>\n");
 }

@@ -43,7 +43,8 @@ pub fn unit_label(unit: &crate::floorplan::Unit) -> String {
 /// placed.
 ///
 /// Bottom to top: each unit's interior tinted by its type ([`room_fill_rgb`], multiplied into
-/// the map so occupied cells stay black), object cells, unexplained areas, walls, doors, then
+/// the map so occupied cells stay black), object cells, unexplained areas, walls, doors, the
+/// placeholders as pies of the types beyond them (`render::pie`), then
 /// with `options.labels` a tag per room when the world has a room layer (at its largest unit),
 /// else per unit, placed by [`super::place_labels`] (shortened or left out where it does not
 /// fit), and with `options.legend` a legend of the colours drawn ([`super::legend_entries`]).
@@ -98,6 +99,7 @@ pub fn draw_world(
     for (g, p) in &groups {
         p.fill(pixmap, &door_rects(world, g), DOOR_RGBA);
     }
+    super::pie::draw_placeholders(pixmap, world, scale);
     draw_labels_and_legend(pixmap, world, options)
 }
 

@@ -142,6 +142,16 @@ impl Plan {
         export::rooms_json(&self.world)
     }
 
+    /// The placeholders as JSON text: the `placeholders` of `world.json` (`[]` for a map with
+    /// no frontier), each with its `id`, its cell `x`, `y` (column, row), `width_m`, the `room`
+    /// it opens from (0: none), `p_new_room` (the probability that it leads to a room not yet
+    /// in the map) and `types` (`{"room", "corridor", "hall", "other"}`, the probability of each
+    /// for the space beyond, summing to 1).
+    #[wasm_bindgen(js_name = placeholdersJson)]
+    pub fn placeholders_json(&self) -> String {
+        export::placeholders_json(&self.world)
+    }
+
     /// The room segmentation as a 16-bit binary PGM of the map's size (room id per free cell,
     /// 0 elsewhere): `labels.pgm` of `ksmcmc floorplan`.
     #[wasm_bindgen(js_name = labelsPgm)]

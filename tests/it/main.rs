@@ -13,6 +13,7 @@ mod cli_synth;
 mod common;
 mod edits;
 mod exports;
+mod frontier;
 mod grid;
 mod hostile;
 mod knowledge;

@@ -8,6 +8,7 @@ mod bench;
 mod evaluate;
 mod explore;
 mod floorplan;
+mod frontier_eval;
 mod info;
 mod mln;
 mod render;

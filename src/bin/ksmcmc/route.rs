@@ -1,4 +1,5 @@
-//! `ksmcmc route MAP WORLD.json --from X,Y --to X,Y`: a route through rooms and doors.
+//! `ksmcmc route MAP WORLD.json --from X,Y --to X,Y|--to-placeholder ID`: a route through
+//! rooms and doors, to a cell or to one of the world's placeholders.
 
 use crate::args::{self, CliError};
 use ksmcmc::floorplan::route::{saved_labels, RoutePlanner};
@@ -7,7 +8,8 @@ use std::ffi::OsString;
 use std::path::{Path, PathBuf};
 
 const HELP: &str = "\
-Usage: ksmcmc route MAP WORLD.json --from X,Y --to X,Y [--labels labels.pgm] [--classify RULE]
+Usage: ksmcmc route MAP WORLD.json --from X,Y (--to X,Y | --to-placeholder ID) [--labels labels.pgm]
+                    [--classify RULE]
 
 Plans a route from one map cell to another (X column, Y row, from 0 at the top left) through
 the rooms and doors of a floor plan: first on the room graph (rooms joined where world.json
@@ -19,7 +21,10 @@ occupied corner; length_m uses the map's resolution (map.yaml, else 0.05 m per c
 
 Options:
   --from X,Y       the start cell (required)
-  --to X,Y         the goal cell (required)
+  --to X,Y         the goal cell (this or --to-placeholder is required)
+  --to-placeholder ID
+                   the goal is placeholder ID of world.json: its cell on the frontier, where
+                   seen space meets unseen space (floorplan::frontier)
   --labels FILE    the room labels written with the world (labels.pgm of ksmcmc floorplan);
                    without it they are found again from the map and the world, which needs
                    the world's rooms to be those of the default room settings
@@ -35,15 +40,36 @@ struct Opts {
     map: PathBuf,
     world: PathBuf,
     from: (i64, i64),
-    to: (i64, i64),
+    to: Goal,
     labels: Option<PathBuf>,
     classify: String,
+}
+
+/// Where the route goes.
+enum Goal {
+    /// A map cell (column, row).
+    Cell((i64, i64)),
+    /// The cell of a placeholder of the world, by its id.
+    Placeholder(u32),
 }
 
 pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     let Some(o) = parse(argv)? else { return Ok(()) };
     let map = args::load_classified(&o.map, &o.classify)?;
     let world = args::load_world(&o.world, &map)?;
+    let to = match o.to {
+        Goal::Cell(c) => c,
+        Goal::Placeholder(id) => match world.placeholders.iter().find(|p| p.id == id) {
+            Some(p) => (i64::from(p.x), i64::from(p.y)),
+            None => {
+                return Err(CliError::Failed(format!(
+                    "{}: no placeholder {id}; the world has {} (ids 1 to {0}, where the map has frontiers)",
+                    o.world.display(),
+                    world.placeholders.len()
+                )))
+            }
+        },
+    };
     let labels = match &o.labels {
         Some(p) => label_image(p)?,
         None => saved_labels(&world, &map).map_err(|e| args::failed(o.world.display(), e))?,
@@ -51,7 +77,7 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     let resolution = map.yaml().resolution;
     let mut planner = RoutePlanner::new(map.classified().clone(), labels, &world, resolution)
         .map_err(|e| args::failed(o.labels.as_deref().unwrap_or(&o.world).display(), e))?;
-    let route = planner.route(o.from, o.to).map_err(|e| CliError::Failed(e.to_string()))?;
+    let route = planner.route(o.from, to).map_err(|e| CliError::Failed(e.to_string()))?;
     // A long path piped into `head` closes the pipe early: that is no failure.
     use std::io::Write;
     match writeln!(std::io::stdout().lock(), "{}", route.to_json()) {
@@ -70,7 +96,8 @@ fn parse(argv: Vec<OsString>) -> Result<Option<Opts>, CliError> {
             Value(v) if map.is_none() => map = Some(args::path(v)),
             Value(v) if world.is_none() => world = Some(args::path(v)),
             Long("from") => from = Some(cell("--from", parser.value()?)?),
-            Long("to") => to = Some(cell("--to", parser.value()?)?),
+            Long("to") => to = Some(Goal::Cell(cell("--to", parser.value()?)?)),
+            Long("to-placeholder") => to = Some(Goal::Placeholder(args::value("--to-placeholder", parser.value()?)?)),
             Long("labels") => labels = Some(args::path(parser.value()?)),
             Long("classify") => classify = args::value("--classify", parser.value()?)?,
             Long("help") | Short('h') => {
@@ -84,7 +111,7 @@ fn parse(argv: Vec<OsString>) -> Result<Option<Opts>, CliError> {
         map: args::required(map, "a MAP", "route")?,
         world: args::required(world, "a WORLD.json", "route")?,
         from: args::required(from, "--from X,Y", "route")?,
-        to: args::required(to, "--to X,Y", "route")?,
+        to: args::required(to, "--to X,Y or --to-placeholder ID", "route")?,
         labels,
         classify,
     }))

@@ -92,10 +92,15 @@ pub fn to_json(g: &SceneGraph) -> serde_json::Value {
 }
 
 /// The scene graph of `world` ([`scene_graph`], [`to_json`]) with its room layer:
-/// `{"nodes", "edges", "rooms": [{"id", "type", "units", "area_m2", "doors", "opens_to"}]}`.
-/// `graph.json` holds this.
+/// `{"nodes", "edges", "rooms": [{"id", "type", "units", "area_m2", "doors", "opens_to"}]}`,
+/// and where the map has frontiers `"placeholders": [{"id", "room", "x", "y", "width_m",
+/// "p_new_room", "types"}]`, each a node joined to the room it opens from (`room`, 0 for none)
+/// as in `world.json` ([`crate::floorplan::frontier`]). `graph.json` holds this.
 pub fn world_json(world: &World) -> serde_json::Value {
     let mut v = to_json(&scene_graph(world));
     v["rooms"] = serde_json::to_value(&world.rooms).expect("rooms serialise");
+    if !world.placeholders.is_empty() {
+        v["placeholders"] = serde_json::to_value(&world.placeholders).expect("placeholders serialise");
+    }
     v
 }

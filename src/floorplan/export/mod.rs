@@ -156,6 +156,12 @@ pub fn rooms_json(world: &World) -> String {
     serde_json::to_string(&world.rooms).expect("rooms serialise")
 }
 
+/// The placeholders of `world` as compact JSON: the `placeholders` of `world.json`
+/// ([`crate::floorplan::frontier`]), `[]` for none.
+pub fn placeholders_json(world: &World) -> String {
+    serde_json::to_string(&world.placeholders).expect("placeholders serialise")
+}
+
 /// The type marginals of the rooms ([`super::rooms::room_types`]) as compact JSON: per
 /// room `{"id", "marginals": {"room", "corridor", "hall", "other"} | null, "units": [{"id",
 /// "type", "marginals"}]}`.

@@ -37,6 +37,7 @@ use super::read::{mark_unexplored, rooms_of_labels, unit_rooms};
 use super::segments::{labels_of_groups, labels_of_groups_along};
 use super::wall_gaps::without_clutter;
 use crate::floorplan::edits::Edits;
+use crate::floorplan::frontier::{placeholders, FrontierRules, BUILTIN_FRONTIER_RULES};
 use crate::floorplan::knowledge::KnowledgeConfig;
 use crate::floorplan::world::World;
 use crate::grid::{Cell, Grid};
@@ -51,6 +52,8 @@ use crate::grid::{Cell, Grid};
 pub struct RoomLayer {
     config: RoomConfig,
     knowledge: Option<RoomKnowledge>,
+    /// The rules that weigh the placeholders ([`crate::floorplan::frontier`]); `None` finds none.
+    frontier: Option<FrontierRules>,
 }
 
 /// The maps the rooms are found on: the classified map in its own frame (`map`, the frame of
@@ -87,17 +90,19 @@ impl RoomLayer {
     /// is enabled: its `room_kb` (or the built-in room rules) group the units, its indoor
     /// rules type the rooms. Refused if the room rules do not parse or lack `SameRoom`.
     pub fn new(config: RoomConfig, knowledge: &KnowledgeConfig) -> Result<RoomLayer, RoomError> {
+        let frontier = FrontierRules::parse(knowledge.frontier_kb.as_deref().unwrap_or(BUILTIN_FRONTIER_RULES))
+            .map_err(|e| RoomError::frontier("reading them", e))?;
         let knowledge = match knowledge.enabled {
             true => Some(RoomKnowledge::configured(knowledge).map_err(|e| RoomError::rules("reading them", e))?),
             false => None,
         };
-        Ok(RoomLayer { config, knowledge })
+        Ok(RoomLayer { config, knowledge, frontier: Some(frontier) })
     }
 
-    /// The layer with `config`'s lengths and no rules: every open pair of units joins, and
-    /// rooms take the type of the units covering most of their cells.
+    /// The layer with `config`'s lengths and no rules: every open pair of units joins, rooms
+    /// take the type of the units covering most of their cells, and no placeholder is found.
     pub fn without_knowledge(config: RoomConfig) -> RoomLayer {
-        RoomLayer { config, knowledge: None }
+        RoomLayer { config, knowledge: None, frontier: None }
     }
 
     /// The layer's lengths and areas.
@@ -106,8 +111,10 @@ impl RoomLayer {
     }
 
     /// Groups `world`'s units into rooms as `grouping` says, labels the map with one id per
-    /// room, fills `world.rooms` (typed, with their doors and neighbours) and marks the doors
-    /// that are openings within a room. Returns the label image (`labels.pgm`).
+    /// room, fills `world.rooms` (typed, with their doors and neighbours), marks the doors
+    /// that are openings within a room and, last, finds the placeholders where seen space meets
+    /// unseen space and weighs what lies beyond them ([`crate::floorplan::frontier`]). Returns
+    /// the label image (`labels.pgm`).
     ///
     /// ```
     /// use ksmcmc::floorplan::knowledge::KnowledgeConfig;
@@ -156,6 +163,10 @@ impl RoomLayer {
             }
         };
         mark_openings(world, maps.map, c, maps.resolution);
+        if let Some(rules) = &self.frontier {
+            world.placeholders = placeholders(world, maps.map, &labels, maps.resolution, rules)
+                .map_err(|e| RoomError::frontier("weighing the placeholders", e))?;
+        }
         Ok(labels)
     }
 
@@ -300,7 +311,7 @@ mod tests {
         resolution: f64,
         knowledge: Option<&RoomKnowledge>,
     ) -> Result<Grid<u16>, RoomError> {
-        let layer = RoomLayer { config: *c, knowledge: knowledge.cloned() };
+        let layer = RoomLayer { config: *c, knowledge: knowledge.cloned(), frontier: None };
         layer.explain(world, RoomMaps { map, world_map, resolution }, Grouping::Units(&Edits::default()))
     }
 

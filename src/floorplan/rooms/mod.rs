@@ -25,8 +25,9 @@
 //! * `training`: the rules' training worlds from generated floors and their truth.
 //!
 //! The room layer imports the world, the edits and the knowledge configuration of the floor
-//! plan, the grid and the Markov logic engine; nothing of the chain, the wings, the exports or
-//! rendering. Those import it.
+//! plan, the frontier stage that ends it ([`crate::floorplan::frontier`]), the grid and the
+//! Markov logic engine; nothing of the chain, the wings, the exports or rendering. Those
+//! import it.
 
 mod config;
 mod error;

@@ -169,6 +169,7 @@ pub fn generate(config: &SynthConfig, seed: u64) -> Result<Synthetic, SynthError
         // The truth explains the building by construction; what a scan leaves outside it is
         // not part of the plan.
         unexplained: Vec::new(),
+        placeholders: Vec::new(),
     };
     Ok(Synthetic { map: occupancy_map(map_cells, config.resolution), truth, labels, explored })
 }
@@ -247,6 +248,7 @@ fn generate_wings(
         object_cells,
         rooms: Vec::new(),
         unexplained: Vec::new(),
+        placeholders: Vec::new(),
     };
     let labels = composed.labels;
     let map = Grid::from_vec(mw, mh, map_cells).expect("map size");

@@ -74,6 +74,7 @@
 //! | `rooms`, and the ids each room lists | [`MAX_ROOMS`] (100 000) |
 //! | `unexplained` areas | [`MAX_UNEXPLAINED`] (100 000) |
 //! | `runs` of one unexplained area | [`MAX_RUNS`] (2^20) |
+//! | `placeholders` | [`MAX_PLACEHOLDERS`] (100 000) |
 //! | cells of `frame.world_size` | [`MAX_WORLD_CELLS`] (2^26), and each side at most [`WORLD_FRAME_SLACK`] (4) times what the map turned into the world frame needs |
 //!
 //! The largest maps ([`DEFAULT_MAX_CELLS`](crate::grid::DEFAULT_MAX_CELLS), 2^25 cells) are
@@ -108,6 +109,8 @@ pub const MAX_ROOMS: usize = 100_000;
 pub const MAX_UNEXPLAINED: usize = 100_000;
 /// Most row runs in one unexplained area.
 pub const MAX_RUNS: usize = 1 << 20;
+/// Most placeholders in a world.
+pub const MAX_PLACEHOLDERS: usize = 100_000;
 /// Most cells in the world frame (`frame.world_size`): twice the largest map
 /// ([`DEFAULT_MAX_CELLS`](crate::grid::DEFAULT_MAX_CELLS)), what a square map turned by 45
 /// degrees needs.
@@ -274,6 +277,10 @@ pub struct World {
     /// Free areas no unit explains (the papers' "N"), world frame.
     #[serde(default, skip_serializing_if = "Vec::is_empty", deserialize_with = "caps::unexplained")]
     pub unexplained: Vec<UnexplainedArea>,
+    /// Where seen free space meets unseen space, and what lies beyond it
+    /// ([`crate::floorplan::frontier`]), map frame.
+    #[serde(default, skip_serializing_if = "Vec::is_empty", deserialize_with = "caps::placeholders")]
+    pub placeholders: Vec<Placeholder>,
 }
 
 /// A room: what a person would call one space (an office, an L-shaped corridor, a hall cut by
@@ -325,6 +332,56 @@ pub struct UnexplainedArea {
     /// The cells as row runs `[y, x_first, x_last]` (inclusive), top to bottom, left to right.
     #[serde(deserialize_with = "caps::runs")]
     pub runs: Vec<[i32; 3]>,
+}
+
+/// A placeholder (the CogX report on gaps in spatial knowledge, annexes 2.1 and 2.3): a
+/// stretch of frontier, where free space the robot has seen meets space it has not, and what
+/// going through it probably leads to ([`crate::floorplan::frontier`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Placeholder {
+    /// Identifier, unique within the world's placeholders (1-based).
+    pub id: u32,
+    /// A free cell on the frontier, map column (as edits give cells).
+    pub x: i32,
+    /// The same cell's map row.
+    pub y: i32,
+    /// The frontier's width, metres (to the centimetre).
+    #[serde(deserialize_with = "crate::json::exact")]
+    pub width_m: f64,
+    /// The id of the room it opens from (0: free space no room holds).
+    pub room: u32,
+    /// The probability that going through it leads to a room not yet in the map.
+    #[serde(deserialize_with = "crate::json::exact")]
+    pub p_new_room: f64,
+    /// The probability of each type for the space it leads to, given that a room, corridor,
+    /// hall or other space lies beyond (they sum to 1).
+    pub types: TypeProbabilities,
+}
+
+/// A probability per room type (they sum to 1).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TypeProbabilities {
+    /// An office, lab or other enclosed room.
+    #[serde(deserialize_with = "crate::json::exact")]
+    pub room: f64,
+    /// A corridor.
+    #[serde(deserialize_with = "crate::json::exact")]
+    pub corridor: f64,
+    /// A hall.
+    #[serde(deserialize_with = "crate::json::exact")]
+    pub hall: f64,
+    /// Anything else (stairwells, shafts, small storage).
+    #[serde(deserialize_with = "crate::json::exact")]
+    pub other: f64,
+}
+
+impl TypeProbabilities {
+    /// The four probabilities in the order room, corridor, hall, other.
+    pub fn as_array(&self) -> [f64; 4] {
+        [self.room, self.corridor, self.hall, self.other]
+    }
 }
 
 /// Lists that stop growing at their cap while `world.json` is parsed (see the module's
@@ -393,6 +450,10 @@ mod caps {
 
     pub fn unexplained<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<UnexplainedArea>, D::Error> {
         capped(d, MAX_UNEXPLAINED, "unexplained areas")
+    }
+
+    pub fn placeholders<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<Placeholder>, D::Error> {
+        capped(d, MAX_PLACEHOLDERS, "placeholders")
     }
 
     pub fn runs<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<[i32; 3]>, D::Error> {
@@ -464,6 +525,7 @@ impl World {
             object_cells: Vec::new(),
             rooms: Vec::new(),
             unexplained: Vec::new(),
+            placeholders: Vec::new(),
         }
     }
 
@@ -686,6 +748,7 @@ impl World {
             }
         }
         self.validate_rooms(&ids)?;
+        self.validate_placeholders()?;
         for a in &self.unexplained {
             let mut sum = 0u64;
             for r in &a.runs {
@@ -719,6 +782,7 @@ impl World {
             (self.object_cells.len(), MAX_OBJECT_CELLS, "object cells"),
             (self.rooms.len(), MAX_ROOMS, "rooms"),
             (self.unexplained.len(), MAX_UNEXPLAINED, "unexplained areas"),
+            (self.placeholders.len(), MAX_PLACEHOLDERS, "placeholders"),
         ];
         for (n, max, what) in counts {
             if n > max {
@@ -755,6 +819,33 @@ impl World {
             Some(a) => Err(WorldError::new(format!("world.json: unexplained area {} has over {MAX_RUNS} runs", a.id))),
             None => Ok(()),
         }
+    }
+
+    /// Placeholders on the map, opening from a room that exists (or none), with probabilities.
+    fn validate_placeholders(&self) -> Result<(), WorldError> {
+        let bad = |m: String| Err(WorldError::new(format!("world.json: placeholder {m}")));
+        let [mw, mh] = self.frame.map_size.map(i64::from);
+        for p in &self.placeholders {
+            let id = p.id;
+            if p.x < 0 || p.y < 0 || p.x as i64 >= mw || p.y as i64 >= mh {
+                return bad(format!("{id}: cell ({},{}) lies outside the {mw}x{mh} map", p.x, p.y));
+            }
+            if p.room != 0 && !self.rooms.iter().any(|r| r.id == p.room) {
+                return bad(format!("{id}: opens from room {}, which does not exist", p.room));
+            }
+            if !(p.width_m.is_finite() && p.width_m >= 0.0) {
+                return bad(format!("{id}: width_m {} is not a length", p.width_m));
+            }
+            let types = p.types.as_array();
+            let probability = |v: f64| (0.0..=1.0).contains(&v);
+            if !probability(p.p_new_room) || !types.into_iter().all(probability) {
+                return bad(format!("{id}: a probability lies outside [0, 1]"));
+            }
+            if (types.iter().sum::<f64>() - 1.0).abs() > 0.01 {
+                return bad(format!("{id}: the type probabilities sum to {}, not 1", types.iter().sum::<f64>()));
+            }
+        }
+        Ok(())
     }
 
     /// Room ids unique and non-zero; the units, doors and rooms each room names exist.

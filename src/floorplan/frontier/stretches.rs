@@ -1,0 +1,468 @@
+//! The frontier of a map in stretches, and what lies behind each.
+//!
+//! Unseen space is unknown space at least [`MIN_UNSEEN_M`] across (a morphological opening
+//! takes away the streaks rays leave between them at long range) in regions of at least
+//! [`MIN_BEHIND_M2`] (the pinholes between rays and the shadows of furniture go too). A frontier
+//! cell is a free cell with an unknown cell beside it (left, right, above or below), near
+//! unseen space (within the opening's radius and a cell). Frontier cells that touch, diagonals included, are one frontier; a frontier longer
+//! than [`MAX_STRETCH_M`] is cut along its longer side into equal stretches, since one so long
+//! may open onto more than one space. A stretch narrower than [`MIN_WIDTH_M`] is noise, and one
+//! with less than [`MIN_BEHIND_M2`] of unseen floor behind it within reach is not a way on:
+//! neither is a placeholder.
+//!
+//! What lies behind a stretch is read by a wavefront through unknown cells from the unknown
+//! cells beside it, up to [`BEHIND_M`] away: its area, whether it ends before that distance
+//! (seen walls close it in: a pocket), and how much of it lies within the bounding box of the
+//! map's occupied cells (the building as far as it was seen). Every length is in metres,
+//! turned into cells with the map's resolution.
+
+use crate::floorplan::world::World;
+use crate::grid::flood::{wavefront, Flood, Neighbours};
+use crate::grid::{Cell, Grid};
+
+/// Narrowest frontier that is a placeholder, m: 0.5 m, about the narrowest gap a person or a
+/// service robot's base passes through; narrower stretches are single cells of scan noise.
+pub const MIN_WIDTH_M: f64 = 0.5;
+/// Longest stretch, m: 4 m, about the side of an office; a longer frontier is cut into equal
+/// stretches, as it may open onto more than one space.
+pub const MAX_STRETCH_M: f64 = 4.0;
+/// How far behind a stretch the unseen space is measured, m: 5 m, the depth of a large office
+/// (a room deeper than that is open floor to a robot standing at its door).
+pub const BEHIND_M: f64 = 5.0;
+/// Least unseen floor behind a placeholder, m²: 2 m², about the smallest room a person walks
+/// into (a 1.4 m x 1.4 m washroom); less is the shadow of a desk or a cabinet.
+pub const MIN_BEHIND_M2: f64 = 2.0;
+/// Narrowest unseen space, m: 0.2 m. Rays fanning out from a scanner leave streaks of unknown
+/// cells between them at long range, a cell or two wide; the narrowest way a person passes
+/// (0.5 m) is far wider.
+pub const MIN_UNSEEN_M: f64 = 0.2;
+/// A door of the plan this close to a stretch stands in it, m: 1 m, a door leaf's width.
+pub const AT_DOOR_M: f64 = 1.0;
+
+/// A stretch of frontier, in the map's frame.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Stretch {
+    /// Its free cells, as map indices (`y * width + x`), in increasing order.
+    pub cells: Vec<usize>,
+    /// The cell of the stretch nearest to its centroid, `(column, row)`.
+    pub at: (usize, usize),
+    /// Width, m: the diagonal of its cells' bounding box.
+    pub width_m: f64,
+    /// Unseen floor behind it within [`BEHIND_M`], m².
+    pub behind_m2: f64,
+    /// Whether the unseen space behind it ends before [`BEHIND_M`].
+    pub pocket: bool,
+    /// Share of the unseen space behind it within the bounding box of the map's occupied cells.
+    pub inside: f64,
+    /// The room it opens from: the room label most of its cells carry (0: none).
+    pub room: u32,
+    /// Whether a door of the plan lies within [`AT_DOOR_M`] of it.
+    pub at_door: bool,
+    /// Whether both its ends, along the longer side of its bounding box, touch occupied cells
+    /// (within [`JAMB_M`]): it spans a gap between walls, as a doorway does.
+    pub jambs: bool,
+}
+
+/// An end of a stretch this close to an occupied cell stands at a wall, m: 0.15 m, a wall's
+/// half thickness with the scan's blur.
+pub const JAMB_M: f64 = 0.15;
+
+/// The stretches of `map`'s frontier (module docs) that are placeholders, ordered by `at`,
+/// row by row. `labels` numbers the free cells with their rooms, `world` gives the doors.
+pub fn stretches(world: &World, map: &Grid<Cell>, labels: &Grid<u16>, resolution: f64) -> Vec<Stretch> {
+    let (w, h) = (map.width(), map.height());
+    let cells = map.cells();
+    // Beside an unknown cell, and near unseen space (the streaks between rays may lie between).
+    let unseen = unseen_space(map, resolution);
+    let near = grow(&unseen, w, h, unseen_radius(resolution) + 1);
+    let unknown = |j: usize| cells[j] == Cell::Unknown;
+    let frontier: Vec<bool> =
+        (0..w * h).map(|i| cells[i] == Cell::Free && near[i] && neighbours4(i, w, h).any(unknown)).collect();
+    let around = Around { map, labels, resolution, building: occupied_box(map), doors: door_centres(world) };
+    let mut out = Vec::new();
+    let mut taken = vec![false; w * h];
+    let mut flood = Flood::default();
+    for start in 0..w * h {
+        if !frontier[start] || taken[start] {
+            continue;
+        }
+        let mut component = Vec::new();
+        let mut enter = |j: usize| frontier[j] && !std::mem::replace(&mut taken[j], true);
+        flood.fill(w, h, [start], Neighbours::Eight, &mut enter, |i| component.push(i));
+        for piece in cut(component, w, resolution) {
+            let s = describe(piece, &around);
+            if s.width_m >= MIN_WIDTH_M && s.behind_m2 >= MIN_BEHIND_M2 {
+                out.push(s);
+            }
+        }
+    }
+    out.sort_by_key(|s| (s.at.1, s.at.0));
+    out
+}
+
+/// Per map cell, whether it is unseen space: an unknown cell of a region of unknown cells at
+/// least [`MIN_UNSEEN_M`] across everywhere (a morphological opening: the streaks rays leave
+/// between them at long range go), in a 4-connected region of such cells of at least
+/// [`MIN_BEHIND_M2`] (the pinholes between rays and the shadows of furniture go).
+fn unseen_space(map: &Grid<Cell>, resolution: f64) -> Vec<bool> {
+    let (w, h) = (map.width(), map.height());
+    let least = libm::ceil(MIN_BEHIND_M2 / (resolution * resolution)) as usize;
+    let r = unseen_radius(resolution);
+    let unknown: Vec<bool> = map.cells().iter().map(|&c| c == Cell::Unknown).collect();
+    let opened = grow(&shrink(&unknown, w, h, r), w, h, r);
+    let mut unseen = vec![false; w * h];
+    let mut taken = vec![false; w * h];
+    let mut flood = Flood::default();
+    let mut region = Vec::new();
+    for start in 0..w * h {
+        if taken[start] || !opened[start] {
+            continue;
+        }
+        region.clear();
+        let mut enter = |j: usize| opened[j] && !std::mem::replace(&mut taken[j], true);
+        flood.fill(w, h, [start], Neighbours::Four, &mut enter, |i| region.push(i));
+        if region.len() >= least {
+            region.iter().for_each(|&i| unseen[i] = true);
+        }
+    }
+    unseen
+}
+
+/// The cells left, right, above and below cell `i` of a `w` x `h` grid.
+fn neighbours4(i: usize, w: usize, h: usize) -> impl Iterator<Item = usize> {
+    let (x, y) = (i % w, i / w);
+    [(x > 0).then(|| i - 1), (x + 1 < w).then(|| i + 1), (y > 0).then(|| i - w), (y + 1 < h).then(|| i + w)]
+        .into_iter()
+        .flatten()
+}
+
+/// `[x0, y0, x1, y1]` (inclusive) of the map's occupied cells; `None` if it has none.
+fn occupied_box(map: &Grid<Cell>) -> Option<[usize; 4]> {
+    let w = map.width();
+    let mut b: Option<[usize; 4]> = None;
+    for (i, _) in map.cells().iter().enumerate().filter(|(_, &c)| c == Cell::Occupied) {
+        let (x, y) = (i % w, i / w);
+        b = Some(match b {
+            None => [x, y, x, y],
+            Some([x0, y0, x1, y1]) => [x0.min(x), y0.min(y), x1.max(x), y1.max(y)],
+        });
+    }
+    b
+}
+
+/// The centre of each door that is not an opening within a room, in map coordinates.
+fn door_centres(world: &World) -> Vec<(f64, f64)> {
+    let doors = world.doors.iter().filter(|d| !d.opening);
+    doors
+        .map(|d| {
+            let (cx, cy) = (f64::from(d.x0 + d.x1 + 1) / 2.0, f64::from(d.y0 + d.y1 + 1) / 2.0);
+            world.door_frame(d).to_map(cx, cy)
+        })
+        .collect()
+}
+
+/// `component` (map indices) cut along the longer side of its bounding box into equal pieces
+/// no longer than [`MAX_STRETCH_M`], each sorted.
+fn cut(mut component: Vec<usize>, w: usize, resolution: f64) -> Vec<Vec<usize>> {
+    component.sort_unstable();
+    let [x0, y0, x1, y1] = bounds(&component, w);
+    let along_x = x1 - x0 >= y1 - y0;
+    let (lo, len) = if along_x { (x0, x1 - x0 + 1) } else { (y0, y1 - y0 + 1) };
+    let pieces = (libm::ceil(len as f64 * resolution / MAX_STRETCH_M) as usize).max(1);
+    let mut out = vec![Vec::new(); pieces];
+    for i in component {
+        let v = if along_x { i % w } else { i / w };
+        out[((v - lo) * pieces / len).min(pieces - 1)].push(i);
+    }
+    out.retain(|p| !p.is_empty());
+    out
+}
+
+/// `[x0, y0, x1, y1]` (inclusive) of non-empty `cells` (map indices of a grid `w` wide).
+fn bounds(cells: &[usize], w: usize) -> [usize; 4] {
+    cells.iter().fold([usize::MAX, usize::MAX, 0, 0], |[x0, y0, x1, y1], &i| {
+        [x0.min(i % w), y0.min(i / w), x1.max(i % w), y1.max(i / w)]
+    })
+}
+
+/// The stretch of `cells` (module docs).
+/// What a stretch is described against: the map, the room labels, the
+/// resolution, the building's seen extent and the plan's doors (map coordinates).
+struct Around<'a> {
+    map: &'a Grid<Cell>,
+    labels: &'a Grid<u16>,
+    resolution: f64,
+    building: Option<[usize; 4]>,
+    doors: Vec<(f64, f64)>,
+}
+
+fn describe(cells: Vec<usize>, a: &Around) -> Stretch {
+    let (map, resolution) = (a.map, a.resolution);
+    let w = map.width();
+    let [x0, y0, x1, y1] = bounds(&cells, w);
+    let width_m = libm::hypot((x1 - x0 + 1) as f64, (y1 - y0 + 1) as f64) * resolution;
+    let n = cells.len() as f64;
+    let (mx, my) = cells.iter().fold((0.0, 0.0), |(sx, sy), &i| (sx + (i % w) as f64 / n, sy + (i / w) as f64 / n));
+    let d2 = |i: &usize| ((i % w) as f64 - mx).powi(2) + ((i / w) as f64 - my).powi(2);
+    let centre = *cells.iter().min_by(|a, b| d2(a).total_cmp(&d2(b))).expect("a stretch has cells");
+    let reach = AT_DOOR_M / resolution;
+    let at_door = a.doors.iter().any(|&(dx, dy)| {
+        cells.iter().any(|&i| libm::hypot((i % w) as f64 + 0.5 - dx, (i / w) as f64 + 0.5 - dy) <= reach)
+    });
+    let (behind_m2, pocket, inside) = behind(&cells, map, resolution, a.building);
+    let jambs = jambs(&cells, map, [x0, y0, x1, y1], resolution);
+    Stretch {
+        jambs,
+        room: room_of(&cells, a.labels),
+        at: (centre % w, centre / w),
+        width_m,
+        behind_m2,
+        pocket,
+        inside,
+        at_door,
+        cells,
+    }
+}
+
+/// Whether both ends of `cells` (the cells at either end of the longer side of their bounding
+/// box `[x0, y0, x1, y1]`) have an occupied cell within [`JAMB_M`].
+fn jambs(cells: &[usize], map: &Grid<Cell>, [x0, y0, x1, y1]: [usize; 4], resolution: f64) -> bool {
+    let w = map.width();
+    let along_x = x1 - x0 >= y1 - y0;
+    let key = |i: usize| if along_x { i % w } else { i / w };
+    let (lo, hi) = if along_x { (x0, x1) } else { (y0, y1) };
+    let r = libm::ceil(JAMB_M / resolution).max(1.0) as usize;
+    let walled = |i: usize| {
+        let (x, y) = (i % w, i / w);
+        (y.saturating_sub(r)..=(y + r).min(map.height() - 1))
+            .any(|yy| (x.saturating_sub(r)..=(x + r).min(w - 1)).any(|xx| *map.at(xx, yy) == Cell::Occupied))
+    };
+    let end = |v: usize| cells.iter().any(|&i| key(i) == v && walled(i));
+    end(lo) && end(hi)
+}
+
+/// The radius, in cells, of the square that opens unknown space into unseen space: half of
+/// [`MIN_UNSEEN_M`], at least a cell.
+fn unseen_radius(resolution: f64) -> usize {
+    (libm::round(MIN_UNSEEN_M / resolution / 2.0) as usize).max(1)
+}
+
+/// The cells of `mask` (`w` x `h`) whose square of radius `r` around them lies wholly in it
+/// (cells off the grid count as in it: unseen space runs on past the map's edge): an erosion,
+/// separable, so that it costs two passes over the grid whatever `r`.
+fn shrink(mask: &[bool], w: usize, h: usize, r: usize) -> Vec<bool> {
+    let rows = window(mask, w, h, r, true, |n, len| n == len);
+    window(&rows, w, h, r, false, |n, len| n == len)
+}
+
+/// The cells of a `w` x `h` grid with a cell of `mask` in the square of radius `r` around them:
+/// a dilation, separable as [`shrink`].
+fn grow(mask: &[bool], w: usize, h: usize, r: usize) -> Vec<bool> {
+    let rows = window(mask, w, h, r, true, |n, _| n > 0);
+    window(&rows, w, h, r, false, |n, _| n > 0)
+}
+
+/// Per cell, `keep(count, len)` of the cells of `mask` in the window of radius `r` along rows
+/// (`along_rows`) or columns, `len` the window's length with cells off the grid counted in
+/// `count` as set for [`shrink`] and not for [`grow`] (for which they never matter).
+fn window(
+    mask: &[bool],
+    w: usize,
+    h: usize,
+    r: usize,
+    along_rows: bool,
+    keep: impl Fn(usize, usize) -> bool,
+) -> Vec<bool> {
+    let (n, lines) = if along_rows { (w, h) } else { (h, w) };
+    let at = |line: usize, k: usize| if along_rows { line * w + k } else { k * w + line };
+    let mut out = vec![false; w * h];
+    let len = 2 * r + 1;
+    for line in 0..lines {
+        // count of set cells in the window, with the cells off the grid counted as set.
+        let mut count = r + (0..=r.min(n - 1)).filter(|&k| mask[at(line, k)]).count() + r.saturating_sub(n - 1);
+        for k in 0..n {
+            out[at(line, k)] = keep(count, len);
+            let (add, drop) = (k + r + 1, k as isize - r as isize);
+            count += if add < n { usize::from(mask[at(line, add)]) } else { 1 };
+            count -= if drop >= 0 { usize::from(mask[at(line, drop as usize)]) } else { 1 };
+        }
+    }
+    out
+}
+
+/// The room label most of `cells` carry (ties to the smaller id), 0 if none carries one.
+fn room_of(cells: &[usize], labels: &Grid<u16>) -> u32 {
+    let mut counts = std::collections::BTreeMap::<u16, usize>::new();
+    for &i in cells {
+        let l = labels.cells()[i];
+        if l > 0 {
+            *counts.entry(l).or_default() += 1;
+        }
+    }
+    counts.into_iter().max_by(|a, b| a.1.cmp(&b.1).then(b.0.cmp(&a.0))).map_or(0, |(l, _)| u32::from(l))
+}
+
+/// The unseen space behind `cells`: its area within [`BEHIND_M`] (m²), whether it ends before
+/// that distance, and the share of it inside `building`.
+fn behind(cells: &[usize], map: &Grid<Cell>, resolution: f64, building: Option<[usize; 4]>) -> (f64, bool, f64) {
+    let (w, h) = (map.width(), map.height());
+    let limit = libm::ceil(BEHIND_M / resolution) as u32;
+    let reached = wave_behind(cells, w, h, limit, |j| map.cells()[j] == Cell::Unknown);
+    let (mut area, mut within, mut open) = (0usize, 0usize, false);
+    for (j, d) in reached {
+        if d > limit {
+            open = true;
+            continue;
+        }
+        area += 1;
+        let (x, y) = (j % w, j / w);
+        // Unseen space on the map's edge goes on beyond it.
+        open |= x == 0 || y == 0 || x == w - 1 || y == h - 1;
+        if building.is_some_and(|[bx0, by0, bx1, by1]| (bx0..=bx1).contains(&x) && (by0..=by1).contains(&y)) {
+            within += 1;
+        }
+    }
+    let share = if area == 0 { 0.0 } else { within as f64 / area as f64 };
+    (area as f64 * resolution * resolution, !open, share)
+}
+
+/// A wavefront ([`wavefront`]) from the cells beside `cells` (map indices of a `w` x `h` map)
+/// that `enter` admits, through cells it admits, up to `limit` steps: each cell reached as
+/// `(map index, steps)`, those at `limit + 1` reached but not grown from. It runs in a window
+/// of the map `limit + 1` cells wider than the stretch on every side, so that its cost does
+/// not grow with the map.
+pub(crate) fn wave_behind(
+    cells: &[usize],
+    w: usize,
+    h: usize,
+    limit: u32,
+    enter: impl Fn(usize) -> bool,
+) -> Vec<(usize, u32)> {
+    let reach = limit as usize + 1;
+    let [x0, y0, x1, y1] = bounds(cells, w);
+    let (wx0, wy0) = (x0.saturating_sub(reach), y0.saturating_sub(reach));
+    let (wx1, wy1) = ((x1 + reach).min(w - 1), (y1 + reach).min(h - 1));
+    let (ww, wh) = (wx1 - wx0 + 1, wy1 - wy0 + 1);
+    let to_map = |j: usize| (wy0 + j / ww) * w + wx0 + j % ww;
+    let mut dist = vec![u32::MAX; ww * wh];
+    let mut seeds = Vec::new();
+    for &i in cells {
+        for j in neighbours4(i, w, h) {
+            let l = (j / w - wy0) * ww + (j % w - wx0);
+            if enter(j) && dist[l] == u32::MAX {
+                dist[l] = 1;
+                seeds.push(l);
+            }
+        }
+    }
+    wavefront(ww, wh, &mut dist, seeds, |j| enter(to_map(j)), limit);
+    dist.iter().enumerate().filter(|(_, &d)| d != u32::MAX).map(|(j, &d)| (to_map(j), d)).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A `w` x `h` map, walls round its edge, free left of column `split`, unknown right of it.
+    fn half_seen(w: usize, h: usize, split: usize) -> Grid<Cell> {
+        let mut map = Grid::new(w, h, Cell::Unknown);
+        for y in 0..h {
+            for x in 0..w {
+                let wall = x == 0 || y == 0 || x == w - 1 || y == h - 1;
+                *map.at_mut(x, y) = if wall {
+                    Cell::Occupied
+                } else if x < split {
+                    Cell::Free
+                } else {
+                    Cell::Unknown
+                };
+            }
+        }
+        map
+    }
+
+    #[test]
+    fn a_room_seen_in_half_has_one_stretch_closed_by_its_walls() {
+        // 6 m x 3 m at 0.05 m: the unseen half is 58 x 59 cells behind a 58-cell frontier.
+        let map = half_seen(120, 60, 60);
+        let s = stretches(&World::empty(120, 60), &map, &Grid::new(120, 60, 0), 0.05);
+        assert_eq!(s.len(), 1);
+        assert_eq!(s[0].cells.len(), 58);
+        assert_eq!(s[0].at.0, 59);
+        assert!((s[0].behind_m2 - 59.0 * 58.0 * 0.0025).abs() < 1e-9, "{}", s[0].behind_m2);
+        assert!(s[0].pocket && s[0].inside == 1.0 && !s[0].at_door && s[0].room == 0);
+        assert!(s[0].jambs, "the frontier spans the room from wall to wall");
+    }
+
+    #[test]
+    fn a_long_frontier_is_cut_and_lengths_are_metres() {
+        // The same room 12 m high: a 11.9 m frontier in three stretches of about 4 m; at 0.1 m a
+        // cell the same room in a quarter of the cells gives the same stretches in metres.
+        for (res, k) in [(0.05, 1), (0.1, 2)] {
+            let map = half_seen(120 / k, 240 / k, 60 / k);
+            let s =
+                stretches(&World::empty(120 / k as u32, 240 / k as u32), &map, &Grid::new(120 / k, 240 / k, 0), res);
+            assert_eq!(s.len(), 3, "at {res} m");
+            for p in &s {
+                assert!((3.5..=4.1).contains(&p.width_m), "{} at {res}", p.width_m);
+            }
+        }
+    }
+
+    #[test]
+    fn furniture_shadows_and_specks_are_no_placeholders() {
+        // A seen room with a 1 m x 1 m unknown blob (a desk's shadow) and one unknown cell.
+        let mut map = half_seen(120, 60, 120);
+        for y in 20..40 {
+            for x in 30..50 {
+                *map.at_mut(x, y) = Cell::Unknown;
+            }
+        }
+        *map.at_mut(90, 30) = Cell::Unknown;
+        assert!(stretches(&World::empty(120, 60), &map, &Grid::new(120, 60, 0), 0.05).is_empty());
+    }
+
+    #[test]
+    fn shrink_and_grow_match_the_square_by_brute_force() {
+        let (w, h) = (13, 9);
+        let mask: Vec<bool> = (0..w * h).map(|i| (i * 7919 + i / 5) % 5 != 0).collect();
+        for r in 1..4 {
+            let square = |i: usize| {
+                let (x, y) = ((i % w) as isize, (i / w) as isize);
+                let r = r as isize;
+                (y - r..=y + r).flat_map(move |yy| (x - r..=x + r).map(move |xx| (xx, yy)))
+            };
+            let inside = |(x, y): (isize, isize)| x >= 0 && y >= 0 && x < w as isize && y < h as isize;
+            let at = |(x, y): (isize, isize)| mask[y as usize * w + x as usize];
+            let shrunk: Vec<bool> = (0..w * h).map(|i| square(i).all(|c| !inside(c) || at(c))).collect();
+            let grown: Vec<bool> = (0..w * h).map(|i| square(i).any(|c| inside(c) && at(c))).collect();
+            assert_eq!(shrink(&mask, w, h, r), shrunk, "r {r}");
+            assert_eq!(grow(&mask, w, h, r), grown, "r {r}");
+        }
+    }
+
+    #[test]
+    fn streaks_between_rays_are_no_frontier() {
+        // A seen room crossed by one-cell diagonal streaks of unknown cells that reach its unseen
+        // right half: only the frontier along the unseen half is a placeholder.
+        let mut map = half_seen(120, 60, 60);
+        for k in 0..40 {
+            for d in [0, 9, 18] {
+                *map.at_mut(20 + k, 5 + (k + d) % 50) = Cell::Unknown;
+            }
+        }
+        let s = stretches(&World::empty(120, 60), &map, &Grid::new(120, 60, 0), 0.05);
+        assert_eq!(s.len(), 1, "{:?}", s.iter().map(|p| p.at).collect::<Vec<_>>());
+        assert!(s[0].at.0 >= 55, "{:?}", s[0].at);
+    }
+
+    #[test]
+    fn space_that_runs_on_past_five_metres_is_no_pocket() {
+        // Free left of column 20, unknown from there on for 9 m: the wavefront passes 5 m.
+        let map = half_seen(200, 60, 20);
+        let s = stretches(&World::empty(200, 60), &map, &Grid::new(200, 60, 0), 0.05);
+        assert_eq!(s.len(), 1);
+        assert!(!s[0].pocket);
+        assert!((s[0].behind_m2 - 58.0 * 100.0 * 0.0025).abs() < 0.05, "{}", s[0].behind_m2);
+    }
+}

@@ -3,7 +3,8 @@
 //!
 //! The drawing is in map cells (`viewBox="0 0 W H"`, one unit per cell, y down), so that it
 //! lies exactly over the map and over `overlay.png`, with `data-resolution` giving metres per
-//! cell. It has four layers (`<g>` groups, which Inkscape also shows as layers), bottom to top:
+//! cell. It has four layers (`<g>` groups, which Inkscape also shows as layers), five where the
+//! map has frontiers, bottom to top:
 //!
 //! * `rooms`: one `<path>` per room with `data-room` (its id, as in `labels.pgm`) and
 //!   `data-type` (`room`, `corridor`, `hall`, `other` or `unknown`), filled with the room tint
@@ -11,11 +12,16 @@
 //!   [`crate::floorplan::shapes`] (walls' centre lines, holes and separate parts included);
 //! * `walls`: every unit's wall ring, in the PNG's wall blue;
 //! * `doors`: one `<path>` per door with `data-door`, the door's cells, in the PNG's door cyan;
+//! * `placeholders` (only where the world has them): one `<g>` per placeholder with
+//!   `data-placeholder` (its id), `data-opens-from` (the room it opens from, 0 for none) and
+//!   `data-p-new-room`, a `<title>` with its figures, a `<path>` per type beyond with
+//!   `data-beyond` (a pie, as `overlay.png` draws it) and a rim;
 //! * `labels`: one `<text>` per room with `data-label` (the room's id; its name if it has one,
 //!   else "room 3", shortened to "3" where it does not fit) at the room's anchor, turned with the world frame so that it
 //!   runs along the room.
 //!
-//! Only the room shapes carry `data-room`, so that `[data-room]` selects one element per room.
+//! Only the room shapes carry `data-room` and `data-type`, so that `[data-room]` selects one
+//! element per room.
 
 use super::labels::label_texts;
 use super::palette::{room_fill_rgb, DOOR_RGBA, LABEL_OUTLINE_RGBA, LABEL_TEXT_RGBA, WALL_RGBA};
@@ -148,7 +154,7 @@ fn placeholders(s: &mut String, world: &World) {
         );
         let _ = writeln!(
             s,
-            r#"<g data-placeholder="{}" data-room="{}" data-p-new-room="{}"><title>{title}</title>"#,
+            r#"<g data-placeholder="{}" data-opens-from="{}" data-p-new-room="{}"><title>{title}</title>"#,
             p.id,
             p.room,
             num(p.p_new_room)
@@ -157,8 +163,11 @@ fn placeholders(s: &mut String, world: &World) {
             let mut d = String::new();
             path_ring(&mut d, &ring);
             let [red, green, blue] = room_fill_rgb(kind);
-            let _ =
-                writeln!(s, r##"<path data-type="{}" fill="#{red:02x}{green:02x}{blue:02x}" d="{d}"/>"##, kind.name());
+            let _ = writeln!(
+                s,
+                r##"<path data-beyond="{}" fill="#{red:02x}{green:02x}{blue:02x}" d="{d}"/>"##,
+                kind.name()
+            );
         }
         let rim = match p.p_new_room >= super::pie::NEW_ROOM_RIM {
             true => format!(r#"stroke="{}" stroke-width="{}""#, hex(LABEL_OUTLINE_RGBA), num(0.25 * r)),

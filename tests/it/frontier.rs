@@ -50,6 +50,9 @@ fn the_svg_draws_a_pie_per_placeholder() {
     let svg = ksmcmc::render::svg::world_svg(&r.world, &r.labels, s.map.yaml().resolution).unwrap();
     assert_eq!(svg.matches("data-placeholder=").count(), r.world.placeholders.len());
     assert!(svg.contains(r#"<g id="placeholders""#));
+    // Only the room shapes carry data-room and data-type: `[data-room]` is one element a room.
+    assert_eq!(svg.matches("data-room=").count(), r.world.rooms.len());
+    assert_eq!(svg.matches("data-type=").count(), r.world.rooms.len());
 }
 
 #[test]

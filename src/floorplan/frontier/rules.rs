@@ -119,7 +119,7 @@ impl FrontierRules {
 }
 
 /// Every evidence predicate the frontier rules may use.
-pub const FRONTIER_EVIDENCE: [&str; 14] = [
+pub const FRONTIER_EVIDENCE: [&str; 15] = [
     "Narrow",
     "Wide",
     "AtDoor",
@@ -132,6 +132,7 @@ pub const FRONTIER_EVIDENCE: [&str; 14] = [
     "FromHall",
     "FromOther",
     "FromRays",
+    "FromNone",
     "SmallFrom",
     "Jambs",
 ];
@@ -164,7 +165,8 @@ pub fn evidence(world: &World, s: &Stretch) -> Vec<&'static str> {
     for (t, pred) in from.into_iter().chain([(UnitType::Other, "FromOther")]) {
         say(kind == Some(t), pred);
     }
-    say(kind.is_none_or(|k| k == UnitType::Unknown), "FromRays");
+    say(kind == Some(UnitType::Unknown), "FromRays");
+    say(room.is_none(), "FromNone");
     say(room.is_some_and(|r| r.area_m2 < SMALL_FROM_M2), "SmallFrom");
     out
 }
@@ -210,8 +212,9 @@ mod tests {
         let out = rules.weigh(&World::empty(10, 10), &[stretch(2.0, 1.0, false, false)]).unwrap();
         let lw = |p: f64| (p / (1.0 - p)).ln();
         // The rules whose truth the query atoms decide, with this evidence (Space false, Inside
-        // true, FromRays true as the stretch opens from no room): the NewRoom prior,
-        // `!Space => BeyondNone` and `NewRoom => BeyondRoom`; the other weights are log 1.
+        // true, FromNone true as the stretch opens from no room): the NewRoom prior,
+        // `!Space => BeyondNone`, `FromNone => BeyondNone` and `NewRoom => BeyondRoom`; the
+        // other weights are log 1.
         let (mut z, mut new) = (0.0, 0.0);
         for kind in 0..5 {
             for newroom in [false, true] {
@@ -220,7 +223,7 @@ mod tests {
                 }
                 let mut logw = if newroom { lw(0.30) } else { 0.0 };
                 if kind == 4 {
-                    logw += lw(0.80);
+                    logw += lw(0.80) + lw(0.60);
                 }
                 if !newroom || kind == 0 {
                     logw += lw(0.60);

@@ -161,8 +161,13 @@ pub fn evidence(world: &World, s: &Stretch) -> Vec<&'static str> {
     say(s.inside >= INSIDE_SHARE, "Inside");
     let room = world.rooms.iter().find(|r| r.id == s.room);
     let kind = room.map(|r| r.kind);
-    let from = [(UnitType::Room, "FromRoom"), (UnitType::Corridor, "FromCorr"), (UnitType::Hall, "FromHall")];
-    for (t, pred) in from.into_iter().chain([(UnitType::Other, "FromOther")]) {
+    let from = [
+        (UnitType::Room, "FromRoom"),
+        (UnitType::Corridor, "FromCorr"),
+        (UnitType::Hall, "FromHall"),
+        (UnitType::Other, "FromOther"),
+    ];
+    for (t, pred) in from {
         say(kind == Some(t), pred);
     }
     say(kind == Some(UnitType::Unknown), "FromRays");

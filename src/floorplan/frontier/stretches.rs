@@ -16,7 +16,7 @@
 //! map's occupied cells (the building as far as it was seen). Every length is in metres,
 //! turned into cells with the map's resolution.
 
-use crate::floorplan::world::World;
+use crate::floorplan::world::{Door, World};
 use crate::grid::flood::{wavefront, Flood, Neighbours};
 use crate::grid::{Cell, Grid};
 
@@ -152,13 +152,14 @@ fn occupied_box(map: &Grid<Cell>) -> Option<[usize; 4]> {
 
 /// The centre of each door that is not an opening within a room, in map coordinates.
 fn door_centres(world: &World) -> Vec<(f64, f64)> {
-    let doors = world.doors.iter().filter(|d| !d.opening);
-    doors
-        .map(|d| {
-            let (cx, cy) = (f64::from(d.x0 + d.x1 + 1) / 2.0, f64::from(d.y0 + d.y1 + 1) / 2.0);
-            world.door_frame(d).to_map(cx, cy)
-        })
-        .collect()
+    world.doors.iter().filter(|d| !d.opening).map(|d| door_centre(world, d)).collect()
+}
+
+/// The centre of `world`'s door `d` in map coordinates: its rectangle's centre
+/// ([`crate::geometry::Rect::center`]) taken from the door's frame to the map.
+pub(crate) fn door_centre(world: &World, d: &Door) -> (f64, f64) {
+    let (cx, cy) = d.rect().center();
+    world.door_frame(d).to_map(cx, cy)
 }
 
 /// `component` (map indices) cut along the longer side of its bounding box into equal pieces

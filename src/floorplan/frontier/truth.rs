@@ -11,7 +11,7 @@
 //! placeholder leads nowhere (the outside, or a pocket).
 
 use super::rules::{place, FrontierRules, FRONTIER_QUERY};
-use super::stretches::{stretches, wave_behind, Stretch};
+use super::stretches::{door_centre, stretches, wave_behind, Stretch};
 use crate::floorplan::world::{UnitType, World};
 use crate::grid::{Cell, Grid};
 use crate::mln::{Database, Evidence, MlnError};
@@ -79,15 +79,7 @@ pub fn frontier_truth(
     truth_labels: &Grid<u16>,
 ) -> Vec<FrontierCase> {
     let (w, h) = (partial.width(), partial.height());
-    let mut seen = vec![0usize; truth.units.len() + 1];
-    let mut total = vec![0usize; truth.units.len() + 1];
-    for (i, &l) in truth_labels.cells().iter().enumerate() {
-        let l = usize::from(l).min(truth.units.len());
-        total[l] += 1;
-        if partial.cells()[i] == Cell::Free {
-            seen[l] += 1;
-        }
-    }
+    let (seen, total) = seen_cells(partial, truth_labels, truth.units.len());
     let limit = libm::ceil(TRUTH_M / resolution) as u32;
     let least = (TRUTH_MIN_M2 / (resolution * resolution)) as usize;
     let open = |j: usize| partial.cells()[j] == Cell::Unknown && truth_map.cells()[j] != Cell::Occupied;
@@ -139,13 +131,7 @@ impl FrontierRules {
 /// of their floor seen) from units it has explored (at least half seen): where a placeholder
 /// should stand.
 pub fn unentered_doors(truth: &World, partial: &Grid<Cell>, truth_labels: &Grid<u16>) -> Vec<(f64, f64)> {
-    let n = truth.units.len();
-    let (mut seen, mut total) = (vec![0usize; n + 1], vec![0usize; n + 1]);
-    for (i, &l) in truth_labels.cells().iter().enumerate() {
-        let l = usize::from(l).min(n);
-        total[l] += 1;
-        seen[l] += usize::from(partial.cells()[i] == Cell::Free);
-    }
+    let (seen, total) = seen_cells(partial, truth_labels, truth.units.len());
     let share = |id: u32| {
         let l = truth.units.iter().position(|u| u.id == id).map_or(0, |k| k + 1);
         if l == 0 || total[l] == 0 {
@@ -161,9 +147,19 @@ pub fn unentered_doors(truth: &World, partial: &Grid<Cell>, truth_labels: &Grid<
             let (a, b) = (a.unwrap_or(0.0), b.unwrap_or(0.0));
             (a < 0.1 && b >= 0.5) || (b < 0.1 && a >= 0.5)
         })
-        .map(|d| {
-            let (cx, cy) = (f64::from(d.x0 + d.x1 + 1) / 2.0, f64::from(d.y0 + d.y1 + 1) / 2.0);
-            truth.door_frame(d).to_map(cx, cy)
-        })
+        .map(|d| door_centre(truth, d))
         .collect()
+}
+
+/// Per truth label `0..=units` (a larger label counts as `units`), the cells of
+/// `truth_labels` that carry it, and of those the cells `partial` has seen free:
+/// `(seen, total)`.
+fn seen_cells(partial: &Grid<Cell>, truth_labels: &Grid<u16>, units: usize) -> (Vec<usize>, Vec<usize>) {
+    let (mut seen, mut total) = (vec![0usize; units + 1], vec![0usize; units + 1]);
+    for (&l, &c) in truth_labels.cells().iter().zip(partial.cells()) {
+        let l = usize::from(l).min(units);
+        total[l] += 1;
+        seen[l] += usize::from(c == Cell::Free);
+    }
+    (seen, total)
 }

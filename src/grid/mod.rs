@@ -26,6 +26,7 @@ mod classify;
 mod error;
 pub mod flood;
 pub mod hidden;
+pub mod morphology;
 pub mod pgm;
 pub mod png;
 mod raster;

@@ -18,6 +18,7 @@
 
 use crate::floorplan::world::{Door, World};
 use crate::grid::flood::{wavefront, Flood, Neighbours};
+use crate::grid::morphology::{dilate, erode};
 use crate::grid::{Cell, Grid};
 
 /// Narrowest frontier that is a placeholder, m: 0.5 m, about the narrowest gap a person or a
@@ -74,7 +75,8 @@ pub fn stretches(world: &World, map: &Grid<Cell>, labels: &Grid<u16>, resolution
     let cells = map.cells();
     // Beside an unknown cell, and near unseen space (the streaks between rays may lie between).
     let unseen = unseen_space(map, resolution);
-    let near = grow(&unseen, w, h, unseen_radius(resolution) + 1);
+    let near = dilate(&Grid::from_vec(w, h, unseen).expect("map size"), unseen_radius(resolution) + 1);
+    let near = near.cells();
     let unknown = |j: usize| cells[j] == Cell::Unknown;
     let frontier: Vec<bool> =
         (0..w * h).map(|i| cells[i] == Cell::Free && near[i] && neighbours4(i, w, h).any(unknown)).collect();
@@ -108,8 +110,9 @@ fn unseen_space(map: &Grid<Cell>, resolution: f64) -> Vec<bool> {
     let (w, h) = (map.width(), map.height());
     let least = libm::ceil(MIN_BEHIND_M2 / (resolution * resolution)) as usize;
     let r = unseen_radius(resolution);
-    let unknown: Vec<bool> = map.cells().iter().map(|&c| c == Cell::Unknown).collect();
-    let opened = grow(&shrink(&unknown, w, h, r), w, h, r);
+    let unknown = Grid::from_vec(w, h, map.cells().iter().map(|&c| c == Cell::Unknown).collect()).expect("map size");
+    let opened = dilate(&erode(&unknown, r), r);
+    let opened = opened.cells();
     let mut unseen = vec![false; w * h];
     let mut taken = vec![false; w * h];
     let mut flood = Flood::default();
@@ -248,49 +251,6 @@ fn unseen_radius(resolution: f64) -> usize {
     (libm::round(MIN_UNSEEN_M / resolution / 2.0) as usize).max(1)
 }
 
-/// The cells of `mask` (`w` x `h`) whose square of radius `r` around them lies wholly in it
-/// (cells off the grid count as in it: unseen space runs on past the map's edge): an erosion,
-/// separable, so that it costs two passes over the grid whatever `r`.
-fn shrink(mask: &[bool], w: usize, h: usize, r: usize) -> Vec<bool> {
-    let rows = window(mask, w, h, r, true, |n, len| n == len);
-    window(&rows, w, h, r, false, |n, len| n == len)
-}
-
-/// The cells of a `w` x `h` grid with a cell of `mask` in the square of radius `r` around them:
-/// a dilation, separable as [`shrink`].
-fn grow(mask: &[bool], w: usize, h: usize, r: usize) -> Vec<bool> {
-    let rows = window(mask, w, h, r, true, |n, _| n > 0);
-    window(&rows, w, h, r, false, |n, _| n > 0)
-}
-
-/// Per cell, `keep(count, len)` of the cells of `mask` in the window of radius `r` along rows
-/// (`along_rows`) or columns, `len` the window's length with cells off the grid counted in
-/// `count` as set for [`shrink`] and not for [`grow`] (for which they never matter).
-fn window(
-    mask: &[bool],
-    w: usize,
-    h: usize,
-    r: usize,
-    along_rows: bool,
-    keep: impl Fn(usize, usize) -> bool,
-) -> Vec<bool> {
-    let (n, lines) = if along_rows { (w, h) } else { (h, w) };
-    let at = |line: usize, k: usize| if along_rows { line * w + k } else { k * w + line };
-    let mut out = vec![false; w * h];
-    let len = 2 * r + 1;
-    for line in 0..lines {
-        // count of set cells in the window, with the cells off the grid counted as set.
-        let mut count = r + (0..=r.min(n - 1)).filter(|&k| mask[at(line, k)]).count() + r.saturating_sub(n - 1);
-        for k in 0..n {
-            out[at(line, k)] = keep(count, len);
-            let (add, drop) = (k + r + 1, k as isize - r as isize);
-            count += if add < n { usize::from(mask[at(line, add)]) } else { 1 };
-            count -= if drop >= 0 { usize::from(mask[at(line, drop as usize)]) } else { 1 };
-        }
-    }
-    out
-}
-
 /// The room label most of `cells` carry (ties to the smaller id), 0 if none carries one.
 fn room_of(cells: &[usize], labels: &Grid<u16>) -> u32 {
     let mut counts = std::collections::BTreeMap::<u16, usize>::new();
@@ -421,25 +381,6 @@ mod tests {
         }
         *map.at_mut(90, 30) = Cell::Unknown;
         assert!(stretches(&World::empty(120, 60), &map, &Grid::new(120, 60, 0), 0.05).is_empty());
-    }
-
-    #[test]
-    fn shrink_and_grow_match_the_square_by_brute_force() {
-        let (w, h) = (13, 9);
-        let mask: Vec<bool> = (0..w * h).map(|i| (i * 7919 + i / 5) % 5 != 0).collect();
-        for r in 1..4 {
-            let square = |i: usize| {
-                let (x, y) = ((i % w) as isize, (i / w) as isize);
-                let r = r as isize;
-                (y - r..=y + r).flat_map(move |yy| (x - r..=x + r).map(move |xx| (xx, yy)))
-            };
-            let inside = |(x, y): (isize, isize)| x >= 0 && y >= 0 && x < w as isize && y < h as isize;
-            let at = |(x, y): (isize, isize)| mask[y as usize * w + x as usize];
-            let shrunk: Vec<bool> = (0..w * h).map(|i| square(i).all(|c| !inside(c) || at(c))).collect();
-            let grown: Vec<bool> = (0..w * h).map(|i| square(i).any(|c| inside(c) && at(c))).collect();
-            assert_eq!(shrink(&mask, w, h, r), shrunk, "r {r}");
-            assert_eq!(grow(&mask, w, h, r), grown, "r {r}");
-        }
     }
 
     #[test]

@@ -18,6 +18,7 @@
 use super::config::Cells;
 use super::layout::{Opening, Plan, Space};
 use crate::floorplan::{Rect, UnitType};
+use crate::grid::morphology::dilate;
 use crate::grid::{Cell, Grid};
 use crate::mcmc::Rng;
 
@@ -306,31 +307,6 @@ fn furnish(
     }
 }
 
-/// Square dilation: true where any cell within Chebyshev distance `r` is true.
-fn dilate(g: &Grid<bool>, r: usize) -> Grid<bool> {
-    let (w, h) = (g.width(), g.height());
-    let pass = |src: &[bool], n: usize, stride: usize, out: &mut [bool]| {
-        // Prefix counts along one line, then a window of 2r + 1.
-        let mut prefix = vec![0u32; n + 1];
-        for i in 0..n {
-            prefix[i + 1] = prefix[i] + u32::from(src[i * stride]);
-        }
-        for i in 0..n {
-            let (a, b) = (i.saturating_sub(r), (i + r + 1).min(n));
-            out[i * stride] = prefix[b] > prefix[a];
-        }
-    };
-    let mut mid = vec![false; w * h];
-    for y in 0..h {
-        pass(&g.cells()[y * w..], w, 1, &mut mid[y * w..]);
-    }
-    let mut out = vec![false; w * h];
-    for x in 0..w {
-        pass(&mid[x..], h, w, &mut out[x..]);
-    }
-    Grid::from_vec(w, h, out).expect("same size")
-}
-
 /// Samples the world-frame observation into the map frame and adds speckle.
 pub(super) fn to_map(obs: &Observed, c: &Cells, noise: &Noise, rng: &mut Rng) -> (Grid<Cell>, Grid<u16>) {
     let (ww, wh) = (c.canvas.0 as usize, c.canvas.1 as usize);
@@ -395,24 +371,6 @@ pub(super) fn degrade(cells: &mut [Cell], mw: usize, mh: usize, noise: &Noise, r
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn dilate_matches_brute_force() {
-        let mut rng = Rng::seed(3);
-        let (w, h) = (23, 17);
-        let cells: Vec<bool> = (0..w * h).map(|_| rng.chance(0.05)).collect();
-        let g = Grid::from_vec(w, h, cells).unwrap();
-        for r in [0, 1, 3] {
-            let d = dilate(&g, r);
-            for y in 0..h {
-                for x in 0..w {
-                    let near = (y.saturating_sub(r)..(y + r + 1).min(h))
-                        .any(|yy| (x.saturating_sub(r)..(x + r + 1).min(w)).any(|xx| *g.at(xx, yy)));
-                    assert_eq!(*d.at(x, y), near, "r {r} at ({x},{y})");
-                }
-            }
-        }
-    }
 
     #[test]
     fn door_zone_lies_in_front_of_the_door() {

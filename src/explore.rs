@@ -8,7 +8,9 @@
 //! first occupied cell it meets becomes occupied, and a ray stops there or at a cell the true
 //! map does not know (glass, clutter, the outside). Between scans the robot drives to the
 //! nearest frontier (a seen free cell beside an unseen one) along the shortest 8-connected path
-//! through free cells it has seen, and stops when no frontier is left. Frontiers it has
+//! through free cells it has seen, and stops when no frontier is left. Given [`Target`]s (the
+//! placeholders of a plan, weighed for a goal), it drives instead to the target with the most
+//! value per metre of the way there ([`Explorer::set_targets`]). Frontiers it has
 //! reached and could not resolve (unseen space its sensor cannot see into) are not chosen
 //! again. The robot's map is what a SLAM system without pose error would build.
 //!
@@ -101,6 +103,20 @@ impl ExploreConfig {
     }
 }
 
+/// A place on the frontier worth driving to, and what reaching it is worth: a placeholder of
+/// the plan weighed for a goal, such as its probability of leading to a hall.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Target {
+    /// The cell `(column, row)` of the robot's map.
+    pub cell: (usize, usize),
+    /// What reaching it is worth, at least 0 (a probability, for a goal).
+    pub value: f64,
+}
+
+/// How near a frontier cell a target must lie to stand for it, m: the frontier a placeholder
+/// was found on moves as the robot scans, by about the width of the rays' fringe.
+pub const TARGET_REACH_M: f64 = 0.5;
+
 /// The most cells a ray is traced over (the sensor range is capped to it).
 const MAX_RANGE_CELLS: f64 = 2000.0;
 
@@ -123,6 +139,10 @@ pub struct Explorer {
     travelled: f64,
     /// Where the robot scanned, in order.
     scans: Vec<(usize, usize)>,
+    /// The targets it weighs when it chooses a goal ([`Explorer::set_targets`]).
+    targets: Vec<Target>,
+    /// Goals chosen so far.
+    goals: usize,
     done: bool,
 }
 
@@ -162,6 +182,8 @@ impl Explorer {
             since_scan: 0,
             travelled: 0.0,
             scans: Vec::new(),
+            targets: Vec::new(),
+            goals: 0,
             done: false,
         };
         e.scan();
@@ -197,6 +219,25 @@ impl Explorer {
             }
         }
         !self.done
+    }
+
+    /// The targets the robot weighs from its next goal on, replacing any before. Among the
+    /// targets with a frontier cell within [`TARGET_REACH_M`] that it can reach, it drives to
+    /// the one with the most value per metre, `value / (d + give_up)`, where `d` is the length
+    /// of the way there and `give_up` ([`ExploreConfig::give_up_m`]) what it drives on to see
+    /// past it. With no such target it drives to the nearest frontier, as without targets.
+    ///
+    /// Ranking by probability per cost is the order that minimises the expected cost of
+    /// searching places one by one for an object that lies in at most one of them (the
+    /// classical result of optimal search); here the costs change as the robot moves, so the
+    /// rule is applied again at every goal.
+    pub fn set_targets(&mut self, targets: Vec<Target>) {
+        self.targets = targets.into_iter().filter(|t| t.value.is_finite() && t.value > 0.0).collect();
+    }
+
+    /// Goals the robot has chosen so far (one per drive to a frontier).
+    pub fn goals(&self) -> usize {
+        self.goals
     }
 
     /// Whether the robot has no frontier left.
@@ -301,29 +342,77 @@ impl Explorer {
         }
     }
 
-    /// Plans the shortest path through seen free cells to the nearest frontier (breadth-first,
-    /// 8-connected, no corner cutting). Returns false when no frontier can be reached.
+    /// Plans the shortest path through seen free cells to the next goal (breadth-first,
+    /// 8-connected, no corner cutting): the nearest frontier, or the best target
+    /// ([`Explorer::set_targets`]). Returns false when no frontier can be reached.
     fn replan(&mut self) -> bool {
         let (w, h) = (self.seen.width(), self.seen.height());
         let start = self.robot.1 * w + self.robot.0;
         let mut parent = vec![u32::MAX; w * h];
+        let mut dist = vec![f64::INFINITY; w * h];
         parent[start] = start as u32;
+        dist[start] = 0.0;
         let mut queue = VecDeque::from([start]);
+        let mut nearest = None;
         while let Some(i) = queue.pop_front() {
             let (x, y) = (i % w, i / w);
-            if i != start && self.is_frontier(x, y) {
-                self.plan = path_to(&parent, start, i, w);
-                return true;
+            if i != start && nearest.is_none() && self.is_frontier(x, y) {
+                nearest = Some(i);
+                if self.targets.is_empty() {
+                    break;
+                }
             }
             for (nx, ny) in self.free_neighbours(x, y) {
                 let j = ny * w + nx;
                 if parent[j] == u32::MAX {
                     parent[j] = i as u32;
+                    dist[j] = dist[i] + if nx != x && ny != y { std::f64::consts::SQRT_2 } else { 1.0 };
                     queue.push_back(j);
                 }
             }
         }
-        false
+        let Some(nearest) = nearest else { return false };
+        let goal = self.best_target(&dist).unwrap_or(nearest);
+        self.plan = path_to(&parent, start, goal, w);
+        self.goals += 1;
+        true
+    }
+
+    /// The frontier cell of the target with the most value per metre ([`Explorer::set_targets`])
+    /// given the path lengths `dist` (cells) from the robot; `None` if no target is live.
+    fn best_target(&self, dist: &[f64]) -> Option<usize> {
+        let (w, h) = (self.seen.width(), self.seen.height());
+        let resolution = self.yaml.resolution;
+        let r = (TARGET_REACH_M / resolution).ceil() as usize;
+        let mut best: Option<(f64, usize)> = None;
+        for t in &self.targets {
+            let (tx, ty) = t.cell;
+            if tx >= w || ty >= h {
+                continue;
+            }
+            // The reachable frontier cell nearest the robot within reach of the target.
+            let mut cell: Option<usize> = None;
+            for y in ty.saturating_sub(r)..(ty + r + 1).min(h) {
+                for x in tx.saturating_sub(r)..(tx + r + 1).min(w) {
+                    let i = y * w + x;
+                    let near = (x.abs_diff(tx).pow(2) + y.abs_diff(ty).pow(2)) as f64 <= (r * r) as f64;
+                    if near
+                        && dist[i].is_finite()
+                        && dist[i] > 0.0
+                        && self.is_frontier(x, y)
+                        && cell.is_none_or(|c| dist[i] < dist[c])
+                    {
+                        cell = Some(i);
+                    }
+                }
+            }
+            let Some(i) = cell else { continue };
+            let score = t.value / (dist[i] + self.give_up.max(1.0));
+            if best.is_none_or(|(s, c)| score > s || (score == s && i < c)) {
+                best = Some((score, i));
+            }
+        }
+        best.map(|(_, i)| i)
     }
 
     /// Seen free neighbours of a cell, 8-connected; a diagonal step needs both cells beside it
@@ -414,6 +503,69 @@ mod tests {
         assert!((e.scans().len() as f64) < most, "{} scans over {} m", e.scans().len(), e.travelled_m());
         // The path stays on free cells.
         assert!(e.scans().iter().all(|&(x, y)| *truth.classified().at(x, y) == Cell::Free));
+    }
+
+    /// The two-room map at 0.1 m a cell: a target stands for frontier cells up to 5 cells away.
+    fn two_rooms_coarse() -> OccupancyMap {
+        let mut yaml = MapYaml::for_image("two_rooms.pgm");
+        yaml.resolution = 0.1;
+        two_rooms().with_yaml(yaml)
+    }
+
+    /// The robot in the left room's corner with a 2 m (20-cell) sensor: it sees the left room
+    /// but for its far corner, and a little of the right room through the door.
+    fn in_the_corner() -> Explorer {
+        let config = ExploreConfig { range_m: 2.0, start: Some([5, 5]), give_up_m: 0.5, ..Default::default() };
+        Explorer::new(&two_rooms_coarse(), config, 1).unwrap()
+    }
+
+    /// The frontier cells beyond the door (right room) and in the left room's far corner.
+    fn door_and_corner(e: &Explorer) -> [Vec<(usize, usize)>; 2] {
+        let cells: Vec<(usize, usize)> =
+            (0..30).flat_map(|y| (0..50).map(move |x| (x, y))).filter(|&(x, y)| e.is_frontier(x, y)).collect();
+        let (door, rest): (Vec<_>, Vec<_>) = cells.iter().partition(|c| c.0 >= 23);
+        [door, rest.into_iter().filter(|c| c.0 >= 10 && c.1 >= 17).collect()]
+    }
+
+    #[test]
+    fn targets_steer_the_robot_by_value_per_metre() {
+        let e = in_the_corner();
+        let [door, corner] = door_and_corner(&e);
+        assert!(!door.is_empty() && !corner.is_empty(), "door {door:?} corner {corner:?}");
+        // The two groups lie farther apart than twice a target's reach (5 cells).
+        let d = door[door.len() / 2];
+        let apart = |c: &(usize, usize)| d.0.abs_diff(c.0).pow(2) + d.1.abs_diff(c.1).pow(2);
+        let c = *corner.iter().max_by_key(|c| apart(c)).unwrap();
+        assert!(apart(&c) > 100, "{d:?} {c:?}");
+        let goal = |targets: Vec<Target>| {
+            let mut e = in_the_corner();
+            e.set_targets(targets);
+            assert!(e.replan());
+            e.plan[0]
+        };
+        let near = |g: (usize, usize), t: (usize, usize)| g.0.abs_diff(t.0).pow(2) + g.1.abs_diff(t.1).pow(2) <= 25;
+        // Whichever holds the value a hundred times over is driven to, whatever its distance.
+        let g = goal(vec![Target { cell: d, value: 1.0 }, Target { cell: c, value: 0.01 }]);
+        assert!(near(g, d) && door.contains(&g), "{g:?} for the door's {d:?}");
+        let g = goal(vec![Target { cell: d, value: 0.01 }, Target { cell: c, value: 1.0 }]);
+        assert!(near(g, c) && corner.contains(&g), "{g:?} for the corner's {c:?}");
+        // Worthless targets, and targets off every frontier, leave the nearest frontier.
+        let mut plain = in_the_corner();
+        assert!(plain.replan());
+        let nearest = plain.plan[0];
+        assert_eq!(goal(vec![Target { cell: d, value: 0.0 }]), nearest);
+        assert_eq!(goal(vec![Target { cell: (40, 20), value: 1.0 }, Target { cell: (99, 99), value: 1.0 }]), nearest);
+        assert_eq!(plain.goals(), 1);
+    }
+
+    #[test]
+    fn a_guided_robot_still_sees_everything() {
+        let truth = two_rooms_coarse();
+        let mut e = in_the_corner();
+        let [_, corner] = door_and_corner(&e);
+        e.set_targets(vec![Target { cell: corner[0], value: 1.0 }]);
+        while e.advance(7) {}
+        assert_eq!(e.seen_count(Cell::Free), truth.count(Cell::Free));
     }
 
     #[test]

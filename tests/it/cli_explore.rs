@@ -51,6 +51,29 @@ fn explore_writes_the_world_timeline_and_report() {
 }
 
 #[test]
+fn a_goal_is_looked_for_by_both_policies() {
+    let d = tmp("goal");
+    let map = Path::new(env!("CARGO_MANIFEST_DIR")).join("samples/office-small/map.yaml");
+    let args = ["explore", map.to_str().unwrap(), "--out", d.to_str().unwrap(), "--iterations", "1000"];
+    let out = run(&[&args[..], &["--update-every", "4", "--range", "4", "--goal", "new-room", "--no-cold"]].concat());
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(d.join("report.json")).unwrap()).unwrap();
+    let goal = &report["goal"];
+    assert_eq!(goal["goal"], "new-room", "{report}");
+    for (key, name) in [("expected_value", "expected value"), ("nearest_frontier", "nearest frontier")] {
+        let p = &goal[key];
+        assert_eq!(p["policy"], name);
+        assert!(p["travelled_m"].as_f64().unwrap() > 0.0 && p["goals"].as_u64().unwrap() >= 1, "{p}");
+        // Found, the robot stopped there: it drove no farther than where it found it.
+        if let Some(m) = p["found_at_m"].as_f64() {
+            assert!((m - p["travelled_m"].as_f64().unwrap()).abs() < 1e-9, "{p}");
+        }
+    }
+    assert_eq!(goal["expected_value"]["travelled_m"], report["travelled_m"]);
+}
+
+#[test]
 fn explore_errors_say_what_is_wrong() {
     let d = tmp("errors");
     let map = Path::new(env!("CARGO_MANIFEST_DIR")).join("samples/office-small/map.yaml");
@@ -60,6 +83,7 @@ fn explore_errors_say_what_is_wrong() {
         (vec!["explore", m, "--out", o, "--start", "nine"], 2, "--start must be X,Y"),
         (vec!["explore", m, "--out", o, "--range", "0"], 2, "range_m"),
         (vec!["explore", m, "--out", o, "--update-every", "-3"], 2, "update_every_m"),
+        (vec!["explore", m, "--out", o, "--goal", "kitchen"], 2, "unknown goal \"kitchen\""),
         (vec!["explore", m], 2, "--out DIR"),
         (vec!["explore", "/nonexistent.pgm", "--out", o], 1, "nonexistent"),
     ] {

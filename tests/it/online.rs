@@ -161,3 +161,105 @@ fn a_cold_budget_counts_what_the_cold_chains_need() {
         "some cold chain needs more than the warm chain's budget"
     );
 }
+
+/// Finds what it looks for once the robot has driven `metres`, and steers nowhere.
+struct After {
+    metres: f64,
+    plans: usize,
+}
+
+impl ksmcmc::floorplan::online::Guide for After {
+    fn targets(
+        &mut self,
+        _: &mut Chain,
+        _: &ksmcmc::explore::Explorer,
+    ) -> Result<Vec<ksmcmc::explore::Target>, String> {
+        self.plans += 1;
+        Ok(Vec::new())
+    }
+
+    fn found(&mut self, e: &ksmcmc::explore::Explorer) -> bool {
+        e.travelled_m() >= self.metres
+    }
+}
+
+#[test]
+fn a_guide_that_finds_what_it_looks_for_ends_the_exploration() {
+    use ksmcmc::floorplan::online::{explore, explore_guided, OnlineConfig};
+    let s = floor(3);
+    let online = OnlineConfig { update_every_m: 3.0, iterations: 500, measure_cold: false, ..Default::default() };
+    let full = explore(&s.map, &config(), &online, 1, &mut |_| {}).unwrap();
+    assert!(full.explorer.travelled_m() > 12.0, "{}", full.explorer.travelled_m());
+    let mut guide = After { metres: 7.0, plans: 0 };
+    let short = explore_guided(&s.map, &config(), &online, 1, &mut |_| {}, &mut guide).unwrap();
+    // It stops within one drive of 16 cells (at most 16 diagonal steps, 1.13 m) past 7 m.
+    let m = short.explorer.travelled_m();
+    assert!((7.0..7.0 + 16.0 * 1.5 * 0.05).contains(&m), "{m}");
+    assert!(!short.explorer.is_done());
+    // The guide saw the first plan and every update but the last (found before it).
+    assert_eq!(guide.plans, short.updates(), "{} updates", short.updates());
+    // Until then it drove as the nearest-frontier robot drives: the same cells.
+    assert_eq!(short.explorer.scans(), &full.explorer.scans()[..short.explorer.scans().len()]);
+}
+
+#[test]
+fn the_goal_guide_hands_the_robot_the_plans_placeholders_weighed_for_its_goal() {
+    use ksmcmc::floorplan::frontier::Goal;
+    use ksmcmc::floorplan::online::{GoalGuide, Guide, OnlineConfig};
+    use ksmcmc::floorplan::rooms::RoomConfig;
+    let s = floor(5);
+    let online = OnlineConfig {
+        update_every_m: 4.0,
+        iterations: 2000,
+        max_updates: 1,
+        measure_cold: false,
+        ..Default::default()
+    };
+    let robot = ksmcmc::explore::Explorer::new(&s.map, online.explore, 1).unwrap();
+    let mut chain = Chain::new(&robot.snapshot(), ChainConfig::online(), 1).unwrap();
+    chain.step(2000);
+    let (world, _) = chain.best_world_with_rooms(&RoomConfig::default()).unwrap();
+    assert!(!world.placeholders.is_empty(), "a first scan leaves frontiers");
+    for goal in [Goal::NewRoom, Goal::Find(ksmcmc::floorplan::UnitType::Hall)] {
+        let targets = GoalGuide::new(goal, true, RoomConfig::default()).targets(&mut chain, &robot).unwrap();
+        assert_eq!(targets.len(), world.placeholders.len());
+        for (t, p) in targets.iter().zip(&world.placeholders) {
+            assert_eq!(t.cell, (p.x as usize, p.y as usize));
+            assert!((0.0..=p.p_new_room).contains(&t.value), "{t:?} {p:?}");
+        }
+        if goal == Goal::NewRoom {
+            assert!(targets.iter().zip(&world.placeholders).all(|(t, p)| t.value == p.p_new_room));
+        }
+        // Watching, it steers nowhere; and the first plan is what later ones are judged by.
+        let mut watch = GoalGuide::new(goal, false, RoomConfig::default());
+        assert!(watch.targets(&mut chain, &robot).unwrap().is_empty());
+        assert!(!watch.found(&robot) && watch.found_at_m().is_none() && watch.plans() == 1);
+    }
+}
+
+#[test]
+fn a_finished_exploration_ends_under_the_whole_map_table_with_the_better_chain() {
+    use ksmcmc::floorplan::online::{explore, OnlineConfig};
+    use ksmcmc::floorplan::posterior::SensorModel;
+    let s = floor(2);
+    let online = OnlineConfig { update_every_m: 6.0, iterations: 1500, measure_cold: false, ..Default::default() };
+    let run = explore(&s.map, &ChainConfig::online(), &online, 1, &mut |_| {}).unwrap();
+    assert!(run.explorer.is_done());
+    let r = run.renewal.clone().expect("a finished exploration is renewed");
+    assert_eq!(r.iterations, online.cold_iterations());
+    // The chain kept is the one with the higher best log posterior, under the whole-map table.
+    assert_eq!(r.adopted, r.fresh_log_posterior > r.warm_log_posterior);
+    assert_eq!(run.chain.best_log_posterior(), r.warm_log_posterior.max(r.fresh_log_posterior));
+    assert_eq!(run.chain.config().posterior.sensor, SensorModel::default());
+    let last = run.explorer.snapshot();
+    let k = ksmcmc::floorplan::metrics::prediction_rate(last.classified(), &run.chain.best_world());
+    let kept = if r.adopted { r.fresh_cell_prediction_rate } else { r.warm_cell_prediction_rate };
+    assert_eq!(k, kept);
+    assert!(run.chain.check_consistency());
+    // Without renewal the warm chain stays as it was, under the range-sensor table.
+    let plain = OnlineConfig { renew: false, ..online };
+    let warm = explore(&s.map, &ChainConfig::online(), &plain, 1, &mut |_| {}).unwrap();
+    assert!(warm.renewal.is_none());
+    assert_eq!(warm.chain.config().posterior.sensor, SensorModel::range_sensor());
+    assert_eq!(warm.chain.best_log_posterior(), r.range_sensor_log_posterior);
+}

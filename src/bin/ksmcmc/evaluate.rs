@@ -58,6 +58,10 @@ Prints the quality tables of BENCHMARKS.md:
              behind, and the doors of unentered rooms with a placeholder (P >= 0.5) within
              1.5 m; weights learned on seeds 4001-4003, scored on 4101-4103, beside the
              hand-set and built-in rules. --learn FILE writes the learned rules
+  goals      metres the simulated robot drives to find a new hall (generated floors with
+             one and two halls) or any new room (four kinds), following the nearest
+             frontier and driving to the placeholder with the most probability of the goal
+             per metre, from three starts on each of the frontier set's test floors
 bormann also scores door topology: a truth link is a drawn doorway line on free map cells
 between two truth rooms; a predicted link is two segments, standing for the truth rooms they
 overlap most, touching along at least 10 free cells (see floorplan::topology).
@@ -72,7 +76,7 @@ the same chains, in either mode, one more table each.
 ";
 
 /// The sets `--only` can name.
-const SETS: [&str; 15] = [
+const SETS: [&str; 16] = [
     "cartesium",
     "synthetic",
     "bormann",
@@ -88,6 +92,7 @@ const SETS: [&str; 15] = [
     "format",
     "loo",
     "frontier",
+    "goals",
 ];
 
 struct Opts {
@@ -1192,6 +1197,9 @@ fn run_sets(dir: &Path, o: &Opts, only: Option<&str>) -> Result<(), CliError> {
             config,
             learn: o.learn.as_deref(),
         })?;
+    }
+    if want("goals") {
+        crate::goals_eval::goals(o.iterations)?;
     }
 
     Ok(())

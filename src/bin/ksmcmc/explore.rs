@@ -2,7 +2,8 @@
 
 use crate::args::{self, CliError};
 use crate::floorplan::chain_config_from;
-use ksmcmc::floorplan::online::{self, OnlineConfig};
+use ksmcmc::floorplan::frontier::Goal;
+use ksmcmc::floorplan::online::{self, GoalGuide, Guide, Nearest, OnlineConfig};
 use ksmcmc::floorplan::rooms::RoomConfig;
 use ksmcmc::floorplan::{export, metrics, Chain, ChainConfig};
 use ksmcmc::grid::Cell;
@@ -22,6 +23,7 @@ posterior. Writes:
   DIR/world.json     the chain's final best world, on the robot's last map
   DIR/labels.pgm     its room segmentation
   DIR/overlay.png    the world drawn over the robot's last map
+  DIR/map.pgm, DIR/map.yaml  the robot's last map, as a ROS map (ksmcmc floorplan reads it)
   DIR/timeline.json  one record per update: robot, metres driven, cells seen and changed,
                      warm and cold iterations, log posteriors, units, K(W,M), scan positions
   DIR/report.json    updates, warm_iterations and cold_iterations (summed), the final
@@ -34,8 +36,16 @@ Options:
   --range M          the sensor's range, metres (default 8)
   --start X,Y        the start cell (column, row); default: a free cell drawn from the seed
   --no-cold          do not run the cold chains (cold_iterations is then null)
+  --no-renew         keep the warm chain at the end; by default, once no frontier is left a
+                     fresh chain climbs on the last map for the cold budget and replaces the
+                     warm one if its best log posterior is higher (report.json: renewal)
   --cold-budget N    iterations each cold chain may run, at least --iterations (default: five
                      times --iterations); a cold chain that never comes back counts them all
+  --goal G           look for G (new-room, room, corridor, hall or other) and stop when the
+                     plan holds a new one: the robot drives to the placeholder with the
+                     most probability of reaching G per metre of the way there. A second
+                     exploration that follows the nearest frontier (no cold chains) looks
+                     for the same; report.json gives both under \"goal\"
   --seed S           random seed (default 1); same seed, same result
   --config FILE      chain configuration JSON, as for ksmcmc floorplan; the fields it does
                      not give keep the online defaults (ChainConfig::online: the floorplan
@@ -55,6 +65,7 @@ struct Opts {
     knowledge: Option<String>,
     rotation: Option<f64>,
     classify: String,
+    goal: Option<Goal>,
 }
 
 pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
@@ -73,9 +84,18 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
             r.cell_prediction_rate
         )
     };
-    let mut run =
-        online::explore(&truth, &config, &o.online, o.seed, &mut log).map_err(|e| args::failed(o.map.display(), e))?;
+    let mut steered = o.goal.map(|g| GoalGuide::new(g, true, RoomConfig::default()));
+    let guide: &mut dyn Guide = match steered.as_mut() {
+        Some(g) => g,
+        None => &mut Nearest,
+    };
+    let mut run = online::explore_guided(&truth, &config, &o.online, o.seed, &mut log, guide)
+        .map_err(|e| args::failed(o.map.display(), e))?;
     let seconds = t0.elapsed().as_secs_f64();
+    let goal = match &steered {
+        Some(g) => Some(compare_goal(g, &run, &truth, &config, &o)?),
+        None => None,
+    };
     // A cold chain on the whole true map, with as many iterations as one update: the final
     // world should explain what the robot saw as well as that explains everything.
     let mut cold = Chain::new(&truth, config, o.seed).map_err(|e| args::failed(o.map.display(), e))?;
@@ -104,6 +124,8 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
         "doors": world.doors.len(),
         "rooms": world.rooms.len(),
         "seconds": seconds,
+        "renewal": run.renewal,
+        "goal": goal,
     });
     let overlay =
         ksmcmc::render::overlay_png(snapshot.classified(), &world).map_err(|e| args::failed(o.out.display(), e))?;
@@ -112,6 +134,8 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     args::write(&o.out.join("labels.pgm"), &export::labels_pgm(&labels))?;
     args::write(&o.out.join("overlay.png"), &overlay)?;
     args::write(&o.out.join("timeline.json"), timeline.as_bytes())?;
+    args::write(&o.out.join("map.pgm"), &snapshot.to_pgm())?;
+    args::write(&o.out.join("map.yaml"), snapshot.to_yaml("map.pgm").as_bytes())?;
     args::write(&o.out.join("report.json"), export::report_json(&report).as_bytes())?;
     println!(
         "{}: {} updates over {:.0} m in {:.1} s; warm {} / cold {} iterations; K(W,M) {:.4} (cold on the full map {:.4}) -> {}",
@@ -133,6 +157,7 @@ fn parse(argv: Vec<OsString>) -> Result<Option<Opts>, CliError> {
     let mut parser = lexopt::Parser::from_args(argv);
     let (mut map, mut out, mut config, mut knowledge, mut rotation) = (None, None, None, None, None);
     let (mut seed, mut online, mut classify) = (1u64, OnlineConfig::default(), String::from("auto"));
+    let mut goal = None;
     while let Some(arg) = parser.next()? {
         match arg {
             Value(v) if map.is_none() => map = Some(args::path(v)),
@@ -144,11 +169,16 @@ fn parse(argv: Vec<OsString>) -> Result<Option<Opts>, CliError> {
             Long("range") => online.explore.range_m = args::value("--range", parser.value()?)?,
             Long("start") => online.explore.start = Some(start(parser.value()?)?),
             Long("no-cold") => online.measure_cold = false,
+            Long("no-renew") => online.renew = false,
             Long("cold-budget") => online.cold_budget = args::value("--cold-budget", parser.value()?)?,
             Long("config") => config = Some(args::path(parser.value()?)),
             Long("knowledge") => knowledge = Some(args::value("--knowledge", parser.value()?)?),
             Long("rotation") => rotation = Some(args::value("--rotation", parser.value()?)?),
             Long("classify") => classify = args::value("--classify", parser.value()?)?,
+            Long("goal") => {
+                let name: String = args::value("--goal", parser.value()?)?;
+                goal = Some(Goal::parse(&name).map_err(CliError::Usage)?);
+            }
             Long("help") | Short('h') => {
                 print!("{HELP}");
                 return Ok(None);
@@ -166,6 +196,36 @@ fn parse(argv: Vec<OsString>) -> Result<Option<Opts>, CliError> {
         knowledge,
         rotation,
         classify,
+        goal,
+    }))
+}
+
+/// The goal-driven run's `g` finding against a second exploration of the same map from the
+/// same start that follows the nearest frontier and looks for the same goal by the same rule.
+fn compare_goal(
+    g: &GoalGuide,
+    run: &online::Exploration,
+    truth: &ksmcmc::grid::OccupancyMap,
+    config: &ChainConfig,
+    o: &Opts,
+) -> Result<serde_json::Value, CliError> {
+    let mut watch = GoalGuide::new(g.goal(), false, RoomConfig::default());
+    let plain = OnlineConfig { measure_cold: false, renew: false, ..o.online };
+    let near = online::explore_guided(truth, config, &plain, o.seed, &mut |_| {}, &mut watch)
+        .map_err(|e| args::failed(o.map.display(), e))?;
+    let policy = |name: &str, found: Option<f64>, e: &online::Exploration| {
+        serde_json::json!({
+            "policy": name,
+            "found_at_m": found,
+            "travelled_m": e.explorer.travelled_m(),
+            "goals": e.explorer.goals(),
+            "updates": e.updates(),
+        })
+    };
+    Ok(serde_json::json!({
+        "goal": g.goal().name(),
+        "expected_value": policy("expected value", g.found_at_m(), run),
+        "nearest_frontier": policy("nearest frontier", watch.found_at_m(), &near),
     }))
 }
 

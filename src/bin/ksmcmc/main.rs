@@ -9,6 +9,7 @@ mod evaluate;
 mod explore;
 mod floorplan;
 mod frontier_eval;
+mod goals_eval;
 mod info;
 mod mln;
 mod render;

@@ -49,6 +49,7 @@ use crate::mcmc::{accept, Cumulative, Ring, Rng, TracePoint};
 use crate::vision;
 use serde::{Deserialize, Serialize};
 
+mod guide;
 mod update;
 pub use update::MapUpdate;
 

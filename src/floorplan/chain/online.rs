@@ -15,9 +15,15 @@
 //!
 //! Pass [`ChainConfig::online`] for a robot's map, as `ksmcmc explore` does: its range-sensor
 //! table lays a wall's ring behind the face the robot saw.
+//!
+//! A [`Guide`] ([`explore_guided`]) steers the robot: after each update it may give targets
+//! (the plan's placeholders weighed for a goal, `export::guide`) and it may end the
+//! exploration when what it looks for is found. [`explore`] follows the nearest frontier.
 
+pub use super::guide::GoalGuide;
+use super::posterior::SensorModel;
 use super::{Chain, ChainConfig, ChainError};
-use crate::explore::{ExploreConfig, ExploreError, Explorer};
+use crate::explore::{ExploreConfig, ExploreError, Explorer, Target};
 use crate::floorplan::metrics;
 use crate::grid::{Cell, OccupancyMap};
 use serde::{Deserialize, Serialize};
@@ -41,6 +47,15 @@ pub struct OnlineConfig {
     /// counts its whole budget, fewer than it needs: with the warm chain's budget alone, most
     /// cold chains on the generated floors did (BENCHMARKS, "Cold chains given room").
     pub cold_budget: u64,
+    /// Whether a finished exploration ends as `ksmcmc floorplan` would explain its last map
+    /// (default true; [`Renewal`]). Once the robot has no frontier left the map stops
+    /// changing and its walls are seen from both sides wherever the robot could go, so the
+    /// warm chain takes the whole-map sensor table ([`SensorModel::default`], Tab. 3.1) in
+    /// place of the range-sensor table and climbs for the cold budget; a fresh chain with
+    /// that table, measuring its walls on the last map, climbs as long, and replaces the warm
+    /// chain if its best log posterior is higher (units the warm chain made while the map was
+    /// partial are otherwise never undone).
+    pub renew: bool,
 }
 
 impl Default for OnlineConfig {
@@ -52,6 +67,7 @@ impl Default for OnlineConfig {
             max_updates: 200,
             measure_cold: true,
             cold_budget: 0,
+            renew: true,
         }
     }
 }
@@ -115,6 +131,8 @@ pub enum OnlineError {
     Chain(ChainError),
     /// A setting is out of range.
     Config(String),
+    /// The guide could not weigh the plan's frontiers.
+    Guide(String),
 }
 
 impl std::fmt::Display for OnlineError {
@@ -123,6 +141,7 @@ impl std::fmt::Display for OnlineError {
             OnlineError::Explore(e) => e.fmt(f),
             OnlineError::Chain(e) => e.fmt(f),
             OnlineError::Config(m) => write!(f, "online settings: {m}"),
+            OnlineError::Guide(m) => write!(f, "choosing where to explore: {m}"),
         }
     }
 }
@@ -160,15 +179,47 @@ impl OnlineConfig {
     }
 }
 
+/// The end of a finished exploration ([`OnlineConfig::renew`]): the warm chain under the
+/// whole-map sensor table, and a fresh chain under it.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Renewal {
+    /// Iterations each chain ran under the whole-map table (the cold budget).
+    pub iterations: u64,
+    /// The warm chain's best log posterior on the last map, before the table changed.
+    pub range_sensor_log_posterior: f64,
+    /// K(W, M) of the warm chain's best world then.
+    pub range_sensor_cell_prediction_rate: f64,
+    /// Units of its best world then.
+    pub range_sensor_units: usize,
+    /// The warm chain's best log posterior on the last map under the whole-map table.
+    pub warm_log_posterior: f64,
+    /// The fresh chain's.
+    pub fresh_log_posterior: f64,
+    /// Units of the warm chain's best world.
+    pub warm_units: usize,
+    /// Units of the fresh chain's best world.
+    pub fresh_units: usize,
+    /// K(W, M) of the warm chain's best world on the last map.
+    pub warm_cell_prediction_rate: f64,
+    /// K(W, M) of the fresh chain's.
+    pub fresh_cell_prediction_rate: f64,
+    /// Whether the fresh chain replaced the warm one (its best log posterior is higher).
+    pub adopted: bool,
+}
+
 /// A finished exploration.
 #[derive(Debug, Clone)]
 pub struct Exploration {
-    /// The warm chain, on the robot's last map.
+    /// The chain on the robot's last map: the warm chain, or the fresh chain that replaced it
+    /// ([`Exploration::renewal`]).
     pub chain: Chain,
     /// The robot, at its last cell.
     pub explorer: Explorer,
     /// Every update, in order.
     pub timeline: Vec<UpdateRecord>,
+    /// The fresh chain at the end, when the robot finished and [`OnlineConfig::renew`] asked
+    /// for one.
+    pub renewal: Option<Renewal>,
 }
 
 impl Exploration {
@@ -185,6 +236,30 @@ impl Exploration {
     /// Cold iterations summed over the updates (`None` if not measured).
     pub fn cold_iterations(&self) -> Option<u64> {
         self.timeline.iter().map(|r| r.cold_iterations).sum()
+    }
+}
+
+/// What steers an exploration: where the robot should look next, and when it has found what
+/// it looks for.
+pub trait Guide {
+    /// The targets the robot weighs until the next update, given the chain after it took the
+    /// robot's map ([`Explorer::set_targets`]); none: the nearest frontier.
+    fn targets(&mut self, chain: &mut Chain, explorer: &Explorer) -> Result<Vec<Target>, String>;
+
+    /// Whether the robot has found what it looks for and may stop (checked as it drives,
+    /// every 16 cells).
+    fn found(&mut self, _explorer: &Explorer) -> bool {
+        false
+    }
+}
+
+/// The nearest frontier, to the end: the guide of [`explore`].
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Nearest;
+
+impl Guide for Nearest {
+    fn targets(&mut self, _chain: &mut Chain, _explorer: &Explorer) -> Result<Vec<Target>, String> {
+        Ok(Vec::new())
     }
 }
 
@@ -208,28 +283,103 @@ pub fn explore(
     seed: u64,
     progress: &mut dyn FnMut(&UpdateRecord),
 ) -> Result<Exploration, OnlineError> {
+    explore_guided(truth, chain_config, config, seed, progress, &mut Nearest)
+}
+
+/// [`explore`] steered by `guide`: after the chain's start and each update the robot takes the
+/// guide's targets, and it stops (with an update on its last map) once the guide has found
+/// what it looks for.
+pub fn explore_guided(
+    truth: &OccupancyMap,
+    chain_config: &ChainConfig,
+    config: &OnlineConfig,
+    seed: u64,
+    progress: &mut dyn FnMut(&UpdateRecord),
+    guide: &mut dyn Guide,
+) -> Result<Exploration, OnlineError> {
     config.validate()?;
     let mut explorer = Explorer::new(truth, config.explore, seed).map_err(OnlineError::Explore)?;
     let mut next = config.update_every_m;
-    drive(&mut explorer, next);
+    let mut found = drive(&mut explorer, next, guide);
     let mut chain = Chain::new(&explorer.snapshot(), chain_config.clone(), seed).map_err(OnlineError::Chain)?;
     chain.step(config.iterations);
+    explorer.set_targets(guide.targets(&mut chain, &explorer).map_err(OnlineError::Guide)?);
     let mut timeline = Vec::new();
     let mut scanned = explorer.scans().len();
-    while !explorer.is_done() && timeline.len() < config.max_updates {
+    while !found && !explorer.is_done() && timeline.len() < config.max_updates {
         next += config.update_every_m;
-        drive(&mut explorer, next);
+        found = drive(&mut explorer, next, guide);
         let record = update(&mut chain, &explorer, chain_config, config, seed, timeline.len() + 1, scanned)?;
         scanned = explorer.scans().len();
         progress(&record);
         timeline.push(record);
+        if !found {
+            explorer.set_targets(guide.targets(&mut chain, &explorer).map_err(OnlineError::Guide)?);
+            // A guide may find what it looks for in the plan itself.
+            found = guide.found(&explorer);
+        }
     }
-    Ok(Exploration { chain, explorer, timeline })
+    let renewal = if config.renew && explorer.is_done() {
+        Some(renew(&mut chain, &explorer.snapshot(), chain_config, config, seed)?)
+    } else {
+        None
+    };
+    Ok(Exploration { chain, explorer, timeline, renewal })
 }
 
-/// Drives until the robot has travelled `until_m` metres or has nothing left to explore.
-fn drive(explorer: &mut Explorer, until_m: f64) {
-    while explorer.travelled_m() < until_m && explorer.advance(16) {}
+/// The end of a finished exploration on its last map `last` ([`OnlineConfig::renew`]): the
+/// warm chain under the whole-map table, and a fresh chain with it, each for the cold budget; the fresh chain replaces `chain` if its best log posterior is
+/// higher.
+fn renew(
+    chain: &mut Chain,
+    last: &OccupancyMap,
+    chain_config: &ChainConfig,
+    config: &OnlineConfig,
+    seed: u64,
+) -> Result<Renewal, OnlineError> {
+    let k = |c: &Chain| metrics::prediction_rate(last.classified(), &c.best_world());
+    let (range_lp, range_k, range_units) = (chain.best_log_posterior(), k(chain), chain.best_world().units.len());
+    let sensor = SensorModel::default();
+    chain.set_sensor(sensor);
+    chain.step(config.cold_iterations());
+    // The fresh chain measures its walls on the last map, as `ksmcmc floorplan` does (unless
+    // the configuration sets them): their unseen cores read unknown there, and a ring as deep
+    // as the walls seen from both sides predicts them occupied.
+    let mut whole = chain_config.clone();
+    whole.posterior.sensor = sensor;
+    let mut fresh = Chain::new(last, whole, seed).map_err(OnlineError::Chain)?;
+    fresh.step(config.cold_iterations());
+    let (warm_log_posterior, fresh_log_posterior) = (chain.best_log_posterior(), fresh.best_log_posterior());
+    let renewal = Renewal {
+        iterations: config.cold_iterations(),
+        range_sensor_log_posterior: range_lp,
+        range_sensor_cell_prediction_rate: range_k,
+        range_sensor_units: range_units,
+        warm_log_posterior,
+        fresh_log_posterior,
+        warm_units: chain.best_world().units.len(),
+        fresh_units: fresh.best_world().units.len(),
+        warm_cell_prediction_rate: k(chain),
+        fresh_cell_prediction_rate: k(&fresh),
+        adopted: fresh_log_posterior > warm_log_posterior,
+    };
+    if renewal.adopted {
+        *chain = fresh;
+    }
+    Ok(renewal)
+}
+
+/// Drives until the robot has travelled `until_m` metres, has nothing left to explore or
+/// has found what `guide` looks for (then returns true).
+fn drive(explorer: &mut Explorer, until_m: f64, guide: &mut dyn Guide) -> bool {
+    loop {
+        if guide.found(explorer) {
+            return true;
+        }
+        if explorer.travelled_m() >= until_m || !explorer.advance(16) {
+            return guide.found(explorer);
+        }
+    }
 }
 
 /// One update: the warm chain takes the snapshot, a cold one starts on it, both run.

@@ -128,6 +128,29 @@ impl Chain {
         Ok(MapUpdate { changed_cells: changed.len(), window: Some(window), candidates_dropped, candidates_added })
     }
 
+    /// Explains the map from now on under the sensor table `sensor` (Tab. 3.1), going on from
+    /// the current world: the log posteriors of the current and best worlds are rescored under
+    /// it, and the best world is the better of the two. An exploring chain takes the
+    /// whole-map table once the robot has finished (`online::OnlineConfig::renew`): its
+    /// walls are then seen from both sides, and the range-sensor table, which lays a ring
+    /// behind a face seen from one side, no longer fits the map.
+    ///
+    /// ```
+    /// use ksmcmc::floorplan::{posterior::SensorModel, synth, Chain, ChainConfig};
+    /// let s = synth::generate(&synth::SynthConfig { width: 160, height: 120, ..Default::default() }, 2)?;
+    /// let mut chain = Chain::new(&s.map, ChainConfig::online(), 1)?;
+    /// chain.step(2000);
+    /// chain.set_sensor(SensorModel::default());
+    /// assert_eq!(chain.config().posterior.sensor, SensorModel::default());
+    /// assert!(chain.check_consistency());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn set_sensor(&mut self, sensor: super::posterior::SensorModel) {
+        self.config.posterior.sensor = sensor;
+        self.posterior = super::Posterior::at_resolution(&self.config.posterior, self.resolution);
+        self.rescore_best();
+    }
+
     /// Removes the units (with their doors) whose rectangle holds a changed cell: they were
     /// fitted to space the map did not know, and fragments of a room seen in parts merge
     /// badly. The units elsewhere stay, and the schedule's ADD phase explains the changed space

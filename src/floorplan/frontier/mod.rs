@@ -14,21 +14,27 @@
 //!
 //! * `stretches`: the frontier cells, grouped and cut into stretches, and what lies behind each;
 //! * `rules`: the Markov logic network, the evidence it is given and what it answers;
+//! * `goal`: what a placeholder is worth to a robot looking for a new room or a type of space
+//!   ([`Goal`]), for goal-driven exploration;
 //! * `truth`: what truly lies behind a placeholder of a generated floor seen in part, for
 //!   learning the rules' weights and scoring them (`ksmcmc evaluate --only frontier`).
 //!
 //! The room layer calls [`placeholders`] last ([`crate::floorplan::rooms::RoomLayer::explain`]),
 //! so every plan (the command line, the wasm plan, the wings, the edits) has them in
-//! `world.json`. It imports the world, the grid and the Markov logic engine, nothing of the
-//! room layer or the chain.
+//! `world.json`. It imports the world, the grid, the Markov logic engine and the explorer's
+//! [`crate::explore::Target`], nothing of the room layer or the chain.
 
+mod goal;
 mod rules;
 mod stretches;
 mod truth;
 
+pub use goal::Goal;
 pub use rules::{evidence, FrontierRules, BUILTIN_FRONTIER_RULES, FRONTIER_EVIDENCE, FRONTIER_QUERY, FRONTIER_RULES};
 pub use stretches::{Stretch, AT_DOOR_M, BEHIND_M, JAMB_M, MAX_STRETCH_M, MIN_BEHIND_M2, MIN_UNSEEN_M, MIN_WIDTH_M};
-pub use truth::{frontier_truth, unentered_doors, Beyond, FrontierCase, NEW_ROOM_SEEN, TRUTH_M, TRUTH_MIN_M2};
+pub use truth::{
+    frontier_truth, seen_shares, unentered_doors, Beyond, FrontierCase, NEW_ROOM_SEEN, TRUTH_M, TRUTH_MIN_M2,
+};
 
 use crate::floorplan::world::{Placeholder, TypeProbabilities, World};
 use crate::grid::{Cell, Grid};

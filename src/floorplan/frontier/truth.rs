@@ -154,6 +154,13 @@ pub fn unentered_doors(truth: &World, partial: &Grid<Cell>, truth_labels: &Grid<
 /// Per truth label `0..=units` (a larger label counts as `units`), the cells of
 /// `truth_labels` that carry it, and of those the cells `partial` has seen free:
 /// `(seen, total)`.
+/// Per truth unit (by label: index + 1; 0 is no unit), the share of its floor that `partial`
+/// shows free: how much of it a robot has seen.
+pub fn seen_shares(partial: &Grid<Cell>, truth_labels: &Grid<u16>, units: usize) -> Vec<f64> {
+    let (seen, total) = seen_cells(partial, truth_labels, units);
+    seen.iter().zip(&total).map(|(&s, &t)| if t == 0 { 0.0 } else { s as f64 / t as f64 }).collect()
+}
+
 fn seen_cells(partial: &Grid<Cell>, truth_labels: &Grid<u16>, units: usize) -> (Vec<usize>, Vec<usize>) {
     let (mut seen, mut total) = (vec![0usize; units + 1], vec![0usize; units + 1]);
     for (&l, &c) in truth_labels.cells().iter().zip(partial.cells()) {

@@ -188,6 +188,7 @@ function wire() {
     state.view3d.view?.frame();
     state.view3d.view?.render();
   });
+  ui.route.placeholder.addEventListener('change', () => attempt(() => state.route.toPlaceholder(ui.route.placeholder.value)));
   ui.route.form.addEventListener('submit', (e) => {
     e.preventDefault();
     attempt(() => state.route.submit());
@@ -216,6 +217,7 @@ async function main() {
   state.rooms = new RoomsFeed(() => state.chain, showRooms);
   state.route = new RouteView({ ...ui.route, canvas: ui.canvas }, {
     plan: (from, to) => invoke('route', from[0], from[1], to[0], to[1]),
+    placeholders: () => invoke('placeholdersJson'),
     rooms: () => state.rooms.rooms,
     size: () => ({ width: state.map.width, height: state.map.height }),
     cellOf: (e) => cellFromEvent(e),

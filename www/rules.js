@@ -4,24 +4,37 @@
 // here and for the inference, the chain's pkg/ksmcmc.js in the worker); this file is wiring. The chain and the inference run in a Web Worker (lib/chain-worker.js), as on
 // the live mapper page, so that neither blocks a frame of the page.
 
-import init, { builtinIndoorRules, checkRules, handSetIndoorRules } from './pkg/ksmcmc_rules.js';
+import init, {
+  builtinFrontierRules, builtinIndoorRules, checkFrontierRules, checkRules, handSetFrontierRules, handSetIndoorRules,
+} from './pkg/ksmcmc_rules.js';
 import { messages } from './lib/messages.js';
 import { RemoteChain } from './lib/remote-chain.js';
 import { rulesEditor } from './lib/rules-editor.js';
 import { naturalCompare } from './lib/natural.js';
 
-const SAMPLE = 'office-small';
+/** The sample the chain explains: `?sample=NAME` (a folder of www/samples), else office-small. */
+const SAMPLE = (() => {
+  const asked = new URLSearchParams(location.search).get('sample');
+  return asked && /^[a-z0-9-]+$/.test(asked) ? asked : 'office-small';
+})();
 const INFER_EVERY_MS = 400;
 
 const $ = (id) => document.getElementById(id);
 const { showError } = messages({ message: $('message'), messageText: $('message-text'), messageClose: $('message-close') });
-const ui = { kb: $('kb'), error: $('kb-error'), map: $('map'), evidence: $('evidence'), marginals: $('marginals').tBodies[0], sale: $('salele').tBodies[0] };
+const ui = {
+  kb: $('kb'), error: $('kb-error'), map: $('map'), evidence: $('evidence'), marginals: $('marginals').tBodies[0], sale: $('salele').tBodies[0],
+  frontier: $('frontier-kb'), frontierError: $('frontier-error'), placeholders: $('placeholders').tBodies[0], placeholdersSummary: $('placeholders-summary'),
+};
 
 const state = {
   editor: null, source: null, resolution: 0.05, chain: null, generation: -1, stats: null, busy: false,
   goodKb: '', kbUsed: '', error: null, runs: 0, lastInfer: 0, inferred: null, worldUnits: 0, inferError: null,
   /** The reference world to learn from (world.json text) and its name; learnings done. */
   reference: null, referenceName: '', learning: false, learned: 0,
+  /** The frontier rules' editor, its last good text and the text the chain runs with, and its error. */
+  frontierEditor: null, goodFrontier: '', frontierUsed: '', frontierError: null,
+  /** The best world's placeholders as last read (null: none read yet). */
+  placeholders: null,
 };
 
 const TYPES = new Set(['room', 'corridor', 'hall', 'other']);
@@ -30,17 +43,20 @@ const TYPES = new Set(['room', 'corridor', 'hall', 'other']);
  * Puts `text` into the editor as an edit of the user's (so Ctrl+Z in the editor brings the old
  * text back), and checks it.
  */
-function replaceRules(text) {
+function replaceRules(text, area = ui.kb, editor = state.editor) {
   const back = document.activeElement;
-  ui.kb.focus();
-  ui.kb.select();
+  area.focus();
+  area.select();
   // insertText keeps the browser's undo history; where it is missing, the text is set.
-  if (!document.execCommand?.('insertText', false, text) || ui.kb.value !== text) ui.kb.value = text;
-  state.editor.check();
-  ui.kb.setSelectionRange(0, 0);
-  ui.kb.scrollTop = 0;
+  if (!document.execCommand?.('insertText', false, text) || area.value !== text) area.value = text;
+  editor.check();
+  area.setSelectionRange(0, 0);
+  area.scrollTop = 0;
   if (back instanceof HTMLElement && back !== document.body) back.focus();
 }
+
+/** The same for the frontier rules' editor. */
+const replaceFrontierRules = (text) => replaceRules(text, ui.frontier, state.frontierEditor);
 
 /** Takes `text` as the reference world to learn from, if it parses and has typed units. */
 function setReference(text, name) {
@@ -109,6 +125,8 @@ function checked(text, err) {
 /** Starts the chain over with the last good rules (in the worker; the numbers follow). */
 async function run() {
   state.kbUsed = state.goodKb;
+  state.frontierUsed = state.goodFrontier;
+  state.placeholders = null;
   state.runs++;
   const runs = state.runs;
   state.inferred = null;
@@ -117,7 +135,7 @@ async function run() {
   state.lastInfer = 0;
   $('runs').textContent = String(state.runs);
   try {
-    const config = JSON.stringify({ knowledge: { enabled: true, kb: state.kbUsed } });
+    const config = JSON.stringify({ knowledge: { enabled: true, kb: state.kbUsed, frontier_kb: state.frontierUsed } });
     const { stats } = await state.chain.call('load', { source: state.source, config, seed: 1 });
     if (runs !== state.runs) return;
     state.generation = stats.generation;
@@ -166,6 +184,28 @@ function showInferred({ world, inferred, error }) {
   );
 }
 
+/** Lists the best world's placeholders (`placeholdersJson` text): what the frontier rules say. */
+function showPlaceholders(text) {
+  const list = JSON.parse(text);
+  state.placeholders = list;
+  const likely = list.filter((p) => p.p_new_room >= 0.5).length;
+  ui.placeholdersSummary.textContent = list.length
+    ? `${list.length} placeholder${list.length === 1 ? '' : 's'}, ${likely} likely to lead to a new room (P ≥ 0.5).`
+    : 'The best world has no placeholders: no frontier between seen and unseen floor.';
+  ui.placeholders.replaceChildren(
+    ...list.map((p) => {
+      const tr = document.createElement('tr');
+      tr.dataset.placeholder = String(p.id);
+      cell(tr, `#${p.id}`);
+      cell(tr, p.room ? String(p.room) : '–');
+      cell(tr, p.width_m.toFixed(2));
+      cell(tr, p.p_new_room.toFixed(3));
+      for (const t of [p.types.room, p.types.corridor, p.types.hall, p.types.other]) cell(tr, t.toFixed(3));
+      return tr;
+    }),
+  );
+}
+
 /** Every INFER_EVERY_MS: the best world's picture and inference from the worker. */
 async function refresh() {
   const { generation, runs } = state;
@@ -190,6 +230,10 @@ async function refresh() {
   c.getContext('2d').drawImage(frame.picture, 0, 0);
   frame.picture.close();
   showInferred(inferred);
+  if (frame.stats.bestUnits > 0) {
+    const text = await state.chain.call('invoke', { name: 'placeholdersJson' });
+    if (runs === state.runs && generation === state.generation) showPlaceholders(text);
+  }
 }
 
 function frame(now) {
@@ -220,6 +264,17 @@ async function main() {
     state.resolution = Number(yaml.match(/resolution:\s*([0-9.eE+-]+)/)?.[1] ?? 0.05);
     ui.kb.value = forReading(builtinIndoorRules());
     state.editor = rulesEditor(ui.kb, { check: checkRules, status: ui.error, okText: 'Knowledge base OK', gutterId: 'gutter', onCheck: checked });
+    ui.frontier.value = builtinFrontierRules();
+    state.frontierEditor = rulesEditor(ui.frontier, {
+      check: checkFrontierRules, status: ui.frontierError, okText: 'Frontier rules OK', gutterId: 'frontier-gutter',
+      onCheck: (text, err) => {
+        state.frontierError = err;
+        if (!err) state.goodFrontier = text;
+      },
+    });
+    $('frontier-builtin').addEventListener('click', () => replaceFrontierRules(builtinFrontierRules()));
+    $('frontier-handset').addEventListener('click', () => replaceFrontierRules(handSetFrontierRules()));
+    $('truth').textContent = `Load ${SAMPLE}'s truth.json`;
     $('rerun').addEventListener('click', () => run());
     $('builtin').addEventListener('click', () => replaceRules(forReading(builtinIndoorRules())));
     $('handset').addEventListener('click', () => replaceRules(handSetIndoorRules()));
@@ -261,6 +316,12 @@ async function main() {
         reference: state.referenceName,
         learning: state.learning,
         learned: state.learned,
+        frontierError: state.frontierError,
+        goodFrontier: state.goodFrontier,
+        frontierUsed: state.frontierUsed,
+        frontierErrorText: ui.frontierError.textContent,
+        placeholders: state.placeholders,
+        placeholderRows: ui.placeholders.rows.length,
       }),
     };
     document.documentElement.dataset.state = 'ready';

@@ -33,6 +33,34 @@ pub fn hand_set_indoor_rules() -> String {
 }
 
 #[cfg(feature = "wasm-rules")]
+/// The built-in frontier rules (`samples/knowledge/frontier-learned.mln`: weights learned on
+/// generated floors explored in part) as text: what weighs the placeholders of a plan.
+#[wasm_bindgen(js_name = builtinFrontierRules)]
+pub fn builtin_frontier_rules() -> String {
+    crate::floorplan::frontier::BUILTIN_FRONTIER_RULES.to_string()
+}
+
+#[cfg(feature = "wasm-rules")]
+/// The frontier rules with hand-set weights (`samples/knowledge/frontier.mln`, where each rule
+/// is explained).
+#[wasm_bindgen(js_name = handSetFrontierRules)]
+pub fn hand_set_frontier_rules() -> String {
+    crate::floorplan::frontier::FRONTIER_RULES.to_string()
+}
+
+#[cfg(feature = "wasm-rules")]
+/// Checks frontier rules as a chain's `knowledge.frontier_kb` is checked: `null` when they
+/// parse and declare the queries (`NewRoom` and the `Beyond*` kinds, each of one place), else
+/// `{line, column, message}` (line 0 when the fault is no one line's).
+#[wasm_bindgen(js_name = checkFrontierRules, unchecked_return_type = "{ line: number; column: number; message: string } | null")]
+pub fn check_frontier_rules(text: &str) -> Result<JsValue, JsError> {
+    match crate::floorplan::frontier::FrontierRules::parse(text) {
+        Ok(_) => Ok(JsValue::NULL),
+        Err(e) => Ok(serde_wasm_bindgen::to_value(&RuleError::from(&e))?),
+    }
+}
+
+#[cfg(feature = "wasm-rules")]
 /// Learns the weights of knowledge base `rules` from a labelled world (`world.json` text with
 /// typed units, e.g. a sample's `truth.json`) at `resolution` metres per cell, by
 /// pseudo-likelihood (`method` "pll", the default: milliseconds) or discriminatively

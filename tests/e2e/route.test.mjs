@@ -105,3 +105,49 @@ test('route mode: click start and goal, see the path and its doors, as ksmcmc ro
   await page.context().close();
   assert.deepEqual(problems, [], 'the page logged errors');
 });
+
+test('route mode: a placeholder as the goal, listed most likely first, as ksmcmc route --to-placeholder plans it', async () => {
+  const page = await openPage(env, 'mapper.html?sample=partial&ipf=3000&seed=2');
+  await page.click('#step');
+  await page.evaluate(() => window.__ksmcmc.idle());
+  const pgm = new Uint8Array(await page.evaluate(async () => Array.from(await window.__ksmcmc.mapper.labelsPgm())));
+  const labels = readPgm16(pgm);
+  const [a] = twoRooms(labels);
+  const world = JSON.parse(await page.evaluate(() => window.__ksmcmc.mapper.bestWorldJson()));
+  assert.ok(world.placeholders?.length > 0, 'the partly explored sample has frontiers');
+
+  await page.locator('body').press('g');
+  await page.waitForFunction(() => window.__ksmcmc.route().placeholders.length > 0);
+  // The select lists the best world's placeholders, the likeliest new room first.
+  const options = await page.$$eval('#route-placeholder option', (os) => os.map((o) => o.value).filter(Boolean));
+  const byP = [...world.placeholders].sort((p, q) => q.p_new_room - p.p_new_room || p.id - q.id).map((p) => String(p.id));
+  assert.deepEqual(options, byP);
+  assert.equal(await page.isDisabled('#route-placeholder'), false);
+
+  const box = await page.locator('#map').boundingBox();
+  await page.mouse.click(box.x + ((a[0] + 0.5) * box.width) / labels.width, box.y + ((a[1] + 0.5) * box.height) / labels.height);
+  const id = options[0];
+  await page.selectOption('#route-placeholder', id);
+  await page.waitForFunction(() => {
+    const r = window.__ksmcmc.route();
+    return r.result || r.error;
+  });
+  const r = await route(page);
+  const p = world.placeholders.find((q) => String(q.id) === id);
+  assert.equal(r.error, null);
+  assert.deepEqual(r.to, [p.x, p.y]);
+  assert.equal(await page.inputValue('#route-to'), `${p.x},${p.y}`);
+  assert.deepEqual(r.result.path.at(-1), [p.x, p.y]);
+
+  writeFileSync(join(tmp, 'world-p.json'), JSON.stringify(world));
+  writeFileSync(join(tmp, 'labels-p.pgm'), pgm);
+  const sample = join(REPO, 'samples/partial/map.yaml');
+  const native = JSON.parse(
+    cli('route', sample, join(tmp, 'world-p.json'), '--labels', join(tmp, 'labels-p.pgm'), '--from', a.join(','), '--to-placeholder', id),
+  );
+  assert.deepEqual(r.result, native);
+
+  const problems = page.problems;
+  await page.context().close();
+  assert.deepEqual(problems, [], 'the page logged errors');
+});

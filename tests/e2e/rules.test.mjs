@@ -148,3 +148,54 @@ test('learn the weights from the reference world, undo, hand-set weights, and th
   assert.deepEqual(page.problems, []);
   await page.context().close();
 });
+
+test('frontier rules: the placeholders table, errors at line and column, re-run with hand-set weights', async () => {
+  // The partly explored sample: its plan has frontiers.
+  const page = await openPage(env, 'rules.html?sample=partial');
+  const builtin = await page.inputValue('#frontier-kb');
+  assert.match(builtin, /NewRoom\(place\)/);
+  await until(page, 's.placeholders && s.placeholders.length > 0 && s.placeholderRows === s.placeholders.length');
+  let s = await snap(page);
+  assert.equal(s.frontierError, null);
+  assert.equal(s.frontierUsed, builtin, 'the chain runs with the built-in frontier rules as shown');
+  for (const p of s.placeholders) {
+    assert.ok(p.p_new_room >= 0 && p.p_new_room <= 1);
+    const sum = p.types.room + p.types.corridor + p.types.hall + p.types.other;
+    assert.ok(Math.abs(sum - 1) < 0.01, `types sum to ${sum}`);
+  }
+  const first = s.placeholders.map((p) => p.p_new_room);
+
+  // A missing query is refused with what to declare; the last good rules stay.
+  await page.fill('#frontier-kb', 'Narrow(place)\n1 Narrow(p)\n');
+  await settled(page);
+  s = await snap(page);
+  assert.ok(s.frontierError, 'the error is reported');
+  assert.match(s.frontierErrorText, /must declare the query NewRoom\(place\)/);
+  assert.equal(s.goodFrontier, builtin);
+  // A syntax error at its line.
+  const lines = builtin.split('\n');
+  const i = lines.findIndex((l) => /Narrow\(p\)/.test(l) && !l.startsWith('//'));
+  assert.ok(i >= 0, 'a rule on Narrow(p)');
+  lines[i] = lines[i].replace('Narrow(p)', 'Narrow(p');
+  await page.fill('#frontier-kb', lines.join('\n'));
+  await settled(page);
+  s = await snap(page);
+  assert.equal(s.frontierError?.line, i + 1);
+
+  // The hand-set weights, re-run: the chain runs with them and the placeholders change.
+  await page.click('#frontier-handset');
+  await settled(page);
+  s = await snap(page);
+  assert.equal(s.frontierError, null);
+  assert.match(s.goodFrontier, /NewRoom/);
+  assert.notEqual(s.goodFrontier, builtin);
+  await page.click('#rerun');
+  await until(page, 's.runs === 2 && s.placeholders && s.placeholders.length > 0');
+  s = await snap(page);
+  assert.equal(s.frontierUsed, s.goodFrontier);
+  assert.notDeepEqual(s.placeholders.map((p) => p.p_new_room), first, 'the hand-set weights weigh the placeholders otherwise');
+
+  const problems = page.problems;
+  await page.context().close();
+  assert.deepEqual(problems, [], 'the page logged errors');
+});

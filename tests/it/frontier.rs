@@ -114,3 +114,30 @@ fn a_route_can_end_at_a_placeholder() {
     assert_eq!(missing.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&missing.stderr).contains("no placeholder 99999"));
 }
+
+#[test]
+fn a_chains_own_frontier_and_room_rules_reach_the_plan_input() {
+    use ksmcmc::floorplan::frontier::FRONTIER_RULES;
+    use ksmcmc::floorplan::plan_input::PlanInput;
+    use ksmcmc::floorplan::rooms::RoomConfig;
+    use ksmcmc::floorplan::{Chain, ChainConfig};
+    let s = generate(&SynthConfig { unexplored: 0.4, ..Default::default() }, 17).unwrap();
+    let mut config = ChainConfig::default();
+    config.knowledge.frontier_kb = Some(FRONTIER_RULES.to_string());
+    let mut chain = Chain::new(&s.map, config, 1).unwrap();
+    chain.step(3000);
+    let (own, labels) = chain.best_world_with_rooms(&RoomConfig::default()).unwrap();
+    // What the browser hands between its modules: the plan input as JSON text.
+    let input = PlanInput::from_json(&PlanInput::of(&mut chain, 0.0).to_json()).unwrap();
+    assert_eq!(input.frontier_kb.as_deref(), Some(FRONTIER_RULES));
+    let (world, again) = input.explain(&s.map, None).unwrap();
+    assert_eq!(again, labels);
+    assert!(!own.placeholders.is_empty());
+    assert_eq!(world.placeholders, own.placeholders);
+    // The hand-set rules weigh them otherwise than the built-in ones the input used to fall
+    // back to.
+    let builtin = PlanInput { frontier_kb: None, ..input };
+    let (plain, _) = builtin.explain(&s.map, None).unwrap();
+    let p = |w: &World| w.placeholders.iter().map(|p| p.p_new_room).collect::<Vec<_>>();
+    assert_ne!(p(&plain), p(&world));
+}

@@ -41,7 +41,7 @@ const MAPPER_METHODS = new Set(['worldJson', 'setEdits', 'editsJson']);
  * rooms, routes through them and the 3D model); `bestWorldJson` is the plan's `worldJson`, and
  * `toPng` draws what the page shows (below).
  */
-const PLAN_METHODS = new Set(['bestWorldJson', 'labelsPgm', 'graphJson', 'reportJson', 'toPng', 'roomsJson', 'roomTypesJson', 'geojson', 'svg', 'route', 'worldGlb']);
+const PLAN_METHODS = new Set(['bestWorldJson', 'labelsPgm', 'graphJson', 'reportJson', 'toPng', 'roomsJson', 'roomTypesJson', 'geojson', 'svg', 'route', 'worldGlb', 'placeholdersJson']);
 
 const loadPlan = () => loadModule('ksmcmc_plan.js');
 const loadRules = () => loadModule('ksmcmc_rules.js');

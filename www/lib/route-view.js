@@ -1,7 +1,9 @@
 // Route mode of the live mapper: pick a start and a goal on the map (click them, or type their
 // cells), and see the route the chain's worker plans through the best world's rooms and doors
 // (`Mapper.route`, as `ksmcmc route` plans it): the path drawn over the map on a layer of its
-// own, and the rooms and doors it passes listed beside it.
+// own, and the rooms and doors it passes listed beside it. The goal may be a placeholder of the
+// best world (a frontier, with the probability that it leads to a room not yet in the map), as
+// `ksmcmc route --to-placeholder` plans to it.
 
 import { cellAt } from './paint.js';
 import { formatNumber } from './plot.js';
@@ -16,6 +18,11 @@ export function parseCell(text) {
   return [Number(m[1]), Number(m[2])];
 }
 
+/** The likeliest of a placeholder's types (`room`, `corridor`, `hall` or `other`). */
+export function likeliest(types) {
+  return Object.entries(types).reduce((best, t) => (t[1] > best[1] ? t : best))[0];
+}
+
 /** The path's colour, its outline, and the two ends'. */
 const PATH = '#c2185b';
 const OUTLINE = 'rgba(255, 255, 255, 0.9)';
@@ -25,9 +32,11 @@ const GOAL = '#d32f2f';
 export class RouteView {
   /**
    * @param {object} ui  the elements: `canvas` (the map), `layer` (the canvas over it),
-   *   `toggle` (the route-mode button), `from` and `to` (text inputs), `summary`, `rooms`
-   *   and `doors` (where the route is described)
-   * @param {object} host  `plan(from, to)`: a promise of the route's JSON text; `rooms()`: the
+   *   `toggle` (the route-mode button), `from` and `to` (text inputs), `placeholder` (a
+   *   select of the placeholders), `summary`, `rooms` and `doors` (where the route is
+   *   described)
+   * @param {object} host  `plan(from, to)`: a promise of the route's JSON text;
+   *   `placeholders()`: a promise of the best world's placeholders' JSON text; `rooms()`: the
    *   best world's rooms as last read (or null); `size()`: the map's `{ width, height }`
    */
   constructor(ui, host) {
@@ -43,6 +52,56 @@ export class RouteView {
     this.token = 0;
     this.busy = false;
     this.scale = 1;
+    /** The best world's placeholders as last read, and the request for them on its way. */
+    this.placeholders = [];
+    this.listToken = 0;
+  }
+
+  /**
+   * Reads the best world's placeholders again and lists them in the select, most likely to
+   * lead to a new room first. The select keeps the one chosen if it is still there.
+   */
+  async listPlaceholders() {
+    if (!this.host.placeholders || !this.ui.placeholder) return;
+    const token = ++this.listToken;
+    let list = [];
+    try {
+      list = JSON.parse(await this.host.placeholders());
+    } catch {
+      list = [];
+    }
+    if (token !== this.listToken) return;
+    this.placeholders = list;
+    const select = this.ui.placeholder;
+    const kept = select.value;
+    const sorted = [...list].sort((a, b) => b.p_new_room - a.p_new_room || a.id - b.id);
+    const none = document.createElement('option');
+    none.value = '';
+    none.textContent = list.length ? `Choose one of ${list.length}` : 'No placeholders: the map has no frontier';
+    select.replaceChildren(
+      none,
+      ...sorted.map((p) => {
+        const o = document.createElement('option');
+        o.value = String(p.id);
+        o.textContent = `#${p.id}: ${Math.round(100 * p.p_new_room)} % new room, likely a ${likeliest(p.types)} (${p.room ? `from room ${p.room}` : 'from no room'})`;
+        return o;
+      }),
+    );
+    select.value = sorted.some((p) => String(p.id) === kept) ? kept : '';
+    select.disabled = list.length === 0;
+  }
+
+  /** Makes placeholder `id` (its `value` in the select) the goal, and plans if the start is set. */
+  toPlaceholder(id) {
+    const p = this.placeholders.find((q) => String(q.id) === String(id));
+    if (!p) return Promise.resolve();
+    this.to = [p.x, p.y];
+    this.ui.to.value = this.to.join(',');
+    this.result = null;
+    this.error = null;
+    this.show();
+    this.draw();
+    return this.from ? this.request() : Promise.resolve();
   }
 
   /** Turns route mode on or off (the ends and the route stay shown). */
@@ -50,7 +109,10 @@ export class RouteView {
     this.active = on;
     this.ui.toggle.setAttribute('aria-pressed', String(on));
     this.ui.canvas.classList.toggle('routing', on);
-    if (on) this.ui.canvas.focus({ preventScroll: true });
+    if (on) {
+      this.ui.canvas.focus({ preventScroll: true });
+      this.listPlaceholders();
+    }
   }
 
   /** A pointer press on the map in route mode: the start, then the goal, then a new start. */
@@ -84,6 +146,7 @@ export class RouteView {
 
   /** Plans the route between the ends again (the best world changed), if both are set. */
   refresh() {
+    if (this.active) this.listPlaceholders();
     return this.from && this.to ? this.request() : Promise.resolve();
   }
 
@@ -93,6 +156,15 @@ export class RouteView {
     this.from = this.to = this.result = this.error = null;
     this.busy = false;
     this.ui.from.value = this.ui.to.value = '';
+    this.placeholders = [];
+    this.listToken++;
+    if (this.ui.placeholder) {
+      const none = document.createElement('option');
+      none.value = '';
+      none.textContent = 'No placeholders yet';
+      this.ui.placeholder.replaceChildren(none);
+      this.ui.placeholder.disabled = true;
+    }
     this.show();
     this.draw();
   }
@@ -198,6 +270,9 @@ export class RouteView {
 
   /** For tests: what the view holds. */
   snapshot() {
-    return { active: this.active, from: this.from, to: this.to, result: this.result, error: this.error, busy: this.busy };
+    return {
+      active: this.active, from: this.from, to: this.to, result: this.result, error: this.error, busy: this.busy,
+      placeholders: this.placeholders,
+    };
   }
 }

@@ -37,6 +37,7 @@ export const ui = {
   },
   route: {
     toggle: $('route-mode'), form: $('route-form'), from: $('route-from'), to: $('route-to'), plan: $('route-plan'),
+    placeholder: $('route-placeholder'),
     layer: $('route-layer'), summary: $('route-summary'), rooms: $('route-rooms'), doors: $('route-doors'),
   },
   stat: {

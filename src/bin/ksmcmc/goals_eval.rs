@@ -3,21 +3,23 @@
 //! with the most probability of reaching its goal per metre (`floorplan::online::GoalGuide`).
 //!
 //! Each floor is generated with the test seeds of the frontier set (the frontier rules'
-//! weights were learned on other seeds), and explored from several starts drawn from the run
-//! seed, once with each policy, with the chain following as in `ksmcmc explore`. A goal is
+//! weights were learned on other seeds), and explored from the middle of one of its rooms
+//! (offices, the run seed choosing which; a robot that starts in a hall has found one), once
+//! with each policy, with the chain following as in `ksmcmc explore`. A goal is
 //! found when a truth unit of its type (any type for a new room) that was less than half seen
 //! after the first scan is at least half seen ([`NEW_ROOM_SEEN`]); the robot stops there. The
 //! metres driven and the goals chosen until then are compared on the runs where both policies
 //! found it.
 
 use crate::args::{self, CliError};
-use ksmcmc::explore::Explorer;
 use ksmcmc::explore::Target;
+use ksmcmc::explore::{ExploreConfig, Explorer};
 use ksmcmc::floorplan::frontier::{seen_shares, Goal, NEW_ROOM_SEEN};
 use ksmcmc::floorplan::online::{self, GoalGuide, Guide, OnlineConfig};
 use ksmcmc::floorplan::rooms::RoomConfig;
 use ksmcmc::floorplan::synth::{generate, SynthConfig, Synthetic};
 use ksmcmc::floorplan::{Chain, ChainConfig, UnitType};
+use ksmcmc::grid::Cell;
 use std::time::Instant;
 
 /// Seeds of the floors (the frontier set's test seeds).
@@ -88,6 +90,15 @@ impl Guide for ByTruth<'_> {
     }
 }
 
+/// The middle cell of the truth room (type room) the run seed picks, if it is free.
+fn start_in_room(floor: &Synthetic, seed: u64) -> Option<[u32; 2]> {
+    let rooms: Vec<_> = floor.truth.units.iter().filter(|u| u.kind == UnitType::Room).collect();
+    let u = rooms.get((seed as usize * 7) % rooms.len().max(1))?;
+    let (x, y) = (u.x + u.w / 2, u.y + u.h / 2);
+    let free = floor.map.classified().get(i64::from(x), i64::from(y)) == Some(&Cell::Free);
+    free.then_some([x as u32, y as u32])
+}
+
 /// One exploration's finding: metres and goals when found (`None`: never found).
 fn explore_for(
     floor: &Synthetic,
@@ -97,6 +108,9 @@ fn explore_for(
     chain: &ChainConfig,
     online: &OnlineConfig,
 ) -> Result<Option<Found>, CliError> {
+    let online =
+        OnlineConfig { explore: ExploreConfig { start: start_in_room(floor, seed), ..online.explore }, ..*online };
+    let online = &online;
     let mut guide = ByTruth {
         plan: GoalGuide::new(goal, steer, RoomConfig::default()),
         goal,
@@ -110,15 +124,35 @@ fn explore_for(
     Ok(guide.found_at_m.map(|m| (m, guide.goals)))
 }
 
-/// The goals set (module docs), with `iterations` per update.
+/// The middle of `v` (the mean of the two middle values of an even count; 0 if empty).
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    match v.len() {
+        0 => 0.0,
+        n if n % 2 == 1 => v[n / 2],
+        n => (v[n / 2 - 1] + v[n / 2]) / 2.0,
+    }
+}
+
+/// The goals set (module docs), with `iterations` per update, at the default update interval
+/// (10 m) and at half of it.
 pub fn goals(iterations: u64) -> Result<(), CliError> {
+    for every in [OnlineConfig::default().update_every_m, OnlineConfig::default().update_every_m / 2.0] {
+        goals_every(iterations, every)?;
+    }
+    Ok(())
+}
+
+/// The goals set with updates every `every` metres.
+fn goals_every(iterations: u64, every: f64) -> Result<(), CliError> {
     let chain = ChainConfig::online();
-    let online = OnlineConfig { iterations, measure_cold: false, renew: false, ..Default::default() };
+    let online =
+        OnlineConfig { iterations, update_every_m: every, measure_cold: false, renew: false, ..Default::default() };
     println!(
         "\n### Goal-driven exploration ({iterations} iterations per update, every {} m; floors {FLOOR_SEEDS:?}, runs {RUN_SEEDS:?})\n",
         online.update_every_m
     );
-    println!("| goal | kind | runs | found (nearest / expected value) | both found | mean m, nearest | mean m, expected value | mean goals, nearest / expected value | expected value shorter in |");
+    println!("| goal | kind | runs | found (nearest / expected value) | both found | mean m (nearest / expected value) | median m | mean goals | expected value shorter / longer / same |");
     println!("|---|---|---|---|---|---|---|---|---|");
     let t0 = Instant::now();
     let mut all: Vec<(f64, f64)> = Vec::new();
@@ -140,17 +174,20 @@ pub fn goals(iterations: u64) -> Result<(), CliError> {
         let n = both.len().max(1) as f64;
         let mean = |f: &dyn Fn(&(Found, Found)) -> f64| both.iter().map(f).sum::<f64>() / n;
         let shorter = both.iter().filter(|(a, b)| b.0 < a.0).count();
+        let longer = both.iter().filter(|(a, b)| b.0 > a.0).count();
         println!(
-            "| {} | {kind} | {runs} | {} / {} | {} | {:.1} | {:.1} | {:.1} / {:.1} | {shorter} of {} |",
+            "| {} | {kind} | {runs} | {} / {} | {} | {:.1} / {:.1} | {:.1} / {:.1} | {:.1} / {:.1} | {shorter} / {longer} / {} |",
             goal.name(),
             found[0],
             found[1],
             both.len(),
             mean(&|p| p.0 .0),
             mean(&|p| p.1 .0),
+            median(both.iter().map(|p| p.0 .0).collect()),
+            median(both.iter().map(|p| p.1 .0).collect()),
             mean(&|p| p.0 .1 as f64),
             mean(&|p| p.1 .1 as f64),
-            both.len()
+            both.len() - shorter - longer
         );
         if matches!(goal, Goal::Find(UnitType::Hall)) {
             all.extend(both.iter().map(|(a, b)| (a.0, b.0)));

@@ -107,6 +107,13 @@ impl RoomInput {
         self
     }
 
+    /// The same input with other frontier rules (`None`: the built-in ones), which weigh the
+    /// placeholders with knowledge supervision or without.
+    pub fn with_frontier_rules(mut self, rules: Option<String>) -> RoomInput {
+        self.knowledge.frontier_kb = rules;
+        self
+    }
+
     /// The training world of the room rules for this input's world, with `truth` the truth
     /// labels of the map ([`super::rooms::room_training`]).
     pub fn room_training(

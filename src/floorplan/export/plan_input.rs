@@ -69,6 +69,14 @@ pub struct PlanInput {
     /// default limits).
     #[serde(default)]
     pub doors: DoorSizes,
+    /// The chain's room rules ([`crate::floorplan::knowledge::KnowledgeConfig::room_kb`]), if
+    /// it was given its own (default: the built-in ones).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub room_kb: Option<String>,
+    /// The chain's frontier rules ([`crate::floorplan::knowledge::KnowledgeConfig::frontier_kb`]),
+    /// if it was given its own (default: the built-in ones), which weigh the placeholders.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub frontier_kb: Option<String>,
 }
 
 fn no_edits() -> String {
@@ -121,6 +129,8 @@ impl PlanInput {
             chain: Some(ChainSummary::of(chain, seconds)),
             setup_seconds: None,
             doors: chain.config().doors,
+            room_kb: chain.config().knowledge.room_kb.clone(),
+            frontier_kb: chain.config().knowledge.frontier_kb.clone(),
         }
     }
 
@@ -170,7 +180,9 @@ impl PlanInput {
         edits.check_map(map.width(), map.height()).map_err(|e| PlanInputError::new(format!("edits: {e}")))?;
         let carry = !edits.is_empty();
         let input = RoomInput::for_map(self.world.clone(), map, self.knowledge, edits)
-            .map_err(|e| PlanInputError::new(e.to_string()))?;
+            .map_err(|e| PlanInputError::new(e.to_string()))?
+            .with_room_rules(self.room_kb.clone())
+            .with_frontier_rules(self.frontier_kb.clone());
         let (mut world, mut labels) =
             input.explain(&RoomConfig::default()).map_err(|e| PlanInputError::new(e.to_string()))?;
         if let Some(previous) = previous.filter(|_| carry) {
@@ -199,7 +211,9 @@ impl PlanInput {
         // One room input for the rooms the rules group and, where they go by the walls, for
         // those: the map turned into the world frame once.
         let input = RoomInput::for_map(self.world.clone(), map, self.knowledge, self.edits()?)
-            .map_err(|e| PlanInputError::new(e.to_string()))?;
+            .map_err(|e| PlanInputError::new(e.to_string()))?
+            .with_room_rules(self.room_kb.clone())
+            .with_frontier_rules(self.frontier_kb.clone());
         let (world, labels) =
             input.clone().explain(&RoomConfig::default()).map_err(|e| PlanInputError::new(e.to_string()))?;
         let layout = self.wing_layout(map, &labels).ok_or_else(|| {

@@ -287,42 +287,17 @@ pub fn candidates_where(
     out
 }
 
-/// Occupied cells grown by `r` cells in every direction (a square max filter), separably.
+/// Occupied cells grown by `r` cells in every direction (a square max filter,
+/// [`crate::grid::morphology::dilate`]); the other cells keep their class.
 pub fn dilate(grid: &Grid<Cell>, r: i32) -> Grid<Cell> {
     if r <= 0 {
         return grid.clone();
     }
-    let (w, h) = (grid.width(), grid.height());
-    let r = r as usize;
-    let occ: Vec<bool> = grid.cells().iter().map(|&c| c == Cell::Occupied).collect();
-    let mut rows = vec![false; w * h];
-    for y in 0..h {
-        // Running count of occupied cells in the window [x - r, x + r].
-        let line = &occ[y * w..(y + 1) * w];
-        let mut count = line[..r.min(w)].iter().filter(|&&o| o).count();
-        for x in 0..w {
-            if x + r < w && line[x + r] {
-                count += 1;
-            }
-            if x > r && line[x - r - 1] {
-                count -= 1;
-            }
-            rows[y * w + x] = count > 0;
-        }
-    }
+    let grown = crate::grid::morphology::dilate(&grid.map(|&c| c == Cell::Occupied), r as usize);
     let mut out = grid.clone();
-    for x in 0..w {
-        let mut count = (0..r.min(h)).filter(|&y| rows[y * w + x]).count();
-        for y in 0..h {
-            if y + r < h && rows[(y + r) * w + x] {
-                count += 1;
-            }
-            if y > r && rows[(y - r - 1) * w + x] {
-                count -= 1;
-            }
-            if count > 0 {
-                *out.at_mut(x, y) = Cell::Occupied;
-            }
+    for (c, &g) in out.cells_mut().iter_mut().zip(grown.cells()) {
+        if g {
+            *c = Cell::Occupied;
         }
     }
     out

@@ -200,7 +200,11 @@ function showPlaceholders(text) {
       cell(tr, p.room ? String(p.room) : '–');
       cell(tr, p.width_m.toFixed(2));
       cell(tr, p.p_new_room.toFixed(3));
-      for (const t of [p.types.room, p.types.corridor, p.types.hall, p.types.other]) cell(tr, t.toFixed(3));
+      // The likeliest type in the table; all four in the row's title (phones have no room for
+      // four more columns).
+      const [kind, prob] = Object.entries(p.types).reduce((a, b) => (b[1] > a[1] ? b : a));
+      cell(tr, `${kind} ${prob.toFixed(2)}`);
+      tr.title = Object.entries(p.types).map(([k, v]) => `${k} ${v.toFixed(3)}`).join(', ');
       return tr;
     }),
   );

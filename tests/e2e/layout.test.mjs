@@ -13,7 +13,9 @@ after(async () => {
   await env?.close();
 });
 
-const PAGES = ['index.html', 'mapper.html', 'explore.html', 'embed.html', 'rules.html', 'prior.html', 'tabletop.html'];
+const PAGES = ['index.html', 'mapper.html', 'explore.html', 'embed.html', 'rules.html', 'rules.html?sample=partial', 'prior.html', 'tabletop.html'];
+/** What a page must have built before it is measured, where its widest content comes late. */
+const BUILT = { 'rules.html?sample=partial': 'window.__rules?.snapshot().placeholderRows > 0' };
 
 describe('Phone widths', () => {
   for (const path of PAGES) {
@@ -21,6 +23,7 @@ describe('Phone widths', () => {
       const page = await openPage(env, path, { width: 390, height: 844 });
       // Let the page's frame loops lay out what they draw.
       await page.waitForTimeout(500);
+      if (BUILT[path]) await page.waitForFunction(BUILT[path], null, { timeout: 60_000 });
       const { width, culprits } = await page.evaluate(() => {
         const limit = document.documentElement.clientWidth;
         const culprits = [...document.querySelectorAll('body *')]

@@ -59,10 +59,7 @@ struct ByTruth<'a> {
 impl ByTruth<'_> {
     /// Whether truth unit `k` (0-based) is of the goal's type.
     fn wanted(&self, k: usize) -> bool {
-        match self.goal {
-            Goal::NewRoom => true,
-            Goal::Find(t) => self.floor.truth.units[k].kind == t,
-        }
+        self.goal.wants(self.floor.truth.units[k].kind)
     }
 }
 

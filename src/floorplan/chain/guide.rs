@@ -54,10 +54,7 @@ impl GoalGuide {
 
     /// Rooms of `world` that count for the goal.
     fn count(&self, world: &World) -> usize {
-        match self.goal {
-            Goal::NewRoom => world.rooms.len(),
-            Goal::Find(kind) => world.rooms.iter().filter(|r| r.kind == kind).count(),
-        }
+        world.rooms.iter().filter(|r| self.goal.wants(r.kind)).count()
     }
 }
 

@@ -337,8 +337,13 @@ fn renew(
     config: &OnlineConfig,
     seed: u64,
 ) -> Result<Renewal, OnlineError> {
-    let k = |c: &Chain| metrics::prediction_rate(last.classified(), &c.best_world());
-    let (range_lp, range_k, range_units) = (chain.best_log_posterior(), k(chain), chain.best_world().units.len());
+    // K(W, M) on the last map and the units of a chain's best world, which is built once.
+    let k_and_units = |c: &Chain| {
+        let best = c.best_world();
+        (metrics::prediction_rate(last.classified(), &best), best.units.len())
+    };
+    let range_lp = chain.best_log_posterior();
+    let (range_k, range_units) = k_and_units(chain);
     let sensor = SensorModel::default();
     chain.set_sensor(sensor);
     chain.step(config.cold_iterations());
@@ -350,6 +355,7 @@ fn renew(
     let mut fresh = Chain::new(last, whole, seed).map_err(OnlineError::Chain)?;
     fresh.step(config.cold_iterations());
     let (warm_log_posterior, fresh_log_posterior) = (chain.best_log_posterior(), fresh.best_log_posterior());
+    let ((warm_k, warm_units), (fresh_k, fresh_units)) = (k_and_units(chain), k_and_units(&fresh));
     let renewal = Renewal {
         iterations: config.cold_iterations(),
         range_sensor_log_posterior: range_lp,
@@ -357,10 +363,10 @@ fn renew(
         range_sensor_units: range_units,
         warm_log_posterior,
         fresh_log_posterior,
-        warm_units: chain.best_world().units.len(),
-        fresh_units: fresh.best_world().units.len(),
-        warm_cell_prediction_rate: k(chain),
-        fresh_cell_prediction_rate: k(&fresh),
+        warm_units,
+        fresh_units,
+        warm_cell_prediction_rate: warm_k,
+        fresh_cell_prediction_rate: fresh_k,
         adopted: fresh_log_posterior > warm_log_posterior,
     };
     if renewal.adopted {

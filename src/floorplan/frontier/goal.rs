@@ -42,6 +42,14 @@ impl Goal {
         }
     }
 
+    /// Whether a space of type `kind` is what the goal asks for (any space, for a new room).
+    pub fn wants(self, kind: UnitType) -> bool {
+        match self {
+            Goal::NewRoom => true,
+            Goal::Find(t) => t == kind,
+        }
+    }
+
     /// The probability that going through `p` reaches what the goal asks for.
     pub fn value(self, p: &Placeholder) -> f64 {
         let t = &p.types;

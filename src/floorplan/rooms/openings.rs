@@ -29,11 +29,13 @@ fn within_rooms(world: &World) -> Vec<usize> {
 }
 
 /// Marks the doors of `world` that are openings within one room ([`Door::opening`]): their
-/// two units lie in one room and meet along a passage at least [`OPENING_MIN_M`] wide that no
-/// cell of `walls` crosses (`walls`: the map, in its own frame, with the clutter that is no
-/// wall removed, as the room layer reads it). Units turned to their own angle (wings) are
-/// read in their frame; a door between units of two angles is never an opening. Returns how
-/// many doors are openings.
+/// two units lie in one room, and either they meet along a passage at least [`OPENING_MIN_M`]
+/// wide that no cell of `walls` crosses, or the door has no jambs: on every line of the door
+/// along its width, the floor through it runs on at least [`OPENING_MIN_M`] before a wall
+/// ([`jambless`]). `walls` is the map, in its own frame, with the clutter that is no wall
+/// removed, as the room layer reads it. Units turned to their own angle (wings) are read in
+/// their frame; a door between units of two angles (a passage between wings) is read in its
+/// first unit's, by the door line alone. Returns how many doors are openings.
 ///
 /// [`Door::opening`]: crate::floorplan::world::Door::opening
 pub(crate) fn mark_openings(world: &mut World, walls: &Grid<Cell>, resolution: f64) -> usize {
@@ -48,17 +50,16 @@ pub(crate) fn mark_openings(world: &mut World, walls: &Grid<Cell>, resolution: f
         let unit = |id: u32| world.units.iter().find(|u| u.id == id);
         let (Some(ua), Some(ub)) = (unit(a), unit(b)) else { continue };
         let frame = world.unit_frame(ua);
-        if frame != world.unit_frame(ub) {
-            continue;
-        }
         let rot = frame.rotation();
         let blocked = |x: i32, y: i32| {
             let (mx, my) = rot.to_map(x as f64 + 0.5, y as f64 + 0.5);
             let (mx, my) = (libm::floor(mx) as i64, libm::floor(my) as i64);
             walls.get(mx, my).is_some_and(|&c| c == Cell::Occupied)
         };
-        let depth = world.doors[k].rect().w.min(world.doors[k].rect().h).max(2 * t);
-        if passage(ua.rect(), ub.rect(), t, depth, blocked) >= min_cells {
+        let door = world.doors[k].rect();
+        let depth = door.w.min(door.h).max(2 * t);
+        let wide = frame == world.unit_frame(ub) && passage(ua.rect(), ub.rect(), t, depth, blocked) >= min_cells;
+        if wide || jambless(door, min_cells, blocked) {
             world.doors[k].opening = true;
             count += 1;
         }
@@ -70,6 +71,45 @@ pub(crate) fn mark_openings(world: &mut World, walls: &Grid<Cell>, resolution: f
 /// across a door.
 pub fn doors_in_one_room(world: &World) -> usize {
     within_rooms(world).into_iter().filter(|&k| !world.doors[k].opening).count()
+}
+
+/// Whether door rectangle `door` has no jambs: on each of its lines along its width (rows of
+/// a door wider than deep, columns otherwise), the cells that no `blocked` cell parts from the
+/// line's middle cell run on for at least `min_cells`.
+///
+/// A door leaf hangs between jambs, wall on either side of it at most a leaf's width apart (a
+/// single leaf is at most [`OPENING_MIN_M`] wide in building codes). Where the floor runs on
+/// that far along the door's line with no wall, there is no door frame, however the chain has
+/// cut the open floor into rectangles: a thin unit along a wall, a corridor strip in a hall, the
+/// tip of a wedge beside a slanted wall. A doorway in a wall always measures its width between
+/// the jambs on every line, so it stays a door. Lines whose middle cell is a wall have no run.
+fn jambless(door: Rect, min_cells: i32, blocked: impl Fn(i32, i32) -> bool) -> bool {
+    let along_x = door.w >= door.h;
+    let (lines, span) = if along_x {
+        (door.y..door.bottom(), (door.x, door.right()))
+    } else {
+        (door.x..door.right(), (door.y, door.bottom()))
+    };
+    let cell = |line: i32, p: i32| if along_x { blocked(p, line) } else { blocked(line, p) };
+    let middle = span.0 + (span.1 - span.0) / 2;
+    lines.into_iter().all(|line| {
+        if cell(line, middle) {
+            return false;
+        }
+        // Out from the middle both ways, stopping at a wall or once the run is long enough.
+        let mut run = 1;
+        let mut p = middle - 1;
+        while run < min_cells && !cell(line, p) {
+            run += 1;
+            p -= 1;
+        }
+        let mut p = middle + 1;
+        while run < min_cells && !cell(line, p) {
+            run += 1;
+            p += 1;
+        }
+        run >= min_cells
+    })
 }
 
 /// The widest run, in cells, along which rectangles `a` and `b` (wall rings `t` deep, at most
@@ -148,6 +188,38 @@ mod tests {
         (other.id, other.units) = (2, vec![2]);
         world.rooms.push(other);
         assert_eq!((mark_openings(&mut world, &map, 0.05), doors_in_one_room(&world)), (0, 0));
+    }
+
+    #[test]
+    fn a_door_without_jambs_is_an_opening_however_short_the_units_shared_side() {
+        // Unit 2 is 16 rows (0.8 m) high: the two units face each other along less than
+        // 1.2 m, so the passage between them is too short for an opening.
+        let short = |gap| {
+            let (mut world, map) = two_units(gap);
+            world.units[1].h = 16;
+            (world, map)
+        };
+        // No wall between them at all: along the door's line (columns 39 and 40) the floor runs
+        // the map's 2 m. No jambs: an opening.
+        let (mut world, map) = short(0..40);
+        assert_eq!(mark_openings(&mut world, &map, 0.05), 1);
+        // A wall with a gap of 6 rows around the door: jambs 0.3 m apart, a door.
+        let (mut world, map) = short(9..16);
+        assert_eq!(mark_openings(&mut world, &map, 0.05), 0);
+        assert_eq!(doors_in_one_room(&world), 1);
+        // A gap of 20 rows (1.0 m): still a door leaf's width, a door.
+        let (mut world, map) = short(1..21);
+        assert_eq!(mark_openings(&mut world, &map, 0.05), 0);
+        // A gap of 26 rows (1.3 m): wider than a leaf, an opening.
+        let (mut world, map) = short(1..27);
+        assert_eq!(mark_openings(&mut world, &map, 0.05), 1);
+        // Units at two angles (wings) are read by the door line alone, in the first one's frame.
+        let (mut world, map) = short(0..40);
+        world.units[1].angle = Some(0.3);
+        assert_eq!(mark_openings(&mut world, &map, 0.05), 1);
+        let (mut world, map) = short(9..16);
+        world.units[1].angle = Some(0.3);
+        assert_eq!(mark_openings(&mut world, &map, 0.05), 0);
     }
 
     #[test]

@@ -340,7 +340,8 @@ export async function mount(element, options = {}) {
       // at most 2 million pixels (a few milliseconds).
       const detail = v.isReset ? s : Math.max(s, detailScale(s, v.zoom, mapper.width * mapper.height, { maxScale: 6, maxPixels: 2_000_000 }));
       const world = show === 'best' ? wingsNow()?.world ?? undefined : undefined;
-      drawMapper(picture, mapper, { show, cloud, labels, scale: detail, world });
+      // `labels` are the units' (the widget has no room layer): drawMapper's unitLabels.
+      drawMapper(picture, mapper, { show, cloud, labels, unitLabels: labels, scale: detail, world });
       drawnScale = detail;
       paint(s);
       if (graph) {

@@ -390,6 +390,50 @@ fn mapper_matches_the_library_on_a_sample() {
     assert_eq!(png, ksmcmc::render::overlay_png(map.inner().classified(), &world).unwrap());
 }
 
+#[wasm_bindgen_test]
+fn mapper_labels_rooms_and_units_only_when_asked() {
+    // Rooms first (issue 33): the chain's own world has no rooms, so `labels` alone draws no
+    // labels on it; `unitLabels` labels its units; a plan's world is labelled room by room.
+    let (map, mut m, mut chain, _, _) = office_small_after_2000();
+    let draw = |m: &mut Mapper, pairs: &[(&str, JsValue)]| {
+        let opts = js_sys::Object::new();
+        js_sys::Reflect::set(&opts, &"show".into(), &"best".into()).unwrap();
+        for (k, v) in pairs {
+            js_sys::Reflect::set(&opts, &(*k).into(), v).unwrap();
+        }
+        wasm::render_mapper_rgba(m, Some(opts.into())).unwrap().rgba_bytes().to_vec()
+    };
+    let native = |world: &World, labels: bool, legend: bool| {
+        let options = ksmcmc::render::RenderOptions { scale: 1, labels, legend };
+        ksmcmc::render::to_rgba(&ksmcmc::render::render(map.inner().classified(), Some(world), &options))
+    };
+    // The mapper draws the chain's best world typed by the rules, as the library gives it.
+    let best = chain.best_world_typed();
+    assert!(best.rooms.is_empty() && best.units.len() >= 3);
+    let plain = draw(&mut m, &[]);
+    assert_eq!(plain, native(&best, false, true), "no rooms, no labels");
+    let units = draw(&mut m, &[("unitLabels", JsValue::TRUE)]);
+    assert_eq!(units, native(&best, true, true), "unit labels when asked");
+    assert_ne!(units, plain);
+    assert_eq!(draw(&mut m, &[("unitLabels", JsValue::TRUE), ("labels", JsValue::FALSE)]), plain);
+    assert_eq!(draw(&mut m, &[("legend", JsValue::FALSE)]), native(&best, false, false), "no legend when asked");
+    // A plan's world: its rooms labelled, or its units with unitLabels.
+    let plan = plan_of(&map, &mut m);
+    let planned = World::from_json(&plan.world_json()).unwrap();
+    assert!(!planned.rooms.is_empty());
+    let text: JsValue = plan.world_json().into();
+    assert_eq!(draw(&mut m, &[("world", text.clone())]), native(&planned, true, true), "room labels");
+    let mut bare = planned.clone();
+    bare.rooms.clear();
+    assert_eq!(draw(&mut m, &[("world", text), ("unitLabels", JsValue::TRUE)]), native(&bare, true, true));
+    // The page's legend lists every row the renderer can draw, in its order.
+    let rows: Vec<serde_json::Value> = serde_json::from_str(&wasm::legend_json()).unwrap();
+    let names: Vec<&str> = rows.iter().map(|r| r["name"].as_str().unwrap()).collect();
+    let palette = ksmcmc::render::legend_palette();
+    assert_eq!(names, palette.iter().map(|p| p.0).collect::<Vec<_>>());
+    assert_eq!(rows[0]["rgba"], serde_json::json!(palette[0].1));
+}
+
 /// The office-small sample in a `Mapper` and in the library's chain, both seed 3 and 2,000
 /// iterations, with the chain's best world and room labels.
 fn office_small_after_2000() -> (Map, Mapper, Chain, World, ksmcmc::grid::Grid<u16>) {

@@ -13,7 +13,8 @@
 // overlays, the 3D view, routes), painting.js, rooms.js (the Rooms table and the room pointed
 // at), edits.js (the person's corrections), exports.js (downloads) and hooks.js (window.__ksmcmc).
 
-import init, { chainConfigDefaults, Map as OccMap, version } from './pkg/ksmcmc.js';
+import init, { chainConfigDefaults, legendJson, Map as OccMap, version } from './pkg/ksmcmc.js';
+import { fillMapLegend } from './lib/map-legend.js';
 import { onDroppedFiles, readPickedMap } from './lib/files.js';
 import { buildMap } from './lib/map-source.js';
 import { parseIterationsPerFrame } from './lib/plot.js';
@@ -28,7 +29,7 @@ import { wireExports } from './mapper/exports.js';
 import { expose } from './mapper/hooks.js';
 import { abortStroke, onPointerDown, onPointerMove, onPointerUp, setBrush, setPainting } from './mapper/painting.js';
 import { onHover, onLeave, onTap, RoomsFeed, showRooms, wireRooms } from './mapper/rooms.js';
-import { cellFromEvent, clearReference, fit, refresh3d, setCloud, setLabels, setReference, setRouting, setShow, setView3d, viewChanged } from './mapper/view.js';
+import { cellFromEvent, clearReference, fit, refresh3d, requestRedraw, setCloud, setLabels, setReference, setRouting, setUnitLabels, setShow, setView3d, viewChanged } from './mapper/view.js';
 import { setCompare } from './mapper/weak.js';
 
 // ---------------------------------------------------------------- maps
@@ -99,6 +100,7 @@ function onKey(e) {
     t: () => setShow('reference'),
     u: () => setCloud(!state.cloud),
     l: () => setLabels(!state.labels),
+    n: () => setUnitLabels(!state.unitLabels),
     p: () => setPainting(!state.painting),
     g: () => setRouting(!state.route.active),
     3: () => setView3d(!state.view3d.open),
@@ -153,6 +155,7 @@ function wire() {
   }
   ui.cloud.addEventListener('change', () => setCloud(ui.cloud.checked));
   ui.labels.addEventListener('change', () => setLabels(ui.labels.checked));
+  ui.unitLabels.addEventListener('change', () => setUnitLabels(ui.unitLabels.checked));
   ui.worldFile.addEventListener('change', async () => {
     const file = ui.worldFile.files[0];
     if (file) await attempt(async () => setReference(await file.text(), file.name));
@@ -214,7 +217,8 @@ async function main() {
   if (!(await loadWasm(init))) return;
   state.chain = new RemoteChain(chainFailed, chainSettled);
   state.chain.onWings = chainWings;
-  state.rooms = new RoomsFeed(() => state.chain, showRooms);
+  // The best world is drawn room by room once its plan is made: draw it again after each reply.
+  state.rooms = new RoomsFeed(() => state.chain, showRooms, () => state.show === 'best' && requestRedraw());
   state.route = new RouteView({ ...ui.route, canvas: ui.canvas }, {
     plan: (from, to) => invoke('route', from[0], from[1], to[0], to[1]),
     placeholders: () => invoke('placeholdersJson'),
@@ -223,6 +227,7 @@ async function main() {
     cellOf: (e) => cellFromEvent(e),
   });
   ui.version.textContent = version();
+  fillMapLegend(ui.mapLegend, legendJson(), { wall: 'walls', door: 'doors', unknown: 'untyped' });
   setBrush(ui.brush.value);
   for (const el of [ui.file, ui.blankCreate, ui.worldFile]) el.disabled = false;
 

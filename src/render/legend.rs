@@ -20,33 +20,62 @@ pub const LEGEND_BACKGROUND_RGBA: [u8; 4] = [255, 255, 255, 235];
 /// The legend's text: near black.
 pub const LEGEND_TEXT_RGBA: [u8; 4] = [30, 30, 30, 255];
 
-/// The legend's rows for `world`: a name and the colour of its swatch (straight RGBA, drawn
-/// over white as on a free cell).
-pub fn legend_entries(world: &World) -> Vec<(&'static str, [u8; 4])> {
-    let mut out = Vec::new();
-    for kind in UnitType::ALL {
-        if world.units.iter().any(|u| u.kind == kind && u.w >= 1 && u.h >= 1) {
+/// What a legend row stands for, to decide whether a world puts that colour on the picture.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Drawn {
+    Kind(UnitType),
+    Walls,
+    Doors,
+    Objects,
+    Unexplained,
+    NewRoomLikely,
+}
+
+/// Every row a legend can have, in its order.
+fn rows() -> Vec<(&'static str, [u8; 4], Drawn)> {
+    let mut out: Vec<(&'static str, [u8; 4], Drawn)> = UnitType::ALL
+        .into_iter()
+        .map(|kind| {
             let [r, g, b] = room_fill_rgb(kind);
-            out.push((kind.name(), [r, g, b, 255]));
-        }
-    }
-    if !world.units.is_empty() {
-        out.push(("wall", WALL_RGBA));
-    }
-    if !world.doors.is_empty() {
-        out.push(("door", DOOR_RGBA));
-    }
-    if !world.object_cells.is_empty() {
-        out.push(("objects", OBJECT_RGBA));
-    }
-    if !world.unexplained.is_empty() {
-        out.push(("unexplained", UNEXPLAINED_RGBA));
-    }
-    // The pies' dark rim: a placeholder more likely than not to lead to a new room.
-    if world.placeholders.iter().any(|p| p.p_new_room >= super::pie::NEW_ROOM_RIM) {
-        out.push(("new room likely", LABEL_OUTLINE_RGBA));
-    }
+            (kind.name(), [r, g, b, 255], Drawn::Kind(kind))
+        })
+        .collect();
+    out.extend([
+        ("wall", WALL_RGBA, Drawn::Walls),
+        ("door", DOOR_RGBA, Drawn::Doors),
+        ("objects", OBJECT_RGBA, Drawn::Objects),
+        ("unexplained", UNEXPLAINED_RGBA, Drawn::Unexplained),
+        // The pies' dark rim: a placeholder more likely than not to lead to a new room.
+        ("new room likely", LABEL_OUTLINE_RGBA, Drawn::NewRoomLikely),
+    ]);
     out
+}
+
+/// Every row a legend can have: a name and the colour of its swatch (straight RGBA, drawn
+/// over white as on a free cell), in the order [`legend_entries`] lists them. A page that
+/// draws its legend beside the map, where it stays readable at any zoom, lists these.
+///
+/// ```
+/// let rows = ksmcmc::render::legend_palette();
+/// assert_eq!(rows.first().map(|r| r.0), Some("room"));
+/// assert!(rows.iter().any(|r| r.0 == "door"));
+/// ```
+pub fn legend_palette() -> Vec<(&'static str, [u8; 4])> {
+    rows().into_iter().map(|(name, rgba, _)| (name, rgba)).collect()
+}
+
+/// The legend's rows for `world`: those of [`legend_palette`] whose colour the world puts on
+/// the picture.
+pub fn legend_entries(world: &World) -> Vec<(&'static str, [u8; 4])> {
+    let drawn = |d: Drawn| match d {
+        Drawn::Kind(kind) => world.units.iter().any(|u| u.kind == kind && u.w >= 1 && u.h >= 1),
+        Drawn::Walls => !world.units.is_empty(),
+        Drawn::Doors => !world.doors.is_empty(),
+        Drawn::Objects => !world.object_cells.is_empty(),
+        Drawn::Unexplained => !world.unexplained.is_empty(),
+        Drawn::NewRoomLikely => world.placeholders.iter().any(|p| p.p_new_room >= super::pie::NEW_ROOM_RIM),
+    };
+    rows().into_iter().filter(|&(_, _, d)| drawn(d)).map(|(name, rgba, _)| (name, rgba)).collect()
 }
 
 /// The size of the legend box for `entries` with text at `factor`.

@@ -83,7 +83,7 @@ pub use graph::{
     GRAPH_ADJACENT_RGBA, GRAPH_BACKGROUND_RGBA, GRAPH_DOOR_RGBA, GRAPH_FRAME_RGBA,
 };
 pub use labels::{label_texts, place_labels, tag_size, world_label_candidates, LabelBox, LabelCandidate};
-pub use legend::{draw_legend, legend_box, legend_entries, LEGEND_BACKGROUND_RGBA, LEGEND_TEXT_RGBA};
+pub use legend::{draw_legend, legend_box, legend_entries, legend_palette, LEGEND_BACKGROUND_RGBA, LEGEND_TEXT_RGBA};
 pub use world::{
     draw_tag, draw_tag_box, draw_world, label_text_scale, room_fill_rgb, unit_label, unit_type_rgb, DOOR_RGBA,
     LABEL_BACKGROUND_RGBA, LABEL_OUTLINE_RGBA, LABEL_TEXT_RGBA, OBJECT_RGBA, ROOM_FILL_STRENGTH, UNEXPLAINED_RGBA,

@@ -241,3 +241,18 @@ fn options(map: &Map, scale: Option<u32>, labels: Option<bool>) -> Result<Render
     render::check_size(map.inner.width(), map.inner.height(), scale)?;
     Ok(RenderOptions { scale, labels: labels.unwrap_or(defaults.labels), ..defaults })
 }
+
+/// Every row of the legend the renderer can draw, as JSON: `[{ "name": "room", "rgba":
+/// [r, g, b, a] }, …]` (straight RGBA over white), in the order drawn. A page that draws its
+/// legend beside the map (drawn with `legend: false`) lists these, so that its colours are
+/// the picture's.
+#[wasm_bindgen(js_name = legendJson)]
+pub fn legend_json() -> String {
+    // Written by hand: the names are plain words, and the mapper module has no room for a JSON
+    // value type (tests/e2e/size.test.mjs).
+    let rows: Vec<String> = render::legend_palette()
+        .into_iter()
+        .map(|(name, [r, g, b, a])| format!("{{\"name\":\"{name}\",\"rgba\":[{r},{g},{b},{a}]}}"))
+        .collect();
+    format!("[{}]", rows.join(","))
+}

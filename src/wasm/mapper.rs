@@ -41,8 +41,16 @@ export interface MapperDrawOptions {
   cloud?: boolean;
   /** Output pixels per map cell (default 1). */
   scale?: number;
-  /** Each unit's type and id at its centre (default true). */
+  /**
+   * Labels (default true): each room's type and id (as in `labelsPgm` and `roomsJson`) when the
+   * world drawn has rooms (a plan's `worldJson()`); a chain's own world has none, so it gets no
+   * labels unless `unitLabels` asks for the units'.
+   */
   labels?: boolean;
+  /** Label units rather than rooms: each unit's type and id (default false). */
+  unitLabels?: boolean;
+  /** The legend of the colours drawn, in a corner of the picture (default true). */
+  legend?: boolean;
   /**
    * A `world.json` text to draw instead of the world `show` names, e.g. a plan's
    * `worldJson()` (the plan module's), which makes the picture its `overlay.png`.
@@ -149,14 +157,14 @@ impl Mapper {
             Some(text) => Some(World::from_json(text)?),
             None => self.world_for(options.show),
         };
-        if let Some(world) = world {
-            render::draw_world(
-                &mut pixmap,
-                w,
-                h,
-                &world,
-                &RenderOptions { scale, labels: options.labels, legend: true },
-            );
+        if let Some(mut world) = world {
+            // Rooms first (issue 33): the labels are the rooms of the Rooms table; a world
+            // without rooms (the chain's own) is labelled only when units are asked for.
+            let labels = options.labels && (options.unit_labels || !world.rooms.is_empty());
+            if options.unit_labels {
+                world.rooms.clear();
+            }
+            render::draw_world(&mut pixmap, w, h, &world, &RenderOptions { scale, labels, legend: options.legend });
         }
         if options.cloud {
             let samples: Vec<&[Rect]> = self.chain.samples().map(|s| s.as_slice()).collect();
@@ -559,15 +567,29 @@ pub struct DrawOptions {
     pub cloud: bool,
     /// Output pixels per map cell.
     pub scale: u32,
-    /// Each unit's type and id at its centre.
+    /// Labels: each room's type and id when the world drawn has rooms, else none unless
+    /// `unit_labels`.
     pub labels: bool,
+    /// Label units (each unit's type and id) rather than rooms.
+    #[serde(rename = "unitLabels")]
+    pub unit_labels: bool,
+    /// The legend of the colours drawn, in a corner.
+    pub legend: bool,
     /// A `world.json` text to draw instead of `show`'s world (e.g. a plan's, with its rooms).
     pub world: Option<String>,
 }
 
 impl Default for DrawOptions {
     fn default() -> Self {
-        DrawOptions { show: Show::Current, cloud: false, scale: 1, labels: true, world: None }
+        DrawOptions {
+            show: Show::Current,
+            cloud: false,
+            scale: 1,
+            labels: true,
+            unit_labels: false,
+            legend: true,
+            world: None,
+        }
     }
 }
 
@@ -582,8 +604,8 @@ impl DrawOptions {
         }
         from_object(v).map_err(|e| {
             JsError::new(&format!(
-                "options: {e} (show is 'current', 'best', 'reference' or 'none'; cloud and labels are \
-                 booleans; scale is a whole number of pixels per cell; world is world.json text)"
+                "options: {e} (show is 'current', 'best', 'reference' or 'none'; cloud, labels, unitLabels and \
+                 legend are booleans; scale is a whole number of pixels per cell; world is world.json text)"
             ))
         })
     }

@@ -67,7 +67,7 @@ pub mod tabletop;
 #[cfg(feature = "wasm-explore")]
 pub use explore::Explorer;
 #[cfg(feature = "wasm-mapper")]
-pub use map::{draw_to_canvas, render_rgba, Counts, Map, Rendered};
+pub use map::{draw_to_canvas, legend_json, render_rgba, Counts, Map, Rendered};
 #[cfg(feature = "wasm-mapper")]
 pub use mapper::{
     chain_config, chain_config_defaults, chain_config_online, draw_mapper, draw_scene_graph, render_mapper_rgba,

@@ -34,6 +34,10 @@ describe('Phone widths', () => {
         return { width: document.documentElement.scrollWidth, culprits };
       });
       assert.ok(width <= 390, `${path} is ${width} px wide at a 390 px viewport; too wide: ${culprits.join(', ')}`);
+      // Nor does a table scroll sideways inside its box (issue 33).
+      const sideways = await page.$$eval('.table-scroll', (boxes) =>
+        boxes.filter((b) => b.offsetParent !== null && b.scrollWidth > b.clientWidth + 1).map((b) => `${b.firstElementChild?.id || b.className}: ${b.scrollWidth} in ${b.clientWidth}`));
+      assert.deepEqual(sideways, [], `${path}: tables wider than their box`);
       await page.context().close();
     });
   }

@@ -823,6 +823,44 @@ describe('Live mapper: rooms and the weak prior beside the knowledge', () => {
     await done(page);
   });
 
+  test('rooms first: the map labels the best world\'s rooms; units only when asked; the legend is page text', async () => {
+    const page = await openMapper();
+    assert.equal((await snap(page)).show, 'best', 'the best world, with its rooms, by default');
+    const text = () => page.evaluate(() => {
+      const c = document.getElementById('map');
+      const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+      let n = 0;
+      for (let i = 0; i < d.length; i += 4) if (d[i] === 150 && d[i + 1] === 0 && d[i + 2] === 0) n++; // LABEL_TEXT_RGBA
+      return n;
+    });
+    await page.fill('#ipf', '2000');
+    await page.click('#step');
+    await until(page, (s, v) => s.iteration === v, 2000);
+    await settled(page);
+    const rooms = await page.evaluate(() => window.__ksmcmc.rooms);
+    assert.ok(rooms.length >= 2, `rooms: ${rooms.length}`);
+    assert.ok((await text()) > 50, 'the rooms are labelled once known');
+    // The chain's current world has units and no rooms: no labels on it, unless units are asked for.
+    await key(page, 'c');
+    await settled(page);
+    assert.equal(await text(), 0, 'no unit labels by default');
+    await key(page, 'n');
+    await settled(page);
+    assert.equal(await page.isChecked('#unit-labels'), true);
+    assert.ok((await text()) > 50, 'unit labels when asked');
+    await key(page, 'l');
+    await settled(page);
+    assert.equal(await text(), 0, 'L turns the labels off');
+    // The legend lists the renderer's colours as text beside the map, large enough to read.
+    const legend = await page.evaluate(() => {
+      const el = document.getElementById('map-legend');
+      return { names: [...el.children].map((c) => c.dataset.name), px: parseFloat(getComputedStyle(el).fontSize) };
+    });
+    for (const name of ['room', 'corridor', 'hall', 'other', 'wall', 'door']) assert.ok(legend.names.includes(name), `${name} in ${legend.names}`);
+    assert.ok(legend.px >= 13, `legend text ${legend.px} px`);
+    await done(page);
+  });
+
   test('compare with the weak prior: two chains, same iterations, the weak one is `--knowledge none`', async () => {
     const out = join(tmp, 'weak-3');
     cli('floorplan', join(SAMPLE, 'map.yaml'), '--knowledge', 'none', '--iterations', '2000', '--seed', '3', '--out', out);

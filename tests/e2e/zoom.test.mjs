@@ -332,8 +332,12 @@ describe('The room under the pointer', () => {
     // Rounded as the page rounds for reading (half up on the decimal digits, not toFixed's binary).
     const area = room.area_m2.toLocaleString('en-US', { minimumFractionDigits: 1, maximumFractionDigits: 1 });
     assert.equal(info.area, `${area} m²`);
-    assert.equal(info.doors, `doors: ${room.doors.length ? room.doors.join(', ') : 'none'}`);
-    assert.equal(info.opens, `opens to: ${room.opens_to.length ? room.opens_to.join(', ') : 'none'}`);
+    // Each door says where it leads: the other room listing it (issue 33), ids that read as ids.
+    const leadsTo = (d) => rooms.filter((r) => r.id !== room.id && r.doors.includes(d)).map((r) => `room ${r.id}`);
+    const doorTexts = room.doors.map((d) => (leadsTo(d).length ? `door ${d} to ${leadsTo(d).join(' and ')}` : `door ${d} within the room`));
+    assert.equal(info.doors, room.doors.length ? doorTexts.join(', ') : 'no doors');
+    assert.ok(room.doors.every((d) => leadsTo(d).every((t) => room.opens_to.includes(Number(t.slice(5))))), 'a door leads to a room it opens to');
+    assert.equal(info.opens, `opens to: ${room.opens_to.length ? room.opens_to.map((r) => `room ${r}`).join(', ') : 'none'}`);
     assert.equal(info.units, `units: ${row.units[0].type} ${row.units[0].id}`, 'the unit label in full');
     assert.deepEqual(info.marginals.map(([t]) => t), ['room', 'corridor', 'hall', 'other']);
     for (const [t, p] of info.marginals) {

@@ -180,9 +180,9 @@ async function frame(id, view) {
   const t0 = performance.now();
   const m = state.mapper;
   const s = stats();
-  // The best world of a building of wings is the plan's, its units at their angles.
-  const world = view.show === 'best' && state.plan?.world && state.plan.key === planKey() ? state.plan.world : undefined;
-  const picture = rgbaBitmap(renderMapperRgba(m, { show: view.show, cloud: view.cloud, labels: view.labels, scale: view.scale, world }));
+  const world = view.show === 'best' ? planWorld() : undefined;
+  const { show, cloud, labels, unitLabels, legend, scale } = view;
+  const picture = rgbaBitmap(renderMapperRgba(m, { show, cloud, labels, unitLabels, legend, scale, world }));
   const graph = rgbaBitmap(renderSceneGraphRgba(m, view.graphWidth, view.graphHeight, view.graphShow));
   const trace = m.traceLength > view.traceFrom ? m.trace(view.traceFrom) : null;
   state.drawnAt = performance.now();
@@ -321,6 +321,18 @@ function newPlan(x, input) {
   return new x.Plan(state.floor.pgm, state.floor.yaml, input, previous);
 }
 
+/**
+ * The `world.json` of the plan of the chain's best world as it is now, if that plan is made:
+ * the best world with its rooms (and, for a building of wings, its units at their angles),
+ * which the page draws and labels room by room (issue 33). Read once per plan.
+ */
+function planWorld() {
+  const p = state.plan;
+  if (!p || p.key !== planKey()) return undefined;
+  p.world ??= p.plan.worldJson();
+  return p.world;
+}
+
 /** Makes `plan` the last plan made, for `key`. */
 function keep(key, plan, { wings, count = 0, world = null, units = 0, rate = 0 }) {
   if (state.plan?.plan !== plan) state.plan?.plan.free();
@@ -352,10 +364,10 @@ async function runWings(first, floor, config, key) {
  * mapper module and encoded by the plan module; the best world is the plan's (the world with
  * its rooms), which makes it the `overlay.png` of `ksmcmc floorplan`.
  */
-async function toPng({ show = 'current', cloud = false, labels = true, scale = 1 } = {}) {
+async function toPng({ show = 'current', cloud = false, labels = true, unitLabels = false, scale = 1 } = {}) {
   const x = await loadPlan();
   const world = show === 'best' ? (await plan()).worldJson() : undefined;
-  const r = renderMapperRgba(state.mapper, { show, cloud, labels, scale, world });
+  const r = renderMapperRgba(state.mapper, { show, cloud, labels, unitLabels, scale, world });
   try {
     return x.encodePng(r.width, r.height, r.rgba);
   } finally {

@@ -310,7 +310,7 @@ function picture(view) {
       snapshot.free();
     }
   }
-  const drawn = rgbaOf(renderMapperRgba(state.mapper, { show: view.plan ? 'best' : 'none', labels: view.labels, scale }));
+  const drawn = rgbaOf(renderMapperRgba(state.mapper, { show: view.plan ? 'best' : 'none', labels: view.labels, unitLabels: view.labels, scale }));
   overdraw(drawn, cells, state.chainCells, state.truth.width, scale);
   return drawn;
 }

@@ -108,34 +108,54 @@ function el(tag, className, text) {
   return e;
 }
 
+/**
+ * Where each door of `room` leads, as text: "door 10 to room 3" (a door lists both rooms it
+ * joins, so the other is the room of `rooms` that lists it too), "door 7 within the room" for a
+ * door whose two sides are this room; "none" without doors. Ids, so they read as ids, not counts.
+ */
+export function doorText(room, rooms) {
+  if (!room.doors.length) return 'none';
+  return room.doors
+    .map((d) => {
+      const others = [...(rooms?.values() ?? [])].filter((r) => r.id !== room.id && r.doors.includes(d)).map((r) => `room ${r.id}`);
+      return others.length ? `door ${d} to ${others.join(' and ')}` : `door ${d} within the room`;
+    })
+    .join(', ');
+}
+
+/** The rooms `room` opens to, as text: "room 3, room 5", or "none". */
+export function opensText(room) {
+  return room.opens_to.length ? room.opens_to.map((r) => `room ${r}`).join(', ') : 'none';
+}
+
 /** A unit's label in full, as the map writes it before shortening it: "corridor 12". */
 export function unitLabel(unit) {
   return `${unit.type} ${unit.id}`;
 }
 
-/** One line of text saying what the info box says (for screen readers and tests). */
-export function roomSummary(room, types) {
+/** One line of text saying what the info box says (for screen readers and tests); `rooms`: all rooms by id. */
+export function roomSummary(room, types, rooms) {
   const m = types?.marginals;
   const p = m ? MARGINALS.map(([k, name]) => `${name} ${fmt(m[k], 2)}`).join(', ') : 'none';
   const units = types?.units?.length ? types.units.map(unitLabel).join(', ') : list(room.units);
-  return `Room ${room.id}${room.name ? ` “${room.name}”` : ''}, ${room.type}, ${fmt(room.area_m2, 1)} m², doors ${list(room.doors)}, ` +
-    `opens to ${list(room.opens_to)}, units ${units}; type marginals ${p}`;
+  return `Room ${room.id}${room.name ? ` “${room.name}”` : ''}, ${room.type}, ${fmt(room.area_m2, 1)} m², ${doorText(room, rooms)}, ` +
+    `opens to ${opensText(room)}, units ${units}; type marginals ${p}`;
 }
 
 /**
  * Fills `box` with room `room`: a title, its area, doors and neighbours, its units with their
- * full labels, and a bar per type marginal.
+ * full labels, and a bar per type marginal. `rooms` (all rooms by id) says where its doors lead.
  */
-export function fillRoomInfo(box, room, types) {
+export function fillRoomInfo(box, room, types, rooms) {
   const head = el('p', 'room-info-title');
   head.append(el('strong', '', `Room ${room.id}`), room.name ? ` “${room.name}”` : '', ` · ${room.type}`);
   const facts = el('p', 'room-info-facts');
   facts.append(
     el('span', 'room-info-area', `${fmt(room.area_m2, 1)} m²`),
     ' · ',
-    el('span', 'room-info-doors', `doors: ${list(room.doors)}`),
+    el('span', 'room-info-doors', room.doors.length ? doorText(room, rooms) : 'no doors'),
     ' · ',
-    el('span', 'room-info-opens', `opens to: ${list(room.opens_to)}`),
+    el('span', 'room-info-opens', `opens to: ${opensText(room)}`),
   );
   const units = el('p', 'room-info-units',
     `units: ${types?.units?.length ? types.units.map(unitLabel).join(', ') : list(room.units)}`);

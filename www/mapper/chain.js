@@ -227,6 +227,9 @@ function view() {
     show: state.show,
     cloud: state.cloud,
     labels: state.labels,
+    unitLabels: state.unitLabels,
+    // The legend is the page's, beside the map, where it stays readable (issue 33).
+    legend: false,
     scale: state.drawScale,
     graphWidth: gw,
     graphHeight: gh,

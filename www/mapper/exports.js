@@ -19,7 +19,7 @@ export function wireExports() {
     attempt(async () => save(name, await invoke(method, ...args()), type));
   ex.world.addEventListener('click', exporter('world.json', 'application/json', 'bestWorldJson'));
   ex.labels.addEventListener('click', exporter('labels.pgm', 'image/x-portable-graymap', 'labelsPgm'));
-  ex.png.addEventListener('click', exporter('overlay.png', 'image/png', 'toPng', () => [{ show: state.show, cloud: state.cloud, labels: state.labels }]));
+  ex.png.addEventListener('click', exporter('overlay.png', 'image/png', 'toPng', () => [{ show: state.show, cloud: state.cloud, labels: state.labels, unitLabels: state.unitLabels }]));
   ex.graph.addEventListener('click', exporter('graph.json', 'application/json', 'graphJson'));
   ex.report.addEventListener('click', exporter('report.json', 'application/json', 'reportJson'));
   ex.geojson.addEventListener('click', exporter('world.geojson', 'application/geo+json', 'geojson', () => (ui.georef.value.trim() ? [ui.georef.value.trim()] : [])));

@@ -25,10 +25,13 @@ export class RoomsFeed {
    * @param {() => RemoteChain} chain  the chain's worker
    * @param {(rooms: object[] | null, details: object | null) => void} show  called with the
    *   rooms (null: none read yet) and their details, if wanted and read for these rooms
+   * @param {() => void} [replied]  called after each reply of the chain's worker, changed or
+   *   not: the worker has the plan of its best world now, which the map draws room by room
    */
-  constructor(chain, show) {
+  constructor(chain, show, replied = () => {}) {
     this.chain = chain;
     this.show = show;
+    this.replied = replied;
     /**
      * Whether the rooms' details are wanted: their type marginals and the room of every cell
      * (for pointing at rooms). Read only while wanted: the labels are two bytes per cell, and
@@ -110,6 +113,7 @@ export class RoomsFeed {
             this.again = true;
             return;
           }
+          this.replied();
           // The same rooms as last time (the best world has not changed): nothing to redo.
           if (reply.same) return;
           this.text = reply.text;
@@ -207,7 +211,7 @@ export function setHover(id, anchor = null, pinned = false) {
     h.id = shown;
     h.mask = shown ? state.roomIndex.mask(shown) : null;
     paintMain();
-    if (shown) fillRoomInfo(ui.roomInfo, room, state.roomIndex.types.get(shown));
+    if (shown) fillRoomInfo(ui.roomInfo, room, state.roomIndex.types.get(shown), state.roomIndex.rooms);
   }
   ui.roomInfo.hidden = !shown;
   ui.roomInfo.dataset.pinned = String(h.pinned);

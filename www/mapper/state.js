@@ -23,7 +23,7 @@ export const ui = {
   file: $('file'), classify: $('classify'),
   paint: $('paint'), brush: $('brush'), brushValue: $('brush-value'),
   blankForm: $('blank-form'), blankWidth: $('blank-width'), blankHeight: $('blank-height'), blankCreate: $('blank-create'),
-  showReference: $('show-reference'), cloud: $('cloud'), labels: $('labels'),
+  showReference: $('show-reference'), cloud: $('cloud'), labels: $('labels'), unitLabels: $('unit-labels'), mapLegend: $('map-legend'),
   worldFile: $('world-file'), truth: $('truth'), referenceClear: $('reference-clear'),
   stage: $('stage'), canvas: $('map'), graph: $('graph'), mapName: $('map-name'), roomInfo: $('room-info'), zoomBar: $('zoom-bar'),
   compare: $('compare'), mainCaption: $('main-caption'), mainTitle: $('main-title'), mainSide: $('main-side'),
@@ -97,9 +97,11 @@ export const state = {
   inFlight: false,
   picture: null,
   ipf: 'auto',
-  show: 'current',
+  /** The best world first: its rooms are the plan's (issue 33); C shows the chain's current world. */
+  show: 'best',
   cloud: false,
   labels: true,
+  unitLabels: false,
   /** The reference world's text, kept to re-apply when the chain is rebuilt. */
   referenceJson: null,
   referenceName: '',

@@ -143,9 +143,17 @@ export function setCloud(on) {
   requestRedraw();
 }
 
+/** Room labels on the map (L): the rooms of the Rooms table, once the best world's rooms are known. */
 export function setLabels(on) {
   state.labels = on;
   ui.labels.checked = on;
+  requestRedraw();
+}
+
+/** Unit labels instead of room labels (N): each unit of the world drawn, with its type. */
+export function setUnitLabels(on) {
+  state.unitLabels = on;
+  ui.unitLabels.checked = on;
   requestRedraw();
 }
 

@@ -75,6 +75,8 @@ function weakView(generation) {
     show: state.show === 'reference' ? 'best' : state.show,
     cloud: state.cloud,
     labels: state.labels,
+    unitLabels: state.unitLabels,
+    legend: false,
     scale: state.drawScale,
     graphWidth: 80,
     graphHeight: 60,

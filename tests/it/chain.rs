@@ -60,8 +60,8 @@ fn incremental_posterior_equals_full_recomputation_after_every_step() {
     let map = OccupancyMap::from_classified(rooms_map());
     for seed in 0..4 {
         let mut config = all_kernels_config();
-        // Thin rings (the dissertation's model) and thick ones.
-        config.wall_thickness = Some(1 + (seed as i32 % 2));
+        // Thin rings (the dissertation's model, one 5 cm cell) and thick ones (two).
+        config.wall_thickness_m = Some(0.05 * (1 + seed % 2) as f64);
         let mut chain = Chain::new(&map, config, seed).unwrap();
         let mut doors_seen = 0;
         for i in 0..2500 {
@@ -320,4 +320,27 @@ fn door_sizes_are_metres_and_cell_names_are_refused() {
     assert!(e.contains("min_len"), "{e}");
     let e = ChainConfig::from_json(r#"{"doors": {"min_m": 0}}"#).unwrap_err().to_string();
     assert!(e.contains("doors"), "{e}");
+}
+
+#[test]
+fn the_wall_ring_is_configured_in_metres_and_turned_into_cells_by_the_resolution() {
+    // Issue 31: lengths in metres. 0.15 m of wall is three 5 cm cells, two 10 cm cells (1.5
+    // rounds up) and one 25 cm cell; the ring is at least one cell whatever the resolution.
+    let at = |resolution: f64, m: f64| {
+        let mut yaml = ksmcmc::grid::MapYaml::for_image("map.pgm");
+        yaml.resolution = resolution;
+        let map = OccupancyMap::from_classified(rooms_map()).with_yaml(yaml);
+        let config = ChainConfig { wall_thickness_m: Some(m), ..ChainConfig::default() };
+        Chain::new(&map, config, 1).unwrap().wall_thickness()
+    };
+    assert_eq!([at(0.05, 0.15), at(0.1, 0.15), at(0.25, 0.15), at(0.5, 0.05)], [3, 2, 1, 1]);
+    // Bad thicknesses are refused, saying the unit.
+    for bad in [0.0, -0.1, f64::NAN, f64::INFINITY, 1.5] {
+        let config = ChainConfig { wall_thickness_m: Some(bad), ..ChainConfig::default() };
+        let err = config.validate().expect_err("a bad thickness").to_string();
+        assert!(err.contains("wall_thickness_m") && err.contains("metres"), "{err}");
+    }
+    // The old field in cells is refused by name, with the fields that exist.
+    let err = serde_json::from_str::<ChainConfig>(r#"{"wall_thickness": 3}"#).unwrap_err().to_string();
+    assert!(err.contains("wall_thickness") && err.contains("wall_thickness_m"), "{err}");
 }

@@ -28,7 +28,7 @@ fn config() -> ChainConfig {
     let mut c = ChainConfig::default();
     c.detectors.rotation_deg = Some(0.0);
     c.detectors.free_space_start = u64::MAX / 2;
-    c.wall_thickness = Some(3);
+    c.wall_thickness_m = Some(0.15);
     c
 }
 

@@ -94,6 +94,23 @@ pub(crate) struct ChainCells {
     pub(crate) walls: vision::walls::WallConfig,
     /// The free-space detector's smallest component ([`DetectorConfig::free_space_min_m2`]).
     pub(crate) free_space_min: usize,
+    /// The wall ring's depth, if configured ([`ChainConfig::wall_thickness_m`]).
+    pub(crate) wall: Option<i32>,
+}
+
+/// The deepest wall ring in cells, as [`vision::walls::ring_depth`] estimates it at most.
+pub(crate) const MAX_WALL_CELLS: i32 = 10;
+
+/// The thickest wall ring a configuration may ask for, metres: exterior walls of masonry are
+/// up to about half a metre thick, interior ones 0.1 - 0.3 m; a ring of a metre explains no
+/// wall a map shows.
+pub const MAX_WALL_THICKNESS_M: f64 = 1.0;
+
+/// `m` metres of wall in whole cells of `r` metres: the nearest whole number (halves up, with
+/// the quotient's float noise forgiven: 0.15 m is two 10 cm cells), at least one cell and at
+/// most [`MAX_WALL_CELLS`].
+fn wall_cells(m: f64, r: f64) -> i32 {
+    (libm::round(m / r + 1e-9) as i32).clamp(1, MAX_WALL_CELLS)
 }
 
 impl ChainConfig {
@@ -105,6 +122,7 @@ impl ChainConfig {
             min_side: self.kernels.min_side_cells(r),
             walls: self.detectors.walls.cells(r),
             free_space_min: libm::round(self.detectors.free_space_min_m2 / (r * r)).min(1e12) as usize,
+            wall: self.wall_thickness_m.map(|m| wall_cells(m, r)),
         }
     }
 }
@@ -124,10 +142,12 @@ pub struct ChainConfig {
     pub doors: DoorSizes,
     /// Detectors.
     pub detectors: DetectorConfig,
-    /// Depth of every unit's wall ring in cells; `None` estimates it from the map's walls
-    /// ([`vision::walls::ring_depth`]). The dissertation's model is 1; thicker rings let units
-    /// predict thick walls.
-    pub wall_thickness: Option<i32>,
+    /// Depth of every unit's wall ring, metres (issue 31: lengths in metres), turned into the
+    /// nearest whole number of cells from the map's resolution (1 to 10 cells); `None`, the
+    /// default, estimates it from the map's walls ([`vision::walls::ring_depth`]). The
+    /// dissertation's model is one cell; thicker rings let units predict thick walls. At most
+    /// [`MAX_WALL_THICKNESS_M`].
+    pub wall_thickness_m: Option<f64>,
     /// Output bookkeeping.
     pub output: OutputConfig,
     /// Knowledge supervision (section 3.8).
@@ -168,9 +188,12 @@ impl ChainConfig {
         if !(a.is_finite() && (0.0..=1e6).contains(&a)) {
             return bad(format!("detectors.free_space_min_m2 {a} must be an area from 0 to 1e6 m²"));
         }
-        if let Some(t) = self.wall_thickness {
-            if !(1..=10).contains(&t) {
-                return bad(format!("wall_thickness {t} must be between 1 and 10 cells"));
+        if let Some(t) = self.wall_thickness_m {
+            if !(t.is_finite() && t > 0.0 && t <= MAX_WALL_THICKNESS_M) {
+                return bad(format!(
+                    "wall_thickness_m {t} must be a thickness in metres above 0 and at most {MAX_WALL_THICKNESS_M} \
+                     (walls are 0.1 - 0.5 m; leave it out to measure the map's)"
+                ));
             }
         }
         self.knowledge.validate().or_else(bad)?;
@@ -457,7 +480,7 @@ impl Chain {
             }
         };
         let (world_map, frame) = vision::orientation::to_world_frame(classified, angle);
-        let wall = config.wall_thickness.unwrap_or_else(|| vision::walls::ring_depth(classified, angle));
+        let wall = cells.wall.unwrap_or_else(|| vision::walls::ring_depth(classified, angle));
         let candidates = wall_candidates(&world_map, &cells, wall);
         let faces = vision::walls::faces_of(&world_map, &cells.walls);
         let mut chain =
@@ -476,7 +499,7 @@ impl Chain {
     ) -> Result<Chain, ChainError> {
         config.validate()?;
         let frame = Frame::identity(map.width() as u32, map.height() as u32);
-        let wall = config.wall_thickness.unwrap_or(1);
+        let wall = config.cells(0.05).wall.unwrap_or(1);
         Self::with_parts(config, frame, map.clone(), map.clone(), Candidates::new(candidates), wall, 0.05, seed)
     }
 

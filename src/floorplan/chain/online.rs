@@ -404,7 +404,8 @@ fn update(
     let cold = if config.measure_cold {
         // The same model as the warm chain's: its walls as thick as the warm chain's rings
         // (a cold chain would measure them on this snapshot as seen from one side).
-        let same = ChainConfig { wall_thickness: Some(chain.wall_thickness()), ..chain_config.clone() };
+        let ring_m = chain.wall_thickness() as f64 * chain.resolution();
+        let same = ChainConfig { wall_thickness_m: Some(ring_m), ..chain_config.clone() };
         let mut c = Chain::new(&snapshot, same, seed).map_err(OnlineError::Chain)?;
         Some(climb(&mut c, config.cold_iterations()))
     } else {

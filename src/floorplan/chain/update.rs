@@ -94,7 +94,7 @@ impl Chain {
         };
         let walls_before = self
             .config
-            .wall_thickness
+            .wall_thickness_m
             .is_none()
             .then(|| vision::walls::ring_depth_seen_from_both_sides(&self.map, self.frame.angle));
         self.map = map.classified().clone();
@@ -365,7 +365,7 @@ mod tests {
         let best = chain.best_world();
         assert!(best.units.len() >= 6, "{} units", best.units.len());
         // A configured thickness stays.
-        let fixed = crate::floorplan::ChainConfig { wall_thickness: Some(1), ..config.clone() };
+        let fixed = crate::floorplan::ChainConfig { wall_thickness_m: Some(first.yaml().resolution), ..config.clone() };
         let mut chain = Chain::new(&first, fixed, 1).unwrap();
         chain.step(500);
         chain.update_map(&all).unwrap();

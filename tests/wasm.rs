@@ -434,6 +434,28 @@ fn mapper_labels_rooms_and_units_only_when_asked() {
     assert_eq!(rows[0]["rgba"], serde_json::json!(palette[0].1));
 }
 
+#[wasm_bindgen_test]
+fn the_whole_map_table_rescores_the_mapper_as_the_library_does() {
+    // The end of an exploration on the page: the exploring chain (range-sensor table) takes the
+    // whole-map table and goes on, as `Chain::set_sensor` does natively.
+    let map = Map::from_yaml(
+        include_str!("../samples/office-small/map.yaml"),
+        include_bytes!("../samples/office-small/map.pgm"),
+    )
+    .unwrap();
+    let mut m = Mapper::new(&map, Some(wasm::chain_config_online()), Some(JsValue::from(3))).unwrap();
+    m.step(1500.0).unwrap();
+    let mut chain = Chain::new(map.inner(), ChainConfig::online(), 3).unwrap();
+    chain.step(1500);
+    assert_eq!(m.best_log_posterior(), chain.best_log_posterior());
+    m.use_whole_map_sensor();
+    chain.set_sensor(ksmcmc::floorplan::posterior::SensorModel::default());
+    assert_eq!(m.best_log_posterior(), chain.best_log_posterior(), "rescored alike");
+    m.step(500.0).unwrap();
+    chain.step(500);
+    assert_eq!((m.best_log_posterior(), m.iteration()), (chain.best_log_posterior(), 2000.0));
+}
+
 /// The office-small sample in a `Mapper` and in the library's chain, both seed 3 and 2,000
 /// iterations, with the chain's best world and room labels.
 fn office_small_after_2000() -> (Map, Mapper, Chain, World, ksmcmc::grid::Grid<u16>) {

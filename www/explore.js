@@ -367,13 +367,20 @@ function updateStats() {
   t.changed.textContent = s.lastChanged !== null
     ? `${formatNumber(s.lastChanged)} cells (${formatNumber(s.lastUpdateMs)} ms)`
     : c ? `the chain started (${formatNumber(s.lastUpdateMs)} ms)` : '–';
+  const r = s.renewal;
+  const kept = r?.done
+    ? `; kept the ${r.adopted ? 'fresh' : 'warm'} chain (K(W,M) ${formatNumber(r.adopted ? r.fresh.predictionRate : r.warm.predictionRate, 4)}, ` +
+      `the ${r.adopted ? 'warm' : 'fresh'} one's ${formatNumber(r.adopted ? r.warm.predictionRate : r.fresh.predictionRate, 4)})`
+    : '';
   t.phase.textContent = !c
     ? 'exploring; no chain yet'
     : !s.finished
       ? 'exploring; the chain follows'
-      : c.settledAt !== null
-        ? `explored; settled at iteration ${formatNumber(c.settledAt)}`
-        : 'explored; the chain runs until it settles';
+      : r && !r.done
+        ? `explored; the warm chain under the whole-map table and a fresh one, ${formatNumber(r.ran)} of ${formatNumber(r.iterations)} iterations each`
+        : c.settledAt !== null
+          ? `explored${kept}; settled at iteration ${formatNumber(c.settledAt)}`
+          : `explored${kept}; the chain runs until it settles`;
   ui.canvas.setAttribute(
     'aria-label',
     `The robot's map of ${state.name || 'the map'}: ${formatNumber(s.travelledM, 1)} m driven, ${percent(s.truthFree ? s.seenFree / s.truthFree : 0)} of the free cells seen` +
@@ -485,6 +492,7 @@ function expose() {
         done: Boolean(s?.done),
         finished: Boolean(s?.finished),
         settled: Boolean(s?.settled),
+        renewal: s?.renewal ?? null,
         updates: s?.updates ?? 0,
         lastChanged: s?.lastChanged ?? null,
         chain: Boolean(c),

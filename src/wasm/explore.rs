@@ -3,7 +3,7 @@
 //! mapper module (`ksmcmc.js`, feature `wasm-mapper`), beside the chain: its snapshots are that
 //! module's `Map`s, and the page loads nothing else (8 kB of the module gzipped).
 
-use super::Map;
+use super::{Map, Mapper};
 use crate::explore::{ExploreConfig, Explorer as Robot};
 use crate::grid::Cell;
 use wasm_bindgen::prelude::*;
@@ -91,5 +91,19 @@ impl Explorer {
     /// `Mapper.updateMap` (or to `new Mapper` the first time).
     pub fn snapshot(&self) -> Map {
         Map::new(self.robot.snapshot())
+    }
+}
+
+#[wasm_bindgen]
+impl Mapper {
+    /// The end of an exploration (`ksmcmc explore`'s renewal, `OnlineConfig::renew`): once the
+    /// robot has no frontier left, its walls are seen from both sides wherever it could go, so
+    /// the chain takes the whole-map sensor table (Tab. 3.1) in place of the range-sensor
+    /// table of `chainConfigOnline`, going on from its world (both worlds rescored). The page
+    /// then runs a fresh chain with that table beside it and keeps the one with the higher best
+    /// log posterior.
+    #[wasm_bindgen(js_name = useWholeMapSensor)]
+    pub fn use_whole_map_sensor(&mut self) {
+        self.set_sensor(crate::floorplan::posterior::SensorModel::default());
     }
 }

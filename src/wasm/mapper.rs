@@ -141,6 +141,16 @@ impl Mapper {
         self.busy_ms = 0.0;
     }
 
+    /// Explains the map from now on under `sensor` (the chain's worlds rescored,
+    /// [`Chain::set_sensor`]), its cached worlds and settle rule started afresh: the log
+    /// posterior jumps with the table.
+    #[cfg(feature = "wasm-explore")]
+    pub(crate) fn set_sensor(&mut self, sensor: crate::floorplan::posterior::SensorModel) {
+        self.chain.set_sensor(sensor);
+        self.settled = Settled::for_map(self.map.count(Cell::Free));
+        self.forget_worlds();
+    }
+
     /// The picture `drawMapper` shows.
     pub fn picture(&mut self, options: &DrawOptions) -> Result<Pixmap, JsError> {
         let (w, h) = (self.map.width(), self.map.height());

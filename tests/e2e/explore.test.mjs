@@ -137,8 +137,20 @@ describe('Exploration page', () => {
       timeline.slice(1).map((r) => [r.update, r.travelledM, r.seenFree, r.changed]),
       native.map((r) => [r.update, r.travelled_m, r.seen_free, r.changed_cells]),
     );
+    // The end of the exploration, as natively: the warm chain under the whole-map table and a
+    // fresh chain each run the cold budget, and the one with the higher log posterior is kept.
+    await until(page, (s) => s.renewal?.done, undefined, 240_000);
+    const r = (await snap(page)).renewal;
+    assert.equal(r.iterations, 100_000);
+    assert.ok(r.warm.iteration - r.range.iteration >= r.iterations && r.fresh.iteration >= r.iterations, `both chains ran the budget: ${JSON.stringify(r)}`);
+    assert.equal(r.adopted, r.fresh.logPosterior > r.warm.logPosterior, 'the higher log posterior is kept');
+    // The CLI renews its last map too (there with five times its 500 iterations per update).
+    assert.equal(report.renewal.iterations, 2500);
     await until(page, (s) => s.settled && !s.running, undefined, 180_000);
     const s = await snap(page);
+    const keptK = r.adopted ? r.fresh.predictionRate : r.warm.predictionRate;
+    assert.ok(s.k >= keptK - 1e-9, `the settled plan is the kept chain's, climbed on: K ${s.k} from ${keptK}`);
+    assert.match(await page.textContent('#stat-phase'), /kept the (fresh|warm) chain/);
     assert.equal(await page.evaluate(() => document.documentElement.dataset.running), 'false');
     assert.ok(s.settledAt > 0);
     // The figures are drawn on the next frame after the worker's stop: wait for it (a loaded

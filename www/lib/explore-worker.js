@@ -22,6 +22,7 @@
 
 import init, {
   Map as OccMap,
+  chainConfigDefaults,
   chainConfigOnline,
   Explorer,
   Mapper,
@@ -57,6 +58,21 @@ const CODE_RGB = [
   [0, 0, 0],
 ];
 
+/**
+ * The end of an exploration, as `ksmcmc explore` ends it (`OnlineConfig::renew`): once the robot
+ * is done, the warm chain under the whole-map sensor table and a fresh chain with that table on
+ * the last map each run this many iterations (the cold budget: 5 x 20,000), and the one with
+ * the higher best log posterior is kept.
+ */
+const RENEW_ITERATIONS = 100_000;
+
+/** The online settings with the whole-map sensor table: the fresh chain's at the end. */
+function wholeMapConfig() {
+  const config = JSON.parse(chainConfigOnline());
+  config.posterior.sensor = JSON.parse(chainConfigDefaults()).posterior.sensor;
+  return JSON.stringify(config);
+}
+
 /** The plan module, imported and initialised when first needed (then kept). */
 const loadPlan = () => loadModule('ksmcmc_plan.js');
 
@@ -90,6 +106,12 @@ const state = {
   lastUpdateMs: null,
   /** Whether the chain has the robot's final map (the robot is done); then it runs until settled. */
   finished: false,
+  /**
+   * The end of the exploration: { fresh (a Mapper, while both run), warmFrom (the warm chain's
+   * iteration at the switch), range (the warm chain's figures before it), done, adopted, warm,
+   * fresh figures }; null before the robot is done.
+   */
+  renewal: null,
   settled: false,
   /** Whether the chain was settled when it last started running (Start after settling runs on). */
   wasSettled: false,
@@ -136,6 +158,7 @@ function stats() {
     lastUpdateMs: state.lastUpdateMs,
     finished: state.finished,
     settled: state.settled,
+    renewal: renewalStats(),
     chain: m
       ? {
           iteration: m.iteration,
@@ -152,6 +175,64 @@ function stats() {
   };
 }
 
+/** A chain's figures for the renewal's report. */
+function figures(m) {
+  return { logPosterior: m.bestLogPosterior, predictionRate: m.bestPredictionRate, units: m.bestUnits, iteration: m.iteration };
+}
+
+/** The renewal as the page shows it: its figures, and how far each chain has run. */
+function renewalStats() {
+  const r = state.renewal;
+  if (!r) return null;
+  const ran = r.done ? RENEW_ITERATIONS : Math.min(state.mapper.iteration - r.warmFrom, r.fresh.iteration);
+  return { iterations: RENEW_ITERATIONS, ran, done: r.done, adopted: r.adopted, range: r.range, warm: r.warm, fresh: r.freshFigures };
+}
+
+/**
+ * Starts the end of the exploration on the last map `snapshot`: the warm chain takes the
+ * whole-map table, and a fresh chain with it starts beside it.
+ */
+function startRenewal(snapshot) {
+  const m = state.mapper;
+  const range = figures(m);
+  m.useWholeMapSensor();
+  const fresh = new Mapper(snapshot, wholeMapConfig(), state.args.seed);
+  state.renewal = { fresh, warmFrom: m.iteration, range, done: false, adopted: false, warm: null, freshFigures: null };
+}
+
+/**
+ * One slice of the renewal: each chain runs half of it until both have run RENEW_ITERATIONS;
+ * then the one with the higher best log posterior is kept (the fresh one replaces the warm
+ * one only if strictly higher, as natively). Returns whether the renewal is over.
+ */
+function renewalSlice() {
+  const r = state.renewal;
+  const warm = state.mapper;
+  const left = (m, from) => RENEW_ITERATIONS - (m.iteration - from);
+  for (const [m, from] of [[warm, r.warmFrom], [r.fresh, 0]]) {
+    const n = left(m, from);
+    if (n > 0) {
+      m.runFor(SLICE_MS / 2);
+      // Past the budget: the extra iterations stay (the page is timed, not counted), and the
+      // figures are read once both are through it.
+    }
+  }
+  if (left(warm, r.warmFrom) > 0 || left(r.fresh, 0) > 0) return false;
+  r.warm = figures(warm);
+  r.freshFigures = figures(r.fresh);
+  r.adopted = r.fresh.bestLogPosterior > warm.bestLogPosterior;
+  if (r.adopted) {
+    state.mapper = r.fresh;
+    warm.free();
+    dropPlan();
+  } else {
+    r.fresh.free();
+  }
+  r.fresh = null;
+  r.done = true;
+  return true;
+}
+
 /** A new robot on the true map, and no chain until it has driven the first interval. */
 function start({ seed, rangeM }) {
   const explorer = new Explorer(state.truth, JSON.stringify({ range_m: rangeM }), seed);
@@ -159,6 +240,8 @@ function start({ seed, rangeM }) {
   state.mapper?.free();
   state.explorer = explorer;
   state.mapper = null;
+  state.renewal?.fresh?.free();
+  state.renewal = null;
   state.args = { seed, rangeM };
   state.generation++;
   state.running = false;
@@ -268,6 +351,12 @@ function update() {
     state.finished = true;
     state.settled = false;
     state.wasSettled = false;
+    const last = e.snapshot();
+    try {
+      startRenewal(last);
+    } finally {
+      last.free();
+    }
   }
 }
 
@@ -381,7 +470,8 @@ function loop() {
   let waiting = state.frame;
   if (waiting && state.mapper && !pictureDue(state.drawnAt, state.drawMs, DRAW_SHARE)) waiting = null;
   try {
-    if (state.mapper) state.mapper.runFor(SLICE_MS);
+    if (state.renewal && !state.renewal.done) renewalSlice();
+    else if (state.mapper) state.mapper.runFor(SLICE_MS);
     if (waiting) {
       state.frame = null;
       frame(waiting.id, waiting.view);
@@ -390,7 +480,7 @@ function loop() {
     fail(err);
     return;
   }
-  if (state.finished && !state.wasSettled && state.mapper?.settledAt !== undefined) {
+  if (state.finished && state.renewal?.done && !state.wasSettled && state.mapper?.settledAt !== undefined) {
     state.running = false;
     state.settled = true;
     dropFrame();

@@ -303,10 +303,15 @@ pub fn dilate(grid: &Grid<Cell>, r: i32) -> Grid<Cell> {
     out
 }
 
+/// The deepest unit wall ring in cells, measured ([`ring_depth`]) or configured
+/// (`ChainConfig::wall_thickness_m`).
+pub const MAX_RING_DEPTH: i32 = 10;
+
 /// The depth of unit wall rings that best explains this map's walls: the typical wall
 /// thickness, measured on the original map along the two wall directions of its dominant
 /// orientation `angle` (radians): for each occupied cell, the shorter of the two runs of
-/// occupied cells through it along those axes; the median `d` over cells, clamped to 1..=10.
+/// occupied cells through it along those axes; the median `d` over cells, clamped to 1 ..=
+/// [`MAX_RING_DEPTH`].
 ///
 /// Why the whole thickness: a ring as deep as the wall predicts every cell of an outer wall,
 /// and two units sharing an inner wall both lay their rings on it (a shared wall costs no
@@ -421,7 +426,7 @@ fn depth_bridging(grid: &Grid<Cell>, angle: f64, bridge: usize) -> i32 {
         acc += hist[d];
         2 * acc >= total
     });
-    (median.unwrap_or(1) as i32).clamp(1, 10)
+    (median.unwrap_or(1) as i32).clamp(1, MAX_RING_DEPTH)
 }
 
 #[cfg(test)]

@@ -309,7 +309,7 @@ async function makePlan(key) {
   if (!inputs) return again();
   const made = new x.Plan(floor.pgm, floor.yaml, input, undefined, inputs);
   const report = JSON.parse(made.reportJson());
-  keep(key, made, { wings: true, count: inputs.length, world: made.worldJson(), units: report.units, rate: report.cell_prediction_rate });
+  keep(key, made, { wings: true, count: inputs.length, units: report.units, rate: report.cell_prediction_rate });
   postMessage({ event: 'wings', stats: stats() });
   return made;
 }
@@ -334,9 +334,10 @@ function planWorld() {
 }
 
 /** Makes `plan` the last plan made, for `key`. */
-function keep(key, plan, { wings, count = 0, world = null, units = 0, rate = 0 }) {
+function keep(key, plan, { wings, count = 0, units = 0, rate = 0 }) {
   if (state.plan?.plan !== plan) state.plan?.plan.free();
-  state.plan = { key, plan, wings, count, world, units, rate };
+  // Its world.json text is read when first drawn (planWorld).
+  state.plan = { key, plan, wings, count, world: null, units, rate };
 }
 
 /**

@@ -209,13 +209,10 @@ function renewalSlice() {
   const r = state.renewal;
   const warm = state.mapper;
   const left = (m, from) => RENEW_ITERATIONS - (m.iteration - from);
+  // Timed slices, not counted ones: a chain may run a little past the budget, and the figures
+  // are read once both are through it.
   for (const [m, from] of [[warm, r.warmFrom], [r.fresh, 0]]) {
-    const n = left(m, from);
-    if (n > 0) {
-      m.runFor(SLICE_MS / 2);
-      // Past the budget: the extra iterations stay (the page is timed, not counted), and the
-      // figures are read once both are through it.
-    }
+    if (left(m, from) > 0) m.runFor(SLICE_MS / 2);
   }
   if (left(warm, r.warmFrom) > 0 || left(r.fresh, 0) > 0) return false;
   r.warm = figures(warm);

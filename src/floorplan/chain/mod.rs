@@ -98,9 +98,6 @@ pub(crate) struct ChainCells {
     pub(crate) wall: Option<i32>,
 }
 
-/// The deepest wall ring in cells, as [`vision::walls::ring_depth`] estimates it at most.
-pub(crate) const MAX_WALL_CELLS: i32 = 10;
-
 /// The thickest wall ring a configuration may ask for, metres: exterior walls of masonry are
 /// up to about half a metre thick, interior ones 0.1 - 0.3 m; a ring of a metre explains no
 /// wall a map shows.
@@ -108,9 +105,9 @@ pub const MAX_WALL_THICKNESS_M: f64 = 1.0;
 
 /// `m` metres of wall in whole cells of `r` metres: the nearest whole number (halves up, with
 /// the quotient's float noise forgiven: 0.15 m is two 10 cm cells), at least one cell and at
-/// most [`MAX_WALL_CELLS`].
+/// most [`vision::walls::MAX_RING_DEPTH`].
 fn wall_cells(m: f64, r: f64) -> i32 {
-    (libm::round(m / r + 1e-9) as i32).clamp(1, MAX_WALL_CELLS)
+    (libm::round(m / r + 1e-9) as i32).clamp(1, vision::walls::MAX_RING_DEPTH)
 }
 
 impl ChainConfig {

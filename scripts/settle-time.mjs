@@ -1,18 +1,25 @@
 #!/usr/bin/env node
 // Time to a settled plan on the live mapper page, as a reader meets it: open a map file (which
 // turns Stop when settled on), press Start, and wait until the page stops because the best
-// world has settled. Prints, per map, the seconds from Start to the stop, the iteration it
-// settled at, iterations run, units, doors and rooms of the best world.
+// world has settled, then until it shows that world's plan (its rooms, and for a building of
+// wings the wings' chains run). Beside it, in the same run, `ksmcmc floorplan MAP --seed 1`
+// (the CLI's default) is timed, and its plan and the page's (the CLI's at the iterations the
+// page ran: the same bytes) scored against the map's truth where there is one
+// (`NAME_gt_segmentation.png` beside it). Prints, per map, the seconds from Start to the stop
+// and to the plan, the native seconds and their ratio, the iteration it settled at, the
+// window, units, doors and rooms of the best world, and precision / recall of both.
 //
 //   node scripts/settle-time.mjs [--datasets DIR] [--timeout SECONDS] [MAP ...]
 //
 // MAP defaults to the Radish Cartesium map and the Bormann et al. office_e and lab_a maps in
-// ../shared/datasets. Needs www/pkg (make www-pkg), Debian's chromium and tests/e2e's
-// playwright-core (make e2e-deps). Figures, not a test: they depend on the machine and its load.
+// ../shared/datasets. Needs www/pkg (make www-pkg), the release CLI (make cli), Debian's
+// chromium and tests/e2e's playwright-core (make e2e-deps). Figures, not a test: they depend on
+// the machine and its load.
 
-import { existsSync } from 'node:fs';
+import { execFileSync } from 'node:child_process';
+import { existsSync, mkdtempSync, readFileSync, rmSync } from 'node:fs';
 import { createRequire } from 'node:module';
-import { cpus, loadavg } from 'node:os';
+import { cpus, loadavg, tmpdir } from 'node:os';
 import { basename, dirname, join, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 
@@ -61,30 +68,62 @@ async function settle(browser, url, map, timeoutS) {
       { timeout: timeoutS * 1000, polling: 100 },
     );
     const seconds = (Date.now() - t0) / 1000;
+    await page.evaluate(() => window.__ksmcmc.idle());
+    const planSeconds = (Date.now() - t0) / 1000;
     const s = await page.evaluate(() => window.__ksmcmc.snapshot());
     const report = JSON.parse(await page.evaluate(() => window.__ksmcmc.mapper.reportJson()));
-    return { map: basename(map), width: setup.width, height: setup.height, seconds, settledAt: s.settledAt, iterations: s.iteration, window: s.settleWindow, units: report.units, doors: report.doors, rooms: report.rooms };
+    return { map: basename(map), width: setup.width, height: setup.height, seconds, planSeconds, settledAt: s.settledAt, iterations: s.iteration, window: s.settleWindow, units: report.units, doors: report.doors, rooms: report.rooms };
   } finally {
     await context.close();
   }
 }
 
+const CLI = join(REPO, 'target/release/ksmcmc');
+
+/**
+ * `ksmcmc floorplan map --seed 1` (with `--iterations n` if given): wall seconds, and
+ * precision / recall against `truth` if there is one.
+ */
+function native(map, truth, n) {
+  const out = mkdtempSync(join(tmpdir(), 'settle-'));
+  try {
+    const t0 = Date.now();
+    execFileSync(CLI, ['floorplan', map, '--seed', '1', '--out', out, ...(n ? ['--iterations', String(n)] : [])], { stdio: 'ignore' });
+    const seconds = (Date.now() - t0) / 1000;
+    const report = JSON.parse(readFileSync(join(out, 'report.json'), 'utf8'));
+    let score = null;
+    if (truth) score = JSON.parse(execFileSync(CLI, ['score', join(out, 'labels.pgm'), truth, '--json'], { encoding: 'utf8' }));
+    return { seconds, k: report.cell_prediction_rate, score };
+  } finally {
+    rmSync(out, { recursive: true, force: true });
+  }
+}
+
 const args = parseArgs(process.argv.slice(2));
+if (!existsSync(CLI)) throw new Error(`${CLI} is missing: make cli`);
 if (!existsSync(join(REPO, 'www/pkg/ksmcmc_bg.wasm'))) throw new Error('www/pkg is missing: make www-pkg');
 const server = await serve(join(REPO, 'www'));
 const browser = await chromium.launch({ executablePath: process.env.CHROMIUM ?? '/usr/bin/chromium', args: ['--no-sandbox', '--disable-gpu', '--disable-dev-shm-usage'] });
 try {
   console.log(`${cpus().length} x ${cpus()[0]?.model ?? 'CPU'}, load average ${loadavg().map((l) => l.toFixed(1)).join(' ')}`);
-  console.log('| map | cells | seconds to settled | settled at | iterations | window | units | doors | rooms |');
-  console.log('|---|---|---|---|---|---|---|---|---|');
+  console.log('| map | cells | page: seconds to settled | to the plan | native default, s | page / native | settled at | window | units | doors | rooms | K page / native | precision / recall page | native |');
+  console.log('|---|---|---|---|---|---|---|---|---|---|---|---|---|---|');
   for (const map of args.maps) {
     if (!existsSync(map)) {
-      console.log(`| ${basename(map)} | absent | | | | | | | |`);
+      console.log(`| ${basename(map)} | absent | | | | | | | | | | | | |`);
       continue;
     }
     const r = await settle(browser, server.url, map, args.timeout);
     const n = (v) => Number(v).toLocaleString('en-US');
-    console.log(`| ${r.map} | ${r.width}x${r.height} | ${r.seconds.toFixed(1)} | ${n(r.settledAt)} | ${n(r.iterations)} | ${n(r.window)} | ${r.units} | ${r.doors} | ${r.rooms} |`);
+    const truth = map.replace(/(_furnitures)?\.png$/, '_gt_segmentation.png');
+    const hasTruth = truth !== map && existsSync(truth);
+    const cli = native(map, hasTruth ? truth : null);
+    const same = native(map, hasTruth ? truth : null, r.iterations);
+    const pr = (x) => (x.score ? `${x.score.precision.toFixed(3)} / ${x.score.recall.toFixed(3)}` : '–');
+    console.log(
+      `| ${r.map} | ${r.width}x${r.height} | ${r.seconds.toFixed(1)} | ${r.planSeconds.toFixed(1)} | ${cli.seconds.toFixed(1)} | ${(r.planSeconds / cli.seconds).toFixed(1)} | ` +
+        `${n(r.settledAt)} | ${n(r.window)} | ${r.units} | ${r.doors} | ${r.rooms} | ${same.k.toFixed(4)} / ${cli.k.toFixed(4)} | ${pr(same)} | ${pr(cli)} |`,
+    );
   }
   console.log(`load average after: ${loadavg().map((l) => l.toFixed(1)).join(' ')}`);
 } finally {

@@ -136,7 +136,7 @@ impl Mapper {
 
     fn restart(&mut self, chain: Chain) {
         self.chain = chain;
-        self.settled = Settled::for_map(self.map.count(Cell::Free));
+        self.settled = Settled::for_floor(self.map.count(Cell::Free), self.chain.resolution());
         self.forget_worlds();
         self.busy_ms = 0.0;
     }
@@ -147,7 +147,7 @@ impl Mapper {
     #[cfg(feature = "wasm-explore")]
     pub(crate) fn set_sensor(&mut self, sensor: crate::floorplan::posterior::SensorModel) {
         self.chain.set_sensor(sensor);
-        self.settled = Settled::for_map(self.map.count(Cell::Free));
+        self.settled = Settled::for_floor(self.map.count(Cell::Free), self.chain.resolution());
         self.forget_worlds();
     }
 
@@ -225,6 +225,7 @@ impl Mapper {
         let t0 = now_ms();
         let chain = Chain::new(inner, config.clone(), seed).map_err(|e| JsError::new(&e.to_string()))?;
         let setup_ms = now_ms() - t0;
+        let settled = Settled::for_floor(inner.count(Cell::Free), chain.resolution());
         Ok(Mapper {
             chain,
             map: inner.clone(),
@@ -233,7 +234,7 @@ impl Mapper {
             best: None,
             current: None,
             reference: None,
-            settled: Settled::for_map(inner.count(Cell::Free)),
+            settled,
             setup_ms,
             busy_ms: 0.0,
         })
@@ -291,7 +292,7 @@ impl Mapper {
         self.busy_ms += now_ms() - t0;
         if update.changed_cells > 0 {
             self.map = map.inner().clone();
-            self.settled = Settled::for_map(self.map.count(Cell::Free));
+            self.settled = Settled::for_floor(self.map.count(Cell::Free), self.chain.resolution());
             self.base = None;
             self.forget_worlds();
         }
@@ -320,7 +321,7 @@ impl Mapper {
     }
 
     /// The iteration at which the chain settled: its best log posterior improved by less than
-    /// 0.01 % over the last `settleWindow` iterations (looked at every 100 iterations; the same
+    /// 0.3 % over the last `settleWindow` iterations (looked at every 100 iterations; the same
     /// seed settles at the same iteration however the iterations are chunked). `undefined`
     /// while it has not, or since it improved again.
     #[wasm_bindgen(getter, js_name = settledAt)]
@@ -328,15 +329,15 @@ impl Mapper {
         self.settled.settled_at().map(|i| i as f64)
     }
 
-    /// Iterations without a real improvement that make the chain settled: a quarter of the
-    /// map's free cells, from 5,000 to 200,000.
+    /// Iterations without a real improvement that make the chain settled: 5 per m² of free
+    /// floor, from 1,000 to 200,000.
     #[wasm_bindgen(getter, js_name = settleWindow)]
     pub fn settle_window(&self) -> f64 {
         self.settled.window() as f64
     }
 
     /// The last iteration (a multiple of 100) at which the best log posterior improved by more
-    /// than 0.01 %.
+    /// than 0.3 %.
     #[wasm_bindgen(getter, js_name = improvedAt)]
     pub fn improved_at(&self) -> Option<f64> {
         self.settled.improved_at().map(|i| i as f64)

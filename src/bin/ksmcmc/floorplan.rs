@@ -122,7 +122,7 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
         chain.set_edits(edits).map_err(failed)?;
     }
     let deadline = o.time_limit.map(|t| t0 + std::time::Duration::from_secs_f64(t));
-    let mut settled = Settled::for_map(map.count(Cell::Free));
+    let mut settled = Settled::for_floor(map.count(Cell::Free), chain.resolution());
     let chunk = if o.until_settled { settled::STRIDE } else { 500 };
     while chain.iteration() < o.iterations {
         if deadline.is_some_and(|d| Instant::now() >= d) || (o.until_settled && settled.settled_at().is_some()) {

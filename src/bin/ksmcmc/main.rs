@@ -15,6 +15,7 @@ mod mln;
 mod render;
 mod route;
 mod score;
+mod settle_eval;
 mod synth;
 mod tabletop;
 mod tabletop_synth;

@@ -19,7 +19,8 @@
 // A building whose walls follow several directions is explained wing by wing, as
 // `ksmcmc floorplan` does (floorplan::wings): once the chain has stopped, the plan module says
 // how many wings there are, and the worker runs a chain per wing on that wing's map, turned by
-// its direction, for as many iterations as the first chain ran, in slices between requests.
+// its direction, for as many iterations as the first chain ran, side by side in workers of
+// their own (wing-workers.js), as natively on threads.
 // The plan of the stopped chain is then made with the wings' chains, its units at their
 // angles: byte for byte what `ksmcmc floorplan --iterations N` writes.
 
@@ -27,13 +28,15 @@ import init, { Map as OccMap, Mapper, renderMapperRgba, renderSceneGraphRgba, wa
 import { buildMap } from './map-source.js';
 import { loadModule } from './modules.js';
 import { pictureDue, scheduler, SLICE_MS } from './scheduler.js';
-import { runWingChains, wingSettings } from './wing-chains.js';
+import { wingSettings } from './wing-chains.js';
+import { runWingWorkers } from './wing-workers.js';
 
 /**
  * While running, pictures take at most this share of the worker's time: a large map's picture
- * costs milliseconds, and the page would ask for one every frame.
+ * costs milliseconds, and the page would ask for one every frame. With the rooms' share
+ * (mapper/rooms.js) the chain keeps at least 60 % of it.
  */
-const DRAW_SHARE = 0.3;
+const DRAW_SHARE = 0.2;
 /** The `Mapper` methods the page may call through `invoke`. */
 const MAPPER_METHODS = new Set(['worldJson', 'setEdits', 'editsJson']);
 /**
@@ -342,8 +345,8 @@ function keep(key, plan, { wings, count = 0, units = 0, rate = 0 }) {
 
 /**
  * Runs the chains of the wings of plan `first` (its `wingCount`), each for as many iterations as
- * the first chain ran, with its seed, in slices of about SLICE_MS between requests. Returns
- * their plan inputs in order, or null if the chain ran on, changed or was replaced meanwhile.
+ * the first chain ran, with its seed, side by side in workers. Returns their plan inputs in
+ * order, or null if the chain ran on, changed or was replaced meanwhile.
  */
 async function runWings(first, floor, config, key) {
   const m = state.mapper;
@@ -354,7 +357,7 @@ async function runWings(first, floor, config, key) {
     if (p.iteration === 0) postMessage({ event: 'wings', stats: stats() });
   };
   try {
-    return await runWingChains({ first, yaml: floor.yaml, config, seed: m.seed, target, sliceMs: SLICE_MS, Map: OccMap, Mapper, gone, onProgress });
+    return await runWingWorkers({ first, yaml: floor.yaml, config, seed: m.seed, target, gone, onProgress });
   } finally {
     state.wings = null;
   }

@@ -1,9 +1,9 @@
 // The chains of a building's wings (issue 13), as `ksmcmc floorplan` runs them: one per wing of
 // a plan, on the wing's map, turned by the wing's direction, with the first chain's seed and
-// iterations. Stepped in time slices with a pause between them, so that the live mapper's
-// worker answers requests and the `mount` embed draws frames meanwhile. Shared by both (the
-// package ships this file beside mount.js); the wasm classes are passed in, since each imports
-// the main module from its own place.
+// iterations. Stepped in time slices with a pause between them, so that the `mount` embed draws
+// frames meanwhile (the package ships this file beside mount.js); the wasm classes are passed
+// in, since the embed imports the main module from its own place. The live mapper's worker
+// runs them side by side in workers instead (wing-workers.js) and takes `wingSettings` here.
 
 /** Iterations of a wing's chain per slice, until the time of one is known. */
 const FIRST_STEP = 200;

@@ -182,7 +182,7 @@ export function chainSettled(stats) {
   takeStats(stats);
   stopped();
   say(
-    `Settled at iteration ${formatNumber(stats.settledAt)}: the best log posterior improved by less than 0.01 % ` +
+    `Settled at iteration ${formatNumber(stats.settledAt)}: the best log posterior improved by less than 0.3 % ` +
       `over the last ${formatNumber(stats.settleWindow)} iterations. Start runs on.`,
   );
   requestRedraw();
@@ -197,9 +197,10 @@ export function chainWings(stats) {
   takeStats(stats);
   const w = stats.wings;
   if (w) {
+    const side = w.running > 1 ? `, ${w.running} wings side by side` : '';
     say(
       `The walls follow ${w.of} directions: explaining wing ${w.wing} of ${w.of} in its own direction ` +
-        `(${formatNumber(w.rotationDeg, 1)}°), ${formatNumber(w.target)} iterations as the first chain ran.`,
+        `(${formatNumber(w.rotationDeg, 1)}°), ${formatNumber(w.target)} iterations as the first chain ran${side}.`,
     );
   } else if (stats.wingsDone > 0) {
     say(`The ${stats.wingsDone} wings were explained each in its own direction: the best world's units lie at their angles.`);

@@ -19,6 +19,14 @@ pub struct Hough {
     pub votes: Vec<u32>,
 }
 
+/// `libm::round(v) as usize` for `v >= 0` (a rho offset by the diagonal is never negative),
+/// exactly, without the library call in the innermost loop of [`Hough::occupied`]: the
+/// fraction `v - trunc(v)` is exact below 2^52, and a half rounds up, as `round` does.
+fn round_positive(v: f64) -> usize {
+    let t = v as usize;
+    t + usize::from(v - t as f64 >= 0.5)
+}
+
 impl Hough {
     /// Accumulates votes from the occupied cells of `grid` (at most `max_points` of them, taken
     /// at a regular stride so large maps stay fast).
@@ -35,6 +43,7 @@ impl Hough {
             .collect();
         let total = grid.cells().iter().filter(|&&c| c == Cell::Occupied).count();
         let stride = total.div_ceil(max_points.max(1)).max(1);
+        let mut points = Vec::with_capacity(total / stride + 1);
         let mut k = 0usize;
         for y in 0..grid.height() {
             for x in 0..grid.width() {
@@ -42,14 +51,17 @@ impl Hough {
                     continue;
                 }
                 k += 1;
-                if k % stride != 0 {
-                    continue;
+                if k % stride == 0 {
+                    points.push((x as f64 + 0.5, y as f64 + 0.5));
                 }
-                let (fx, fy) = (x as f64 + 0.5, y as f64 + 0.5);
-                for (t, &(c, s)) in trig.iter().enumerate() {
-                    let rho = libm::round(fx * c + fy * s + diag) as usize;
-                    votes[t * n_rho + rho] += 1;
-                }
+            }
+        }
+        // Angle by angle, so that one angle's row of votes stays in the cache while every
+        // point votes in it (point by point, each vote landed in another row: 9 % of a
+        // Cartesium run went to the cache misses).
+        for (row, &(c, s)) in votes.chunks_exact_mut(n_rho).zip(&trig) {
+            for &(fx, fy) in &points {
+                row[round_positive(fx * c + fy * s + diag)] += 1;
             }
         }
         Hough { n_theta, n_rho, rho_offset: diag, votes }
@@ -64,5 +76,25 @@ impl Hough {
     /// lines (walls at this angle) score high; scattered cells score low.
     pub fn peakiness(&self, t: usize) -> f64 {
         self.votes[t * self.n_rho..(t + 1) * self.n_rho].iter().map(|&v| (v as f64) * (v as f64)).sum()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn round_positive_is_libm_round() {
+        let mut values =
+            vec![0.0, 0.5, 1.5, 2.5, 0.49999999999999994, 1.4999999999999998, 2.5000000000000004, 1e6 + 0.5];
+        // Values a Hough rho takes: cell centres on a 1237 x 672 map at many angles.
+        for i in 0..20_000u32 {
+            let th = std::f64::consts::PI * f64::from(i % 720) / 720.0;
+            let (fx, fy) = (f64::from(i % 1237) + 0.5, f64::from(i * 7 % 672) + 0.5);
+            values.push(fx * libm::cos(th) + fy * libm::sin(th) + 1408.0);
+        }
+        for v in values {
+            assert_eq!(round_positive(v), libm::round(v) as usize, "{v:e}");
+        }
     }
 }

@@ -34,13 +34,17 @@ mod ros;
 
 pub use classify::{Cell, Classifier};
 
-/// The metres per cell that turn a length into cells: `resolution`, or the 5 cm of the
-/// benchmark maps (`MapYaml::for_image`'s default) where it is not a positive number.
+/// The cell of the benchmark maps, 5 cm: the metres per cell of a map that does not say
+/// (`MapYaml::for_image`'s default, a chain on a bare grid).
+pub const BENCHMARK_CELL_M: f64 = 0.05;
+
+/// The metres per cell that turn a length into cells: `resolution`, or
+/// [`BENCHMARK_CELL_M`] where it is not a positive number.
 pub fn cell_size_m(resolution: f64) -> f64 {
     if resolution.is_finite() && resolution > 0.0 {
         resolution
     } else {
-        0.05
+        BENCHMARK_CELL_M
     }
 }
 pub use error::MapError;

@@ -59,7 +59,7 @@ impl MapYaml {
     pub fn for_image(image: &str) -> Self {
         MapYaml {
             image: image.to_string(),
-            resolution: 0.05,
+            resolution: super::BENCHMARK_CELL_M,
             origin: [0.0, 0.0, 0.0],
             negate: false,
             occupied_thresh: 0.65,

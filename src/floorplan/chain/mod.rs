@@ -487,7 +487,8 @@ impl Chain {
     }
 
     /// A chain on an upright world-frame map with an explicit ADD candidate pool (no detectors,
-    /// no rotation): for tests, teaching pages and callers with their own detectors.
+    /// no rotation): for tests, teaching pages and callers with their own detectors. A bare
+    /// grid says nothing of its cells: they are taken as the benchmark maps' 5 cm.
     pub fn with_candidates(
         map: &Grid<Cell>,
         config: ChainConfig,
@@ -496,8 +497,9 @@ impl Chain {
     ) -> Result<Chain, ChainError> {
         config.validate()?;
         let frame = Frame::identity(map.width() as u32, map.height() as u32);
-        let wall = config.cells(0.05).wall.unwrap_or(1);
-        Self::with_parts(config, frame, map.clone(), map.clone(), Candidates::new(candidates), wall, 0.05, seed)
+        let resolution = crate::grid::BENCHMARK_CELL_M;
+        let wall = config.cells(resolution).wall.unwrap_or(1);
+        Self::with_parts(config, frame, map.clone(), map.clone(), Candidates::new(candidates), wall, resolution, seed)
     }
 
     #[allow(clippy::too_many_arguments)]

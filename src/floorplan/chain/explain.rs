@@ -177,45 +177,6 @@ impl Explanation {
         }
     }
 
-    /// Takes the units `old` out and puts the units `new` in (each `t` cells of wall deep, as
-    /// [`Explanation::apply_unit`]), touching only the cells whose cover or wall count
-    /// changes: a unit grown or shrunk by a row, split or merged, changes a band along the
-    /// moved edges, not its whole area (office_g's halls of 100,000 cells made `apply_unit`
-    /// half of a run). The counts end as `apply_unit` on each would leave them.
-    pub fn replace_units(&mut self, old: &[Rect], new: &[Rect], t: i32) {
-        let t = t.max(1) as usize;
-        let all = || old.iter().chain(new);
-        let y0 = all().map(|r| r.y as usize).min().unwrap_or(0);
-        let y1 = all().map(|r| r.bottom() as usize).max().unwrap_or(0);
-        let mut cuts: Vec<usize> = Vec::with_capacity(4 * (old.len() + new.len()));
-        for y in y0..y1 {
-            cuts.clear();
-            for r in all() {
-                row_cuts(*r, t, y, &mut cuts);
-            }
-            cuts.sort_unstable();
-            cuts.dedup();
-            for span in cuts.windows(2) {
-                let (a, b) = (span[0], span[1]);
-                let (mut dcover, mut dwall) = (0i8, 0i8);
-                for r in new {
-                    let (c, w) = cover_wall(*r, t, a, y);
-                    (dcover, dwall) = (dcover + c, dwall + w);
-                }
-                for r in old {
-                    let (c, w) = cover_wall(*r, t, a, y);
-                    (dcover, dwall) = (dcover - c, dwall - w);
-                }
-                if dcover != 0 || dwall != 0 {
-                    let base = y * self.width;
-                    for x in a..b {
-                        self.touch(base + x, dcover, dwall, 0);
-                    }
-                }
-            }
-        }
-    }
-
     /// Adds or removes a door rectangle: its cells are predicted free.
     pub fn apply_door(&mut self, r: Rect, sign: i8) {
         for y in r.y as usize..r.bottom() as usize {
@@ -279,32 +240,6 @@ impl crate::vision::freespace::FreeSpace for Explanation {
     }
 }
 
-/// Where, along row `y`, what unit `r` (walls `t` deep) contributes to a cell may change: its
-/// ends, and on rows between its top and bottom walls the ends of its interior. Nothing on rows
-/// it does not cover.
-fn row_cuts(r: Rect, t: usize, y: usize, cuts: &mut Vec<usize>) {
-    let (x0, x1, top, bottom) = (r.x as usize, r.right() as usize, r.y as usize, r.bottom() as usize);
-    if y < top || y >= bottom {
-        return;
-    }
-    cuts.extend([x0, x1]);
-    if !(y < top + t || y + t >= bottom) {
-        let i0 = (x0 + t).min(x1);
-        cuts.extend([i0, x1.saturating_sub(t).max(i0)]);
-    }
-}
-
-/// What unit `r` (walls `t` deep) adds to cell (`x`, `y`): cover 1 inside it, and wall 1 on
-/// its ring, as [`Explanation::apply_unit`] counts them.
-fn cover_wall(r: Rect, t: usize, x: usize, y: usize) -> (i8, i8) {
-    let (x0, x1, top, bottom) = (r.x as usize, r.right() as usize, r.y as usize, r.bottom() as usize);
-    if x < x0 || x >= x1 || y < top || y >= bottom {
-        return (0, 0);
-    }
-    let ring = y < top + t || y + t >= bottom || x < x0 + t || x + t >= x1;
-    (1, i8::from(ring))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -348,42 +283,6 @@ mod tests {
         assert!(e.same_as(&Explanation::new(&m)));
         let total: i64 = e.confusion().iter().flatten().sum();
         assert_eq!(total, 108);
-    }
-
-    #[test]
-    fn replacing_units_equals_taking_them_out_and_putting_them_in() {
-        let m = map();
-        let rects = [
-            Rect::new(0, 0, 6, 5),
-            Rect::new(4, 2, 8, 7),
-            Rect::new(1, 1, 9, 7),
-            Rect::new(1, 1, 10, 7),
-            Rect::new(1, 0, 9, 7),
-            Rect::new(0, 0, 12, 9),
-            Rect::new(2, 3, 3, 2),
-            Rect::new(5, 1, 2, 8),
-        ];
-        let d = Rect::new(5, 3, 2, 1);
-        for t in 1..4 {
-            // Every one-for-one, one-for-two and two-for-one replacement among the rectangles,
-            // over a world that already holds a unit and a door.
-            for (i, &a) in rects.iter().enumerate() {
-                for (j, &b) in rects.iter().enumerate() {
-                    let c = rects[(i + j + 1) % rects.len()];
-                    for (old, new) in [(vec![a], vec![b]), (vec![a], vec![b, c]), (vec![a, c], vec![b])] {
-                        let mut e = Explanation::new(&m);
-                        e.apply_unit(rects[6], t, 1);
-                        e.apply_door(d, 1);
-                        for &r in &old {
-                            e.apply_unit(r, t, 1);
-                        }
-                        e.replace_units(&old, &new, t);
-                        let units: Vec<Rect> = std::iter::once(rects[6]).chain(new.iter().copied()).collect();
-                        assert!(e.same_as(&Explanation::recompute(&m, &units, t, &[d])), "{old:?} -> {new:?}, t={t}");
-                    }
-                }
-            }
-        }
     }
 
     #[test]

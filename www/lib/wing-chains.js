@@ -3,7 +3,7 @@
 // iterations. Stepped in time slices with a pause between them, so that the `mount` embed draws
 // frames meanwhile (the package ships this file beside mount.js); the wasm classes are passed
 // in, since the embed imports the main module from its own place. The live mapper's worker
-// runs them side by side in workers instead (wing-workers.js) and takes `wingSettings` here.
+// runs them side by side in workers instead (wing-workers.js), each made by `wingChain` here.
 
 /** Iterations of a wing's chain per slice, until the time of one is known. */
 const FIRST_STEP = 200;
@@ -18,6 +18,22 @@ const FIRST_STEP = 200;
 export function wingSettings(text) {
   const c = text?.trim() ? JSON.parse(text) : {};
   return c.detectors?.rotation_deg != null ? null : c;
+}
+
+/**
+ * A wing's chain: a `Mapper` on the wing's map (`pgm` with the floor's `yaml`), turned by the
+ * wing's direction, with the first chain's settings and seed. The caller frees it.
+ * @param {{ Map: Function, Mapper: Function, yaml: string, pgm: Uint8Array, config: object,
+ *   rotationDeg: number, seed: number | bigint }} wing
+ */
+export function wingChain({ Map, Mapper, yaml, pgm, config, rotationDeg, seed }) {
+  const map = Map.fromYaml(yaml, pgm);
+  try {
+    const detectors = { ...(config.detectors ?? {}), rotation_deg: rotationDeg };
+    return new Mapper(map, JSON.stringify({ ...config, detectors }), seed);
+  } finally {
+    map.free();
+  }
 }
 
 /**
@@ -38,14 +54,7 @@ export async function runWingChains({ first, yaml, config, seed, target, sliceMs
   for (let k = 0; k < of; k++) {
     const rotationDeg = first.wingRotationDeg(k);
     onProgress({ wing: k + 1, of, iteration: 0, rotationDeg });
-    const map = Map.fromYaml(yaml, first.wingMapPgm(k));
-    let chain;
-    try {
-      const detectors = { ...(config.detectors ?? {}), rotation_deg: rotationDeg };
-      chain = new Mapper(map, JSON.stringify({ ...config, detectors }), seed);
-    } finally {
-      map.free();
-    }
+    const chain = wingChain({ Map, Mapper, yaml, pgm: first.wingMapPgm(k), config, rotationDeg, seed });
     try {
       while (chain.iteration < target) {
         const t0 = performance.now();

@@ -6,6 +6,7 @@
 // { error }. Nothing here draws or answers requests, so it runs in long steps.
 
 import init, { Map as OccMap, Mapper } from '../pkg/ksmcmc.js';
+import { wingChain } from './wing-chains.js';
 
 /** Iterations between progress messages. */
 const STEP = 2000;
@@ -16,14 +17,7 @@ onmessage = async ({ data }) => {
   const { yaml, pgm, config, rotationDeg, seed, target } = data;
   try {
     await ready;
-    const map = OccMap.fromYaml(yaml, pgm);
-    let chain;
-    try {
-      const detectors = { ...(config.detectors ?? {}), rotation_deg: rotationDeg };
-      chain = new Mapper(map, JSON.stringify({ ...config, detectors }), seed);
-    } finally {
-      map.free();
-    }
+    const chain = wingChain({ Map: OccMap, Mapper, yaml, pgm, config, rotationDeg, seed });
     try {
       while (chain.iteration < target) {
         chain.step(Math.min(STEP, target - chain.iteration));

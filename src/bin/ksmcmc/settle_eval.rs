@@ -43,8 +43,7 @@ pub struct Rule {
 
 impl Rule {
     fn watcher(&self, free_cells: usize, resolution: f64) -> Settled {
-        let area = free_cells as f64 * resolution * resolution;
-        Settled::new(((self.per_m2 * area) as u64).max(self.min_window), self.relative)
+        Settled::scaled(free_cells, resolution, self.per_m2, self.min_window, self.relative)
     }
 
     fn name(&self) -> String {

@@ -65,9 +65,16 @@ impl Settled {
     /// The rule with its window scaled to a floor of `free_cells` free cells of `resolution`
     /// metres.
     pub fn for_floor(free_cells: usize, resolution: f64) -> Settled {
+        Settled::scaled(free_cells, resolution, PER_M2, MIN_WINDOW, RELATIVE)
+    }
+
+    /// A rule of this form with other numbers (`ksmcmc evaluate --only settle` weighs
+    /// candidates): `per_m2` iterations of window per m² of free floor, from `min_window` to
+    /// [`MAX_WINDOW`], and threshold `relative`.
+    pub fn scaled(free_cells: usize, resolution: f64, per_m2: f64, min_window: u64, relative: f64) -> Settled {
         let area_m2 = free_cells as f64 * resolution * resolution;
-        let window = ((PER_M2 * area_m2).round() as u64).clamp(MIN_WINDOW, MAX_WINDOW);
-        Settled::new(window, RELATIVE)
+        let window = ((per_m2 * area_m2).round() as u64).clamp(min_window, MAX_WINDOW);
+        Settled::new(window, relative)
     }
 
     /// The rule with a given window (rounded up to a multiple of [`STRIDE`]) and relative

@@ -111,8 +111,46 @@ pub fn same_length_log_factor(d: f64, sigma: f64, p_same: f64) -> f64 {
 /// One ground evidence atom: predicate, arguments, truth value.
 pub type Fact = (&'static str, Vec<String>, bool);
 
+/// The evidence predicates [`evidence`] supplies: complete for every world, so closed world
+/// wherever a knowledge base declares them.
+pub const EVIDENCE_PREDICATES: [&str; 8] = ["RoLi", "CoLi", "HaLi", "MulDoor", "Adj", "Small", "Narrow", "Circ"];
+
+/// Spaces a unit opens to through doors, of which at least this many make it a link of the
+/// building's circulation (`Circ`): a corridor or hall serves many spaces, while a store, a
+/// stairwell or an office is entered from one side and at most reaches a neighbour too.
+pub const CIRCULATION_SPACES: usize = 3;
+
+/// Corridor- or hall-like spaces a unit opens to, of which at least this many make it a link
+/// of the circulation (`Circ`): a passage joins two circulation spaces, a dead end joins one.
+pub const CIRCULATION_HUBS: usize = 2;
+
+/// Whether unit `u` links the circulation (`Circ`): it opens through doors to at least
+/// [`CIRCULATION_SPACES`] distinct spaces, or to at least [`CIRCULATION_HUBS`] units whose
+/// geometry (Tab. 3.6, by `classifier`) is corridor- or hall-like. A space that is no unit of
+/// `world` counts as a space, not as a hub.
+pub fn links_circulation(world: &World, u: &Unit, resolution: f64, classifier: &GeometryClassifier) -> bool {
+    // The space door `d` leads `u` to, if it is one of `u`'s doors.
+    let beyond = |d: &super::world::Door| match d.units {
+        [a, b] if a == u.id && b != u.id => Some(b),
+        [a, b] if b == u.id && a != u.id => Some(a),
+        _ => None,
+    };
+    let (mut spaces, mut hubs) = (0, 0);
+    for (i, d) in world.doors.iter().enumerate() {
+        let Some(s) = beyond(d) else { continue };
+        if world.doors[..i].iter().any(|e| beyond(e) == Some(s)) {
+            continue;
+        }
+        spaces += 1;
+        let unit = world.units.iter().find(|v| v.id == s);
+        hubs += unit.is_some_and(|v| classifier.classify(v, world.wall_thickness, resolution) != Geometry::RoomLike)
+            as usize;
+    }
+    spaces >= CIRCULATION_SPACES || hubs >= CIRCULATION_HUBS
+}
+
 /// The evidence a world gives (Tab. 3.3), with the world's units named by [`constant`]:
-/// the five unit predicates of every unit, true or false, and the true `Adj` atoms only (the
+/// the seven unit predicates of every unit, true or false, and the true `Adj` atoms only (the
 /// others are false by the closed world), so that it grows linearly with the units and their
 /// adjacencies, not with their pairs.
 pub fn evidence(world: &World, resolution: f64, classifier: &GeometryClassifier) -> Vec<Fact> {
@@ -121,6 +159,7 @@ pub fn evidence(world: &World, resolution: f64, classifier: &GeometryClassifier)
     for u in &world.units {
         let g = classifier.classify(u, t, resolution);
         let c = constant(u.id);
+        facts.push(("Circ", vec![c.clone()], links_circulation(world, u, resolution, classifier)));
         facts.push(("RoLi", vec![c.clone()], g == Geometry::RoomLike));
         facts.push(("CoLi", vec![c.clone()], g == Geometry::CorridorLike));
         facts.push(("HaLi", vec![c.clone()], g == Geometry::HallLike));
@@ -316,6 +355,65 @@ mod tests {
         assert_eq!(defects(&w), Some(0.0));
     }
 
+    #[test]
+    fn circulation_is_three_spaces_or_two_hubs_through_doors() {
+        use crate::floorplan::world::Door;
+        // At 5 cm cells: 1 and 2 are 4 x 4 m offices, 3 a 2 x 20 m corridor, 4 a 12 x 12 m
+        // hall, 5 a 2 x 3 m store.
+        let mut w = World::empty(1000, 1000);
+        w.wall_thickness = 1;
+        w.units = vec![
+            unit(1, 0, 0, 82, 82, UnitType::Unknown),
+            unit(2, 100, 0, 82, 82, UnitType::Unknown),
+            unit(3, 0, 100, 402, 42, UnitType::Unknown),
+            unit(4, 500, 0, 242, 242, UnitType::Unknown),
+            unit(5, 200, 0, 42, 62, UnitType::Unknown),
+        ];
+        let door = |id, a, b| Door { id, units: [a, b], x0: 0, y0: 0, x1: 0, y1: 0, opening: false };
+        let circ = |w: &World| {
+            let facts = evidence(w, 0.05, &GeometryClassifier::default());
+            w.units
+                .iter()
+                .filter(|u| facts.iter().any(|f| f.0 == "Circ" && f.1 == [constant(u.id)] && f.2))
+                .map(|u| u.id)
+                .collect::<Vec<_>>()
+        };
+        // The store opens to the corridor and to office 1: a dead end with a second door.
+        // Two doors between the same two spaces are one space reached.
+        w.doors = vec![door(1, 5, 3), door(2, 5, 1), door(3, 1, 3), door(4, 1, 3)];
+        assert_eq!(circ(&w), Vec::<u32>::new());
+        // A door to the hall too: the store joins two circulation spaces.
+        w.doors.push(door(5, 5, 4));
+        assert_eq!(circ(&w), vec![5]);
+        // The corridor reaches three spaces (office 2 now too); the store still joins two hubs.
+        w.doors.push(door(6, 2, 3));
+        assert_eq!(circ(&w), vec![3, 5]);
+        // A space that is no unit (beyond the world) counts as a space, not as a hub.
+        w.doors = vec![door(1, 1, 2), door(2, 1, 99)];
+        assert_eq!(circ(&w), Vec::<u32>::new());
+        w.doors.push(door(3, 1, 3));
+        assert_eq!(circ(&w), vec![1]);
+    }
+
+    #[test]
+    fn the_chain_parses_the_builtin_rules_without_their_comments() {
+        use crate::mln::Mln;
+        assert!(!BUILTIN_INDOOR_FORMULAS.contains("//") && BUILTIN_INDOOR.contains("// was"));
+        assert!(BUILTIN_INDOOR_FORMULAS.len() < BUILTIN_INDOOR.len() * 3 / 4);
+        let (full, bare) = (Mln::parse(BUILTIN_INDOOR).unwrap(), Mln::parse(BUILTIN_INDOOR_FORMULAS).unwrap());
+        assert_eq!(full.formulas().len(), bare.formulas().len());
+        // The same formulas and weights; only where each stands in the text differs.
+        let key = |m: &Mln| {
+            m.formulas().iter().map(|f| format!("{} {:?} {:?}", f.text, f.weight, f.expr)).collect::<Vec<_>>()
+        };
+        assert_eq!(key(&full), key(&bare));
+        // Code is kept to its comment; a line that is all comment goes.
+        let text = b"// head\nRoom(unit)  // a query\n\n2.5 Room(x)\n// tail";
+        const N: usize = 23;
+        assert_eq!(uncommented_len(text), N);
+        assert_eq!(&uncommented::<N>(text), b"Room(unit)\n2.5 Room(x)\n");
+    }
+
     /// Marginals of every query atom, inferred from `facts` as [`Knowledge::infer`] grounds them.
     fn marginals_of(world: &World, facts: &[Fact]) -> Vec<(String, f64)> {
         use crate::mln::{Database, Evidence, GroundConfig, InferenceConfig, Mln, Network};
@@ -327,7 +425,7 @@ mod tests {
         }
         let queries = ["Room", "Corr", "Hall", "Other", "SaLe"];
         let mut ground = GroundConfig::query(&queries);
-        ground.closed_world = ["RoLi", "CoLi", "HaLi", "MulDoor", "Adj", "Small", "Narrow"].map(String::from).to_vec();
+        ground.closed_world = EVIDENCE_PREDICATES.map(String::from).to_vec();
         let ty = mln.argument_types(mln.predicate("Room").unwrap())[0].to_string();
         ground.domains.push((ty, world.units.iter().map(|u| constant(u.id)).collect()));
         let net = Network::ground(&mln, &db, &ground).unwrap();
@@ -410,6 +508,74 @@ pub const WORK_PER_ITERATION: f64 = 1000.0;
 /// (`samples/knowledge/learn-indoor.sh`, `ksmcmc mln learn`).
 pub const BUILTIN_INDOOR: &str = include_str!("../../samples/knowledge/indoor-learned.mln");
 
+/// [`BUILTIN_INDOOR`] without its comments, made at compile time: the same declarations,
+/// formulas and weights, which the chain parses when no knowledge base is given. The comments
+/// (where the weights came from, what each was before learning) are for a reader, who gets
+/// [`BUILTIN_INDOOR`]; the live mapper's first WebAssembly module, which must stay under
+/// 500 kB gzipped (issue 12), carries only this.
+const BUILTIN_INDOOR_FORMULAS: &str = {
+    const TEXT: &[u8] = BUILTIN_INDOOR.as_bytes();
+    const BYTES: [u8; uncommented_len(TEXT)] = uncommented(TEXT);
+    match core::str::from_utf8(&BYTES) {
+        Ok(text) => text,
+        Err(_) => panic!("a comment ended inside a character"),
+    }
+};
+
+/// How many bytes [`uncommented`] keeps of `text`: of each line its code up to a `//`, without
+/// the spaces before it, and the line's end; lines left empty are dropped.
+const fn uncommented_len(text: &[u8]) -> usize {
+    let (mut n, mut line) = (0, 0);
+    while line < text.len() {
+        let (end, next) = line_code(text, line);
+        if end > line {
+            n += end - line + 1;
+        }
+        line = next;
+    }
+    n
+}
+
+/// `text` with its `//` comments and the lines they leave empty taken out (`N` is
+/// [`uncommented_len`]).
+const fn uncommented<const N: usize>(text: &[u8]) -> [u8; N] {
+    let mut out = [0u8; N];
+    let (mut at, mut line) = (0, 0);
+    while line < text.len() {
+        let (end, next) = line_code(text, line);
+        if end > line {
+            let mut i = line;
+            while i < end {
+                out[at] = text[i];
+                at += 1;
+                i += 1;
+            }
+            out[at] = b'\n';
+            at += 1;
+        }
+        line = next;
+    }
+    out
+}
+
+/// For the line starting at `start`: where its code ends (before a `//` and the spaces before
+/// it) and where the next line starts.
+const fn line_code(text: &[u8], start: usize) -> (usize, usize) {
+    let mut i = start;
+    let mut code = usize::MAX;
+    while i < text.len() && text[i] != b'\n' {
+        if code == usize::MAX && text[i] == b'/' && i + 1 < text.len() && text[i + 1] == b'/' {
+            code = i;
+        }
+        i += 1;
+    }
+    let mut end = if code == usize::MAX { i } else { code };
+    while end > start && (text[end - 1] == b' ' || text[end - 1] == b'\t' || text[end - 1] == b'\r') {
+        end -= 1;
+    }
+    (end, if i < text.len() { i + 1 } else { i })
+}
+
 /// The indoor rules of Tab. 3.3 - 3.5 with hand-set weights ("very sure" 0.9, "relatively
 /// sure" 0.7): the dissertation's knowledge base as transcribed, beside the learned default.
 pub const HAND_SET_INDOOR: &str = include_str!("../../samples/knowledge/indoor.mln");
@@ -426,9 +592,9 @@ pub struct KnowledgeConfig {
     /// unknown cells that eq. 3.39 counts as errors (BENCHMARKS.md, `evaluate --only paired`).
     pub enabled: bool,
     /// Knowledge base text in the Alchemy format; `None` is [`BUILTIN_INDOOR`]. Any knowledge
-    /// base works whose evidence predicates are among `RoLi`, `CoLi`, `HaLi`, `MulDoor`, `Adj`
-    /// and whose query predicates are among `Room`, `Corr`, `Hall`, `Other`, `SaLe`; others
-    /// are left to the open world.
+    /// base works whose evidence predicates are among [`EVIDENCE_PREDICATES`] (`RoLi`, `CoLi`,
+    /// `HaLi`, `MulDoor`, `Adj`, `Small`, `Narrow`, `Circ`) and whose query predicates are
+    /// among `Room`, `Corr`, `Hall`, `Other`, `SaLe`; others are left to the open world.
     pub kb: Option<String>,
     /// The room rules in the Alchemy format (query `SameRoom`, see
     /// [`super::rooms::RoomKnowledge::parse`]); `None` is
@@ -577,7 +743,7 @@ pub(crate) const TYPE_PREDICATES: [(&str, UnitType); 4] =
 impl Knowledge {
     /// Parses the configured knowledge base.
     pub fn new(config: &KnowledgeConfig) -> Result<Knowledge, crate::mln::MlnError> {
-        let mln = crate::mln::Mln::parse(config.kb.as_deref().unwrap_or(BUILTIN_INDOOR))?;
+        let mln = crate::mln::Mln::parse(config.kb.as_deref().unwrap_or(BUILTIN_INDOOR_FORMULAS))?;
         let queries =
             ["Room", "Corr", "Hall", "Other", "SaLe"].into_iter().filter(|q| mln.predicate(q).is_some()).collect();
         Ok(Knowledge {
@@ -635,11 +801,8 @@ impl Knowledge {
         }
         let mut ground = GroundConfig::query(&self.queries);
         // Evidence is complete for the predicates the world supplies: closed world.
-        ground.closed_world = ["RoLi", "CoLi", "HaLi", "MulDoor", "Adj", "Small", "Narrow"]
-            .iter()
-            .filter(|p| self.mln.predicate(p).is_some())
-            .map(|p| p.to_string())
-            .collect();
+        ground.closed_world =
+            EVIDENCE_PREDICATES.iter().filter(|p| self.mln.predicate(p).is_some()).map(|p| p.to_string()).collect();
         let units: Vec<String> = world.units.iter().map(|u| constant(u.id)).collect();
         if let Some(p) = self.mln.predicate("Room").or_else(|| self.mln.predicate("SaLe")) {
             if let Some(ty) = self.mln.argument_types(p).first() {

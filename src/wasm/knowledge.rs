@@ -1,7 +1,8 @@
 //! Knowledge-base bindings for the rules editor and the prior-shaping page: thin wrappers over
-//! [`crate::mln`] and [`crate::floorplan::knowledge`]. The built-in rules and their syntax
-//! check are in the mapper module and the rules module; the inference, the log weight and
-//! weight learning only in the rules module (`ksmcmc_rules.js`).
+//! [`crate::mln`] and [`crate::floorplan::knowledge`]. The syntax check is in the mapper module
+//! and the rules module; the built-in rules' text, the inference, the log weight and weight
+//! learning only in the rules module (`ksmcmc_rules.js`): the mapper module's chain parses the
+//! built-in rules without their comments, which keeps it under its 500 kB budget (issue 12).
 //!
 //! ```js
 //! import init, { checkRules, inferWorld, mlnLogWeight, builtinIndoorRules } from "./pkg/ksmcmc_rules.js";
@@ -19,7 +20,8 @@ use crate::mln::{Database, GroundConfig};
 use crate::mln::{Mln, RuleError};
 use wasm_bindgen::prelude::*;
 
-/// The built-in indoor knowledge base (Tab. 3.3 - 3.5) as text.
+#[cfg(feature = "wasm-rules")]
+/// The built-in indoor knowledge base (Tab. 3.3 - 3.5) as text, with its comments.
 #[wasm_bindgen(js_name = builtinIndoorRules)]
 pub fn builtin_indoor_rules() -> String {
     knowledge::BUILTIN_INDOOR.to_string()

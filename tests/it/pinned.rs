@@ -30,7 +30,10 @@
 //! placeholders joined `world.json` (`floorplan::frontier`; with them cleared the pinned hashes
 //! held: the units, doors, rooms and labels did not change); and when a door with no jambs (the
 //! floor along its line runs on 1.2 m before a wall) became an opening (`rooms::openings`; only
-//! the `opening` flags and the placeholders by them changed).
+//! the `opening` flags and the placeholders by them changed); and when the indoor rules got
+//! `Circ` (a space whose doors link the circulation) and were learned again (the unit types
+//! steer the chain: on Cartesium 54 units where there were 56, 23 rooms and K(W,M) 0.9405 as
+//! before).
 //! The real maps come from `../shared/datasets` (or `KSMCMC_DATASETS`); without them
 //! those tests skip, and the synthetic pin still runs.
 
@@ -88,25 +91,25 @@ fn pin_dataset(relative: &str, pinned: u64) {
 #[test]
 fn pinned_synthetic() {
     let s = generate(&SynthConfig::default(), 7).expect("synth");
-    check("synth seed 7", &world_json(s.map, false), 0x6b2e_61a6_ec2b_36a4);
+    check("synth seed 7", &world_json(s.map, false), 0x2f7e_9f3a_4dee_c8a4);
 }
 
 #[test]
 fn pinned_cartesium() {
-    pin_dataset("radish/ubremen-cartesium.png", 0xa242_7059_e408_d866);
+    pin_dataset("radish/ubremen-cartesium.png", 0xe54c_76d1_c685_e5ef);
 }
 
 #[test]
 fn pinned_lab_a() {
-    pin_dataset("bormann2016/lab_a_scan.png", 0xcfc8_d5a6_5197_615c);
+    pin_dataset("bormann2016/lab_a_scan.png", 0x0c6c_cf58_4ee8_a3ec);
 }
 
 #[test]
 fn pinned_office_e() {
-    pin_dataset("bormann2016/office_e.png", 0x57e6_e989_9274_b07f);
+    pin_dataset("bormann2016/office_e.png", 0xb9df_b5b3_e6d4_e8d9);
 }
 
 #[test]
 fn pinned_freiburg79() {
-    pin_dataset("bormann2016/Freiburg79_scan.png", 0x56b0_a5cf_e2bb_4575);
+    pin_dataset("bormann2016/Freiburg79_scan.png", 0x0f39_1de2_2e06_1b53);
 }

@@ -26,11 +26,12 @@ Usage:
       base with them (to standard output without --out); hard formulas stay hard
   ksmcmc mln evidence --world truth.json (--map map.yaml | --resolution M) [--truth] [--mln KB]
                       [--out FILE]
-      the indoor evidence (RoLi, CoLi, HaLi, MulDoor, Adj, Small) of a floor-plan world as a
+      the indoor evidence (RoLi, CoLi, HaLi, MulDoor, Adj, Small, Narrow, Circ) of a floor-plan world as a
       database; with --truth also its true Room/Corr/Hall/Other types and SaLe pairs
       (connecting walls within 10 % of each other), a training world for `mln learn`;
       geometry classes by the default classifier of Tab. 3.6 (halls from 60 m²,
-      corridors 3.5 times as long as wide, small under 10 m²); with --mln only the
+      corridors 3.5 times as long as wide, small under 10 m², narrow under 2.5 m; Circ:
+      doors to three spaces or to two corridor- or hall-like ones); with --mln only the
       predicates that knowledge base declares (Tab. 3.5's indoor.mln has no Small)
   ksmcmc mln evidence --rooms --world world.json --map MAP [--truth-labels LABELS.pgm]
                       [--mln KB] [--out FILE]

@@ -12,9 +12,8 @@
 //! mlnLogWeight("Left(pt)\n2 Left(x)", "Left(X)"); // 2
 //! ```
 
-use crate::floorplan::knowledge;
 #[cfg(feature = "wasm-rules")]
-use crate::floorplan::{knowledge::WorldInference, World};
+use crate::floorplan::{knowledge, knowledge::WorldInference, World};
 #[cfg(feature = "wasm-rules")]
 use crate::mln::{Database, GroundConfig};
 use crate::mln::{Mln, RuleError};

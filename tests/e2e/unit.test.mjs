@@ -275,7 +275,7 @@ test('zoomed pictures get more pixels per cell within their limits', () => {
 import { readdirSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import { checkShells, PAGES } from '../../scripts/check-shell.mjs';
-import { pictureDue, scheduler } from '../../www/lib/scheduler.js';
+import { scheduler, turnDue } from '../../www/lib/scheduler.js';
 
 const WWW_DIR = fileURLToPath(new URL('../../www/', import.meta.url));
 
@@ -329,10 +329,11 @@ test("the workers' scheduler runs its loop once however often it is asked, and a
     globalThis.MessageChannel = Channel;
     for (const c of made) c.port1.close();
   }
-  // A picture that took 1 s with a share of 0.5 waits 1 s of chain; 100 ms with 0.25, 300 ms.
-  assert.equal(pictureDue(performance.now(), 1000, 0.5), false);
-  assert.equal(pictureDue(performance.now() - 1e6, 1000, 0.5), true);
-  assert.equal(pictureDue(performance.now() - 100, 100, 0.25), false);
-  assert.equal(pictureDue(performance.now() - 301, 100, 0.25), true);
-  assert.equal(pictureDue(0, 0, 0.3), true, 'the first picture is due at once');
+  // A turn (a picture, a rooms request) that took 1 s with a share of 0.5 waits 1 s of chain;
+  // 100 ms with 0.25, 300 ms.
+  assert.equal(turnDue(performance.now(), 1000, 0.5), false);
+  assert.equal(turnDue(performance.now() - 1e6, 1000, 0.5), true);
+  assert.equal(turnDue(performance.now() - 100, 100, 0.25), false);
+  assert.equal(turnDue(performance.now() - 301, 100, 0.25), true);
+  assert.equal(turnDue(0, 0, 0.3), true, 'the first turn is due at once');
 });

@@ -27,7 +27,7 @@
 import init, { Map as OccMap, Mapper, renderMapperRgba, renderSceneGraphRgba, wasmHeapBytes } from '../pkg/ksmcmc.js';
 import { buildMap } from './map-source.js';
 import { loadModule } from './modules.js';
-import { pictureDue, scheduler, SLICE_MS } from './scheduler.js';
+import { scheduler, SLICE_MS, turnDue } from './scheduler.js';
 import { wingSettings } from './wing-chains.js';
 import { runWingWorkers } from './wing-workers.js';
 
@@ -207,7 +207,7 @@ function loop() {
   if (!state.running || !state.mapper) return;
   // In `auto` mode a waiting picture is drawn once the chain has had its share of the time.
   let waiting = state.frame;
-  if (waiting && state.ipf === 'auto' && !pictureDue(state.drawnAt, state.drawMs, DRAW_SHARE)) waiting = null;
+  if (waiting && state.ipf === 'auto' && !turnDue(state.drawnAt, state.drawMs, DRAW_SHARE)) waiting = null;
   try {
     if (state.ipf === 'auto') state.mapper.runFor(SLICE_MS);
     else if (waiting) state.mapper.step(state.ipf);

@@ -32,7 +32,7 @@ import init, {
 } from '../pkg/ksmcmc_explore.js';
 import { buildMap } from './map-source.js';
 import { loadModule } from './modules.js';
-import { pictureDue, scheduler, SLICE_MS } from './scheduler.js';
+import { scheduler, SLICE_MS, turnDue } from './scheduler.js';
 
 /**
  * While the chain runs, pictures (with the robot's driving) take at most this share of the
@@ -465,7 +465,7 @@ function fail(err) {
 function loop() {
   if (!state.running) return;
   let waiting = state.frame;
-  if (waiting && state.mapper && !pictureDue(state.drawnAt, state.drawMs, DRAW_SHARE)) waiting = null;
+  if (waiting && state.mapper && !turnDue(state.drawnAt, state.drawMs, DRAW_SHARE)) waiting = null;
   try {
     if (state.renewal && !state.renewal.done) renewalSlice();
     else if (state.mapper) state.mapper.runFor(SLICE_MS);

@@ -28,10 +28,11 @@ export function scheduler(loop) {
 }
 
 /**
- * Whether a picture waiting while the chain runs is due: pictures take at most `share` of the
- * worker's time, so after one that took `drawMs`, drawn at `drawnAt` (performance.now()), the
- * chain runs for drawMs × (1 − share) / share before the next.
+ * Whether work that takes turns with the chain is due again: a picture of the world, or a
+ * request for its rooms. Such work takes at most `share` of the worker's time, so after a turn
+ * that took `tookMs`, done at `doneAt` (performance.now()), the chain runs for
+ * tookMs × (1 − share) / share before the next.
  */
-export function pictureDue(drawnAt, drawMs, share) {
-  return performance.now() - drawnAt >= (drawMs * (1 - share)) / share;
+export function turnDue(doneAt, tookMs, share) {
+  return performance.now() - doneAt >= (tookMs * (1 - share)) / share;
 }

@@ -6,7 +6,7 @@
 // The rooms' details (the room of every cell) are read only while someone points at rooms.
 
 import { formatNumber } from '../lib/plot.js';
-import { pictureDue } from '../lib/scheduler.js';
+import { turnDue } from '../lib/scheduler.js';
 import { fillRoomInfo, RoomIndex } from '../lib/room-info.js';
 import { showError, state, ui } from './state.js';
 import { refreshSelection } from './edits.js';
@@ -81,7 +81,7 @@ export class RoomsFeed {
   follow(stats, running, now) {
     if (!stats || stats.generation !== this.generation) return;
     if (running) {
-      if (!this.inFlight && now - this.at >= ROOMS_EVERY_MS && pictureDue(this.doneAt, this.tookMs, ROOMS_SHARE)) {
+      if (!this.inFlight && now - this.at >= ROOMS_EVERY_MS && turnDue(this.doneAt, this.tookMs, ROOMS_SHARE)) {
         this.readAt = stats.iteration;
         this.request();
       }

@@ -409,9 +409,14 @@ mod tests {
         assert_eq!(key(&full), key(&bare));
         // Code is kept to its comment; a line that is all comment goes.
         let text = b"// head\nRoom(unit)  // a query\n\n2.5 Room(x)\n// tail";
-        const N: usize = 23;
-        assert_eq!(uncommented_len(text), N);
-        assert_eq!(&uncommented::<N>(text), b"Room(unit)\n2.5 Room(x)\n");
+        assert_eq!(uncommented(text, &mut []), 23);
+        let mut out = [0u8; 23];
+        assert_eq!(uncommented(text, &mut out), 23);
+        assert_eq!(&out, b"Room(unit)\n2.5 Room(x)\n");
+        // A buffer too short holds the beginning.
+        let mut short = [0u8; 4];
+        assert_eq!(uncommented(text, &mut short), 23);
+        assert_eq!(&short, b"Room");
     }
 
     /// Marginals of every query atom, inferred from `facts` as [`Knowledge::infer`] grounds them.
@@ -515,47 +520,37 @@ pub const BUILTIN_INDOOR: &str = include_str!("../../samples/knowledge/indoor-le
 /// 500 kB gzipped (issue 12), carries only this.
 const BUILTIN_INDOOR_FORMULAS: &str = {
     const TEXT: &[u8] = BUILTIN_INDOOR.as_bytes();
-    const BYTES: [u8; uncommented_len(TEXT)] = uncommented(TEXT);
+    const BYTES: [u8; uncommented(TEXT, &mut [])] = {
+        let mut out = [0u8; uncommented(TEXT, &mut [])];
+        uncommented(TEXT, &mut out);
+        out
+    };
     match core::str::from_utf8(&BYTES) {
         Ok(text) => text,
         Err(_) => panic!("a comment ended inside a character"),
     }
 };
 
-/// How many bytes [`uncommented`] keeps of `text`: of each line its code up to a `//`, without
-/// the spaces before it, and the line's end; lines left empty are dropped.
-const fn uncommented_len(text: &[u8]) -> usize {
-    let (mut n, mut line) = (0, 0);
-    while line < text.len() {
-        let (end, next) = line_code(text, line);
-        if end > line {
-            n += end - line + 1;
-        }
-        line = next;
-    }
-    n
-}
-
-/// `text` with its `//` comments and the lines they leave empty taken out (`N` is
-/// [`uncommented_len`]).
-const fn uncommented<const N: usize>(text: &[u8]) -> [u8; N] {
-    let mut out = [0u8; N];
+/// Writes `text` without its `//` comments into `out`, as far as `out` holds it, and returns
+/// how many bytes that takes (so an empty `out` measures): of each line its code up to a `//`,
+/// without the spaces before it, and the line's end; lines left empty are dropped.
+const fn uncommented(text: &[u8], out: &mut [u8]) -> usize {
     let (mut at, mut line) = (0, 0);
     while line < text.len() {
         let (end, next) = line_code(text, line);
         if end > line {
             let mut i = line;
-            while i < end {
-                out[at] = text[i];
+            while i <= end {
+                if at < out.len() {
+                    out[at] = if i < end { text[i] } else { b'\n' };
+                }
                 at += 1;
                 i += 1;
             }
-            out[at] = b'\n';
-            at += 1;
         }
         line = next;
     }
-    out
+    at
 }
 
 /// For the line starting at `start`: where its code ends (before a `//` and the spaces before

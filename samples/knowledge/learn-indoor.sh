@@ -6,7 +6,9 @@
 #
 # Each line below is one synthetic floor (seed, then `ksmcmc synth` options), in four kinds:
 # the default office floor (one corridor, offices, one storage unit), floors with halls,
-# floors with two corridors, and floors with several "other" units.
+# floors with two corridors, and floors with several "other" units (three, and six on a
+# 500-cell floor: storage rows of narrow units beside offices of about the same width, which
+# only the doors' count and the spaces they link tell apart).
 #
 # Discriminative learning (the types and SaLe given the geometry evidence), not
 # pseudo-likelihood: PLL scores each atom with its neighbours held at the truth, and learned a
@@ -35,6 +37,8 @@ done <<SEEDS
 1031 --others 3
 1032 --others 3 --width 480
 1033 --others 3 --halls 1 --width 600
+1034 --others 6 --width 500
+1035 --others 6 --width 500
 SEEDS
 # shellcheck disable=SC2086
 "$KSMCMC" mln learn --mln samples/knowledge/indoor-rules.mln $dbs --query Room,Corr,Hall,Other,SaLe \

@@ -12,7 +12,7 @@
 # corridors and halls with no wall between them; the generator's other floors have 0.8 to
 # 1.2 m doors, and their chain worlds have almost no open pair of two different rooms to learn
 # from). The seeds (2001 on) are not those of `ksmcmc evaluate` (100-105, 200-205, 300-305)
-# nor of learn-indoor.sh (1001-1033).
+# nor of learn-indoor.sh (1001-1035).
 #
 # For each floor the chain explains the map (`ksmcmc floorplan`, seed 1, knowledge mode, the
 # defaults), and `ksmcmc mln evidence --rooms` turns its world into a training world: the

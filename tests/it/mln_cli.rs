@@ -362,7 +362,7 @@ fn the_learned_indoor_knowledge_base_is_reproducible() {
         run_ok(&["mln", "evidence", "--world", world, "--map", map, "--truth", "--out", db_path]);
         args.extend(["--db".to_string(), db_path.to_string()]);
     }
-    assert_eq!(seeds.lines().count(), 12);
+    assert_eq!(seeds.lines().count(), 14);
     let args: Vec<&str> = args.iter().map(String::as_str).collect();
     let learned = run_ok(&args);
     let committed = std::fs::read_to_string("samples/knowledge/indoor-learned.mln").unwrap();

@@ -33,7 +33,8 @@
 //! the `opening` flags and the placeholders by them changed); and when the indoor rules got
 //! `Circ` (a space whose doors link the circulation) and were learned again (the unit types
 //! steer the chain: on Cartesium 54 units where there were 56, 23 rooms and K(W,M) 0.9405 as
-//! before).
+//! before), and when they were learned again with two floors of six storage units more
+//! (`learn-indoor.sh`; Cartesium's pin held, the Bormann table did not move).
 //! The real maps come from `../shared/datasets` (or `KSMCMC_DATASETS`); without them
 //! those tests skip, and the synthetic pin still runs.
 
@@ -91,7 +92,7 @@ fn pin_dataset(relative: &str, pinned: u64) {
 #[test]
 fn pinned_synthetic() {
     let s = generate(&SynthConfig::default(), 7).expect("synth");
-    check("synth seed 7", &world_json(s.map, false), 0x2f7e_9f3a_4dee_c8a4);
+    check("synth seed 7", &world_json(s.map, false), 0xe9d1_7469_c925_43d4);
 }
 
 #[test]
@@ -101,7 +102,7 @@ fn pinned_cartesium() {
 
 #[test]
 fn pinned_lab_a() {
-    pin_dataset("bormann2016/lab_a_scan.png", 0x0c6c_cf58_4ee8_a3ec);
+    pin_dataset("bormann2016/lab_a_scan.png", 0xee49_8e7f_3ec3_f419);
 }
 
 #[test]
@@ -111,5 +112,5 @@ fn pinned_office_e() {
 
 #[test]
 fn pinned_freiburg79() {
-    pin_dataset("bormann2016/Freiburg79_scan.png", 0x0f39_1de2_2e06_1b53);
+    pin_dataset("bormann2016/Freiburg79_scan.png", 0xffb9_0429_49ee_a930);
 }

@@ -132,19 +132,24 @@ impl Explanation {
         self.confusion[c.cm as usize][p] += 1;
     }
 
-    #[inline]
-    fn touch(&mut self, i: usize, dcover: i8, dwall: i8, ddoor: i8) {
-        let c = &mut self.cells[i];
-        let old = predicted(c.cover, c.wall, c.door);
-        let old_overlap = overlap(c.cover, c.wall);
-        c.cover = c.cover.wrapping_add_signed(dcover);
-        c.wall = c.wall.wrapping_add_signed(dwall);
-        c.door = c.door.wrapping_add_signed(ddoor);
-        let new = predicted(c.cover, c.wall, c.door);
-        let row = &mut self.confusion[c.cm as usize];
-        row[old] -= 1;
-        row[new] += 1;
-        self.overlap += overlap(c.cover, c.wall) - old_overlap;
+    /// Changes the counts of the cells `run` (row-major indices, one row's stretch) by the
+    /// same amounts, keeping the confusion and overlap counts exact. Every change of the
+    /// counters goes through here: one copy of the per-cell loop, which the unit moves, their
+    /// undos and the doors share (the mapper module has no room for a copy per caller).
+    #[inline(never)]
+    fn touch_run(&mut self, run: std::ops::Range<usize>, dcover: i8, dwall: i8, ddoor: i8) {
+        for c in &mut self.cells[run] {
+            let old = predicted(c.cover, c.wall, c.door);
+            let old_overlap = overlap(c.cover, c.wall);
+            c.cover = c.cover.wrapping_add_signed(dcover);
+            c.wall = c.wall.wrapping_add_signed(dwall);
+            c.door = c.door.wrapping_add_signed(ddoor);
+            let new = predicted(c.cover, c.wall, c.door);
+            let row = &mut self.confusion[c.cm as usize];
+            row[old] -= 1;
+            row[new] += 1;
+            self.overlap += overlap(c.cover, c.wall) - old_overlap;
+        }
     }
 
     /// Adds (`sign = 1`) or removes (`sign = -1`) a unit: its rectangle covers cells and its
@@ -160,18 +165,47 @@ impl Explanation {
         for y in y0..y1 {
             let base = y * self.width;
             if y < y0 + t || y + t >= y1 {
-                for x in x0..x1 {
-                    self.touch(base + x, sign, sign, 0);
-                }
+                self.touch_run(base + x0..base + x1, sign, sign, 0);
             } else {
-                for x in x0..i0 {
-                    self.touch(base + x, sign, sign, 0);
+                self.touch_run(base + x0..base + i0, sign, sign, 0);
+                self.touch_run(base + i0..base + i1, sign, 0, 0);
+                self.touch_run(base + i1..base + x1, sign, sign, 0);
+            }
+        }
+    }
+
+    /// Takes the units `old` out and puts the units `new` in (each `t` cells of wall deep, as
+    /// [`Explanation::apply_unit`]), touching only the cells whose cover or wall count
+    /// changes: a unit grown or shrunk by a row, split or merged, changes a band along the
+    /// moved edges, not its whole area (office_g's halls of 100,000 cells made `apply_unit`
+    /// half of a run). The counts end as `apply_unit` on each would leave them.
+    pub fn replace_units(&mut self, old: &[Rect], new: &[Rect], t: i32) {
+        let t = t.max(1) as usize;
+        // Each unit with the sign of its change: one loop over them all (a loop per slice
+        // cost the mapper module a kilobyte).
+        let signed: Vec<(Rect, i8)> = old.iter().map(|&r| (r, -1)).chain(new.iter().map(|&r| (r, 1))).collect();
+        let (mut y0, mut y1) = (usize::MAX, 0);
+        for (r, _) in &signed {
+            (y0, y1) = (y0.min(r.y as usize), y1.max(r.bottom() as usize));
+        }
+        let mut cuts: Vec<usize> = Vec::with_capacity(4 * signed.len());
+        for y in y0..y1 {
+            cuts.clear();
+            for &(r, _) in &signed {
+                row_cuts(r, t, y, &mut cuts);
+            }
+            cuts.sort_unstable();
+            cuts.dedup();
+            for span in cuts.windows(2) {
+                let (a, b) = (span[0], span[1]);
+                let (mut dcover, mut dwall) = (0i8, 0i8);
+                for &(r, sign) in &signed {
+                    let (c, w) = cover_wall(r, t, a, y);
+                    (dcover, dwall) = (dcover + sign * c, dwall + sign * w);
                 }
-                for x in i0..i1 {
-                    self.touch(base + x, sign, 0, 0);
-                }
-                for x in i1..x1 {
-                    self.touch(base + x, sign, sign, 0);
+                if dcover != 0 || dwall != 0 {
+                    let base = y * self.width;
+                    self.touch_run(base + a..base + b, dcover, dwall, 0);
                 }
             }
         }
@@ -180,9 +214,8 @@ impl Explanation {
     /// Adds or removes a door rectangle: its cells are predicted free.
     pub fn apply_door(&mut self, r: Rect, sign: i8) {
         for y in r.y as usize..r.bottom() as usize {
-            for x in r.x as usize..r.right() as usize {
-                self.touch(y * self.width + x, 0, 0, sign);
-            }
+            let base = y * self.width;
+            self.touch_run(base + r.x as usize..base + r.right() as usize, 0, 0, sign);
         }
     }
 
@@ -240,6 +273,32 @@ impl crate::vision::freespace::FreeSpace for Explanation {
     }
 }
 
+/// Where, along row `y`, what unit `r` (walls `t` deep) contributes to a cell may change: its
+/// ends, and on rows between its top and bottom walls the ends of its interior. Nothing on rows
+/// it does not cover.
+fn row_cuts(r: Rect, t: usize, y: usize, cuts: &mut Vec<usize>) {
+    let (x0, x1, top, bottom) = (r.x as usize, r.right() as usize, r.y as usize, r.bottom() as usize);
+    if y < top || y >= bottom {
+        return;
+    }
+    cuts.extend([x0, x1]);
+    if !(y < top + t || y + t >= bottom) {
+        let i0 = (x0 + t).min(x1);
+        cuts.extend([i0, x1.saturating_sub(t).max(i0)]);
+    }
+}
+
+/// What unit `r` (walls `t` deep) adds to cell (`x`, `y`): cover 1 inside it, and wall 1 on
+/// its ring, as [`Explanation::apply_unit`] counts them.
+fn cover_wall(r: Rect, t: usize, x: usize, y: usize) -> (i8, i8) {
+    let (x0, x1, top, bottom) = (r.x as usize, r.right() as usize, r.y as usize, r.bottom() as usize);
+    if x < x0 || x >= x1 || y < top || y >= bottom {
+        return (0, 0);
+    }
+    let ring = y < top + t || y + t >= bottom || x < x0 + t || x + t >= x1;
+    (1, i8::from(ring))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -283,6 +342,42 @@ mod tests {
         assert!(e.same_as(&Explanation::new(&m)));
         let total: i64 = e.confusion().iter().flatten().sum();
         assert_eq!(total, 108);
+    }
+
+    #[test]
+    fn replacing_units_equals_taking_them_out_and_putting_them_in() {
+        let m = map();
+        let rects = [
+            Rect::new(0, 0, 6, 5),
+            Rect::new(4, 2, 8, 7),
+            Rect::new(1, 1, 9, 7),
+            Rect::new(1, 1, 10, 7),
+            Rect::new(1, 0, 9, 7),
+            Rect::new(0, 0, 12, 9),
+            Rect::new(2, 3, 3, 2),
+            Rect::new(5, 1, 2, 8),
+        ];
+        let d = Rect::new(5, 3, 2, 1);
+        for t in 1..4 {
+            // Every one-for-one, one-for-two and two-for-one replacement among the rectangles,
+            // over a world that already holds a unit and a door.
+            for (i, &a) in rects.iter().enumerate() {
+                for (j, &b) in rects.iter().enumerate() {
+                    let c = rects[(i + j + 1) % rects.len()];
+                    for (old, new) in [(vec![a], vec![b]), (vec![a], vec![b, c]), (vec![a, c], vec![b])] {
+                        let mut e = Explanation::new(&m);
+                        e.apply_unit(rects[6], t, 1);
+                        e.apply_door(d, 1);
+                        for &r in &old {
+                            e.apply_unit(r, t, 1);
+                        }
+                        e.replace_units(&old, &new, t);
+                        let units: Vec<Rect> = std::iter::once(rects[6]).chain(new.iter().copied()).collect();
+                        assert!(e.same_as(&Explanation::recompute(&m, &units, t, &[d])), "{old:?} -> {new:?}, t={t}");
+                    }
+                }
+            }
+        }
     }
 
     #[test]

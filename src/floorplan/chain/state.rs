@@ -481,9 +481,7 @@ impl State {
     fn apply_split(&mut self, index: usize, first: Rect, second: Rect) -> Undo {
         let len = self.units.len();
         let old = self.units[index];
-        self.explanation.apply_unit(old.rect(), self.wall, -1);
-        self.explanation.apply_unit(first, self.wall, 1);
-        self.explanation.apply_unit(second, self.wall, 1);
+        self.explanation.replace_units(&[old.rect()], &[first, second], self.wall);
         self.units[index] = self.new_unit(first);
         let s = self.new_unit(second);
         self.units.push(s);
@@ -495,9 +493,7 @@ impl State {
     #[inline]
     fn apply_merge(&mut self, i: usize, j: usize, merged: Rect) -> Undo {
         let (ui, uj) = (self.units[i], self.units[j]);
-        self.explanation.apply_unit(ui.rect(), self.wall, -1);
-        self.explanation.apply_unit(uj.rect(), self.wall, -1);
-        self.explanation.apply_unit(merged, self.wall, 1);
+        self.explanation.replace_units(&[ui.rect(), uj.rect()], &[merged], self.wall);
         self.units[i] = self.new_unit(merged);
         self.units.remove(j);
         self.bump();
@@ -517,8 +513,7 @@ impl State {
             let r = self.door_rect_of(&self.doors[k]).expect("valid before the move");
             self.explanation.apply_door(r, -1);
         }
-        self.explanation.apply_unit(old.rect(), self.wall, -1);
-        self.explanation.apply_unit(rect, self.wall, 1);
+        self.explanation.replace_units(&[old.rect()], &[rect], self.wall);
         self.units[index] = Unit { x: rect.x, y: rect.y, w: rect.w, h: rect.h, ..old };
         for &k in &doors {
             let r = self.door_rect_of(&self.doors[k]).expect("checked by is_valid");
@@ -533,10 +528,7 @@ impl State {
     fn apply_repartition(&mut self, i: usize, j: usize, a: Rect, b: Rect) -> Undo {
         let len = self.units.len();
         let (ui, uj) = (self.units[i], self.units[j]);
-        self.explanation.apply_unit(ui.rect(), self.wall, -1);
-        self.explanation.apply_unit(uj.rect(), self.wall, -1);
-        self.explanation.apply_unit(a, self.wall, 1);
-        self.explanation.apply_unit(b, self.wall, 1);
+        self.explanation.replace_units(&[ui.rect(), uj.rect()], &[a, b], self.wall);
         self.units[i] = Unit { x: a.x, y: a.y, w: a.w, h: a.h, ..ui };
         self.units[j] = Unit { x: b.x, y: b.y, w: b.w, h: b.h, ..uj };
         self.bump();
@@ -559,11 +551,9 @@ impl State {
             Undo::Merged { i, j, ui, uj } => {
                 let mi = if i > j { i - 1 } else { i };
                 let merged = self.units[mi];
-                self.explanation.apply_unit(merged.rect(), self.wall, -1);
+                self.explanation.replace_units(&[merged.rect()], &[ui.rect(), uj.rect()], self.wall);
                 self.units.insert(j, uj);
                 self.units[i] = ui;
-                self.explanation.apply_unit(ui.rect(), self.wall, 1);
-                self.explanation.apply_unit(uj.rect(), self.wall, 1);
             }
             Undo::Replaced { old, count, len } => {
                 // Doors of reshaped units move with them: take their current rectangles out first.
@@ -576,18 +566,14 @@ impl State {
                         self.explanation.apply_door(r, -1);
                     }
                 }
-                // Remove what the move added: appended units, then the changed slots.
-                while self.units.len() > len {
-                    let u = self.units.pop().expect("appended unit");
-                    self.explanation.apply_unit(u.rect(), self.wall, -1);
-                }
-                for &(i, _) in &old[..count] {
-                    let cur = self.units[i];
-                    self.explanation.apply_unit(cur.rect(), self.wall, -1);
-                }
+                // What the move made (appended units, then the changed slots) back to what was.
+                let mut made: Vec<Rect> = self.units[len..].iter().map(|u| u.rect()).collect();
+                made.extend(old[..count].iter().map(|&(i, _)| self.units[i].rect()));
+                let was: Vec<Rect> = old[..count].iter().map(|(_, u)| u.rect()).collect();
+                self.explanation.replace_units(&made, &was, self.wall);
+                self.units.truncate(len);
                 for &(i, u) in &old[..count] {
                     self.units[i] = u;
-                    self.explanation.apply_unit(u.rect(), self.wall, 1);
                 }
                 for &k in &doors {
                     let r = self.door_rect_of(&self.doors[k]).expect("doors were valid before the move");

@@ -68,22 +68,25 @@ struct Opts {
     goal: Option<Goal>,
 }
 
+/// One line on stderr per map update, as the robot explores.
+fn print_update(r: &online::UpdateRecord) {
+    eprintln!(
+        "update {:>3}: {:>6.1} m, {:>7} cells changed, warm {:>6} / cold {:>6} iterations, K(W,M) {:.4}",
+        r.update,
+        r.travelled_m,
+        r.changed_cells,
+        r.warm_iterations,
+        r.cold_iterations.map_or("-".into(), |c| c.to_string()),
+        r.cell_prediction_rate
+    )
+}
+
 pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     let Some(o) = parse(argv)? else { return Ok(()) };
     let config = chain_config_from(ChainConfig::online(), o.config.as_deref(), o.rotation, o.knowledge.as_deref())?;
     let truth = args::load_classified(&o.map, &o.classify)?;
     let t0 = Instant::now();
-    let mut log = |r: &online::UpdateRecord| {
-        eprintln!(
-            "update {:>3}: {:>6.1} m, {:>7} cells changed, warm {:>6} / cold {:>6} iterations, K(W,M) {:.4}",
-            r.update,
-            r.travelled_m,
-            r.changed_cells,
-            r.warm_iterations,
-            r.cold_iterations.map_or("-".into(), |c| c.to_string()),
-            r.cell_prediction_rate
-        )
-    };
+    let mut log = print_update;
     let mut steered = o.goal.map(|g| GoalGuide::new(g, true, RoomConfig::default()));
     let guide: &mut dyn Guide = match steered.as_mut() {
         Some(g) => g,

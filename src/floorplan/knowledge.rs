@@ -520,8 +520,9 @@ pub const BUILTIN_INDOOR: &str = include_str!("../../samples/knowledge/indoor-le
 /// 500 kB gzipped (issue 12), carries only this.
 const BUILTIN_INDOOR_FORMULAS: &str = {
     const TEXT: &[u8] = BUILTIN_INDOOR.as_bytes();
-    const BYTES: [u8; uncommented(TEXT, &mut [])] = {
-        let mut out = [0u8; uncommented(TEXT, &mut [])];
+    const LEN: usize = uncommented(TEXT, &mut []);
+    const BYTES: [u8; LEN] = {
+        let mut out = [0u8; LEN];
         uncommented(TEXT, &mut out);
         out
     };

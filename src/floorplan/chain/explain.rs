@@ -289,14 +289,11 @@ fn row_cuts(r: Rect, t: usize, y: usize, cuts: &mut Vec<usize>) {
 }
 
 /// What unit `r` (walls `t` deep) adds to cell (`x`, `y`): cover 1 inside it, and wall 1 on
-/// its ring, as [`Explanation::apply_unit`] counts them.
+/// its ring ([`Rect::in_ring`]), as [`Explanation::apply_unit`] and
+/// [`Explanation::recompute`] count them.
 fn cover_wall(r: Rect, t: usize, x: usize, y: usize) -> (i8, i8) {
-    let (x0, x1, top, bottom) = (r.x as usize, r.right() as usize, r.y as usize, r.bottom() as usize);
-    if x < x0 || x >= x1 || y < top || y >= bottom {
-        return (0, 0);
-    }
-    let ring = y < top + t || y + t >= bottom || x < x0 + t || x + t >= x1;
-    (1, i8::from(ring))
+    let (x, y) = (x as i32, y as i32);
+    (i8::from(r.contains(x, y)), i8::from(r.in_ring(x, y, t as i32)))
 }
 
 #[cfg(test)]

@@ -226,25 +226,39 @@ pub fn candidates_where(
     let free = AreaCounts::new(grid, Cell::Free);
     // Walls crossing a candidate are judged on the raw map: dilation would close doors.
     let raw = AreaCounts::new(grid, Cell::Occupied);
-    let raw_frac = |r: Rect| raw.count(r) as f64 / r.area().max(1) as f64;
     let xs = faces(&wall_lines(grid, false, c));
     let ys = faces(&wall_lines(grid, true, c));
     let frac = |r: Rect| occ.count(r) as f64 / r.area().max(1) as f64;
     let mut out = Vec::new();
     let mut ok_rows = Vec::with_capacity(ys.len());
+    // Indices into the faces: the first face more than two cells inside a candidate's left
+    // side, and the first at most two cells inside its right side.
+    let mut x_in = 0;
     for (a, &x0) in xs.iter().enumerate() {
+        while x_in < xs.len() && xs[x_in] <= x0 + 2 {
+            x_in += 1;
+        }
+        let mut x_out = x_in;
         for &x1 in &xs[a + 1..] {
             let w = x1 - x0 + 1;
             if w < min_side {
                 continue;
             }
+            while x_out < xs.len() && xs[x_out] < x1 - 2 {
+                x_out += 1;
+            }
             // Rows where a horizontal wall spans x0..=x1 well enough (eq. 3.11).
             ok_rows.clear();
             ok_rows.extend(
-                ys.iter().copied().map(|y| (y, frac(Rect::new(x0, y, w, 1)))).filter(|&(_, f)| f >= c.min_wall_weight),
+                (0..ys.len()).map(|i| (i, frac(Rect::new(x0, ys[i], w, 1)))).filter(|&(_, f)| f >= c.min_wall_weight),
             );
-            for (b, &(y0, f0)) in ok_rows.iter().enumerate() {
-                for &(y1, f1) in &ok_rows[b + 1..] {
+            for (b, &(i0, f0)) in ok_rows.iter().enumerate() {
+                let y0 = ys[i0];
+                // The most raw wall cells along a face row strictly inside, grown as y1 moves
+                // down; `y_out` is the first row not yet counted.
+                let (mut y_out, mut most_h) = (i0, 0);
+                for &(i1, f1) in &ok_rows[b + 1..] {
+                    let y1 = ys[i1];
                     let h = y1 - y0 + 1;
                     if h < min_side || !keep(Rect::new(x0, y0, w, h)) {
                         continue;
@@ -254,17 +268,21 @@ pub fn candidates_where(
                     let weight = f0.min(f1).min(fl).min(fr);
                     if weight >= c.min_wall_weight {
                         // A wall line crossing the interior means the candidate spans two rooms:
-                        // keep it (the lines may be spurious) but propose it less often.
-                        let inner_h = ys
-                            .iter()
-                            .filter(|&&y| y > y0 + 2 && y < y1 - 2)
-                            .map(|&y| raw_frac(Rect::new(x0, y, w, 1)))
-                            .fold(0.0, f64::max);
-                        let inner_v = xs
-                            .iter()
-                            .filter(|&&x| x > x0 + 2 && x < x1 - 2)
-                            .map(|&x| raw_frac(Rect::new(x, y0, 1, h)))
-                            .fold(0.0, f64::max);
+                        // keep it (the lines may be spurious) but propose it less often. The
+                        // largest count over the area is the largest share: the division is
+                        // monotone, so dividing once gives the same bits.
+                        while ys[y_out] < y1 - 2 {
+                            if ys[y_out] > y0 + 2 {
+                                most_h = most_h.max(raw.count(Rect::new(x0, ys[y_out], w, 1)));
+                            }
+                            y_out += 1;
+                        }
+                        let mut most_v = 0;
+                        for &x in &xs[x_in..x_out] {
+                            most_v = most_v.max(raw.count(Rect::new(x, y0, 1, h)));
+                        }
+                        let inner_h = most_h as f64 / w as f64;
+                        let inner_v = most_v as f64 / h as f64;
                         let open = 1.0 - inner_h.max(inner_v);
                         // Rooms are mostly free inside; a rectangle over unexplored space is not.
                         let inside = Rect::new(x0 + 1, y0 + 1, w - 2, h - 2);

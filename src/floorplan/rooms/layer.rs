@@ -32,10 +32,10 @@
 use super::config::{RoomCells, RoomConfig};
 use super::error::RoomError;
 use super::knowledge::RoomKnowledge;
-use super::pairs::{group_units, join, open_pairs, OpenPair};
+use super::pairs::{group_units, join, open_pairs_among, OpenPair};
 use super::read::{mark_unexplored, rooms_of_labels, unit_rooms};
-use super::segments::{labels_of_groups, labels_of_groups_along};
-use super::wall_gaps::without_clutter;
+use super::segments::{labels_of_groups, labels_read};
+use super::wall_gaps::{without_clutter, WallReading};
 use crate::floorplan::edits::Edits;
 use crate::floorplan::frontier::{placeholders, FrontierRules, BUILTIN_FRONTIER_RULES};
 use crate::floorplan::knowledge::KnowledgeConfig;
@@ -153,16 +153,21 @@ impl RoomLayer {
     pub fn explain(&self, world: &mut World, maps: RoomMaps, grouping: Grouping) -> Result<Grid<u16>, RoomError> {
         let c = &self.config.cells(maps.resolution);
         let kb = self.knowledge.as_ref();
+        let angles = match grouping {
+            Grouping::Units(_) => &[][..],
+            Grouping::Walls(angles) => angles,
+        };
+        let walls = WallReading::new(world, maps.map, maps.world_map, c, angles);
         let labels = match grouping {
-            Grouping::Units(edits) => by_units(world, maps, c, kb, edits)?,
-            Grouping::Walls(angles) => {
+            Grouping::Units(edits) => by_units(world, maps, c, kb, edits, &walls)?,
+            Grouping::Walls(_) => {
                 let groups: Vec<u16> = join(world, maps.world_map, []).into_iter().map(|g| u16::from(g > 0)).collect();
-                let labels = labels_of_groups_along(world, &groups, maps.map, maps.world_map, c, angles);
+                let labels = labels_read(world, &groups, maps.map, maps.world_map, c, &walls);
                 rooms_of_segments(world, &labels, maps, kb)?;
                 labels
             }
         };
-        mark_openings(world, maps.map, c, maps.resolution);
+        super::openings::mark_openings(world, &walls.open, maps.resolution);
         if let Some(rules) = &self.frontier {
             world.placeholders = placeholders(world, maps.map, &labels, maps.resolution, rules)
                 .map_err(|e| RoomError::frontier("weighing the placeholders", e))?;
@@ -174,7 +179,8 @@ impl RoomLayer {
     /// [`crate::floorplan::wings::WingLayout::compose`]) that are openings within one room, on
     /// `map` (the classified map in its own frame) at `resolution` metres per cell.
     pub fn mark_openings(&self, world: &mut World, map: &Grid<Cell>, resolution: f64) {
-        mark_openings(world, map, &self.config.cells(resolution), resolution);
+        let walls = without_clutter(map, self.config.cells(resolution).min_wall_len);
+        super::openings::mark_openings(world, &walls, resolution);
     }
 }
 
@@ -185,14 +191,15 @@ fn by_units(
     c: &RoomCells,
     knowledge: Option<&RoomKnowledge>,
     edits: &Edits,
+    read: &WallReading,
 ) -> Result<Grid<u16>, RoomError> {
     let RoomMaps { map, world_map, .. } = maps;
     let walls = edits.world_wall_cells(map, &world.frame);
     let apart = |a: usize, b: usize| Edits::separates(&walls, world.units[a].rect(), world.units[b].rect());
     let merged = edits.merged_units(world);
     let mut given: Vec<(usize, usize, bool)> = merged.iter().map(|&(a, b)| (a, b, true)).collect();
-    let mut pairs: Vec<OpenPair> = open_pairs(world, world_map, c);
-    mark_closed(world, map, world_map, &mut pairs, c);
+    let mut pairs: Vec<OpenPair> = open_pairs_among(world, world_map, c, read.world_open());
+    mark_closed(world, map, world_map, &mut pairs, c, read);
     given.extend(pairs.iter().filter(|p| apart(p.a, p.b)).map(|p| (p.a, p.b, false)));
     // Where the walls part two units (closed pairs), the splits of the room layer draw the
     // line between them more exactly than the units' edges: closed pairs are joined and
@@ -207,19 +214,11 @@ fn by_units(
     };
     joined.extend(merged);
     let groups = join(world, world_map, joined);
-    let mut labels = labels_of_groups(world, &groups, map, world_map, c);
+    let mut labels = labels_read(world, &groups, map, world_map, c, read);
     edits.apply_to_labels(&mut labels, map);
     rooms_of_segments(world, &labels, maps, knowledge)?;
     edits.apply_to_rooms(&mut world.rooms, &labels);
     Ok(labels)
-}
-
-/// Marks the doors of `world` that are openings within one of its rooms
-/// ([`super::openings::mark_openings`]), the walls of `map` (in its own frame) read as the
-/// room layer reads them.
-fn mark_openings(world: &mut World, map: &Grid<Cell>, c: &RoomCells, resolution: f64) {
-    let walls = without_clutter(map, c.min_wall_len);
-    super::openings::mark_openings(world, &walls, resolution);
 }
 
 /// Fills in `world.rooms` from the room `labels`: the rooms read off the labels
@@ -258,12 +257,13 @@ pub(crate) fn mark_closed(
     world_map: &Grid<Cell>,
     pairs: &mut [OpenPair],
     c: &RoomCells,
+    read: &WallReading,
 ) {
     if pairs.is_empty() {
         return;
     }
     let groups = join(world, world_map, pairs.iter().map(|p| (p.a, p.b)));
-    let labels = labels_of_groups(world, &groups, map, world_map, c);
+    let labels = labels_read(world, &groups, map, world_map, c, read);
     let segment = unit_rooms(world, world_map, &labels);
     for p in pairs {
         p.closed = segment[p.a] != segment[p.b];
@@ -273,6 +273,7 @@ pub(crate) fn mark_closed(
 #[cfg(test)]
 mod tests {
     use super::super::knowledge::room_evidence;
+    use super::super::pairs::open_pairs;
     use super::*;
     use crate::floorplan::{Door, Unit, UnitType};
 
@@ -294,11 +295,11 @@ mod tests {
         let c = RoomCells::default();
         let mut pairs = open_pairs(&world, &map, &c);
         assert_eq!(pairs.len(), 1);
-        mark_closed(&world, &map, &map, &mut pairs, &c);
+        mark_closed(&world, &map, &map, &mut pairs, &c, &WallReading::new(&world, &map, &map, &c, &[]));
         assert!(pairs[0].closed);
         // Without wall gaps nothing parts them.
         let open = RoomCells { max_wall_gap: 0, ..c };
-        mark_closed(&world, &map, &map, &mut pairs, &open);
+        mark_closed(&world, &map, &map, &mut pairs, &open, &WallReading::new(&world, &map, &map, &open, &[]));
         assert!(!pairs[0].closed);
     }
 
@@ -363,7 +364,7 @@ mod tests {
             *map.at_mut(x, 44) = Cell::Occupied;
         }
         let mut pairs = open_pairs(&world, &map, &cells);
-        mark_closed(&world, &map, &map, &mut pairs, &cells);
+        mark_closed(&world, &map, &map, &mut pairs, &cells, &WallReading::new(&world, &map, &map, &cells, &[]));
         assert_eq!(
             pairs.iter().map(|p| (p.a, p.b, p.closed)).collect::<Vec<_>>(),
             [(0, 1, true), (0, 2, true), (0, 3, true)]

@@ -130,9 +130,18 @@ fn wide_door(world: &World, a: usize, b: usize, c: &RoomCells) -> Option<bool> {
 /// Every pair of space-enclosing units ([`encloses_space`]) with an open boundary, or joined
 /// by a door as wide as their shared stretch ([`RoomCells::wide_door_share`]).
 pub fn open_pairs(world: &World, world_map: &Grid<Cell>, c: &RoomCells) -> Vec<OpenPair> {
+    open_pairs_among(world, world_map, c, &without_clutter(world_map, c.min_wall_len))
+}
+
+/// [`open_pairs`] with `world_map`'s walls read already (`walls`, [`without_clutter`]).
+pub(crate) fn open_pairs_among(
+    world: &World,
+    world_map: &Grid<Cell>,
+    c: &RoomCells,
+    walls: &Grid<Cell>,
+) -> Vec<OpenPair> {
     let t = world.wall_thickness;
     let space: Vec<bool> = world.units.iter().map(|u| encloses_space(u, t, world_map)).collect();
-    let walls = without_clutter(world_map, c.min_wall_len);
     let mut pairs = Vec::new();
     for a in 0..world.units.len() {
         for b in a + 1..world.units.len() {
@@ -140,7 +149,7 @@ pub fn open_pairs(world: &World, world_map: &Grid<Cell>, c: &RoomCells) -> Vec<O
                 continue;
             }
             let (ra, rb) = (world.units[a].rect(), world.units[b].rect());
-            let open = open_boundary(ra, rb, t, &walls, c).or_else(|| wide_door(world, a, b, c));
+            let open = open_boundary(ra, rb, t, walls, c).or_else(|| wide_door(world, a, b, c));
             if let Some(flush) = open {
                 pairs.push(OpenPair { a, b, flush, closed: false });
             }

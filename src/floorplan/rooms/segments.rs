@@ -9,7 +9,7 @@
 
 use super::config::RoomCells;
 use super::frame::world_cell;
-use super::wall_gaps::without_clutter;
+use super::wall_gaps::WallReading;
 use crate::floorplan::world::World;
 
 use crate::grid::{Cell, Grid};
@@ -39,24 +39,35 @@ pub fn labels_of_groups_along(
     c: &RoomCells,
     angles: &[f64],
 ) -> Grid<u16> {
+    labels_read(world, rooms, map, world_map, c, &WallReading::new(world, map, world_map, c, angles))
+}
+
+/// [`labels_of_groups_along`] on walls read already.
+pub(crate) fn labels_read(
+    world: &World,
+    rooms: &[u16],
+    map: &Grid<Cell>,
+    world_map: &Grid<Cell>,
+    c: &RoomCells,
+    walls: &WallReading,
+) -> Grid<u16> {
     let owner = room_owner(world, rooms, world_map);
     let (mut labels, queue) = label_unit_cells(world, &owner, world_map.width(), map);
     spread_labels(&mut labels, map, queue, c.max_reach);
     label_far_regions(&mut labels, map, rooms.iter().copied().max().unwrap_or(0), c);
-    let open = without_clutter(map, c.min_wall_len);
-    split_open_at_doorways(&mut labels, &open, c);
-    if let Some(closed) = super::wall_gaps::close_wall_gaps_along(world, map, world_map, c, angles) {
-        split_at_wall_gaps(&mut labels, &closed, c);
+    split_open_at_doorways(&mut labels, &walls.open, c);
+    if let Some(closed) = &walls.closed {
+        split_at_wall_gaps(&mut labels, closed, c);
     }
     let fragment = split_disconnected(&mut labels, map, c.min_room_cells);
     merge_segments(&mut labels, c.min_segment_cells, &fragment, c.min_room_cells / 4);
     if c.clutter_in_rooms {
-        label_clutter(&mut labels, map, &open);
+        label_clutter(&mut labels, map, &walls.open);
     }
     labels
 }
 
-/// Gives each 8-connected part of clutter (cells free in `open`, [`without_clutter`], but not
+/// Gives each 8-connected part of clutter (cells free in `open`, [`without_clutter`](super::wall_gaps::without_clutter), but not
 /// in `map`: furniture, unseen specks) the label of the room around it, when all its
 /// 8-neighbours belong to that one room. A part beside two rooms (a chair in a doorway) or
 /// beside cells of no room (a wall's stub in its line, the outside) stays unlabelled.
@@ -429,7 +440,7 @@ pub fn free_depth(map: &Grid<Cell>) -> Vec<u32> {
 /// only a little keeps one. A room with two or more cores of `min_core_cells` or more is
 /// divided among them: each of its cells joins the core nearest to it through the room
 /// (wavefront), and cells no core reaches keep the room's label. Rooms are then numbered
-/// 1..=n in scan order. `open` is the map with its clutter drawn free ([`without_clutter`]).
+/// 1..=n in scan order. `open` is the map with its clutter drawn free ([`without_clutter`](super::wall_gaps::without_clutter)).
 fn split_open_at_doorways(labels: &mut Grid<u16>, open: &Grid<Cell>, c: &RoomCells) {
     let (w, h) = (labels.width(), labels.height());
     if c.door_half_width == 0 || w == 0 || h == 0 || (open.width(), open.height()) != (w, h) {

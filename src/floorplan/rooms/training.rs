@@ -19,6 +19,7 @@ use super::knowledge::room_evidence;
 use super::layer::mark_closed;
 use super::pairs::open_pairs;
 use super::read::unit_rooms;
+use super::wall_gaps::WallReading;
 use crate::floorplan::knowledge::{constant, Fact};
 use crate::floorplan::world::World;
 use crate::grid::{Cell, Grid};
@@ -93,7 +94,7 @@ pub fn room_training(
         )));
     }
     let mut pairs = open_pairs(world, world_map, c);
-    mark_closed(world, map, world_map, &mut pairs, c);
+    mark_closed(world, map, world_map, &mut pairs, c, &WallReading::new(world, map, world_map, c, &[]));
     let truth_rooms = unit_rooms(world, world_map, truth);
     let mut facts = room_evidence(world, &pairs);
     let mut same = BTreeMap::new();

@@ -67,6 +67,7 @@ mod json;
 pub mod mcmc;
 pub mod mln;
 pub mod render;
+pub mod setting;
 pub mod sort;
 pub mod tabletop;
 pub mod union_find;

@@ -14,6 +14,7 @@
 
 use super::world::{Unit, UnitType, World};
 use crate::geometry::{facing, Axis};
+use crate::setting::{check, InvalidSetting};
 use serde::{Deserialize, Serialize};
 
 /// The geometry classifier of Tab. 3.6.
@@ -659,41 +660,44 @@ impl Default for KnowledgeConfig {
 
 impl KnowledgeConfig {
     /// Checks every number.
-    pub fn validate(&self) -> Result<(), String> {
-        let unit = |v: f64| v.is_finite() && (0.0..=1.0).contains(&v);
-        if !unit(self.coverage) || !unit(self.same_length_threshold) || !unit(self.object_share) {
-            return Err("knowledge: coverage, same_length_threshold and object_share must be in [0, 1]".into());
+    pub fn validate(&self) -> Result<(), InvalidSetting> {
+        self.check_numbers().map_err(|e| e.within("knowledge"))
+    }
+
+    fn check_numbers(&self) -> Result<(), InvalidSetting> {
+        let shares = [
+            ("coverage", self.coverage),
+            ("same_length_threshold", self.same_length_threshold),
+            ("object_share", self.object_share),
+        ];
+        for (name, v) in shares {
+            check(v.is_finite() && (0.0..=1.0).contains(&v), name, v, "in [0, 1]")?;
         }
-        if !(self.max_object_m.is_finite() && self.max_object_m > 0.0) {
-            return Err(format!("knowledge: max_object_m {} must be positive", self.max_object_m));
+        let positive = [
+            ("max_object_m", self.max_object_m),
+            ("same_length_sigma", self.same_length_sigma),
+            ("geometry.hall_area_m2", self.geometry.hall_area_m2),
+        ];
+        for (name, v) in positive {
+            check(v.is_finite() && v > 0.0, name, v, "a positive number")?;
         }
-        if !(self.time_share.is_finite() && self.time_share > 0.0 && self.time_share <= 1.0) {
-            return Err(format!("knowledge: time_share {} must be in (0, 1]", self.time_share));
+        let t = self.time_share;
+        check(t.is_finite() && t > 0.0 && t <= 1.0, "time_share", t, "in (0, 1]")?;
+        check(self.every > 0, "every", self.every as f64, "at least 1")?;
+        check(self.samples > 0, "samples", self.samples as f64, "at least 1")?;
+        let r = self.geometry.corridor_ratio;
+        check(r.is_finite() && r >= 1.0, "geometry.corridor_ratio", r, "at least 1")?;
+        for &p in &self.object {
+            check(p.is_finite() && p > 0.0 && p <= 1.0, "object", p, "probabilities in (0, 1]")?;
         }
-        if self.every == 0 || self.samples == 0 {
-            return Err("knowledge: every and samples must be at least 1".into());
-        }
-        if !(self.same_length_sigma.is_finite() && self.same_length_sigma > 0.0) {
-            return Err(format!("knowledge: same_length_sigma {} must be positive", self.same_length_sigma));
-        }
-        if self.object.iter().any(|p| !(p.is_finite() && *p > 0.0 && *p <= 1.0)) {
-            return Err("knowledge: object probabilities must be in (0, 1]".into());
-        }
+        let rules = "rules that parse, with SameRoom";
         if let Some(text) = &self.room_kb {
-            let mln = crate::mln::Mln::parse(text).map_err(|e| format!("knowledge: room_kb: {e}"))?;
-            check_room_rules(&mln).map_err(|e| format!("knowledge: room_kb: {e}"))?;
+            let mln = crate::mln::Mln::parse(text).map_err(|e| InvalidSetting::unreadable("room_kb", rules, e))?;
+            check_room_rules(&mln).map_err(|e| InvalidSetting::unreadable("room_kb", rules, e))?;
         }
         if let Some(text) = &self.frontier_kb {
             crate::floorplan::frontier::FrontierRules::parse(text)
-                .map_err(|e| format!("knowledge: frontier_kb: {e}"))?;
-        }
-        let g = &self.geometry;
-        if !(g.hall_area_m2.is_finite()
-            && g.hall_area_m2 > 0.0
-            && g.corridor_ratio.is_finite()
-            && g.corridor_ratio >= 1.0)
-        {
-            return Err("knowledge: geometry needs hall_area_m2 > 0 and corridor_ratio >= 1".into());
+                .map_err(|e| InvalidSetting::unreadable("frontier_kb", "rules that parse", e))?;
         }
         Ok(())
     }

@@ -73,6 +73,7 @@ use super::sensor::{
 };
 use super::TabletopError;
 use crate::mcmc::{accept, Rng, TracePoint};
+use crate::setting::{check, InvalidSetting};
 use nalgebra::{Isometry3, Matrix6, Translation3, Vector3, Vector6};
 use serde::{Deserialize, Serialize};
 
@@ -139,7 +140,7 @@ impl ChainConfig {
     /// let c = ChainConfig::from_json(r#"{"prior_weight": 2}"#).unwrap();
     /// assert_eq!(c.prior_weight, 2.0);
     /// let e = ChainConfig::from_json(r#"{"proposal": {"candidates": 0}}"#).unwrap_err();
-    /// assert!(e.to_string().starts_with("invalid configuration: proposal: candidates"));
+    /// assert!(e.to_string().starts_with("invalid configuration: proposal.candidates 0 must be"));
     /// ```
     pub fn from_json(text: &str) -> Result<ChainConfig, TabletopError> {
         let c = ChainConfig::parse_json(text)?;
@@ -154,32 +155,26 @@ impl ChainConfig {
 
     /// Checks every number, naming the field at fault.
     pub fn validate(&self) -> Result<(), TabletopError> {
-        let bad = |m: String| Err(TabletopError::Config(m));
-        self.tolerances.validate().or_else(|m| bad(format!("tolerances: {m}")))?;
-        self.sensor.validate().or_else(|m| bad(format!("sensor: {m}")))?;
-        let p = &self.proposal;
-        if p.candidates == 0 || p.candidates > 10_000 {
-            return bad(format!("proposal: candidates must be between 1 and 10000, not {}", p.candidates));
+        self.check_settings().map_err(TabletopError::Setting)
+    }
+
+    fn check_settings(&self) -> Result<(), InvalidSetting> {
+        self.tolerances.validate().map_err(|e| e.within("tolerances"))?;
+        self.sensor.validate().map_err(|e| e.within("sensor"))?;
+        let (p, d) = (&self.proposal, &self.decision);
+        let n = p.candidates;
+        check(n > 0 && n <= 10_000, "proposal.candidates", n as f64, "between 1 and 10000")?;
+        for (name, v) in [("proposal.sigma_t", p.sigma_t), ("proposal.sigma_r", p.sigma_r)] {
+            check(v.is_finite() && v > 0.0, name, v, "a positive number")?;
         }
-        for (name, v) in [("sigma_t", p.sigma_t), ("sigma_r", p.sigma_r)] {
-            if !(v.is_finite() && v > 0.0) {
-                return bad(format!("proposal: {name} must be a positive number, not {v}"));
-            }
+        for &v in &p.scales {
+            check(v.is_finite() && v > 0.0 && v <= 100.0, "proposal.scales", v, "positive numbers up to 100")?;
         }
-        if !p.scales.iter().all(|v| v.is_finite() && *v > 0.0 && *v <= 100.0) {
-            return bad(format!("proposal: scales must be positive numbers up to 100, not {:?}", p.scales));
-        }
-        let d = &self.decision;
-        if !(0.0 <= d.false_below && d.false_below <= d.true_above && d.true_above <= 1.0) {
-            return bad(format!(
-                "decision: need 0 <= false_below <= true_above <= 1, got {} and {}",
-                d.false_below, d.true_above
-            ));
-        }
-        if !(self.prior_weight.is_finite() && self.prior_weight >= 0.0) {
-            return bad(format!("prior_weight must be a non-negative number, not {}", self.prior_weight));
-        }
-        Ok(())
+        check((0.0..=1.0).contains(&d.false_below), "decision.false_below", d.false_below, "in [0, 1]")?;
+        let ok = d.true_above <= 1.0 && d.true_above >= d.false_below;
+        check(ok, "decision.true_above", d.true_above, "from decision.false_below to 1")?;
+        let w = self.prior_weight;
+        check(w.is_finite() && w >= 0.0, "prior_weight", w, "a non-negative number")
     }
 }
 

@@ -53,6 +53,7 @@
 //! assert_eq!(relation(&cube(0.02), &table, &tol), Relation::Intersect); // 3 cm into it
 //! ```
 
+use crate::setting::{check, InvalidSetting};
 use nalgebra::{Matrix3, UnitQuaternion, Vector2, Vector3};
 use serde::{Deserialize, Serialize};
 
@@ -80,18 +81,12 @@ impl Default for Tolerances {
 impl Tolerances {
     /// Checks the values: the contact and footprint tolerances in `[0, 0.1]` metres, the angle
     /// in `[0, pi/4]`.
-    pub fn validate(&self) -> Result<(), String> {
+    pub fn validate(&self) -> Result<(), InvalidSetting> {
         let Tolerances { contact, stable_angle, footprint } = *self;
-        if !(0.0..=0.1).contains(&contact) {
-            return Err(format!("contact must be between 0 and 0.1 m, not {contact}"));
-        }
-        if !(0.0..=0.1).contains(&footprint) {
-            return Err(format!("footprint must be between 0 and 0.1 m, not {footprint}"));
-        }
-        if !(0.0..=std::f64::consts::FRAC_PI_4).contains(&stable_angle) {
-            return Err(format!("stable_angle must be between 0 and pi/4 radians, not {stable_angle}"));
-        }
-        Ok(())
+        check((0.0..=0.1).contains(&contact), "contact", contact, "metres from 0 to 0.1")?;
+        check((0.0..=0.1).contains(&footprint), "footprint", footprint, "metres from 0 to 0.1")?;
+        let angle = (0.0..=std::f64::consts::FRAC_PI_4).contains(&stable_angle);
+        check(angle, "stable_angle", stable_angle, "radians from 0 to pi/4")
     }
 }
 

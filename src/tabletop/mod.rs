@@ -78,8 +78,10 @@ pub use chain::{Analysis, ChainConfig, Decision, DecisionRule, ObjectAnalysis, P
 pub enum TabletopError {
     /// The scene is invalid.
     Scene(scene::SceneError),
-    /// The configuration is invalid.
+    /// The configuration's JSON text does not parse, or is no object.
     Config(String),
+    /// A setting of the configuration is out of its range: which, and what it must be.
+    Setting(crate::setting::InvalidSetting),
     /// The knowledge base failed.
     Knowledge(crate::mln::MlnError),
 }
@@ -89,9 +91,19 @@ impl std::fmt::Display for TabletopError {
         match self {
             TabletopError::Scene(e) => write!(f, "{e}"),
             TabletopError::Config(m) => write!(f, "invalid configuration: {m}"),
+            TabletopError::Setting(e) => write!(f, "invalid configuration: {e}"),
             TabletopError::Knowledge(e) => write!(f, "knowledge base: {e}"),
         }
     }
 }
 
-impl std::error::Error for TabletopError {}
+impl std::error::Error for TabletopError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            TabletopError::Scene(e) => Some(e),
+            TabletopError::Setting(e) => Some(e),
+            TabletopError::Knowledge(e) => Some(e),
+            TabletopError::Config(_) => None,
+        }
+    }
+}

@@ -47,6 +47,7 @@
 //! ```
 
 use super::scene::{Keypoint, Projector};
+use crate::setting::{check, InvalidSetting};
 use nalgebra::{Isometry3, Matrix6, Quaternion, Translation3, UnitQuaternion, Vector3, Vector6};
 use serde::{Deserialize, Serialize};
 
@@ -77,13 +78,11 @@ impl Default for SensorConfig {
 
 impl SensorConfig {
     /// Checks that every deviation is positive and finite.
-    pub fn validate(&self) -> Result<(), String> {
+    pub fn validate(&self) -> Result<(), InvalidSetting> {
         for (name, v) in
             [("sigma_x", self.sigma_x), ("sigma_y", self.sigma_y), ("sigma_t", self.sigma_t), ("sigma_r", self.sigma_r)]
         {
-            if !(v.is_finite() && v > 0.0) {
-                return Err(format!("{name} must be a positive number, not {v}"));
-            }
+            check(v.is_finite() && v > 0.0, name, v, "a positive number")?;
         }
         Ok(())
     }

@@ -42,6 +42,7 @@ use super::chain::perturb;
 use super::geometry::{penetration, relation, Obb, Relation, Tolerances};
 use super::scene::{Camera, HiddenObject, Keypoint, Pose, Scene, SceneObject, Table, Truth};
 use crate::mcmc::Rng;
+use crate::setting::{check, require, InvalidSetting};
 use nalgebra::{Isometry3, Matrix3, Quaternion, Rotation3, Translation3, UnitQuaternion, Vector3};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
@@ -131,7 +132,7 @@ impl SynthConfig {
     /// ```
     pub fn from_json(text: &str) -> Result<SynthConfig, SynthError> {
         let c = SynthConfig::parse_json(text)?;
-        c.validate().map_err(SynthError::Config)?;
+        c.validate().map_err(SynthError::Setting)?;
         Ok(c)
     }
 
@@ -142,70 +143,45 @@ impl SynthConfig {
     }
 
     /// Checks every field, naming the one at fault.
-    pub fn validate(&self) -> Result<(), String> {
-        let range = |name: &str, r: [f64; 2], lo: f64, hi: f64| {
-            if r.iter().all(|v| v.is_finite()) && lo <= r[0] && r[0] <= r[1] && r[1] <= hi {
-                Ok(())
-            } else {
-                Err(format!("{name} must be a range [a, b] with {lo} <= a <= b <= {hi}, not {r:?}"))
-            }
-        };
-        if self.min_objects > self.max_objects || self.max_objects == 0 || self.max_objects > 40 {
-            return Err(format!(
-                "need 0 <= min_objects <= max_objects, 1 <= max_objects <= 40, got {} and {}",
-                self.min_objects, self.max_objects
-            ));
-        }
-        range("table", [self.table[0].min(self.table[1]), self.table[0].max(self.table[1])], 0.3, 10.0)?;
-        if !(self.area[0] <= self.table[0] && self.area[1] <= self.table[1] && self.area.iter().all(|&a| a >= 0.2)) {
-            return Err(format!("area must be at least 0.2 m and fit on the table, not {:?}", self.area));
-        }
-        if self.image[0] < 16 || self.image[1] < 16 || self.image[0] > 20_000 || self.image[1] > 20_000 {
-            return Err(format!("image must be between 16 and 20000 pixels each way, not {:?}", self.image));
-        }
-        if !(self.focal.is_finite() && self.focal > 0.0) {
-            return Err(format!("focal must be positive, not {}", self.focal));
-        }
-        range("distance", self.distance, 0.2, 20.0)?;
+    pub fn validate(&self) -> Result<(), InvalidSetting> {
+        let range =
+            |r: [f64; 2], lo: f64, hi: f64| r.iter().all(|v| v.is_finite()) && lo <= r[0] && r[0] <= r[1] && r[1] <= hi;
+        let (n, m) = (self.max_objects, self.min_objects);
+        check((1..=40).contains(&n), "max_objects", n as f64, "from 1 to 40")?;
+        check(m <= n, "min_objects", m as f64, "at most max_objects")?;
+        let table = [self.table[0].min(self.table[1]), self.table[0].max(self.table[1])];
+        require(range(table, 0.3, 10.0), "table", "metres from 0.3 to 10 each way")?;
+        let area =
+            self.area[0] <= self.table[0] && self.area[1] <= self.table[1] && self.area.iter().all(|&a| a >= 0.2);
+        require(area, "area", "at least 0.2 m each way and fit on the table")?;
+        let image = self.image.iter().all(|&p| (16..=20_000).contains(&p));
+        require(image, "image", "from 16 to 20000 pixels each way")?;
+        check(self.focal.is_finite() && self.focal > 0.0, "focal", self.focal, "a positive number")?;
+        require(range(self.distance, 0.2, 20.0), "distance", "a range [a, b] with 0.2 <= a <= b <= 20")?;
         if let Some(b) = self.baseline {
-            if !(b.is_finite() && b > 0.0 && b <= 2.0) {
-                return Err(format!("baseline must be between 0 and 2 m, not {b}"));
-            }
+            check(b.is_finite() && b > 0.0 && b <= 2.0, "baseline", b, "metres above 0, at most 2")?;
         }
-        range("elevation_deg", self.elevation_deg, 10.0, 90.0)?;
-        range("azimuth_deg", self.azimuth_deg, -180.0, 180.0)?;
-        if self.keypoints > 10_000 {
-            return Err(format!("keypoints must be at most 10000, not {}", self.keypoints));
-        }
-        for (name, v) in [
+        require(range(self.elevation_deg, 10.0, 90.0), "elevation_deg", "a range [a, b] with 10 <= a <= b <= 90")?;
+        let azimuth = range(self.azimuth_deg, -180.0, 180.0);
+        require(azimuth, "azimuth_deg", "a range [a, b] with -180 <= a <= b <= 180")?;
+        check(self.keypoints <= 10_000, "keypoints", self.keypoints as f64, "at most 10000")?;
+        let noises = [
             ("pixel_noise", self.pixel_noise),
             ("pose_noise_t", self.pose_noise_t),
             ("pose_noise_r", self.pose_noise_r),
-        ] {
-            if !(v.is_finite() && v >= 0.0) {
-                return Err(format!("{name} must be a non-negative number, not {v}"));
-            }
+        ];
+        for (name, v) in noises {
+            check(v.is_finite() && v >= 0.0, name, v, "a non-negative number")?;
         }
-        if self.group_weights.iter().any(|w| !(w.is_finite() && *w >= 0.0))
-            || self.group_weights.iter().sum::<f64>() <= 0.0
-        {
-            return Err(format!(
-                "group_weights must be non-negative with a positive sum, not {:?}",
-                self.group_weights
-            ));
-        }
-        if !(0.0..=1.0).contains(&self.false_probability) {
-            return Err(format!("false_probability must be in [0, 1], not {}", self.false_probability));
-        }
+        let w = &self.group_weights;
+        let weights = w.iter().all(|w| w.is_finite() && *w >= 0.0) && w.iter().sum::<f64>() > 0.0;
+        require(weights, "group_weights", "non-negative with a positive sum")?;
+        let p = self.false_probability;
+        check((0.0..=1.0).contains(&p), "false_probability", p, "in [0, 1]")?;
         let falses = self.false_estimates.unwrap_or(0);
         let forced = self.hovering.unwrap_or(0) + falses + (falses > 0) as u32;
-        if forced > self.max_objects {
-            return Err(format!(
-                "hovering + false_estimates + 1 object for them to cut into ({forced}) exceed max_objects ({})",
-                self.max_objects
-            ));
-        }
-        Ok(())
+        // The false estimates need one object more to cut into.
+        check(forced <= n, "hovering + false_estimates + 1", forced as f64, "at most max_objects")
     }
 }
 
@@ -439,8 +415,10 @@ fn rounded(pose: &Isometry3<f64>) -> Pose {
 /// Why a scene could not be generated.
 #[derive(Debug, Clone, PartialEq)]
 pub enum SynthError {
-    /// The configuration is invalid.
+    /// The configuration's JSON text does not parse, or is no object.
     Config(String),
+    /// A setting of the configuration is out of its range: which, and what it must be.
+    Setting(InvalidSetting),
     /// The forced hovering boxes or false estimates did not fit on the table.
     NoRoom(String),
 }
@@ -449,16 +427,24 @@ impl std::fmt::Display for SynthError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             SynthError::Config(m) => write!(f, "invalid synthetic scene configuration: {m}"),
+            SynthError::Setting(e) => write!(f, "invalid synthetic scene configuration: {e}"),
             SynthError::NoRoom(m) => write!(f, "could not place the scene: {m}; use a larger area or fewer objects"),
         }
     }
 }
 
-impl std::error::Error for SynthError {}
+impl std::error::Error for SynthError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            SynthError::Setting(e) => Some(e),
+            _ => None,
+        }
+    }
+}
 
 /// Generates a scene with ground truth from `seed`.
 pub fn generate(config: &SynthConfig, seed: u64) -> Result<Scene, SynthError> {
-    config.validate().map_err(SynthError::Config)?;
+    config.validate().map_err(SynthError::Setting)?;
     let mut rng = Rng::seed(seed);
     let camera = camera(config, &mut rng);
     let target = config.min_objects + rng.below(config.max_objects - config.min_objects + 1);

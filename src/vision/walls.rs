@@ -10,6 +10,7 @@
 
 use crate::geometry::{AreaCounts, Rect};
 use crate::grid::{Cell, Grid};
+use crate::setting::{check, InvalidSetting};
 
 /// Parameters of the WBU detector, in cells of one map ([`WallSizes::cells`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -109,12 +110,13 @@ impl WallSizes {
     }
 
     /// Checks the settings, naming the field at fault.
-    pub fn validate(&self) -> Result<(), String> {
-        let lengths = [self.min_segment_m, self.max_gap_m, self.tolerance_m];
-        if lengths.iter().all(|v| (0.0..=100.0).contains(v)) && (0.0..=1.0).contains(&self.min_wall_weight) {
-            return Ok(());
+    pub fn validate(&self) -> Result<(), InvalidSetting> {
+        for (name, v) in
+            [("min_segment_m", self.min_segment_m), ("max_gap_m", self.max_gap_m), ("tolerance_m", self.tolerance_m)]
+        {
+            check((0.0..=100.0).contains(&v), name, v, "metres from 0 to 100")?;
         }
-        Err("min_segment_m, max_gap_m and tolerance_m are metres from 0 to 100, min_wall_weight from 0 to 1".into())
+        check((0.0..=1.0).contains(&self.min_wall_weight), "min_wall_weight", self.min_wall_weight, "from 0 to 1")
     }
 }
 

@@ -128,37 +128,47 @@ fn bad_maps_and_configs_are_errors() {
     let e = Chain::new(&one, ChainConfig::default(), 1).unwrap_err();
     assert!(e.to_string().contains("1x1"), "{e}");
     let map = OccupancyMap::from_classified(rooms_map());
-    let mut cases: Vec<(ChainConfig, &str)> = Vec::new();
+    // Each bad setting is named by its path in the configuration's JSON, with what it must be.
+    let mut cases: Vec<(ChainConfig, &str, &str)> = Vec::new();
     let mut c = ChainConfig::default();
     c.posterior.temperature = f64::NAN;
-    cases.push((c, "temperature"));
+    cases.push((c, "posterior.temperature", "a positive number"));
     let mut c = ChainConfig::default();
     c.posterior.overlap_penalty = -1.0;
-    cases.push((c, "overlap_penalty"));
+    cases.push((c, "posterior.overlap_penalty", "in (0, 1]"));
     let mut c = ChainConfig::default();
     c.posterior.sensor.table[0][0] = 0.0;
-    cases.push((c, "sensor"));
+    cases.push((c, "posterior.sensor.table", "a probability in (0, 1]"));
     let mut c = ChainConfig::default();
     c.kernels.shift_sigma_m = f64::INFINITY;
-    cases.push((c, "shift_sigma_m"));
+    cases.push((c, "kernels.shift_sigma_m", "metres above 0, at most 50"));
     let mut c = ChainConfig::default();
     c.kernels.min_side_m = 0.0;
-    cases.push((c, "min_side_m"));
+    cases.push((c, "kernels.min_side_m", "metres above 0, at most 100"));
     let mut c = ChainConfig::default();
     c.schedule = Schedule::constant(KernelWeights([0.0; 9]));
-    cases.push((c, "positive weight"));
+    cases.push((c, "schedule.phases.weights", "positive for at least one kernel"));
     let mut c = ChainConfig::default();
     c.schedule = Schedule::constant(KernelWeights([1.0, -1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]));
-    cases.push((c, "non-negative"));
+    cases.push((c, "schedule.phases.weights", "finite and non-negative"));
     let mut c = ChainConfig::default();
     c.doors.min_m = 2.5;
-    cases.push((c, "doors"));
+    cases.push((c, "doors.min_m", "metres above 0, at most max_m"));
     let mut c = ChainConfig::default();
     c.detectors.rotation_deg = Some(f64::NAN);
-    cases.push((c, "rotation_deg"));
-    for (c, needle) in cases {
+    cases.push((c, "detectors.rotation_deg", "a number of degrees"));
+    let mut c = ChainConfig::default();
+    c.knowledge.time_share = 0.0;
+    cases.push((c, "knowledge.time_share", "in (0, 1]"));
+    let mut c = ChainConfig::default();
+    c.output.trace_every = 0;
+    cases.push((c, "output.trace_every", "at least 1"));
+    for (c, field, expected) in cases {
         let e = Chain::new(&map, c, 1).unwrap_err();
-        assert!(matches!(e, ChainError::Config(_)) && e.to_string().contains(needle), "{needle}: {e}");
+        let ChainError::Config(s) = &e else { panic!("{field}: {e}") };
+        assert_eq!((s.field(), s.expected()), (field, expected), "{e}");
+        assert!(e.to_string().starts_with(&format!("invalid chain configuration: {field} ")), "{e}");
+        assert!(std::error::Error::source(&e).is_some(), "{e}");
     }
 }
 

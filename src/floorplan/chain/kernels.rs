@@ -24,6 +24,7 @@ use super::schedule::Kernel;
 use super::state::{door_rect, facing, Axis, DoorLimits, DoorSpec, Move, State, Undo};
 use crate::floorplan::world::Rect;
 use crate::mcmc::{Cumulative, Rng};
+use crate::setting::{check, InvalidSetting};
 use crate::vision::doors;
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
@@ -73,31 +74,19 @@ impl Default for KernelConfig {
 
 impl KernelConfig {
     /// Checks every number.
-    pub fn validate(&self) -> Result<(), String> {
-        if !(self.min_side_m > 0.0
-            && self.min_side_m <= 100.0
-            && self.shift_sigma_m > 0.0
-            && self.shift_sigma_m <= 50.0)
-        {
-            return Err("min_side_m (at most 100) and shift_sigma_m (at most 50) are metres above 0".into());
-        }
-        if self.max_units == 0 || self.max_units > 250 {
-            return Err(format!("max_units {} must be between 1 and 250", self.max_units));
-        }
+    pub fn validate(&self) -> Result<(), InvalidSetting> {
+        let (side, sigma, n) = (self.min_side_m, self.shift_sigma_m, self.max_units);
+        check(side > 0.0 && side <= 100.0, "min_side_m", side, "metres above 0, at most 100")?;
+        check(sigma > 0.0 && sigma <= 50.0, "shift_sigma_m", sigma, "metres above 0, at most 50")?;
+        check(n > 0 && n <= 250, "max_units", n as f64, "between 1 and 250")?;
         for (name, v) in [("h_b", self.h_b), ("h_v", self.h_v), ("h_g", self.h_g)] {
-            if !(v.is_finite() && v > 0.0) {
-                return Err(format!("{name} {v} must be a positive number"));
-            }
+            check(v.is_finite() && v > 0.0, name, v, "a positive number")?;
         }
         for (name, v) in [("uniform_add", self.uniform_add), ("uniform_door", self.uniform_door)] {
-            if !(v.is_finite() && v > 0.0 && v <= 1.0) {
-                return Err(format!("{name} {v} must be in (0, 1]"));
-            }
+            check(v.is_finite() && v > 0.0 && v <= 1.0, name, v, "in (0, 1]")?;
         }
-        if !(self.split_epsilon.is_finite() && self.split_epsilon > 0.0) {
-            return Err(format!("split_epsilon {} must be a positive number", self.split_epsilon));
-        }
-        Ok(())
+        let e = self.split_epsilon;
+        check(e.is_finite() && e > 0.0, "split_epsilon", e, "a positive number")
     }
 
     /// The smallest unit side in cells of `resolution` metres: rounded, at least 3.

@@ -46,6 +46,7 @@ use self::trace::Trace;
 use super::world::{Door, Frame, Rect, Unit, UnitType, World};
 use crate::grid::{Cell, Grid, OccupancyMap};
 use crate::mcmc::{accept, Cumulative, Ring, Rng, TracePoint};
+use crate::setting::{check, InvalidSetting};
 use crate::vision;
 use serde::{Deserialize, Serialize};
 
@@ -175,37 +176,31 @@ pub const MAX_CONFIG_JSON_BYTES: usize = 1 << 20;
 impl ChainConfig {
     /// Checks every number, naming the field at fault.
     pub fn validate(&self) -> Result<(), ChainError> {
-        let bad = |m: String| Err(ChainError::Config(m));
-        self.posterior.validate().or_else(|m| bad(format!("posterior: {m}")))?;
-        self.schedule.validate().or_else(|m| bad(format!("schedule: {m}")))?;
-        self.kernels.validate().or_else(|m| bad(format!("kernels: {m}")))?;
-        self.doors.validate().or_else(|m| bad(format!("doors: {m}")))?;
-        self.detectors.walls.validate().or_else(|m| bad(format!("detectors.walls: {m}")))?;
-        let a = self.detectors.free_space_min_m2;
-        if !(a.is_finite() && (0.0..=1e6).contains(&a)) {
-            return bad(format!("detectors.free_space_min_m2 {a} must be an area from 0 to 1e6 m²"));
+        self.check_settings().map_err(ChainError::Config)
+    }
+
+    fn check_settings(&self) -> Result<(), InvalidSetting> {
+        self.posterior.validate().map_err(|e| e.within("posterior"))?;
+        self.schedule.validate().map_err(|e| e.within("schedule"))?;
+        self.kernels.validate().map_err(|e| e.within("kernels"))?;
+        self.doors.validate().map_err(|e| e.within("doors"))?;
+        self.detectors.walls.validate().map_err(|e| e.within("detectors.walls"))?;
+        let (d, o) = (&self.detectors, &self.output);
+        let a = d.free_space_min_m2;
+        check(a.is_finite() && (0.0..=1e6).contains(&a), "detectors.free_space_min_m2", a, "an area from 0 to 1e6 m²")?;
+        check(d.free_space_every > 0, "detectors.free_space_every", d.free_space_every as f64, "at least 1")?;
+        if let Some(r) = d.rotation_deg {
+            check(r.is_finite(), "detectors.rotation_deg", r, "a number of degrees")?;
         }
         if let Some(t) = self.wall_thickness_m {
-            if !(t.is_finite() && t > 0.0 && t <= MAX_WALL_THICKNESS_M) {
-                return bad(format!(
-                    "wall_thickness_m {t} must be a thickness in metres above 0 and at most {MAX_WALL_THICKNESS_M} \
-                     (walls are 0.1 - 0.5 m; leave it out to measure the map's)"
-                ));
-            }
+            // Walls are 0.1 - 0.5 m thick; leaving it out measures the map's.
+            let ok = t.is_finite() && t > 0.0 && t <= MAX_WALL_THICKNESS_M;
+            check(ok, "wall_thickness_m", t, "metres above 0, at most 1")?;
         }
-        self.knowledge.validate().or_else(bad)?;
-        if self.detectors.free_space_every == 0 {
-            return bad("detectors.free_space_every must be at least 1".into());
-        }
-        if let Some(r) = self.detectors.rotation_deg {
-            if !r.is_finite() {
-                return bad(format!("detectors.rotation_deg {r} is not a number"));
-            }
-        }
-        if self.output.samples > 100_000 || self.output.trace_every == 0 || self.output.acceptance_window == 0 {
-            return bad("output: samples <= 100000, trace_every >= 1, acceptance_window >= 1".into());
-        }
-        Ok(())
+        self.knowledge.validate()?;
+        check(o.samples <= 100_000, "output.samples", o.samples as f64, "at most 100000")?;
+        check(o.trace_every > 0, "output.trace_every", o.trace_every as f64, "at least 1")?;
+        check(o.acceptance_window > 0, "output.acceptance_window", o.acceptance_window as f64, "at least 1")
     }
 
     /// Parses a configuration from JSON text: an object whose fields override the defaults
@@ -329,8 +324,8 @@ fn unknown_fields(given: &serde_json::Value, known: &serde_json::Value, path: &s
 /// Why a chain could not start.
 #[derive(Debug, Clone, PartialEq)]
 pub enum ChainError {
-    /// A configuration value is unusable.
-    Config(String),
+    /// A configuration value is unusable: which, and what it must be.
+    Config(crate::setting::InvalidSetting),
     /// A configuration's JSON text does not parse, is no object, or has an unknown field.
     Json(String),
     /// The knowledge base does not parse or ground.
@@ -360,6 +355,7 @@ impl std::error::Error for ChainError {
     fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
         match self {
             ChainError::Rooms(e) => Some(e),
+            ChainError::Config(e) => Some(e),
             _ => None,
         }
     }

@@ -24,6 +24,7 @@
 //!   coarse ones.
 
 use super::explain::Explanation;
+use crate::setting::{check, InvalidSetting};
 use serde::{Deserialize, Serialize};
 
 /// The sensor look-up table `p(C_M | C_W)` of Tab. 3.1.
@@ -81,13 +82,9 @@ impl SensorModel {
     }
 
     /// Every entry must be a probability above zero.
-    pub fn validate(&self) -> Result<(), String> {
-        for row in &self.table {
-            for p in row {
-                if !(p.is_finite() && *p > 0.0 && *p <= 1.0) {
-                    return Err(format!("sensor table entry {p} is not a probability in (0, 1]"));
-                }
-            }
+    pub fn validate(&self) -> Result<(), InvalidSetting> {
+        for p in self.table.iter().flatten() {
+            check(p.is_finite() && *p > 0.0 && *p <= 1.0, "table", *p, "a probability in (0, 1]")?;
         }
         Ok(())
     }
@@ -115,18 +112,12 @@ impl Default for PosteriorConfig {
 
 impl PosteriorConfig {
     /// Checks every number.
-    pub fn validate(&self) -> Result<(), String> {
-        self.sensor.validate()?;
-        if !(self.overlap_penalty.is_finite() && self.overlap_penalty > 0.0 && self.overlap_penalty <= 1.0) {
-            return Err(format!("overlap_penalty {} is not in (0, 1]", self.overlap_penalty));
-        }
-        if !(self.unit_cost.is_finite() && self.unit_cost >= 0.0) {
-            return Err(format!("unit_cost {} must be a non-negative number", self.unit_cost));
-        }
-        if !(self.temperature.is_finite() && self.temperature > 0.0) {
-            return Err(format!("temperature {} must be a positive number", self.temperature));
-        }
-        Ok(())
+    pub fn validate(&self) -> Result<(), InvalidSetting> {
+        self.sensor.validate().map_err(|e| e.within("sensor"))?;
+        let (p, cost, t) = (self.overlap_penalty, self.unit_cost, self.temperature);
+        check(p.is_finite() && p > 0.0 && p <= 1.0, "overlap_penalty", p, "in (0, 1]")?;
+        check(cost.is_finite() && cost >= 0.0, "unit_cost", cost, "a non-negative number")?;
+        check(t.is_finite() && t > 0.0, "temperature", t, "a positive number")
     }
 }
 

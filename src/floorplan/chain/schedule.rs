@@ -1,5 +1,6 @@
 //! Which kernel to try: the selection probabilities `Φ(W'|W)` of Tab. 3.2, by iteration.
 
+use crate::setting::{require, InvalidSetting};
 use serde::{Deserialize, Serialize};
 
 /// The sub-kernels of the five reversible pairs (section 3.5.1).
@@ -142,17 +143,12 @@ impl Schedule {
     }
 
     /// Checks weights are finite and non-negative and each phase has some positive weight.
-    pub fn validate(&self) -> Result<(), String> {
-        if self.phases.is_empty() {
-            return Err("the kernel schedule has no phases".into());
-        }
-        for (i, p) in self.phases.iter().enumerate() {
-            if p.weights.0.iter().any(|w| !w.is_finite() || *w < 0.0) {
-                return Err(format!("schedule phase {i}: weights must be finite and non-negative"));
-            }
-            if p.weights.0.iter().sum::<f64>() <= 0.0 {
-                return Err(format!("schedule phase {i}: at least one kernel needs a positive weight"));
-            }
+    pub fn validate(&self) -> Result<(), InvalidSetting> {
+        require(!self.phases.is_empty(), "phases", "a list of at least one phase")?;
+        for p in &self.phases {
+            let w = &p.weights.0;
+            require(w.iter().all(|w| w.is_finite() && *w >= 0.0), "phases.weights", "finite and non-negative")?;
+            require(w.iter().sum::<f64>() > 0.0, "phases.weights", "positive for at least one kernel")?;
         }
         Ok(())
     }

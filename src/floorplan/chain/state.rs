@@ -10,6 +10,7 @@ use crate::floorplan::world::{Rect, Unit, UnitType};
 pub use crate::geometry::{facing, Axis};
 use crate::geometry::{AreaCounts, CellCounts};
 use crate::grid::{Cell, Grid};
+use crate::setting::{check, InvalidSetting};
 
 /// A door between two units, by unit id; its rectangle follows the units' walls.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -87,11 +88,10 @@ impl DoorSizes {
     }
 
     /// Checks the sizes: finite, `0 < min_m <= max_m`, and `0 <= max_gap_m <= 5`.
-    pub fn validate(&self) -> Result<(), String> {
-        if self.min_m > 0.0 && self.max_m >= self.min_m && self.max_m <= 1e3 && (0.0..=5.0).contains(&self.max_gap_m) {
-            return Ok(());
-        }
-        Err("need 0 < min_m <= max_m and 0 <= max_gap_m <= 5, in metres".into())
+    pub fn validate(&self) -> Result<(), InvalidSetting> {
+        check(self.min_m > 0.0 && self.min_m <= self.max_m, "min_m", self.min_m, "metres above 0, at most max_m")?;
+        check(self.max_m <= 1e3, "max_m", self.max_m, "metres, at most 1000")?;
+        check((0.0..=5.0).contains(&self.max_gap_m), "max_gap_m", self.max_gap_m, "metres from 0 to 5")
     }
 }
 

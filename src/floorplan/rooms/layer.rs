@@ -443,7 +443,9 @@ mod tests {
         // layer made of it.
         config.room_kb = Some("Open(unit, unit)\n".into());
         let e = config.validate().unwrap_err();
-        assert!(e.contains("room_kb") && e.contains("SameRoom"), "{e}");
+        assert_eq!(e.field(), "knowledge.room_kb");
+        let cause = std::error::Error::source(&e).map(|c| c.to_string()).unwrap_or_default();
+        assert!(cause.contains("SameRoom"), "{e}");
         let e = RoomLayer::new(c, &config).unwrap_err().to_string();
         assert!(e.contains("room rules") && e.contains("SameRoom"), "{e}");
     }

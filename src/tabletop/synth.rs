@@ -128,7 +128,7 @@ impl SynthConfig {
     /// use ksmcmc::tabletop::synth::SynthConfig;
     /// assert_eq!(SynthConfig::from_json(r#"{"max_objects": 5}"#).unwrap().max_objects, 5);
     /// let e = SynthConfig::from_json(r#"{"max_objects": 0}"#).unwrap_err().to_string();
-    /// assert!(e.starts_with("invalid synthetic scene configuration: need"), "{e}");
+    /// assert!(e.starts_with("invalid synthetic scene configuration: max_objects 0 must be"), "{e}");
     /// ```
     pub fn from_json(text: &str) -> Result<SynthConfig, SynthError> {
         let c = SynthConfig::parse_json(text)?;

@@ -180,7 +180,7 @@ fn parse(argv: Vec<OsString>) -> Result<Option<Opts>, CliError> {
             Long("classify") => classify = args::value("--classify", parser.value()?)?,
             Long("goal") => {
                 let name: String = args::value("--goal", parser.value()?)?;
-                goal = Some(Goal::parse(&name).map_err(CliError::Usage)?);
+                goal = Some(Goal::parse(&name).map_err(|e| CliError::Usage(e.to_string()))?);
             }
             Long("help") | Short('h') => {
                 print!("{HELP}");

@@ -11,6 +11,27 @@
 use crate::explore::Target;
 use crate::floorplan::world::{Placeholder, UnitType};
 
+/// A goal's name that [`Goal::parse`] does not know; it says which names it knows.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct UnknownGoal {
+    name: String,
+}
+
+impl UnknownGoal {
+    /// The name given.
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+}
+
+impl std::fmt::Display for UnknownGoal {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "unknown goal {:?}: give new-room, room, corridor, hall or other", self.name)
+    }
+}
+
+impl std::error::Error for UnknownGoal {}
+
 /// What the robot is looking for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Goal {
@@ -23,14 +44,24 @@ pub enum Goal {
 impl Goal {
     /// The goal a name gives: `new-room`, or a type's name (`room`, `corridor`, `hall`,
     /// `other`).
-    pub fn parse(name: &str) -> Result<Goal, String> {
+    ///
+    /// ```
+    /// use ksmcmc::floorplan::frontier::Goal;
+    /// use ksmcmc::floorplan::world::UnitType;
+    ///
+    /// assert_eq!(Goal::parse("hall"), Ok(Goal::Find(UnitType::Hall)));
+    /// let e = Goal::parse("kitchen").unwrap_err();
+    /// assert_eq!(e.name(), "kitchen");
+    /// assert_eq!(e.to_string(), r#"unknown goal "kitchen": give new-room, room, corridor, hall or other"#);
+    /// ```
+    pub fn parse(name: &str) -> Result<Goal, UnknownGoal> {
         match name {
             "new-room" => Ok(Goal::NewRoom),
             "room" => Ok(Goal::Find(UnitType::Room)),
             "corridor" => Ok(Goal::Find(UnitType::Corridor)),
             "hall" => Ok(Goal::Find(UnitType::Hall)),
             "other" => Ok(Goal::Find(UnitType::Other)),
-            _ => Err(format!("unknown goal {name:?}: give new-room, room, corridor, hall or other")),
+            _ => Err(UnknownGoal { name: name.to_owned() }),
         }
     }
 

@@ -29,7 +29,7 @@ mod rules;
 mod stretches;
 mod truth;
 
-pub use goal::Goal;
+pub use goal::{Goal, UnknownGoal};
 pub use rules::{evidence, FrontierRules, BUILTIN_FRONTIER_RULES, FRONTIER_EVIDENCE, FRONTIER_QUERY, FRONTIER_RULES};
 pub use stretches::{Stretch, AT_DOOR_M, BEHIND_M, JAMB_M, MAX_STRETCH_M, MIN_BEHIND_M2, MIN_UNSEEN_M, MIN_WIDTH_M};
 pub use truth::{

@@ -198,7 +198,7 @@ fn by_units(
     let apart = |a: usize, b: usize| Edits::separates(&walls, world.units[a].rect(), world.units[b].rect());
     let merged = edits.merged_units(world);
     let mut given: Vec<(usize, usize, bool)> = merged.iter().map(|&(a, b)| (a, b, true)).collect();
-    let mut pairs: Vec<OpenPair> = open_pairs_among(world, world_map, c, read.world_open());
+    let mut pairs: Vec<OpenPair> = open_pairs_among(world, world_map, c, &read.open_in_world(map, world_map, c));
     mark_closed(world, map, world_map, &mut pairs, c, read);
     given.extend(pairs.iter().filter(|p| apart(p.a, p.b)).map(|p| (p.a, p.b, false)));
     // Where the walls part two units (closed pairs), the splits of the room layer draw the

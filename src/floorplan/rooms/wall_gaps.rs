@@ -330,8 +330,6 @@ fn close_in_frame(
 pub(crate) struct WallReading {
     /// The map with its clutter drawn free ([`without_clutter`]), in the map's frame.
     pub(crate) open: Grid<Cell>,
-    /// The same in the world's frame; `None` when the world's frame is the map's.
-    world_open: Option<Grid<Cell>>,
     /// The map with its wall gaps closed ([`close_wall_gaps_along`]).
     pub(crate) closed: Option<Grid<Cell>>,
 }
@@ -341,14 +339,24 @@ impl WallReading {
     /// world's frame), with the wall gaps along `angles` too.
     pub(crate) fn new(world: &World, map: &Grid<Cell>, world_map: &Grid<Cell>, c: &RoomCells, angles: &[f64]) -> Self {
         let open = without_clutter(map, c.min_wall_len);
-        let world_open = (world_map != map).then(|| without_clutter(world_map, c.min_wall_len));
         let closed = close_wall_gaps_along(world, map, world_map, c, angles);
-        WallReading { open, world_open, closed }
+        WallReading { open, closed }
     }
 
-    /// The world-frame map with its clutter drawn free.
-    pub(crate) fn world_open(&self) -> &Grid<Cell> {
-        self.world_open.as_ref().unwrap_or(&self.open)
+    /// `world_map` (the map these walls were read from, in the world's frame) with its clutter
+    /// drawn free: [`WallReading::open`] itself when the world's frame is the map's. Only
+    /// grouping by units asks for it, once.
+    pub(crate) fn open_in_world<'a>(
+        &'a self,
+        map: &Grid<Cell>,
+        world_map: &Grid<Cell>,
+        c: &RoomCells,
+    ) -> std::borrow::Cow<'a, Grid<Cell>> {
+        if world_map == map {
+            std::borrow::Cow::Borrowed(&self.open)
+        } else {
+            std::borrow::Cow::Owned(without_clutter(world_map, c.min_wall_len))
+        }
     }
 }
 

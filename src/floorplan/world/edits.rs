@@ -236,19 +236,8 @@ impl Edits {
     /// The cells of every split wall in the world frame `frame` (for the chain's constraint), from the
     /// lines on `map` (the map in its own frame).
     pub fn world_wall_cells(&self, map: &Grid<Cell>, frame: &Frame) -> Vec<(i32, i32)> {
-        let to_world = |p: [f64; 2]| {
-            let (x, y) = frame.to_world(p[0] + 0.5, p[1] + 0.5);
-            [x - 0.5, y - 0.5]
-        };
-        let mut cells: Vec<(i32, i32)> = self
-            .wall_lines(map)
-            .iter()
-            .flat_map(|&[a, b]| line_cells(to_world(a), to_world(b)))
-            .filter(|&(x, y)| {
-                x >= i32::MIN as i64 && y >= i32::MIN as i64 && x <= i32::MAX as i64 && y <= i32::MAX as i64
-            })
-            .map(|(x, y)| (x as i32, y as i32))
-            .collect();
+        let mut cells: Vec<(i32, i32)> =
+            self.wall_lines(map).iter().flat_map(|&line| line_world_cells(line, frame)).collect();
         crate::sort::sort(&mut cells);
         cells.dedup();
         cells
@@ -357,25 +346,17 @@ impl Edits {
     /// the points of each merge are in one room, and the rooms at type and name edits have
     /// that type and name. It assumes no two edits contradict each other (where they do, the
     /// later one wins and the earlier one is reported). For tests, and to check a world file.
-    pub fn respected_by(&self, world: &World, labels: &Grid<u16>, map: &Grid<Cell>) -> Result<(), String> {
-        let walls = self.world_wall_cells(map, &world.frame);
-        let t = world.wall_thickness;
-        for u in &world.units {
-            let inner = Rect { x: u.x + t, y: u.y + t, w: u.w - 2 * t, h: u.h - 2 * t };
-            if walls.iter().any(|&(x, y)| x >= inner.x && x < inner.right() && y >= inner.y && y < inner.bottom()) {
-                return Err(format!("unit {} crosses a split wall", u.id));
-            }
-        }
+    ///
+    /// The first edit not respected is the error ([`EditError::Edit`]): its number, its `op`
+    /// and what the world does instead.
+    pub fn respected_by(&self, world: &World, labels: &Grid<u16>, map: &Grid<Cell>) -> Result<(), EditError> {
         let room_at = |p: [i64; 2]| label_near(labels, p) as u32;
         let room = |p: [i64; 2]| world.rooms.iter().find(|r| r.id == room_at(p));
         for (i, e) in self.list.iter().enumerate() {
             let broken = match e {
                 Edit::Merge { at: [a, b] } => (room_at(*a) == 0 || room_at(*a) != room_at(*b))
                     .then(|| format!("the points are in rooms {} and {}", room_at(*a), room_at(*b))),
-                Edit::Split { line: [a, b] } => match sides(labels, *a, *b) {
-                    Some((l, r)) if l == r && l != 0 => Some(format!("room {l} lies on both sides")),
-                    _ => None,
-                },
+                Edit::Split { line: [a, b] } => split_broken(world, labels, map, [*a, *b]),
                 Edit::Type { at, kind } => match room(*at) {
                     None => Some("no room there".into()),
                     Some(r) => (r.kind != *kind).then(|| format!("room {} is {}", r.id, r.kind.name())),
@@ -387,11 +368,43 @@ impl Edits {
                     }
                 },
             };
-            if let Some(why) = broken {
-                return Err(format!("edit {} ({}): {why}", i + 1, e.op()));
+            if let Some(message) = broken {
+                return Err(EditError::Edit { index: i + 1, op: e.op(), message });
             }
         }
         Ok(())
+    }
+}
+
+/// The cells of one split line (in map cells) in the world frame `frame`; cells beyond the
+/// range of `i32` are left out.
+fn line_world_cells(line: [[f64; 2]; 2], frame: &Frame) -> impl Iterator<Item = (i32, i32)> {
+    let to_world = |p: [f64; 2]| {
+        let (x, y) = frame.to_world(p[0] + 0.5, p[1] + 0.5);
+        [x - 0.5, y - 0.5]
+    };
+    let in_range = |v: i64| v >= i32::MIN as i64 && v <= i32::MAX as i64;
+    line_cells(to_world(line[0]), to_world(line[1]))
+        .into_iter()
+        .filter(move |&(x, y)| in_range(x) && in_range(y))
+        .map(|(x, y)| (x as i32, y as i32))
+}
+
+/// How `world` breaks the split edit along `line` (map cells), if it does: a unit whose
+/// interior holds a cell of the wall (the line extended to the walls of `map`), or one room on
+/// both sides of it.
+fn split_broken(world: &World, labels: &Grid<u16>, map: &Grid<Cell>, line: [[i64; 2]; 2]) -> Option<String> {
+    let wall: Vec<(i32, i32)> = line_world_cells(extend_to_walls(map, line[0], line[1]), &world.frame).collect();
+    let t = world.wall_thickness;
+    for u in &world.units {
+        let inner = Rect { x: u.x + t, y: u.y + t, w: u.w - 2 * t, h: u.h - 2 * t };
+        if wall.iter().any(|&(x, y)| x >= inner.x && x < inner.right() && y >= inner.y && y < inner.bottom()) {
+            return Some(format!("unit {} crosses the split wall", u.id));
+        }
+    }
+    match sides(labels, line[0], line[1]) {
+        Some((l, r)) if l == r && l != 0 => Some(format!("room {l} lies on both sides")),
+        _ => None,
     }
 }
 
@@ -704,6 +717,50 @@ mod tests {
         let merged = Edits::parse(r#"[{"op": "merge", "at": [[15, 5], [2, 2]]}]"#).unwrap();
         merged.apply_to_labels(&mut labels, &map);
         assert_eq!((*labels.at(5, 5), *labels.at(15, 5)), (1, 1));
+    }
+
+    #[test]
+    fn a_world_that_breaks_an_edit_is_told_which_and_how() {
+        // A 20x10 room walled all round, one unit filling it, one room: a split across it and
+        // a type edit for its corridor.
+        let mut map = Grid::new(22, 12, Cell::Occupied);
+        let mut labels = Grid::new(22, 12, 0u16);
+        for y in 1..11 {
+            for x in 1..21 {
+                *map.at_mut(x, y) = Cell::Free;
+                *labels.at_mut(x, y) = 1;
+            }
+        }
+        let mut world = World::empty(22, 12);
+        world.units.push(crate::floorplan::world::Unit::new(7, 0, 0, 22, 12, UnitType::Room));
+        world.rooms.push(Room {
+            id: 1,
+            kind: UnitType::Room,
+            units: vec![7],
+            area_m2: 0.5,
+            doors: Vec::new(),
+            opens_to: Vec::new(),
+            name: None,
+        });
+        let e = Edits::parse(
+            r#"[{"op": "type", "at": [5, 5], "type": "room"}, {"op": "split", "line": [[10, 3], [10, 8]]}]"#,
+        )
+        .unwrap();
+        let err = e.respected_by(&world, &labels, &map).unwrap_err();
+        assert_eq!(err, EditError::Edit { index: 2, op: "split", message: "unit 7 crosses the split wall".into() });
+        // Without the unit, the one room on both sides is what breaks it.
+        world.units.clear();
+        let err = e.respected_by(&world, &labels, &map).unwrap_err();
+        assert_eq!(err.to_string(), "edit 2 (split): room 1 lies on both sides");
+        // Labels split along the wall respect it; a corridor asked for where a room is does not.
+        e.apply_to_labels(&mut labels, &map);
+        world.rooms.push(Room { id: 2, ..world.rooms[0].clone() });
+        assert_eq!(e.respected_by(&world, &labels, &map), Ok(()));
+        let corridor = Edits::parse(r#"[{"op": "type", "at": [15, 5], "type": "corridor"}]"#).unwrap();
+        assert_eq!(
+            corridor.respected_by(&world, &labels, &map).unwrap_err().to_string(),
+            "edit 1 (type): room 2 is room"
+        );
     }
 
     #[test]

@@ -273,3 +273,41 @@ impl fmt::Display for MlnError {
 }
 
 impl std::error::Error for MlnError {}
+
+/// A method's name that [`Method`](super::Method) or [`LearnMethod`](super::LearnMethod) does
+/// not know (`"mcsat".parse::<Method>()`); it says which names it knows.
+///
+/// ```
+/// use ksmcmc::mln::{LearnMethod, Method};
+/// let e = "annealing".parse::<Method>().unwrap_err();
+/// assert_eq!(e.name(), "annealing");
+/// assert_eq!(e.to_string(), r#"unknown inference method "annealing" (auto, exact, enumerate, mcsat or gibbs)"#);
+/// assert!("em".parse::<LearnMethod>().unwrap_err().to_string().contains("(pll or discriminative)"));
+/// ```
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct UnknownMethod {
+    name: String,
+    /// `inference method` or `learning method`.
+    what: &'static str,
+    /// The names known, as a person reads them.
+    known: &'static str,
+}
+
+impl UnknownMethod {
+    pub(crate) fn new(name: &str, what: &'static str, known: &'static str) -> Self {
+        UnknownMethod { name: name.to_owned(), what, known }
+    }
+
+    /// The name given.
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+}
+
+impl fmt::Display for UnknownMethod {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "unknown {} {:?} ({})", self.what, self.name, self.known)
+    }
+}
+
+impl std::error::Error for UnknownMethod {}

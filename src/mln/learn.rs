@@ -53,7 +53,7 @@
 //! atom false. Several databases sum their objectives; each brings its own constants.
 //! Hard formulas stay hard and are checked against the data; only soft formulas are learned.
 
-use super::error::{ErrorKind, MlnError};
+use super::error::{ErrorKind, MlnError, UnknownMethod};
 use super::ground::{GroundConfig, Network, Space};
 use super::kb::{Database, Evidence, Mln, Weight};
 use std::collections::{BTreeMap, HashMap};
@@ -69,12 +69,12 @@ pub enum LearnMethod {
 }
 
 impl std::str::FromStr for LearnMethod {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
+    type Err = UnknownMethod;
+    fn from_str(s: &str) -> Result<Self, UnknownMethod> {
         match s {
             "pll" => Ok(LearnMethod::PseudoLikelihood),
             "discriminative" | "cll" => Ok(LearnMethod::Discriminative),
-            _ => Err(format!("unknown learning method {s:?} (pll or discriminative)")),
+            _ => Err(UnknownMethod::new(s, "learning method", "pll or discriminative")),
         }
     }
 }

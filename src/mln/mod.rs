@@ -143,7 +143,7 @@ mod learn;
 mod logic;
 mod syntax;
 
-pub use error::{ErrorKind, MlnError, Position, RuleError, Source};
+pub use error::{ErrorKind, MlnError, Position, RuleError, Source, UnknownMethod};
 
 /// Longest knowledge base text [`Mln::parse`] reads, bytes (16 MiB; the samples are a few KB).
 pub const MAX_KB_BYTES: usize = 16 << 20;

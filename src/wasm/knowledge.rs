@@ -75,7 +75,11 @@ pub fn learn_rules(
     #[wasm_bindgen(unchecked_optional_param_type = "'pll' | 'discriminative'")] method: Option<String>,
 ) -> Result<String, JsError> {
     let world = World::from_json(world_json).map_err(|e| JsError::new(&e.to_string()))?;
-    let method = method.as_deref().unwrap_or("pll").parse().map_err(|e: String| JsError::new(&e))?;
+    let method = method
+        .as_deref()
+        .unwrap_or("pll")
+        .parse()
+        .map_err(|e: crate::mln::UnknownMethod| JsError::new(&e.to_string()))?;
     let config = crate::mln::LearnConfig { method, ..Default::default() };
     knowledge::learn_from_worlds(rules, &[world], resolution, &config, "Weights learned in the rules editor")
         .map_err(|e| JsError::new(&e.to_string()))

@@ -214,7 +214,9 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
     }
     match (command.as_str(), o.method.as_deref()) {
         (_, None) => {}
-        ("query", Some(m)) => o.inference.method = m.parse().map_err(CliError::Usage)?,
+        ("query", Some(m)) => {
+            o.inference.method = m.parse().map_err(|e: ksmcmc::mln::UnknownMethod| CliError::Usage(e.to_string()))?
+        }
         ("map", Some("maxwalksat")) => o.map.method = MapMethod::MaxWalkSat,
         ("map", Some("exact")) => o.map.method = MapMethod::Exact,
         (c, Some(m)) => return Err(CliError::Usage(format!("--method {m:?} does not apply to mln {c}"))),

@@ -12,7 +12,7 @@ mod junction;
 mod maxwalksat;
 mod mcsat;
 
-use super::error::{ErrorKind, MlnError};
+use super::error::{ErrorKind, MlnError, UnknownMethod};
 use super::ground::{Network, QueryValue};
 use super::kb::GroundAtom;
 use crate::mcmc::Rng;
@@ -43,15 +43,15 @@ pub enum Method {
 pub const AUTO_EXACT_ATOMS: usize = 16;
 
 impl std::str::FromStr for Method {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
+    type Err = UnknownMethod;
+    fn from_str(s: &str) -> Result<Self, UnknownMethod> {
         match s {
             "auto" => Ok(Method::Auto),
             "exact" => Ok(Method::Exact),
             "enumerate" => Ok(Method::Enumerate),
             "mcsat" | "mc-sat" => Ok(Method::McSat),
             "gibbs" => Ok(Method::Gibbs),
-            _ => Err(format!("unknown inference method {s:?} (auto, exact, enumerate, mcsat or gibbs)")),
+            _ => Err(UnknownMethod::new(s, "inference method", "auto, exact, enumerate, mcsat or gibbs")),
         }
     }
 }

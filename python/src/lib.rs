@@ -9,7 +9,7 @@
 
 use ksmcmc::floorplan::edits::Edits;
 use ksmcmc::floorplan::georef::Georef;
-use ksmcmc::floorplan::knowledge::HAND_SET_INDOOR;
+use ksmcmc::floorplan::knowledge::IndoorKnowledge;
 use ksmcmc::floorplan::route::RoutePlanner;
 use ksmcmc::floorplan::run::{run, Run, RunOptions};
 use ksmcmc::floorplan::ChainConfig;
@@ -134,16 +134,9 @@ impl FloorPlan {
 /// indoor knowledge base (`.mln`), as `ksmcmc floorplan --knowledge` takes it.
 fn chain_config(knowledge: &str) -> PyResult<ChainConfig> {
     let mut config = ChainConfig::default();
-    match knowledge {
-        "builtin" => config.knowledge.enabled = true,
-        "none" => config.knowledge.enabled = false,
-        "handset" => config.knowledge.kb = Some(HAND_SET_INDOOR.to_string()),
-        path => {
-            let text = std::fs::read_to_string(path).map_err(|e| PyOSError::new_err(format!("{path}: {e}")))?;
-            Mln::parse(&text).map_err(|e| value_error(format!("{path}: {e}")))?;
-            config.knowledge.kb = Some(text);
-        }
-    }
+    IndoorKnowledge::named(knowledge, |path| std::fs::read_to_string(path))
+        .map_err(|e| if e.is_unreadable() { PyOSError::new_err(e.to_string()) } else { value_error(e.to_string()) })?
+        .apply_to(&mut config.knowledge);
     Ok(config)
 }
 

@@ -199,6 +199,20 @@ def test_bad_settings_are_refused_with_a_message():
         ksmcmc.floorplan(pixels, resolution=0.05, iterations=10, knowledge="/no/such/rules.mln")
 
 
+def test_knowledge_names_read_as_the_command_line_reads_them(tmp_path):
+    pixels = drawn_office()
+    broken = tmp_path / "broken.mln"
+    broken.write_text("Room(unit\n")
+    # Rules that do not parse are refused with the file's name and the place, before any chain runs.
+    with pytest.raises(ValueError, match=r"broken\.mln: line 1"):
+        ksmcmc.floorplan(pixels, resolution=0.05, iterations=10, knowledge=str(broken))
+    # The hand-set weights and the weak prior are names, not files.
+    for name in ["handset", "none"]:
+        plan = ksmcmc.floorplan(pixels, resolution=0.05, iterations=200, knowledge=name)
+        assert plan.report["iterations"] == 200
+        assert plan.report["knowledge"] == (name != "none"), name
+
+
 def test_the_exports_are_the_command_lines_files():
     plan = ksmcmc.floorplan(drawn_office(), resolution=0.05, iterations=ITERATIONS)
     assert plan.png().startswith(b"\x89PNG\r\n\x1a\n")

@@ -703,6 +703,114 @@ impl KnowledgeConfig {
     }
 }
 
+/// The indoor knowledge that supervises a chain, by the names `ksmcmc floorplan --knowledge`
+/// and the Python package's `knowledge=` take, so that both read a name the same way.
+#[derive(Debug, Clone, PartialEq)]
+pub enum IndoorKnowledge {
+    /// `builtin`: [`BUILTIN_INDOOR`], the rules with weights learned from labelled floors.
+    Builtin,
+    /// `handset`: [`HAND_SET_INDOOR`], Tab. 3.5 with its hand-set weights.
+    HandSet,
+    /// `none`: the weak prior of the first paper, knowledge supervision off.
+    None,
+    /// Any other name: the path of a knowledge base in the Alchemy format, read and parsed.
+    Rules(String),
+}
+
+impl IndoorKnowledge {
+    /// The knowledge `name` gives: `builtin`, `handset`, `none`, or else the path of a
+    /// knowledge base, which `read` reads (the caller's file system: the library does no
+    /// I/O) and which is parsed at once, so that broken rules are reported with their file's
+    /// name rather than when the chain first needs them.
+    ///
+    /// ```
+    /// use ksmcmc::floorplan::knowledge::{IndoorKnowledge, KnowledgeConfig};
+    ///
+    /// let none = IndoorKnowledge::named("none", |_| unreachable!())?;
+    /// let mut config = KnowledgeConfig::default();
+    /// none.apply_to(&mut config);
+    /// assert!(!config.enabled);
+    /// let rules = IndoorKnowledge::named("my.mln", |_| Ok("Room(unit)\n1.5 Room(x)\n".into()))?;
+    /// rules.apply_to(&mut config);
+    /// assert!(config.enabled && config.kb.as_deref() == Some("Room(unit)\n1.5 Room(x)\n"));
+    /// let e = IndoorKnowledge::named("broken.mln", |_| Ok("Room(unit\n".into())).unwrap_err();
+    /// assert!(e.to_string().starts_with("broken.mln: line 1"), "{e}");
+    /// assert!(std::error::Error::source(&e).is_some());
+    /// # Ok::<(), ksmcmc::floorplan::knowledge::KnowledgeFileError>(())
+    /// ```
+    pub fn named(
+        name: &str,
+        read: impl FnOnce(&str) -> std::io::Result<String>,
+    ) -> Result<IndoorKnowledge, KnowledgeFileError> {
+        Ok(match name {
+            "builtin" => IndoorKnowledge::Builtin,
+            "handset" => IndoorKnowledge::HandSet,
+            "none" => IndoorKnowledge::None,
+            path => {
+                let failed = |kind| KnowledgeFileError { path: path.to_owned(), kind };
+                let text = read(path).map_err(|e| failed(KnowledgeFileErrorKind::Read(e)))?;
+                crate::mln::Mln::parse(&text).map_err(|e| failed(KnowledgeFileErrorKind::Rules(e)))?;
+                IndoorKnowledge::Rules(text)
+            }
+        })
+    }
+
+    /// Sets `config` to supervise the chain with this knowledge (or, for
+    /// [`IndoorKnowledge::None`], not at all). Its other settings stay.
+    pub fn apply_to(self, config: &mut KnowledgeConfig) {
+        config.enabled = self != IndoorKnowledge::None;
+        match self {
+            IndoorKnowledge::Builtin | IndoorKnowledge::None => {}
+            IndoorKnowledge::HandSet => config.kb = Some(HAND_SET_INDOOR.to_string()),
+            IndoorKnowledge::Rules(text) => config.kb = Some(text),
+        }
+    }
+}
+
+/// A knowledge base file [`IndoorKnowledge::named`] could not use: it could not be read, or
+/// its rules do not parse. Displays as `PATH: the reason`; the reason is its `source()`.
+#[derive(Debug)]
+pub struct KnowledgeFileError {
+    path: String,
+    kind: KnowledgeFileErrorKind,
+}
+
+#[derive(Debug)]
+enum KnowledgeFileErrorKind {
+    Read(std::io::Error),
+    Rules(crate::mln::MlnError),
+}
+
+impl KnowledgeFileError {
+    /// The path given.
+    pub fn path(&self) -> &str {
+        &self.path
+    }
+
+    /// Whether the file could not be read (else its rules do not parse).
+    pub fn is_unreadable(&self) -> bool {
+        matches!(self.kind, KnowledgeFileErrorKind::Read(_))
+    }
+}
+
+impl std::fmt::Display for KnowledgeFileError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match &self.kind {
+            KnowledgeFileErrorKind::Read(e) => write!(f, "{}: {e}", self.path),
+            KnowledgeFileErrorKind::Rules(e) => write!(f, "{}: {e}", self.path),
+        }
+    }
+}
+
+impl std::error::Error for KnowledgeFileError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match &self.kind {
+            KnowledgeFileErrorKind::Read(e) => Some(e),
+            KnowledgeFileErrorKind::Rules(e) => Some(e),
+        }
+    }
+}
+
 /// What inference said about a world.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Inferred {

@@ -300,21 +300,10 @@ pub fn chain_config_from(
     if rotation.is_some() {
         config.detectors.rotation_deg = rotation;
     }
-    match knowledge {
-        Some("none") => config.knowledge.enabled = false,
-        Some("builtin") => config.knowledge.enabled = true,
-        Some("handset") => {
-            config.knowledge.enabled = true;
-            config.knowledge.kb = Some(ksmcmc::floorplan::knowledge::HAND_SET_INDOOR.to_string());
-        }
-        Some(path) => {
-            let text = std::fs::read_to_string(path).map_err(|e| args::failed(path, e))?;
-            // Parse now, so that a broken knowledge base is reported with its file name.
-            ksmcmc::mln::Mln::parse(&text).map_err(|e| args::failed(path, e))?;
-            config.knowledge.enabled = true;
-            config.knowledge.kb = Some(text);
-        }
-        None => {}
+    if let Some(name) = knowledge {
+        ksmcmc::floorplan::knowledge::IndoorKnowledge::named(name, |path| std::fs::read_to_string(path))
+            .map_err(|e| CliError::Failed(e.to_string()))?
+            .apply_to(&mut config.knowledge);
     }
     Ok(config)
 }

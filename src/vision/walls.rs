@@ -279,19 +279,11 @@ pub fn candidates_where(
                             }
                             y_out += 1;
                         }
-                        let mut most_v = 0;
-                        for &x in &xs[x_in..x_out] {
-                            most_v = most_v.max(raw.count(Rect::new(x, y0, 1, h)));
-                        }
-                        let inner_h = most_h as f64 / w as f64;
-                        let inner_v = most_v as f64 / h as f64;
-                        let open = 1.0 - inner_h.max(inner_v);
-                        // Rooms are mostly free inside; a rectangle over unexplored space is not.
-                        let inside = Rect::new(x0 + 1, y0 + 1, w - 2, h - 2);
-                        let fill = free.count(inside) as f64 / inside.area().max(1) as f64;
-                        let score = libm::pow(weight * open * open * fill.powi(4), c.sharpness);
+                        let most_v = xs[x_in..x_out].iter().map(|&x| raw.count(Rect::new(x, y0, 1, h))).max();
+                        let r = Rect::new(x0, y0, w, h);
+                        let score = candidate_score(r, weight, [most_h, most_v.unwrap_or(0)], &free, c);
                         if score > 0.0 {
-                            out.push((Rect::new(x0, y0, w, h), score));
+                            out.push((r, score));
                         }
                     }
                 }
@@ -305,6 +297,19 @@ pub fn candidates_where(
     });
     out.truncate(c.max_candidates);
     out
+}
+
+/// The score of candidate `r` whose four walls span it with `weight` (eq. 3.11): lowered by
+/// the wall line crossing its interior with the most raw wall cells (`most`: along a row,
+/// along a column), and by the share of its interior that is not free.
+fn candidate_score(r: Rect, weight: f64, most: [u32; 2], free: &AreaCounts, c: &WallConfig) -> f64 {
+    let inner_h = most[0] as f64 / r.w as f64;
+    let inner_v = most[1] as f64 / r.h as f64;
+    let open = 1.0 - inner_h.max(inner_v);
+    // Rooms are mostly free inside; a rectangle over unexplored space is not.
+    let inside = Rect::new(r.x + 1, r.y + 1, r.w - 2, r.h - 2);
+    let fill = free.count(inside) as f64 / inside.area().max(1) as f64;
+    libm::pow(weight * open * open * fill.powi(4), c.sharpness)
 }
 
 /// Occupied cells grown by `r` cells in every direction (a square max filter,

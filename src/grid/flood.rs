@@ -134,6 +134,60 @@ pub fn wavefront(
     }
 }
 
+/// A breadth-first wavefront that carries labels (4-neighbour steps): every cell in `queue`
+/// holds its label in `labels` (not `L::default()`, which stands for none). A neighbour with no
+/// label yet that `enter(neighbour, label)` admits takes the label of the cell it is reached
+/// from; cells reached first keep their label, so each cell gets the label of a nearest seed
+/// (ties to the seed queued first). Cells farther than `reach` steps from every seed stay
+/// unlabelled; `u32::MAX` sets no limit (and needs no distances).
+///
+/// ```
+/// use ksmcmc::grid::flood::labelled_wavefront;
+///
+/// // A 7x1 corridor with a label at each end: they meet in the middle; with a reach of one
+/// // step, only the cells beside the ends are labelled.
+/// let mut labels = [1u16, 0, 0, 0, 0, 0, 2];
+/// labelled_wavefront(7, 1, &mut labels, [0, 6].into(), |_, _| true, u32::MAX);
+/// assert_eq!(labels, [1, 1, 1, 1, 2, 2, 2]);
+/// let mut labels = [1u16, 0, 0, 0, 0, 0, 2];
+/// labelled_wavefront(7, 1, &mut labels, [0, 6].into(), |_, _| true, 1);
+/// assert_eq!(labels, [1, 1, 0, 0, 0, 2, 2]);
+/// ```
+pub fn labelled_wavefront<L: Copy + Default + PartialEq>(
+    width: usize,
+    height: usize,
+    labels: &mut [L],
+    mut queue: std::collections::VecDeque<u32>,
+    enter: impl Fn(usize, L) -> bool,
+    reach: u32,
+) {
+    let mut dist = if reach == u32::MAX { Vec::new() } else { vec![0u32; width * height] };
+    while let Some(i) = queue.pop_front() {
+        let i = i as usize;
+        let d = dist.get(i).copied().unwrap_or(0);
+        if d >= reach {
+            continue;
+        }
+        let l = labels[i];
+        let (x, y) = (i % width, i / width);
+        let neighbours = [
+            (x > 0, i.wrapping_sub(1)),
+            (x + 1 < width, i + 1),
+            (y > 0, i.wrapping_sub(width)),
+            (y + 1 < height, i + width),
+        ];
+        for (inside, j) in neighbours {
+            if inside && labels[j] == L::default() && enter(j, l) {
+                labels[j] = l;
+                if let Some(dj) = dist.get_mut(j) {
+                    *dj = d + 1;
+                }
+                queue.push_back(j as u32);
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

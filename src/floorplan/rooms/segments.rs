@@ -12,6 +12,7 @@ use super::frame::world_cell;
 use super::wall_gaps::WallReading;
 use crate::floorplan::world::World;
 
+use crate::grid::flood::labelled_wavefront;
 use crate::grid::{Cell, Grid};
 use std::collections::VecDeque;
 
@@ -234,24 +235,10 @@ fn label_unit_cells(world: &World, owner: &[u16], ww: usize, map: &Grid<Cell>) -
 
 /// Wavefront: unlabelled free cells within `max_reach` steps take the label of the nearest
 /// labelled one.
-fn spread_labels(labels: &mut Grid<u16>, map: &Grid<Cell>, mut queue: VecDeque<u32>, max_reach: u32) {
+fn spread_labels(labels: &mut Grid<u16>, map: &Grid<Cell>, queue: VecDeque<u32>, max_reach: u32) {
     let (w, h) = (map.width(), map.height());
-    let mut dist = vec![0u32; w * h];
-    while let Some(i) = queue.pop_front() {
-        let (x, y) = (i as usize % w, i as usize / w);
-        let l = *labels.at(x, y);
-        let d = dist[y * w + x];
-        if d >= max_reach {
-            continue;
-        }
-        for (nx, ny) in [(x.wrapping_sub(1), y), (x + 1, y), (x, y.wrapping_sub(1)), (x, y + 1)] {
-            if nx < w && ny < h && *map.at(nx, ny) == Cell::Free && *labels.at(nx, ny) == 0 {
-                *labels.at_mut(nx, ny) = l;
-                dist[ny * w + nx] = d + 1;
-                queue.push_back((ny * w + nx) as u32);
-            }
-        }
-    }
+    let free = |j: usize, _| map.cells()[j] == Cell::Free;
+    labelled_wavefront(w, h, labels.cells_mut(), queue, free, max_reach);
 }
 
 /// Free regions out of every unit's reach become rooms of their own, numbered after `last`,
@@ -532,18 +519,9 @@ fn divide_among_cores(labels: &mut Grid<u16>, seed: &[u32], cores: &[(u16, usize
             }
         }
     }
-    while let Some(i) = queue.pop_front() {
-        let (x, y) = (i as usize % w, i as usize / w);
-        let o = owner[i as usize];
-        let l = cores[o as usize].0;
-        for (nx, ny) in neighbours4(x, y, w, h) {
-            let j = ny * w + nx;
-            if owner[j] == 0 && labels.cells()[j] == l {
-                owner[j] = o;
-                queue.push_back(j as u32);
-            }
-        }
-    }
+    // Each cell of a divided room joins the core nearest to it through the room.
+    let same_room = |j: usize, o: u32| labels.cells()[j] == cores[o as usize].0;
+    labelled_wavefront(w, h, &mut owner, queue, same_room, u32::MAX);
     // Renumber: a split room's parts by core, other rooms by label, in scan order.
     let mut id_of_core = vec![0u16; cores.len()];
     let mut id_of_label = vec![0u16; max_label + 1];

@@ -79,6 +79,13 @@ impl Default for RoomConfig {
     }
 }
 
+/// How far a wall's drawing strays across its line, m: anti-aliased edges and a wall drawn a
+/// cell off its line, three 5 cm cells, as it was set in cells on the benchmark floors. A run
+/// of wall no deeper across its line than the wall and the whole cells within this is a stub
+/// ([`super::wall_gaps::stub_depth`]): 3 cells at 5 cm, 1 at 10 cm (1.5 cells: a wall cannot
+/// stray half a cell), 6 at 2.5 cm.
+pub const STUB_NOISE_M: f64 = 0.15;
+
 /// The room layer's settings in cells of one map: [`RoomConfig`] turned into cells once, from
 /// the map's resolution ([`RoomConfig::cells`]). The stages of the room layer read these.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -122,6 +129,9 @@ pub(crate) struct RoomCells {
     /// Shortest wall stub, in cells, on each side of such a gap along its line: a wall crossed
     /// at right angles (as thick as a wall) is no stub. ([`RoomConfig::min_wall_stub_m`])
     pub min_wall_stub: u32,
+    /// How far, in whole cells, a wall stub's drawing may stray across its line besides the
+    /// wall itself ([`super::wall_gaps::stub_depth`]): [`STUB_NOISE_M`], rounded down.
+    pub stub_noise: u32,
     /// Smallest extent, in cells, of a connected occupied part that is a wall (its parts
     /// joined through the unseen cells beside them, [`super::wall_gaps`]): chairs, the dots
     /// of a drawn table and the clutter of a SLAM map are no walls. Wall gaps close onto
@@ -231,6 +241,7 @@ impl RoomConfig {
             wide_door_share: self.wide_door_share,
             max_wall_gap: len(self.max_wall_gap_m),
             min_wall_stub: len(self.min_wall_stub_m),
+            stub_noise: libm::floor(STUB_NOISE_M / r + 1e-9) as u32,
             min_wall_len: len(self.min_wall_len_m),
             clutter_in_rooms: self.clutter_in_rooms,
         }
@@ -251,6 +262,10 @@ mod tests {
         assert_eq!((c.cells(0.05).min_wall_len, c.cells(0.05).min_core_cells), (40, 1000));
         assert_eq!((c.cells(0.1).min_wall_len, c.cells(0.1).min_core_cells), (20, 250));
         assert_eq!(c.cells(0.025).door_half_width, 24);
+        // A wall stub's drawing noise is 0.15 m in whole cells: three at 5 cm (as it was in
+        // cells), one at 10 cm, six at 2.5 cm, three at 4 cm.
+        let noise: Vec<u32> = [0.05, 0.1, 0.025, 0.04].iter().map(|&r| c.cells(r).stub_noise).collect();
+        assert_eq!(noise, [3, 1, 6, 3]);
         // A setting above 0 is at least one cell; 0 stays 0 and turns its stage off.
         let tiny = RoomConfig { max_wall_gap_m: 0.001, min_wall_stub_m: 0.0, ..c };
         assert_eq!((tiny.cells(0.05).max_wall_gap, tiny.cells(0.05).min_wall_stub), (1, 0));

@@ -260,9 +260,10 @@ impl<W: Fn(usize, isize) -> bool, F: Fn(usize) -> bool> Line<W, F> {
 }
 
 /// The deepest a wall stub may be across its line for walls `t` cells thick: the wall and
-/// three cells of drawing noise (anti-aliased edges, a wall a cell off its line).
-pub fn stub_depth(t: i32) -> usize {
-    t.max(1) as usize + 3
+/// `noise` cells of drawing noise (anti-aliased edges, a wall a cell off its line:
+/// [`RoomCells::stub_noise`]).
+pub fn stub_depth(t: i32, noise: u32) -> usize {
+    t.max(1) as usize + noise as usize
 }
 
 /// The map (in the map frame) with every wall gap ([`wall_gaps`], found in the world frame)
@@ -283,7 +284,7 @@ pub fn close_wall_gaps_along(
     c: &RoomCells,
     angles: &[f64],
 ) -> Option<Grid<Cell>> {
-    let depth = stub_depth(world.wall_thickness);
+    let depth = stub_depth(world.wall_thickness, c.stub_noise);
     let mut closed = map.clone();
     let mut any = close_in_frame(&mut closed, map, world_map, &world.frame, &wall_gaps(world_map, c, depth));
     for &angle in angles {

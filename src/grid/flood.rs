@@ -91,6 +91,13 @@ impl Flood {
     }
 }
 
+/// The four neighbours of cell `i` of a `width` x `height` grid, left, right, up, down, each
+/// with whether it lies inside the grid (the index of one outside is meaningless).
+fn steps4(i: usize, width: usize, height: usize) -> [(bool, usize); 4] {
+    let (x, y) = (i % width, i / width);
+    [(x > 0, i.wrapping_sub(1)), (x + 1 < width, i + 1), (y > 0, i.wrapping_sub(width)), (y + 1 < height, i + width)]
+}
+
 /// A breadth-first wavefront (4-neighbour steps): from the cells in `seeds`, whose `dist` the
 /// caller has set, into every neighbour `enter` admits whose `dist` is still `u32::MAX`, which
 /// gets its neighbour's distance + 1. Cells at distance `limit` + 1 are reached but not grown
@@ -116,13 +123,7 @@ pub fn wavefront(
     while let Some(i) = queue.pop_front() {
         let i = i as usize;
         let d = dist[i];
-        let (x, y) = (i % width, i / width);
-        let neighbours = [
-            (x > 0, i.wrapping_sub(1)),
-            (x + 1 < width, i + 1),
-            (y > 0, i.wrapping_sub(width)),
-            (y + 1 < height, i + width),
-        ];
+        let neighbours = steps4(i, width, height);
         for (inside, j) in neighbours {
             if inside && dist[j] == u32::MAX && enter(j) {
                 dist[j] = d + 1;
@@ -169,13 +170,7 @@ pub fn labelled_wavefront<L: Copy + Default + PartialEq>(
             continue;
         }
         let l = labels[i];
-        let (x, y) = (i % width, i / width);
-        let neighbours = [
-            (x > 0, i.wrapping_sub(1)),
-            (x + 1 < width, i + 1),
-            (y > 0, i.wrapping_sub(width)),
-            (y + 1 < height, i + width),
-        ];
+        let neighbours = steps4(i, width, height);
         for (inside, j) in neighbours {
             if inside && labels[j] == L::default() && enter(j, l) {
                 labels[j] = l;

@@ -62,6 +62,12 @@ pub struct Stretch {
     /// Whether both its ends, along the longer side of its bounding box, touch occupied cells
     /// (within [`JAMB_M`]): it spans a gap between walls, as a doorway does.
     pub jambs: bool,
+    /// Share of the unseen space behind it inside the plan's units (their interiors, within
+    /// their wall rings) or doors: the plan has explained it as part of a space it holds.
+    pub planned: f64,
+    /// Share of the unseen space behind it inside the interiors of the units of the room it
+    /// opens from: that room's own unseen part.
+    pub own: f64,
 }
 
 /// An end of a stretch this close to an occupied cell stands at a wall, m: 0.15 m, a wall's
@@ -80,7 +86,8 @@ pub fn stretches(world: &World, map: &Grid<Cell>, labels: &Grid<u16>, resolution
     let unknown = |j: usize| cells[j] == Cell::Unknown;
     let frontier: Vec<bool> =
         (0..w * h).map(|i| cells[i] == Cell::Free && near[i] && neighbours4(i, w, h).any(unknown)).collect();
-    let around = Around { map, labels, resolution, building: occupied_box(map), doors: door_centres(world) };
+    let cover = unit_rooms(world, w, h);
+    let around = Around { map, labels, resolution, building: occupied_box(map), doors: door_centres(world), cover };
     let mut out = Vec::new();
     let mut taken = vec![false; w * h];
     let mut flood = Flood::default();
@@ -198,6 +205,8 @@ struct Around<'a> {
     resolution: f64,
     building: Option<[usize; 4]>,
     doors: Vec<(f64, f64)>,
+    /// Per map cell, the room whose units' interiors cover it ([`unit_rooms`]).
+    cover: Vec<u32>,
 }
 
 fn describe(cells: Vec<usize>, a: &Around) -> Stretch {
@@ -213,11 +222,14 @@ fn describe(cells: Vec<usize>, a: &Around) -> Stretch {
     let at_door = a.doors.iter().any(|&(dx, dy)| {
         cells.iter().any(|&i| libm::hypot((i % w) as f64 + 0.5 - dx, (i / w) as f64 + 0.5 - dy) <= reach)
     });
-    let (behind_m2, pocket, inside) = behind(&cells, map, resolution, a.building);
+    let room = room_of(&cells, a.labels);
+    let Behind { area_m2: behind_m2, pocket, inside, planned, own } = behind(&cells, a, room);
     let jambs = jambs(&cells, map, [x0, y0, x1, y1], resolution);
     Stretch {
         jambs,
-        room: room_of(&cells, a.labels),
+        planned,
+        own,
+        room,
         at: (centre % w, centre / w),
         width_m,
         behind_m2,
@@ -245,6 +257,39 @@ fn jambs(cells: &[usize], map: &Grid<Cell>, [x0, y0, x1, y1]: [usize; 4], resolu
     end(lo) && end(hi)
 }
 
+/// [`unit_rooms`]: no unit's interior covers the cell.
+const NO_UNIT: u32 = 0;
+/// [`unit_rooms`]: units of two rooms cover the cell.
+const SHARED: u32 = u32::MAX;
+/// [`unit_rooms`]: a unit no room holds covers the cell.
+const ROOMLESS: u32 = u32::MAX - 1;
+
+/// Per cell of the `w` x `h` map, the id of the room whose units' interiors (within their
+/// wall rings, [`World::wall_thickness`]) cover it: [`NO_UNIT`] if none, [`SHARED`] if units
+/// of two rooms do, [`ROOMLESS`] if a unit no room holds does. Each unit is visited once, over
+/// its box on the map, so the cost is the units' area, not the cells times the units.
+fn unit_rooms(world: &World, w: usize, h: usize) -> Vec<u32> {
+    let mut out = vec![NO_UNIT; w * h];
+    let room_of = |id: u32| world.rooms.iter().find(|r| r.units.contains(&id)).map_or(ROOMLESS, |r| r.id);
+    for u in &world.units {
+        let Some(r) = u.rect().interior(world.wall_thickness) else { continue };
+        let frame = world.unit_frame(u);
+        let (rot, room) = (frame.rotation(), room_of(u.id));
+        let [x0, y0, x1, y1] = frame.map_box(r);
+        let clamp = |v: f64, n: usize| (v.max(0.0) as usize).min(n);
+        for y in clamp(y0, h)..clamp(libm::ceil(y1), h) {
+            for x in clamp(x0, w)..clamp(libm::ceil(x1), w) {
+                let (ux, uy) = rot.to_world(x as f64 + 0.5, y as f64 + 0.5);
+                if r.contains(libm::floor(ux) as i32, libm::floor(uy) as i32) {
+                    let c = &mut out[y * w + x];
+                    *c = if *c == NO_UNIT || *c == room { room } else { SHARED };
+                }
+            }
+        }
+    }
+    out
+}
+
 /// The radius, in cells, of the square that opens unknown space into unseen space: half of
 /// [`MIN_UNSEEN_M`], at least a cell.
 fn unseen_radius(resolution: f64) -> usize {
@@ -263,13 +308,24 @@ fn room_of(cells: &[usize], labels: &Grid<u16>) -> u32 {
     counts.into_iter().max_by(|a, b| a.1.cmp(&b.1).then(b.0.cmp(&a.0))).map_or(0, |(l, _)| u32::from(l))
 }
 
+/// What lies behind a stretch ([`behind`]).
+struct Behind {
+    area_m2: f64,
+    pocket: bool,
+    inside: f64,
+    planned: f64,
+    own: f64,
+}
+
 /// The unseen space behind `cells`: its area within [`BEHIND_M`] (m²), whether it ends before
-/// that distance, and the share of it inside `building`.
-fn behind(cells: &[usize], map: &Grid<Cell>, resolution: f64, building: Option<[usize; 4]>) -> (f64, bool, f64) {
+/// that distance, and the shares of it inside the building's seen extent, under the plan's
+/// units and inside the units of room `room`.
+fn behind(cells: &[usize], a: &Around, room: u32) -> Behind {
+    let (map, resolution) = (a.map, a.resolution);
     let (w, h) = (map.width(), map.height());
     let limit = libm::ceil(BEHIND_M / resolution) as u32;
     let reached = wave_behind(cells, w, h, limit, |j| map.cells()[j] == Cell::Unknown);
-    let (mut area, mut within, mut open) = (0usize, 0usize, false);
+    let (mut area, mut within, mut planned, mut own, mut open) = (0usize, 0usize, 0usize, 0usize, false);
     for (j, d) in reached {
         if d > limit {
             open = true;
@@ -279,12 +335,21 @@ fn behind(cells: &[usize], map: &Grid<Cell>, resolution: f64, building: Option<[
         let (x, y) = (j % w, j / w);
         // Unseen space on the map's edge goes on beyond it.
         open |= x == 0 || y == 0 || x == w - 1 || y == h - 1;
-        if building.is_some_and(|[bx0, by0, bx1, by1]| (bx0..=bx1).contains(&x) && (by0..=by1).contains(&y)) {
+        if a.building.is_some_and(|[bx0, by0, bx1, by1]| (bx0..=bx1).contains(&x) && (by0..=by1).contains(&y)) {
             within += 1;
         }
+        let under = a.cover[j];
+        planned += usize::from(under != NO_UNIT);
+        own += usize::from(under == SHARED || (under == room && room != NO_UNIT));
     }
-    let share = if area == 0 { 0.0 } else { within as f64 / area as f64 };
-    (area as f64 * resolution * resolution, !open, share)
+    let share = |k: usize| if area == 0 { 0.0 } else { k as f64 / area as f64 };
+    Behind {
+        area_m2: area as f64 * resolution * resolution,
+        pocket: !open,
+        inside: share(within),
+        planned: share(planned),
+        own: share(own),
+    }
 }
 
 /// A wavefront ([`wavefront`]) from the cells beside `cells` (map indices of a `w` x `h` map)
@@ -396,6 +461,38 @@ mod tests {
         let s = stretches(&World::empty(120, 60), &map, &Grid::new(120, 60, 0), 0.05);
         assert_eq!(s.len(), 1, "{:?}", s.iter().map(|p| p.at).collect::<Vec<_>>());
         assert!(s[0].at.0 >= 55, "{:?}", s[0].at);
+    }
+
+    #[test]
+    fn unseen_space_inside_the_plan_s_units_is_planned_and_the_own_room_s() {
+        // The half-seen room, once with no units, once with a unit over the whole room (its
+        // interior inside a 1-cell ring) held by room 1, once with that unit in room 2 while the
+        // frontier's cells carry room 1's label.
+        use crate::floorplan::world::{Room, Unit, UnitType};
+        let map = half_seen(120, 60, 60);
+        let with_unit = |room_of_unit: u32| {
+            let mut world = World::empty(120, 60);
+            world.units.push(Unit::new(1, 0, 0, 120, 60, UnitType::Room));
+            let room = Room {
+                id: room_of_unit,
+                kind: UnitType::Room,
+                units: vec![1],
+                area_m2: 18.0,
+                doors: vec![],
+                opens_to: vec![],
+                name: None,
+            };
+            world.rooms.push(room);
+            world
+        };
+        let labels = Grid::new(120, 60, 1u16);
+        let none = stretches(&World::empty(120, 60), &map, &labels, 0.05);
+        assert_eq!((none[0].planned, none[0].own), (0.0, 0.0));
+        // Every unseen cell behind lies inside the unit's interior (columns 60 - 118, rows 1 - 58).
+        let own = stretches(&with_unit(1), &map, &labels, 0.05);
+        assert_eq!((own[0].room, own[0].planned, own[0].own), (1, 1.0, 1.0));
+        let other = stretches(&with_unit(2), &map, &labels, 0.05);
+        assert_eq!((other[0].planned, other[0].own), (1.0, 0.0));
     }
 
     #[test]

@@ -63,10 +63,10 @@ pub struct Stretch {
     /// (within [`JAMB_M`]): it spans a gap between walls, as a doorway does.
     pub jambs: bool,
     /// Share of the unseen space behind it inside the plan's units (their interiors, within
-    /// their wall rings) or doors: the plan has explained it as part of a space it holds.
+    /// their wall rings): the plan has explained it as part of a space it holds.
     pub planned: f64,
     /// Share of the unseen space behind it inside the interiors of the units of the room it
-    /// opens from: that room's own unseen part.
+    /// opens from: that room's own unseen part (a cell under units of two rooms counts).
     pub own: f64,
 }
 

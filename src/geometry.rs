@@ -160,6 +160,29 @@ impl Frame {
         [min(xs), min(ys), max(xs), max(ys)]
     }
 
+    /// The cells `(x, y)` of a `w` x `h` map whose centres fall, in this frame, on rectangle
+    /// `r`, row by row: every cell of its box on the map ([`Frame::map_box`], with a cell to
+    /// spare on the far side) is checked, so a turned frame misses none. The rotation is worked
+    /// out once for all of them.
+    ///
+    /// ```
+    /// use ksmcmc::geometry::{Frame, Rect};
+    /// let upright = Frame::identity(10, 10);
+    /// let cells: Vec<_> = upright.map_cells(Rect::new(8, 1, 4, 2), 10, 10).collect();
+    /// assert_eq!(cells, [(8, 1), (9, 1), (8, 2), (9, 2)]);
+    /// ```
+    pub fn map_cells(&self, r: Rect, w: usize, h: usize) -> impl Iterator<Item = (usize, usize)> {
+        let rot = self.rotation();
+        let [min_x, min_y, max_x, max_y] = self.map_box(r);
+        let lo = |v: f64, n: usize| (libm::floor(v).max(0.0) as usize).min(n);
+        let hi = |v: f64, n: usize| (libm::ceil(v).max(0.0) as usize + 1).min(n);
+        let (x0, x1) = (lo(min_x, w), hi(max_x, w));
+        (lo(min_y, h)..hi(max_y, h)).flat_map(move |y| (x0..x1).map(move |x| (x, y))).filter(move |&(x, y)| {
+            let (wx, wy) = rot.to_world(x as f64 + 0.5, y as f64 + 0.5);
+            r.contains(libm::floor(wx) as i32, libm::floor(wy) as i32)
+        })
+    }
+
     /// The frame's rotation with its sine and cosine worked out once, for loops over cells.
     pub fn rotation(&self) -> Rotation {
         Rotation {

@@ -273,18 +273,10 @@ fn unit_rooms(world: &World, w: usize, h: usize) -> Vec<u32> {
     let room_of = |id: u32| world.rooms.iter().find(|r| r.units.contains(&id)).map_or(ROOMLESS, |r| r.id);
     for u in &world.units {
         let Some(r) = u.rect().interior(world.wall_thickness) else { continue };
-        let frame = world.unit_frame(u);
-        let (rot, room) = (frame.rotation(), room_of(u.id));
-        let [x0, y0, x1, y1] = frame.map_box(r);
-        let clamp = |v: f64, n: usize| (v.max(0.0) as usize).min(n);
-        for y in clamp(y0, h)..clamp(libm::ceil(y1), h) {
-            for x in clamp(x0, w)..clamp(libm::ceil(x1), w) {
-                let (ux, uy) = rot.to_world(x as f64 + 0.5, y as f64 + 0.5);
-                if r.contains(libm::floor(ux) as i32, libm::floor(uy) as i32) {
-                    let c = &mut out[y * w + x];
-                    *c = if *c == NO_UNIT || *c == room { room } else { SHARED };
-                }
-            }
+        let room = room_of(u.id);
+        for (x, y) in world.unit_frame(u).map_cells(r, w, h) {
+            let c = &mut out[y * w + x];
+            *c = if *c == NO_UNIT || *c == room { room } else { SHARED };
         }
     }
     out

@@ -431,22 +431,8 @@ impl RoutePlanner {
 fn door_cells(world: &World, w: usize, h: usize) -> HashMap<u32, u32> {
     let mut out = HashMap::new();
     for d in &world.doors {
-        let frame = &world.door_frame(d);
-        let r = d.rect();
-        // The door's box on the map, from its corners (the whole map's cells are checked
-        // against the rectangle, so a turned frame misses none).
-        let [min_x, min_y, max_x, max_y] = frame.map_box(r);
-        let lo = |v: f64, n: usize| (libm::floor(v).max(0.0) as usize).min(n);
-        let hi = |v: f64, n: usize| (libm::ceil(v).max(0.0) as usize + 1).min(n);
-        let (x0, x1) = (lo(min_x, w), hi(max_x, w));
-        let (y0, y1) = (lo(min_y, h), hi(max_y, h));
-        for my in y0..y1 {
-            for mx in x0..x1 {
-                let (wx, wy) = frame.to_world(mx as f64 + 0.5, my as f64 + 0.5);
-                if r.contains(libm::floor(wx) as i32, libm::floor(wy) as i32) {
-                    out.entry((my * w + mx) as u32).or_insert(d.id);
-                }
-            }
+        for (mx, my) in world.door_frame(d).map_cells(d.rect(), w, h) {
+            out.entry((my * w + mx) as u32).or_insert(d.id);
         }
     }
     out

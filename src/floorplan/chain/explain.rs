@@ -119,6 +119,20 @@ pub struct Explanation {
     confusion: [[i64; 3]; 3],
     /// `Σ_c max(0, σ(c) - 1)`, the exponent of `ψ2` in eq. 3.5, shared walls excepted.
     overlap: i64,
+    /// A unit added or taken out whose change the counts hold but the cells do not yet
+    /// ([`Explanation::apply_unit`]).
+    pending: Option<Pending>,
+}
+
+/// A unit added (`sign = 1`) or taken out (`-1`), `t` cells of wall deep, with the counts
+/// before it: most births and deaths the chain proposes are refused and undone at once, and
+/// the counts alone decide, so the cells are written only when the next change comes.
+#[derive(Debug, Clone, Copy)]
+struct Pending {
+    rect: Rect,
+    t: i32,
+    sign: i8,
+    before: ([[i64; 3]; 3], i64),
 }
 
 impl Explanation {
@@ -133,7 +147,7 @@ impl Explanation {
                 CellState::of_class(c as u8)
             })
             .collect();
-        Explanation { width: map.width(), height: map.height(), cells, confusion, overlap: 0 }
+        Explanation { width: map.width(), height: map.height(), cells, confusion, overlap: 0, pending: None }
     }
 
     /// Grid width.
@@ -162,12 +176,12 @@ impl Explanation {
         hits as f64 / self.cells.len().max(1) as f64
     }
 
-    /// Predicted class `C_W` of cell `(x, y)`.
+    /// Predicted class `C_W` of cell `(x, y)` (a unit still pending not counted: [`Explanation::apply_unit`]).
     pub fn predicted(&self, x: usize, y: usize) -> Cell {
         Cell::from_code(self.cells[y * self.width + x].predicted() as u8).expect("0..=2")
     }
 
-    /// How many units cover cell `(x, y)`.
+    /// How many units cover cell `(x, y)` (a unit still pending not counted: [`Explanation::apply_unit`]).
     pub fn cover(&self, x: usize, y: usize) -> u8 {
         self.cells[y * self.width + x].cover()
     }
@@ -180,6 +194,7 @@ impl Explanation {
     /// Changes the map class of cell `i` (row-major) to `cm`, keeping the confusion counts
     /// exact: the map grew or was corrected there ([`crate::floorplan::Chain::update_map`]).
     pub fn set_map_class(&mut self, i: usize, cm: Cell) {
+        self.write_pending();
         let c = self.cells[i];
         let p = c.predicted();
         self.confusion[c.cm() as usize][p] -= 1;
@@ -195,11 +210,13 @@ impl Explanation {
     /// Neighbouring cells mostly hold the same record (a wall's cells, a room's floor), and the
     /// same record changes the counts the same way: the loop only counts how many cells in a
     /// row hold it and settles the counts once per stretch of equal records
-    /// ([`Explanation::settle`]), so a hall's birth is a pass of compares and byte adds, not
+    /// ([`settle`]), so a hall's birth is a pass of compares and byte adds, not
     /// two read-modify-writes of the counts per cell (office_g's births of 100,000-cell halls
     /// made this loop 46 % of a run).
+    ///
+    /// Without `write` only the counts change (a pending unit, [`Pending`]).
     #[inline(never)]
-    fn touch_run(&mut self, run: std::ops::Range<usize>, dcover: i8, dwall: i8, ddoor: i8) {
+    fn touch_run(&mut self, run: std::ops::Range<usize>, dcover: i8, dwall: i8, ddoor: i8, write: bool) {
         let delta = packed_delta(dcover, dwall, ddoor);
         let (mut same, mut n) = (CellState::default(), 0i64);
         let mut counts = (self.confusion, self.overlap);
@@ -209,15 +226,50 @@ impl Explanation {
                 (same, n) = (*c, 0);
             }
             n += 1;
-            *c = c.changed(delta);
+            if write {
+                *c = c.changed(delta);
+            }
         }
         settle(&mut counts, same, n, delta);
         (self.confusion, self.overlap) = counts;
     }
 
+    /// Writes the change of a unit added or taken out into the cells ([`Explanation::apply_unit`]); its counts are in.
+    #[inline(never)]
+    pub fn write_pending(&mut self) {
+        if let Some(p) = self.pending.take() {
+            // The counts hold the change already: write the cells and keep the counts.
+            let counts = (self.confusion, self.overlap);
+            self.unit_runs(p.rect, p.t, p.sign, true);
+            (self.confusion, self.overlap) = counts;
+        }
+    }
+
     /// Adds (`sign = 1`) or removes (`sign = -1`) a unit: its rectangle covers cells and its
     /// outer ring, `t` cells deep, is wall. The rectangle must lie inside the grid.
+    ///
+    /// The counts change at once and the cells when [`Explanation::write_pending`] or the next
+    /// change comes: undoing it (the same unit with the other sign) only puts
+    /// the counts back, so a refused birth or death of a hall reads its cells once instead of
+    /// writing them twice. Until then the cells read as before it.
     pub fn apply_unit(&mut self, r: Rect, t: i32, sign: i8) {
+        if let Some(p) = self.pending {
+            if (p.rect, p.t, p.sign) == (r, t, -sign) {
+                (self.confusion, self.overlap) = p.before;
+                self.pending = None;
+                return;
+            }
+            self.write_pending();
+        }
+        let before = (self.confusion, self.overlap);
+        self.unit_runs(r, t, sign, false);
+        self.pending = Some(Pending { rect: r, t, sign, before });
+    }
+
+    /// [`Explanation::apply_unit`]'s change, row by row, to the counts and, with `write`, the
+    /// cells.
+    #[inline(never)]
+    fn unit_runs(&mut self, r: Rect, t: i32, sign: i8, write: bool) {
         debug_assert!(r.x >= 0 && r.y >= 0 && r.right() as usize <= self.width && r.bottom() as usize <= self.height);
         let (x0, x1) = (r.x as usize, r.right() as usize);
         let (y0, y1) = (r.y as usize, r.bottom() as usize);
@@ -228,11 +280,11 @@ impl Explanation {
         for y in y0..y1 {
             let base = y * self.width;
             if y < y0 + t || y + t >= y1 {
-                self.touch_run(base + x0..base + x1, sign, sign, 0);
+                self.touch_run(base + x0..base + x1, sign, sign, 0, write);
             } else {
-                self.touch_run(base + x0..base + i0, sign, sign, 0);
-                self.touch_run(base + i0..base + i1, sign, 0, 0);
-                self.touch_run(base + i1..base + x1, sign, sign, 0);
+                self.touch_run(base + x0..base + i0, sign, sign, 0, write);
+                self.touch_run(base + i0..base + i1, sign, 0, 0, write);
+                self.touch_run(base + i1..base + x1, sign, sign, 0, write);
             }
         }
     }
@@ -243,6 +295,7 @@ impl Explanation {
     /// moved edges, not its whole area (office_g's halls of 100,000 cells made `apply_unit`
     /// half of a run). The counts end as `apply_unit` on each would leave them.
     pub fn replace_units(&mut self, old: &[Rect], new: &[Rect], t: i32) {
+        self.write_pending();
         let t = t.max(1) as usize;
         // Each unit with the sign of its change: one loop over them all (a loop per slice
         // cost the mapper module 624 bytes gzipped).
@@ -268,7 +321,7 @@ impl Explanation {
                 }
                 if dcover != 0 || dwall != 0 {
                     let base = y * self.width;
-                    self.touch_run(base + a..base + b, dcover, dwall, 0);
+                    self.touch_run(base + a..base + b, dcover, dwall, 0, true);
                 }
             }
         }
@@ -276,9 +329,10 @@ impl Explanation {
 
     /// Adds or removes a door rectangle: its cells are predicted free.
     pub fn apply_door(&mut self, r: Rect, sign: i8) {
+        self.write_pending();
         for y in r.y as usize..r.bottom() as usize {
             let base = y * self.width;
-            self.touch_run(base + r.x as usize..base + r.right() as usize, 0, 0, sign);
+            self.touch_run(base + r.x as usize..base + r.right() as usize, 0, 0, sign, true);
         }
     }
 
@@ -313,9 +367,13 @@ impl Explanation {
         e
     }
 
-    /// Whether two explanations agree on every counter.
+    /// Whether two explanations agree on every counter, neither with a change pending.
     pub fn same_as(&self, other: &Explanation) -> bool {
-        self.confusion == other.confusion && self.overlap == other.overlap && self.cells == other.cells
+        self.pending.is_none()
+            && other.pending.is_none()
+            && self.confusion == other.confusion
+            && self.overlap == other.overlap
+            && self.cells == other.cells
     }
 }
 
@@ -371,6 +429,29 @@ mod tests {
     }
 
     #[test]
+    fn a_pending_unit_counts_at_once_and_its_undo_puts_the_counts_back() {
+        let m = map();
+        let mut e = Explanation::new(&m);
+        let (a, b) = (Rect::new(0, 0, 6, 5), Rect::new(4, 2, 8, 7));
+        e.apply_unit(a, 1, 1);
+        e.apply_unit(b, 1, 1);
+        let want = Explanation::recompute(&m, &[a, b], 1, &[]);
+        assert!(e.pending.is_some() && !e.same_as(&want));
+        assert_eq!((e.confusion(), e.overlap()), (want.confusion(), want.overlap()));
+        // Undone: the counts are back and b's cells were never written.
+        e.apply_unit(b, 1, -1);
+        assert!(e.pending.is_none() && e.same_as(&Explanation::recompute(&m, &[a], 1, &[])));
+        // Taken out, pending, then b put in: a's change is written first; then a door.
+        e.apply_unit(a, 1, -1);
+        e.apply_unit(b, 1, 1);
+        e.apply_door(Rect::new(5, 3, 2, 1), 1);
+        assert!(e.same_as(&Explanation::recompute(&m, &[b], 1, &[Rect::new(5, 3, 2, 1)])));
+        e.apply_unit(b, 1, -1);
+        e.write_pending();
+        assert!(e.same_as(&Explanation::recompute(&m, &[], 1, &[Rect::new(5, 3, 2, 1)])));
+    }
+
+    #[test]
     fn incremental_equals_recompute() {
         let m = map();
         let mut e = Explanation::new(&m);
@@ -380,12 +461,14 @@ mod tests {
         e.apply_unit(a, 1, 1);
         e.apply_unit(b, 1, 1);
         e.apply_door(d, 1);
+        e.write_pending();
         assert!(e.same_as(&Explanation::recompute(&m, &[a, b], 1, &[d])));
         // a ∩ b is columns 4..6 x rows 2..5, six cells. a's ring there is column 5 and row 4,
         // b's is column 4 and row 2: (4, 4) and (5, 2) are wall for both (a shared wall, not
         // penalised); the other four are overlaps.
         assert_eq!(e.overlap(), 4);
         e.apply_unit(a, 1, -1);
+        e.write_pending();
         assert!(e.same_as(&Explanation::recompute(&m, &[b], 1, &[d])));
         e.apply_door(d, -1);
         e.apply_unit(b, 1, -1);
@@ -393,10 +476,12 @@ mod tests {
         for t in 2..5 {
             for r in [Rect::new(1, 1, 9, 7), Rect::new(0, 0, 4, 3), Rect::new(2, 3, 10, 6)] {
                 e.apply_unit(r, t, 1);
+                e.write_pending();
                 assert!(e.same_as(&Explanation::recompute(&m, &[r], t, &[])), "{r:?} t={t}");
                 e.apply_unit(r, t, -1);
             }
         }
+        e.write_pending();
         assert!(e.same_as(&Explanation::new(&m)));
         let total: i64 = e.confusion().iter().flatten().sum();
         assert_eq!(total, 108);
@@ -447,6 +532,7 @@ mod tests {
         // A unit over rows 0..8: row 0 wall (occupied: match), rows 1..7 interior free except
         // the side columns (walls, mismatching free map cells), row 7 bottom wall mismatch.
         e.apply_unit(Rect::new(0, 0, 12, 8), 1, 1);
+        e.write_pending();
         let hits = 12 + 10 * 6 + 12;
         assert_eq!(e.prediction_rate(), hits as f64 / 108.0);
         assert_eq!(e.predicted(0, 3), Cell::Occupied);

@@ -1045,11 +1045,13 @@ impl Chain {
         if q_fwd <= 0.0 || phi_rev <= 0.0 || !self.state.is_valid(&mv, self.cells.min_side, k.max_units) {
             return false;
         }
-        let (undo, generation, next_id) = self.state.apply(&mv);
+        // The counts decide; a birth's or death's cells are written only if it is taken.
+        let (undo, generation, next_id) = self.state.apply_pending(&mv);
         let q_rev = self.proposer.reverse_q(&mv, &undo, &self.state);
         let new_target = self.full_log_posterior() * self.posterior.inv_temperature();
         let log_ratio = new_target - self.log_target + libm::log(phi_rev * q_rev) - libm::log(phi_fwd * q_fwd);
         if q_rev > 0.0 && accept(log_ratio, &mut self.rng) {
+            self.state.explanation.write_pending();
             self.log_target = new_target;
             let lp = new_target / self.posterior.inv_temperature();
             if lp > self.best_log_posterior {

@@ -441,6 +441,16 @@ impl State {
 
     /// Applies a valid move and returns how to undo it.
     pub fn apply(&mut self, m: &Move) -> (Undo, u64, u32) {
+        let undo = self.apply_pending(m);
+        self.explanation.write_pending();
+        undo
+    }
+
+    /// [`State::apply`] with the cells of a unit added or taken out not yet written
+    /// ([`Explanation::apply_unit`]): the counts are right, and [`State::undo`] or
+    /// [`Explanation::write_pending`] must come next.
+    #[inline(never)]
+    pub fn apply_pending(&mut self, m: &Move) -> (Undo, u64, u32) {
         let saved = (self.generation, self.next_id);
         let undo = match *m {
             Move::Add(r) => {
@@ -593,6 +603,7 @@ impl State {
                 self.doors.swap(index, last);
             }
         }
+        self.explanation.write_pending();
         self.generation = generation;
         self.next_id = next_id;
     }

@@ -99,8 +99,12 @@ pub fn stretches(world: &World, map: &Grid<Cell>, labels: &Grid<u16>, resolution
         let mut enter = |j: usize| frontier[j] && !std::mem::replace(&mut taken[j], true);
         flood.fill(w, h, [start], Neighbours::Eight, &mut enter, |i| component.push(i));
         for piece in cut(component, w, resolution) {
+            // Too narrow to be a way on: no need to look behind it.
+            if width_m(&piece, w, resolution) < MIN_WIDTH_M {
+                continue;
+            }
             let s = describe(piece, &around);
-            if s.width_m >= MIN_WIDTH_M && s.behind_m2 >= MIN_BEHIND_M2 {
+            if s.behind_m2 >= MIN_BEHIND_M2 {
                 out.push(s);
             }
         }
@@ -209,11 +213,18 @@ struct Around<'a> {
     cover: Vec<u32>,
 }
 
+/// The width of a stretch of `cells` (map indices of a grid `w` wide): the diagonal of their
+/// bounding box, m.
+fn width_m(cells: &[usize], w: usize, resolution: f64) -> f64 {
+    let [x0, y0, x1, y1] = bounds(cells, w);
+    libm::hypot((x1 - x0 + 1) as f64, (y1 - y0 + 1) as f64) * resolution
+}
+
 fn describe(cells: Vec<usize>, a: &Around) -> Stretch {
     let (map, resolution) = (a.map, a.resolution);
     let w = map.width();
     let [x0, y0, x1, y1] = bounds(&cells, w);
-    let width_m = libm::hypot((x1 - x0 + 1) as f64, (y1 - y0 + 1) as f64) * resolution;
+    let width_m = width_m(&cells, w, resolution);
     let n = cells.len() as f64;
     let (mx, my) = cells.iter().fold((0.0, 0.0), |(sx, sy), &i| (sx + (i % w) as f64 / n, sy + (i / w) as f64 / n));
     let d2 = |i: &usize| ((i % w) as f64 - mx).powi(2) + ((i / w) as f64 - my).powi(2);

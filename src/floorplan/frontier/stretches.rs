@@ -281,7 +281,8 @@ const ROOMLESS: u32 = u32::MAX - 1;
 /// its box on the map, so the cost is the units' area, not the cells times the units.
 fn unit_rooms(world: &World, w: usize, h: usize) -> Vec<u32> {
     let mut out = vec![NO_UNIT; w * h];
-    let room_of = |id: u32| world.rooms.iter().find(|r| r.units.contains(&id)).map_or(ROOMLESS, |r| r.id);
+    let rooms = world.rooms_of_units();
+    let room_of = |id: u32| rooms.get(&id).copied().unwrap_or(ROOMLESS);
     for u in &world.units {
         let Some(r) = u.rect().interior(world.wall_thickness) else { continue };
         let room = room_of(u.id);

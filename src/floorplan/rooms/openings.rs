@@ -14,16 +14,10 @@
 use crate::floorplan::world::{Rect, World, OPENING_MIN_M};
 use crate::geometry::{facing, Axis};
 use crate::grid::{Cell, Grid};
-use std::collections::HashMap;
-
-/// The room of each unit id, from `world.rooms`.
-fn room_of_unit(world: &World) -> HashMap<u32, u32> {
-    world.rooms.iter().flat_map(|r| r.units.iter().map(move |&u| (u, r.id))).collect()
-}
 
 /// The indices in `world.doors` of the doors whose two units lie in one room.
 fn within_rooms(world: &World) -> Vec<usize> {
-    let room = room_of_unit(world);
+    let room = world.rooms_of_units();
     let same = |[a, b]: [u32; 2]| room.get(&a).is_some_and(|ra| room.get(&b) == Some(ra));
     (0..world.doors.len()).filter(|&k| same(world.doors[k].units)).collect()
 }

@@ -534,6 +534,27 @@ impl World {
         self.units.iter().find(|u| u.id == id)
     }
 
+    /// The room of each unit, by unit id: the first room in `rooms` that lists it. The room
+    /// layer gives each unit one room; units no room lists are absent.
+    ///
+    /// ```
+    /// use ksmcmc::floorplan::{Room, UnitType, World};
+    /// let mut w = World::empty(100, 60);
+    /// let (doors, opens_to, name) = (vec![], vec![], None);
+    /// w.rooms = vec![Room { id: 7, kind: UnitType::Room, units: vec![1, 2], area_m2: 12.0, doors, opens_to, name }];
+    /// let rooms = w.rooms_of_units();
+    /// assert_eq!((rooms.get(&2), rooms.get(&3)), (Some(&7), None));
+    /// ```
+    pub fn rooms_of_units(&self) -> std::collections::HashMap<u32, u32> {
+        let mut out = std::collections::HashMap::new();
+        for r in &self.rooms {
+            for &u in &r.units {
+                out.entry(u).or_insert(r.id);
+            }
+        }
+        out
+    }
+
     /// The frame `unit`'s rectangle lies in: the world frame, or, for a unit with an angle of
     /// its own (issue 13), the frame [`Frame::turned`] gives for that angle on the same map.
     ///

@@ -100,10 +100,12 @@ pub fn stretches(world: &World, map: &Grid<Cell>, labels: &Grid<u16>, resolution
         flood.fill(w, h, [start], Neighbours::Eight, &mut enter, |i| component.push(i));
         for piece in cut(component, w, resolution) {
             // Too narrow to be a way on: no need to look behind it.
-            if width_m(&piece, w, resolution) < MIN_WIDTH_M {
+            let bbox = bounds(&piece, w);
+            let width_m = diagonal_m(bbox, resolution);
+            if width_m < MIN_WIDTH_M {
                 continue;
             }
-            let s = describe(piece, &around);
+            let s = describe(piece, bbox, width_m, &around);
             if s.behind_m2 >= MIN_BEHIND_M2 {
                 out.push(s);
             }
@@ -213,18 +215,17 @@ struct Around<'a> {
     cover: Vec<u32>,
 }
 
-/// The width of a stretch of `cells` (map indices of a grid `w` wide): the diagonal of their
-/// bounding box, m.
-fn width_m(cells: &[usize], w: usize, resolution: f64) -> f64 {
-    let [x0, y0, x1, y1] = bounds(cells, w);
+/// A stretch's width: the diagonal of its cells' bounding box `[x0, y0, x1, y1]` (inclusive,
+/// [`bounds`]), m.
+fn diagonal_m([x0, y0, x1, y1]: [usize; 4], resolution: f64) -> f64 {
     libm::hypot((x1 - x0 + 1) as f64, (y1 - y0 + 1) as f64) * resolution
 }
 
-fn describe(cells: Vec<usize>, a: &Around) -> Stretch {
+/// The stretch of `cells`, whose bounding box ([`bounds`]) and width ([`diagonal_m`]) the
+/// caller has worked out already.
+fn describe(cells: Vec<usize>, [x0, y0, x1, y1]: [usize; 4], width_m: f64, a: &Around) -> Stretch {
     let (map, resolution) = (a.map, a.resolution);
     let w = map.width();
-    let [x0, y0, x1, y1] = bounds(&cells, w);
-    let width_m = width_m(&cells, w, resolution);
     let n = cells.len() as f64;
     let (mx, my) = cells.iter().fold((0.0, 0.0), |(sx, sy), &i| (sx + (i % w) as f64 / n, sy + (i / w) as f64 / n));
     let d2 = |i: &usize| ((i % w) as f64 - mx).powi(2) + ((i / w) as f64 - my).powi(2);

@@ -15,31 +15,75 @@ use crate::grid::{Cell, Grid};
 /// outside filled in as occupied (the Bormann et al. floor plans) would otherwise let the
 /// outline of that solid mass, not the walls, choose the angle.
 pub fn dominant_angle(grid: &Grid<Cell>) -> f64 {
-    let (h, profile) = folded_profile(grid);
-    let mut best = (0usize, -1.0f64);
-    for (t, &score) in profile.iter().enumerate() {
-        if score > best.1 {
-            best = (t, score);
+    WallProfile::of(grid).dominant_angle()
+}
+
+/// How peaked the Hough votes of a map's wall surfaces are at each angle, folded modulo 90°
+/// (walls at right angles vote together): what [`dominant_angle`] and [`wall_directions`] read.
+/// The Hough transform is most of their cost, so a caller that wants both, or wants them
+/// again for the same map, builds this once ([`WallProfile::of`]) and asks it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct WallProfile {
+    /// Per angle bin in `[0°, 90°)`: the peakiness of that angle and of the angle 90° on.
+    profile: Vec<f64>,
+}
+
+impl WallProfile {
+    /// The profile of `grid`'s wall surfaces (the Hough transform of [`wall_surface`], or of
+    /// every occupied cell when no wall faces free space).
+    pub fn of(grid: &Grid<Cell>) -> WallProfile {
+        let surface = wall_surface(grid);
+        let h = Hough::occupied(if surface.cells().contains(&Cell::Occupied) { &surface } else { grid }, BINS, 60_000);
+        let half = BINS / 2;
+        WallProfile { profile: (0..half).map(|t| h.peakiness(t) + h.peakiness(t + half)).collect() }
+    }
+
+    /// The angle of bin `t`, radians, as [`Hough::theta`] gives it.
+    fn theta(t: usize) -> f64 {
+        std::f64::consts::PI * t as f64 / BINS as f64
+    }
+
+    /// [`dominant_angle`] of the map this profile is of.
+    pub fn dominant_angle(&self) -> f64 {
+        let mut best = (0usize, -1.0f64);
+        for (t, &score) in self.profile.iter().enumerate() {
+            if score > best.1 {
+                best = (t, score);
+            }
         }
+        if best.1 <= 0.0 {
+            return 0.0;
+        }
+        fold(Self::theta(best.0))
     }
-    if best.1 <= 0.0 {
-        return 0.0;
+
+    /// [`wall_directions`] of the map this profile is of.
+    pub fn directions(&self, min_strength: f64) -> Vec<WallDirection> {
+        let profile = &self.profile;
+        let n = profile.len();
+        let mut sorted = profile.clone();
+        sorted.sort_by(f64::total_cmp);
+        let median = sorted[n / 2];
+        let top = sorted[n - 1] - median;
+        if top <= 0.0 {
+            return Vec::new();
+        }
+        let window = 12; // 3 degrees of 0.25 degree bins
+        let mut found: Vec<WallDirection> = (0..n)
+            .filter(|&t| {
+                let s = profile[t];
+                (1..=window).all(|d| s > profile[(t + n - d) % n] && s >= profile[(t + d) % n])
+            })
+            .map(|t| WallDirection { angle: fold(Self::theta(t)), strength: (profile[t] - median) / top })
+            .filter(|d| d.strength >= min_strength)
+            .collect();
+        found.sort_by(|a, b| b.strength.total_cmp(&a.strength));
+        found
     }
-    fold(h.theta(best.0))
 }
 
 /// Hough angle bins: 0.25 degree each.
 const BINS: usize = 720;
-
-/// The Hough accumulator of the wall surfaces and, per angle bin in `[0°, 90°)`, the
-/// peakiness of that angle and of the angle 90° on (walls at right angles vote together).
-fn folded_profile(grid: &Grid<Cell>) -> (Hough, Vec<f64>) {
-    let surface = wall_surface(grid);
-    let h = Hough::occupied(if surface.cells().contains(&Cell::Occupied) { &surface } else { grid }, BINS, 60_000);
-    let half = BINS / 2;
-    let profile = (0..half).map(|t| h.peakiness(t) + h.peakiness(t + half)).collect();
-    (h, profile)
-}
 
 /// A Hough normal angle folded into `(-π/4, π/4]`: the normal and the line direction agree
 /// modulo 90°.
@@ -85,26 +129,7 @@ pub struct WallDirection {
 /// assert!(found[0].angle.abs() < 0.01 && found[0].strength == 1.0, "{found:?}");
 /// ```
 pub fn wall_directions(grid: &Grid<Cell>, min_strength: f64) -> Vec<WallDirection> {
-    let (h, profile) = folded_profile(grid);
-    let n = profile.len();
-    let mut sorted = profile.clone();
-    sorted.sort_by(f64::total_cmp);
-    let median = sorted[n / 2];
-    let top = sorted[n - 1] - median;
-    if top <= 0.0 {
-        return Vec::new();
-    }
-    let window = 12; // 3 degrees of 0.25 degree bins
-    let mut found: Vec<WallDirection> = (0..n)
-        .filter(|&t| {
-            let s = profile[t];
-            (1..=window).all(|d| s > profile[(t + n - d) % n] && s >= profile[(t + d) % n])
-        })
-        .map(|t| WallDirection { angle: fold(h.theta(t)), strength: (profile[t] - median) / top })
-        .filter(|d| d.strength >= min_strength)
-        .collect();
-    found.sort_by(|a, b| b.strength.total_cmp(&a.strength));
-    found
+    WallProfile::of(grid).directions(min_strength)
 }
 
 /// The occupied cells with a free 8-neighbour (the faces of walls a range sensor sees, with

@@ -20,14 +20,14 @@
 //! Everything is integer counting over the grid in a fixed order, so the result is the same
 //! natively and in wasm.
 
-use super::orientation::{wall_directions, wall_surface, WallDirection};
+use super::orientation::{wall_surface, WallDirection, WallProfile};
 use crate::grid::{Cell, Grid};
 
 /// How the regions are found, in cells.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RegionConfig {
     /// Directions weaker than this share of the strongest are left out (as in
-    /// [`wall_directions`]).
+    /// [`wall_directions`](super::orientation::wall_directions)).
     pub min_strength: f64,
     /// Face cells counted on either side of a face cell along a direction (default 12).
     pub run: i32,
@@ -91,7 +91,13 @@ impl DirectionRegions {
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn direction_regions(grid: &Grid<Cell>, config: &RegionConfig) -> DirectionRegions {
-    let mut directions = wall_directions(grid, config.min_strength);
+    direction_regions_from(grid, &WallProfile::of(grid), config)
+}
+
+/// [`direction_regions`] with the wall directions read off `profile`, the [`WallProfile`] of
+/// `grid` a caller has already built (the Hough transform is most of the cost).
+pub fn direction_regions_from(grid: &Grid<Cell>, profile: &WallProfile, config: &RegionConfig) -> DirectionRegions {
+    let mut directions = profile.directions(config.min_strength);
     directions.truncate(NO_REGION as usize);
     let (w, h) = (grid.width(), grid.height());
     let free = |i: usize| grid.cells()[i] == Cell::Free;

@@ -434,6 +434,9 @@ pub struct Chain {
     /// The wall faces (columns, rows) the wall detector last built candidates on; `None` for
     /// a chain given its candidates ([`Chain::with_candidates`]), whose pool the chain keeps.
     faces: Option<(Vec<i32>, Vec<i32>)>,
+    /// The Hough profile of the walls of `map` when the chain estimated its angle from it
+    /// ([`Chain::wall_profile`]); `None` otherwise, and once the map has changed.
+    walls: Option<vision::orientation::WallProfile>,
 }
 
 impl Chain {
@@ -460,10 +463,12 @@ impl Chain {
                     .into(),
             ));
         }
-        let angle = match config.detectors.rotation_deg {
-            Some(deg) => deg.to_radians(),
-            None => {
-                let a = vision::orientation::dominant_angle(classified);
+        // The walls' Hough profile, kept for the wings and the report (the same map's).
+        let walls = config.detectors.rotation_deg.is_none().then(|| vision::orientation::WallProfile::of(classified));
+        let angle = match (config.detectors.rotation_deg, &walls) {
+            (Some(deg), _) => deg.to_radians(),
+            (None, walls) => {
+                let a = walls.as_ref().map_or(0.0, |w| w.dominant_angle());
                 // Below half a degree the resampling would only blur the map.
                 if a.abs() < 0.5f64.to_radians() {
                     0.0
@@ -479,7 +484,17 @@ impl Chain {
         let mut chain =
             Self::with_parts(config, frame, world_map, classified.clone(), candidates, wall, resolution, seed)?;
         chain.faces = Some(faces);
+        chain.walls = walls;
         Ok(chain)
+    }
+
+    /// The Hough profile of the walls of the map the chain was made for
+    /// ([`vision::orientation::WallProfile`]), when the chain estimated the map's angle from
+    /// it; `None` when the angle was given, and once [`Chain::update_map`] changed the map.
+    /// The wings and the report read the wall directions off it instead of transforming the
+    /// same map again.
+    pub fn wall_profile(&self) -> Option<&vision::orientation::WallProfile> {
+        self.walls.as_ref()
     }
 
     /// A chain on an upright world-frame map with an explicit ADD candidate pool (no detectors,
@@ -565,6 +580,7 @@ impl Chain {
             typer: None,
             edits: Default::default(),
             faces: None,
+            walls: None,
         })
     }
 

@@ -90,6 +90,7 @@ impl Chain {
         let changed = changed_cells(&self.world_map, &world_map);
         let Some(window) = bounds(&changed, world_map.width()) else {
             self.map = map.classified().clone();
+            self.walls = None;
             return Ok(MapUpdate::default());
         };
         let walls_before = self
@@ -98,6 +99,7 @@ impl Chain {
             .is_none()
             .then(|| vision::walls::ring_depth_seen_from_both_sides(&self.map, self.frame.angle));
         self.map = map.classified().clone();
+        self.walls = None;
         self.go_to_best();
         self.state.set_map(&world_map, &changed);
         self.world_map = world_map;

@@ -7,6 +7,7 @@ use crate::floorplan::schedule::Kernel;
 use crate::floorplan::world::World;
 use crate::floorplan::Chain;
 use crate::grid::{Grid, OccupancyMap};
+use crate::vision::orientation::WallProfile;
 use serde::{Deserialize, Serialize};
 
 /// `report.json` for a chain's typed best `world` on `map`, with its room `labels` and the
@@ -46,7 +47,7 @@ pub fn add_rooms(r: &mut serde_json::Value, world: &World, labels: &Grid<u16>) {
 /// drop the chain before computing them ([`crate::floorplan::export::RoomInput`]) and then
 /// [`add_rooms`].
 pub fn summary(chain: &Chain, map: &OccupancyMap, world: &World, seconds: f64) -> serde_json::Value {
-    summary_of(&ChainSummary::of(chain, seconds), map, world)
+    report_of(&ChainSummary::of(chain, seconds), map, world, chain.wall_profile())
 }
 
 /// What `report.json` needs of the chain itself: its counts, times, seed, frame and knowledge
@@ -193,6 +194,12 @@ pub const MIN_DIRECTION: f64 = 0.3;
 
 /// [`summary`] from a chain's [`ChainSummary`].
 pub fn summary_of(c: &ChainSummary, map: &OccupancyMap, world: &World) -> serde_json::Value {
+    report_of(c, map, world, None)
+}
+
+/// [`summary_of`], the wall directions read off `walls` (the chain's [`WallProfile`] of `map`)
+/// when given, else found on `map`.
+fn report_of(c: &ChainSummary, map: &OccupancyMap, world: &World, walls: Option<&WallProfile>) -> serde_json::Value {
     let count = |v: &[u64], i: usize| v.get(i).copied().unwrap_or(0);
     let kernels: serde_json::Map<String, serde_json::Value> = Kernel::ALL
         .iter()
@@ -211,11 +218,12 @@ pub fn summary_of(c: &ChainSummary, map: &OccupancyMap, world: &World) -> serde_
     for u in &world.units {
         *types.entry(u.kind.name()).or_insert(0u32) += 1;
     }
+    let found = match walls {
+        Some(w) => w.directions(MIN_DIRECTION),
+        None => crate::vision::orientation::wall_directions(map.classified(), MIN_DIRECTION),
+    };
     let directions: Vec<serde_json::Value> =
-        crate::vision::orientation::wall_directions(map.classified(), MIN_DIRECTION)
-            .iter()
-            .map(|d| serde_json::json!({"angle_deg": d.angle.to_degrees(), "strength": d.strength}))
-            .collect();
+        found.iter().map(|d| serde_json::json!({"angle_deg": d.angle.to_degrees(), "strength": d.strength})).collect();
     serde_json::json!({
         "iterations": c.iterations,
         "seconds": c.seconds,

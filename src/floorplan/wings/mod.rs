@@ -44,7 +44,8 @@ use super::rooms::{RoomConfig, RoomLayer};
 use super::world::{Door, Unit, World};
 use super::{Chain, ChainConfig, ChainError, DoorLimits};
 use crate::grid::{Cell, Grid, OccupancyMap};
-use crate::vision::regions::{direction_regions, DirectionRegions, RegionConfig, NO_REGION};
+use crate::vision::orientation::WallProfile;
+use crate::vision::regions::{direction_regions_from, DirectionRegions, RegionConfig, NO_REGION};
 use std::collections::BTreeMap;
 
 /// When and how a map is explained wing by wing.
@@ -107,7 +108,10 @@ impl Wings {
         let mut first = Chain::new(map, config.clone(), seed)?;
         first.step(iterations);
         let (mut world, mut labels) = first.best_world_with_rooms(rooms)?;
-        let layout = WingLayout::find(map.classified(), &labels, first.frame().angle, wing);
+        let layout = match first.wall_profile() {
+            Some(profile) => WingLayout::find_from(map.classified(), profile, &labels, first.frame().angle, wing),
+            None => WingLayout::find(map.classified(), &labels, first.frame().angle, wing),
+        };
         let Some(layout) = layout.filter(|_| config.detectors.rotation_deg.is_none()) else {
             let wing_of = labels.map(|&l| if l > 0 { 0 } else { NO_REGION });
             return Ok(Wings { chains: vec![first], wing_of, world, labels });
@@ -155,7 +159,20 @@ impl WingLayout {
     /// The wings of `map` (module docs, steps 2 and 3) given the room `labels` of a chain
     /// turned by `first_angle`; `None` for a building of one wing.
     pub fn find(map: &Grid<Cell>, labels: &Grid<u16>, first_angle: f64, wing: &WingConfig) -> Option<WingLayout> {
-        let found = direction_regions(map, &wing.regions);
+        WingLayout::find_from(map, &WallProfile::of(map), labels, first_angle, wing)
+    }
+
+    /// [`WingLayout::find`] with the wall directions read off `profile`, the
+    /// [`WallProfile`] of `map` a caller has already built (the first chain's,
+    /// [`Chain::wall_profile`]).
+    pub fn find_from(
+        map: &Grid<Cell>,
+        profile: &WallProfile,
+        labels: &Grid<u16>,
+        first_angle: f64,
+        wing: &WingConfig,
+    ) -> Option<WingLayout> {
+        let found = direction_regions_from(map, profile, &wing.regions);
         let (wing_of, angles) = wings_by_room(&found, labels, first_angle, wing.min_share)?;
         Some(WingLayout { wing_of, angles })
     }

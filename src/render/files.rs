@@ -57,7 +57,15 @@ impl std::fmt::Display for ExportError {
     }
 }
 
-impl std::error::Error for ExportError {}
+impl std::error::Error for ExportError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            ExportError::Overlay(e) => Some(e),
+            ExportError::Shapes(e) => Some(e),
+            ExportError::Model3d(e) => Some(e),
+        }
+    }
+}
 
 /// The nine files of a run, as bytes and text.
 #[derive(Debug, Clone, PartialEq)]

@@ -173,7 +173,7 @@ impl ksmcmc::floorplan::online::Guide for After {
         &mut self,
         _: &mut Chain,
         _: &ksmcmc::explore::Explorer,
-    ) -> Result<Vec<ksmcmc::explore::Target>, String> {
+    ) -> Result<Vec<ksmcmc::explore::Target>, ksmcmc::floorplan::ChainError> {
         self.plans += 1;
         Ok(Vec::new())
     }

@@ -64,7 +64,11 @@ impl ByTruth<'_> {
 }
 
 impl Guide for ByTruth<'_> {
-    fn targets(&mut self, chain: &mut Chain, explorer: &Explorer) -> Result<Vec<Target>, String> {
+    fn targets(
+        &mut self,
+        chain: &mut Chain,
+        explorer: &Explorer,
+    ) -> Result<Vec<Target>, ksmcmc::floorplan::ChainError> {
         self.plan.targets(chain, explorer)
     }
 

@@ -13,7 +13,7 @@
 //! robot's first map.
 
 use super::online::Guide;
-use super::Chain;
+use super::{Chain, ChainError};
 use crate::explore::{Explorer, Target};
 use crate::floorplan::frontier::Goal;
 use crate::floorplan::rooms::RoomConfig;
@@ -59,8 +59,8 @@ impl GoalGuide {
 }
 
 impl Guide for GoalGuide {
-    fn targets(&mut self, chain: &mut Chain, explorer: &Explorer) -> Result<Vec<Target>, String> {
-        let (world, _) = chain.best_world_with_rooms(&self.rooms).map_err(|e| e.to_string())?;
+    fn targets(&mut self, chain: &mut Chain, explorer: &Explorer) -> Result<Vec<Target>, ChainError> {
+        let (world, _) = chain.best_world_with_rooms(&self.rooms)?;
         self.updates += 1;
         let n = self.count(&world);
         match self.first {

@@ -329,7 +329,7 @@ pub enum ChainError {
     /// A configuration's JSON text does not parse, is no object, or has an unknown field.
     Json(String),
     /// The knowledge base does not parse or ground.
-    Knowledge(String),
+    Knowledge(crate::mln::MlnError),
     /// The map cannot be explained (too small, no free space).
     Map(String),
     /// A person's edits do not fit the map ([`Chain::set_edits`]).
@@ -356,6 +356,7 @@ impl std::error::Error for ChainError {
         match self {
             ChainError::Rooms(e) => Some(e),
             ChainError::Config(e) => Some(e),
+            ChainError::Knowledge(e) => Some(e),
             _ => None,
         }
     }
@@ -525,10 +526,7 @@ impl Chain {
         seed: u64,
     ) -> Result<Chain, ChainError> {
         let knowledge = if config.knowledge.enabled {
-            Some(
-                super::knowledge::Knowledge::new(&config.knowledge)
-                    .map_err(|e| ChainError::Knowledge(e.to_string()))?,
-            )
+            Some(super::knowledge::Knowledge::new(&config.knowledge).map_err(ChainError::Knowledge)?)
         } else {
             None
         };
@@ -701,7 +699,7 @@ impl Chain {
         let resolution = self.resolution;
         let given = super::knowledge::edit_facts(&self.edits, &world);
         let Some(k) = self.knowledge.as_mut() else { return Ok(0) };
-        let inferred = k.infer_given(&world, resolution, &given).map_err(|e| ChainError::Knowledge(e.to_string()))?;
+        let inferred = k.infer_given(&world, resolution, &given).map_err(ChainError::Knowledge)?;
         let mut work = k.last_work;
         for u in &mut self.state.units {
             u.kind = inferred.types.get(&u.id).map_or(UnitType::Unknown, |t| t.0);
@@ -723,8 +721,7 @@ impl Chain {
             let best = self.internal_best_world();
             let given = super::knowledge::edit_facts(&self.edits, &best);
             if let Some(k) = self.knowledge.as_mut() {
-                let typed =
-                    k.infer_given(&best, resolution, &given).map_err(|e| ChainError::Knowledge(e.to_string()))?;
+                let typed = k.infer_given(&best, resolution, &given).map_err(ChainError::Knowledge)?;
                 work += k.last_work;
                 for u in &mut self.best.units {
                     u.kind = typed.types.get(&u.id).map_or(UnitType::Unknown, |t| t.0);

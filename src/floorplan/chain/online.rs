@@ -132,7 +132,7 @@ pub enum OnlineError {
     /// A setting is out of range.
     Config(String),
     /// The guide could not weigh the plan's frontiers.
-    Guide(String),
+    Guide(ChainError),
 }
 
 impl std::fmt::Display for OnlineError {
@@ -146,7 +146,15 @@ impl std::fmt::Display for OnlineError {
     }
 }
 
-impl std::error::Error for OnlineError {}
+impl std::error::Error for OnlineError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            OnlineError::Explore(e) => Some(e),
+            OnlineError::Chain(e) | OnlineError::Guide(e) => Some(e),
+            OnlineError::Config(_) => None,
+        }
+    }
+}
 
 impl OnlineConfig {
     /// The iterations each cold chain may run ([`OnlineConfig::cold_budget`]).
@@ -244,7 +252,7 @@ impl Exploration {
 pub trait Guide {
     /// The targets the robot weighs until the next update, given the chain after it took the
     /// robot's map ([`Explorer::set_targets`]); none: the nearest frontier.
-    fn targets(&mut self, chain: &mut Chain, explorer: &Explorer) -> Result<Vec<Target>, String>;
+    fn targets(&mut self, chain: &mut Chain, explorer: &Explorer) -> Result<Vec<Target>, ChainError>;
 
     /// Whether the robot has found what it looks for and may stop (checked as it drives,
     /// every 16 cells).
@@ -258,7 +266,7 @@ pub trait Guide {
 pub struct Nearest;
 
 impl Guide for Nearest {
-    fn targets(&mut self, _chain: &mut Chain, _explorer: &Explorer) -> Result<Vec<Target>, String> {
+    fn targets(&mut self, _chain: &mut Chain, _explorer: &Explorer) -> Result<Vec<Target>, ChainError> {
         Ok(Vec::new())
     }
 }

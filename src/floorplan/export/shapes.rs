@@ -138,7 +138,14 @@ impl std::fmt::Display for ShapeError {
     }
 }
 
-impl std::error::Error for ShapeError {}
+impl std::error::Error for ShapeError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            ShapeError::World(e) => Some(e),
+            ShapeError::Labels { .. } => None,
+        }
+    }
+}
 
 /// The shapes of `world`'s rooms and doors, with `labels` the room id of every map cell
 /// (`labels.pgm`, as [`crate::floorplan::rooms::RoomLayer::explain`] returns it).

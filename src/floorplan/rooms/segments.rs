@@ -12,7 +12,7 @@ use super::frame::world_cell;
 use super::wall_gaps::WallReading;
 use crate::floorplan::world::World;
 
-use crate::grid::flood::labelled_wavefront;
+use crate::grid::flood::{labelled_wavefront, Flood, Neighbours};
 use crate::grid::{Cell, Grid};
 use std::collections::VecDeque;
 
@@ -248,33 +248,26 @@ fn label_far_regions(labels: &mut Grid<u16>, map: &Grid<Cell>, last: u16, c: &Ro
     let (w, h) = (map.width(), map.height());
     let depth = if c.min_room_depth > 0 { free_depth(map) } else { vec![u32::MAX; w * h] };
     let mut next = last;
-    let mut stack = Vec::new();
+    let mut flood = Flood::default();
+    let mut region = Vec::new();
     for start in 0..w * h {
-        let (sx, sy) = (start % w, start / w);
-        if *map.at(sx, sy) != Cell::Free || *labels.at(sx, sy) != 0 {
+        if map.cells()[start] != Cell::Free || labels.cells()[start] != 0 {
             continue;
         }
         // Flood the region with a provisional id, then keep it only if it is a room.
         let id = next.saturating_add(1);
-        let mut region = vec![(sx, sy)];
-        *labels.at_mut(sx, sy) = id;
-        stack.push((sx, sy));
-        while let Some((x, y)) = stack.pop() {
-            for (nx, ny) in [(x.wrapping_sub(1), y), (x + 1, y), (x, y.wrapping_sub(1)), (x, y + 1)] {
-                if nx < w && ny < h && *map.at(nx, ny) == Cell::Free && *labels.at(nx, ny) == 0 {
-                    *labels.at_mut(nx, ny) = id;
-                    stack.push((nx, ny));
-                    region.push((nx, ny));
-                }
-            }
-        }
-        let deep = region.iter().filter(|&&(x, y)| depth[y * w + x] > 3 * c.min_room_depth).count();
+        region.clear();
+        let ids = labels.cells_mut();
+        let mut enter =
+            |j: usize| map.cells()[j] == Cell::Free && ids[j] == 0 && std::mem::replace(&mut ids[j], id) == 0;
+        flood.fill(w, h, [start], Neighbours::Four, &mut enter, |i| region.push(i));
+        let deep = region.iter().filter(|&&i| depth[i] > 3 * c.min_room_depth).count();
         if region.len() >= c.min_room_cells && deep >= c.min_room_cells / 4 {
             next = id;
         } else {
             // u16::MAX marks "seen, not a room" until the end.
-            for (x, y) in region {
-                *labels.at_mut(x, y) = u16::MAX;
+            for &i in &region {
+                labels.cells_mut()[i] = u16::MAX;
             }
         }
     }
@@ -466,7 +459,7 @@ fn find_cores(labels: &Grid<u16>, is_core: impl Fn(usize) -> bool) -> (Vec<u32>,
     let (w, h) = (labels.width(), labels.height());
     let mut seed = vec![0u32; w * h];
     let mut cores: Vec<(u16, usize)> = vec![(0, 0)];
-    let mut stack = Vec::new();
+    let mut flood = Flood::default();
     for start in 0..w * h {
         let l = labels.cells()[start];
         if l == 0 || seed[start] != 0 || !is_core(start) {
@@ -474,18 +467,9 @@ fn find_cores(labels: &Grid<u16>, is_core: impl Fn(usize) -> bool) -> (Vec<u32>,
         }
         let id = cores.len() as u32;
         let mut n = 0usize;
-        seed[start] = id;
-        stack.push((start % w, start / w));
-        while let Some((x, y)) = stack.pop() {
-            n += 1;
-            for (nx, ny) in neighbours4(x, y, w, h) {
-                let j = ny * w + nx;
-                if seed[j] == 0 && labels.cells()[j] == l && is_core(j) {
-                    seed[j] = id;
-                    stack.push((nx, ny));
-                }
-            }
-        }
+        let mut enter =
+            |j: usize| seed[j] == 0 && labels.cells()[j] == l && is_core(j) && std::mem::replace(&mut seed[j], id) == 0;
+        flood.fill(w, h, [start], Neighbours::Four, &mut enter, |_| n += 1);
         cores.push((l, n));
     }
     (seed, cores)

@@ -20,6 +20,7 @@ use super::config::{Cells, Span, DOOR_CLEARANCE};
 use super::SynthError;
 use crate::floorplan::{Door, Rect, UnitType};
 use crate::mcmc::Rng;
+use crate::union_find::UnionFind;
 
 /// One unit of the layout: its free interior and its type.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -507,32 +508,21 @@ fn doors(spaces: &[Space], c: &Cells, extra_doors: f64, rng: &mut Rng) -> Result
         }
     }
     // Join the components, hubs first.
-    let mut parent: Vec<usize> = (0..n).collect();
-    fn root(parent: &mut [usize], mut i: usize) -> usize {
-        while parent[i] != i {
-            parent[i] = parent[parent[i]];
-            i = parent[i];
-        }
-        i
-    }
+    let mut sets = UnionFind::new(n);
     for (k, ct) in contacts.iter().enumerate() {
         if chosen[k] {
-            let (ra, rb) = (root(&mut parent, ct.a), root(&mut parent, ct.b));
-            parent[ra] = rb;
+            sets.union(ct.a, ct.b);
         }
     }
     let hubs_first = |k: &usize| !(is_hub(spaces[contacts[*k].a].kind) && is_hub(spaces[contacts[*k].b].kind));
     let mut order: Vec<usize> = (0..contacts.len()).collect();
     order.sort_by_key(|k| (hubs_first(k), *k));
     for k in order {
-        let (ra, rb) = (root(&mut parent, contacts[k].a), root(&mut parent, contacts[k].b));
-        if ra != rb {
-            parent[ra] = rb;
+        if sets.union(contacts[k].a, contacts[k].b) {
             chosen[k] = true;
         }
     }
-    let r0 = root(&mut parent, 0);
-    if (1..n).any(|i| root(&mut parent, i) != r0) {
+    if (1..n).any(|i| !sets.same(0, i)) {
         return Err(Failure::Fatal(SynthError::new(
             "synth: internal error: the layout is not connected (a bug: please report the config and seed)",
         )));

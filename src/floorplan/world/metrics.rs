@@ -2,6 +2,7 @@
 
 use crate::floorplan::world::{Frame, FrameGroup, Unit, World};
 use crate::geometry::{facing, Axis};
+use crate::grid::flood::{Flood, Neighbours};
 use crate::grid::{Cell, Grid};
 
 /// The class a world predicts for every cell of the map (eq. 3.8), in the map's frame: wall
@@ -196,26 +197,15 @@ pub fn regions(white: &Grid<bool>) -> Grid<u32> {
     let (w, h) = (white.width(), white.height());
     let mut out = Grid::new(w, h, 0u32);
     let mut next = 0;
-    let mut stack = Vec::new();
+    let mut flood = Flood::default();
     for start in 0..w * h {
         if !white.cells()[start] || out.cells()[start] != 0 {
             continue;
         }
         next += 1;
-        out.cells_mut()[start] = next;
-        stack.push(start);
-        while let Some(i) = stack.pop() {
-            let (x, y) = (i % w, i / w);
-            for (nx, ny) in [(x.wrapping_sub(1), y), (x + 1, y), (x, y.wrapping_sub(1)), (x, y + 1)] {
-                if nx < w && ny < h {
-                    let j = ny * w + nx;
-                    if white.cells()[j] && out.cells()[j] == 0 {
-                        out.cells_mut()[j] = next;
-                        stack.push(j);
-                    }
-                }
-            }
-        }
+        let ids = out.cells_mut();
+        let mut enter = |j: usize| white.cells()[j] && ids[j] == 0 && std::mem::replace(&mut ids[j], next) == 0;
+        flood.fill(w, h, [start], Neighbours::Four, &mut enter, |_| {});
     }
     out
 }

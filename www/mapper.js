@@ -113,7 +113,8 @@ function onKey(e) {
 
 // ---------------------------------------------------------------- wiring
 
-function wire() {
+/** The Chain and Map panels' controls, in the order they were always wired. */
+function wireChainAndMap() {
   ui.run.addEventListener('click', toggle);
   ui.step.addEventListener('click', step);
   ui.reset.addEventListener('click', reset);
@@ -150,6 +151,10 @@ function wire() {
     e.preventDefault();
     attempt(blankMap);
   });
+}
+
+/** The View panel: which world is drawn, the overlays and the reference world. */
+function wireView() {
   for (const radio of document.querySelectorAll('input[name="show"]')) {
     radio.addEventListener('change', () => setShow(radio.value));
   }
@@ -168,10 +173,10 @@ function wire() {
     }),
   );
   ui.referenceClear.addEventListener('click', () => attempt(clearReference));
+}
 
-  wireExports();
-
-  // The viewport's listeners first: a painting stroke asks it whether a pinch is going on.
+/** The map's viewport (zoom and pan, on both canvases), then the route and 3D view controls. */
+function wireViewportRouteAnd3d() {
   state.viewport = new Viewport(ui.canvas, {
     onChange: viewChanged,
     dragPans: () => !state.painting && !state.editMode && !state.route?.active,
@@ -196,13 +201,29 @@ function wire() {
     e.preventDefault();
     attempt(() => state.route.submit());
   });
-  wireEdits();
+}
+
+/** The canvas's pointer: painting strokes, then the room pointed at. */
+function wireCanvasPointer() {
   ui.canvas.addEventListener('pointerdown', onPointerDown);
   ui.canvas.addEventListener('pointermove', onPointerMove);
   ui.canvas.addEventListener('pointerup', onPointerUp);
   ui.canvas.addEventListener('pointercancel', onPointerUp);
   ui.canvas.addEventListener('pointermove', onHover);
   ui.canvas.addEventListener('pointerleave', onLeave);
+}
+
+function wire() {
+  wireChainAndMap();
+  wireView();
+
+  wireExports();
+
+  // The viewport's listeners before the painting's: a painting stroke asks it whether a pinch
+  // is going on.
+  wireViewportRouteAnd3d();
+  wireEdits();
+  wireCanvasPointer();
   wireRooms();
   document.addEventListener('keydown', onKey);
 

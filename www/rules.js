@@ -253,81 +253,101 @@ function frame(now) {
   requestAnimationFrame(frame);
 }
 
+/** Fetches `file` of the sample; throws when it is not there. */
+async function sampleFile(file) {
+  const r = await fetch(`samples/${SAMPLE}/${file}`);
+  if (!r.ok) throw new Error(`samples/${SAMPLE}/${file}: ${r.status}`);
+  return r;
+}
+
+/** The two editors, with the built-in rules in them: the knowledge base's and the frontier rules'. */
+function makeEditors() {
+  ui.kb.value = forReading(builtinIndoorRules());
+  state.editor = rulesEditor(ui.kb, { check: checkRules, status: ui.error, okText: 'Knowledge base OK', gutterId: 'gutter', onCheck: checked });
+  ui.frontier.value = builtinFrontierRules();
+  state.frontierEditor = rulesEditor(ui.frontier, {
+    check: checkFrontierRules, status: ui.frontierError, okText: 'Frontier rules OK', gutterId: 'frontier-gutter',
+    onCheck: (text, err) => {
+      state.frontierError = err;
+      if (!err) state.goodFrontier = text;
+    },
+  });
+}
+
+/** The sample's truth.json becomes the reference world. */
+async function loadTruth() {
+  try {
+    const r = await sampleFile('truth.json');
+    setReference(await r.text(), `${SAMPLE}/truth.json`);
+  } catch (e) {
+    showError(e);
+  }
+}
+
+/** The world file picked becomes the reference world (the input is cleared to pick it again). */
+async function pickReference(e) {
+  const file = e.target.files[0];
+  e.target.value = '';
+  if (!file) return;
+  try {
+    setReference(await file.text(), file.name);
+  } catch (err) {
+    showError(err);
+  }
+}
+
+/** The buttons: rules into the editors, re-running the chain, the reference world and learning. */
+function wireButtons() {
+  $('frontier-builtin').addEventListener('click', () => replaceFrontierRules(builtinFrontierRules()));
+  $('frontier-handset').addEventListener('click', () => replaceFrontierRules(handSetFrontierRules()));
+  $('truth').textContent = `Load ${SAMPLE}'s truth.json`;
+  $('rerun').addEventListener('click', () => run());
+  $('builtin').addEventListener('click', () => replaceRules(forReading(builtinIndoorRules())));
+  $('handset').addEventListener('click', () => replaceRules(handSetIndoorRules()));
+  $('learn').addEventListener('click', () => learn());
+  $('truth').addEventListener('click', () => loadTruth());
+  $('world-file').addEventListener('change', (e) => pickReference(e));
+}
+
+/** For the tests (tests/e2e/rules.test.mjs): the page's numbers as `window.__rules.snapshot()`. */
+function snapshot() {
+  return {
+    runs: state.runs,
+    iteration: state.stats?.iteration ?? 0,
+    error: state.error,
+    goodKb: state.goodKb,
+    kbUsed: state.kbUsed,
+    worldUnits: state.worldUnits,
+    inferred: state.inferred,
+    inferError: state.inferError,
+    rows: ui.marginals.rows.length,
+    badGutterLine: Number(document.querySelector('#gutter .bad')?.textContent ?? 0),
+    underlined: document.querySelector('.rules-marks .err')?.textContent ?? null,
+    errorText: ui.error.textContent,
+    reference: state.referenceName,
+    learning: state.learning,
+    learned: state.learned,
+    frontierError: state.frontierError,
+    goodFrontier: state.goodFrontier,
+    frontierUsed: state.frontierUsed,
+    frontierErrorText: ui.frontierError.textContent,
+    placeholders: state.placeholders,
+    placeholderRows: ui.placeholders.rows.length,
+  };
+}
+
 async function main() {
   try {
     await init();
-    const get = async (file) => {
-      const r = await fetch(`samples/${SAMPLE}/${file}`);
-      if (!r.ok) throw new Error(`samples/${SAMPLE}/${file}: ${r.status}`);
-      return r;
-    };
-    const yaml = await (await get('map.yaml')).text();
-    const pgm = new Uint8Array(await (await get('map.pgm')).arrayBuffer());
+    const yaml = await (await sampleFile('map.yaml')).text();
+    const pgm = new Uint8Array(await (await sampleFile('map.pgm')).arrayBuffer());
     state.source = { kind: 'yaml', yaml, image: pgm };
     state.chain = new RemoteChain(showError, () => {});
     state.resolution = Number(yaml.match(/resolution:\s*([0-9.eE+-]+)/)?.[1] ?? 0.05);
-    ui.kb.value = forReading(builtinIndoorRules());
-    state.editor = rulesEditor(ui.kb, { check: checkRules, status: ui.error, okText: 'Knowledge base OK', gutterId: 'gutter', onCheck: checked });
-    ui.frontier.value = builtinFrontierRules();
-    state.frontierEditor = rulesEditor(ui.frontier, {
-      check: checkFrontierRules, status: ui.frontierError, okText: 'Frontier rules OK', gutterId: 'frontier-gutter',
-      onCheck: (text, err) => {
-        state.frontierError = err;
-        if (!err) state.goodFrontier = text;
-      },
-    });
-    $('frontier-builtin').addEventListener('click', () => replaceFrontierRules(builtinFrontierRules()));
-    $('frontier-handset').addEventListener('click', () => replaceFrontierRules(handSetFrontierRules()));
-    $('truth').textContent = `Load ${SAMPLE}'s truth.json`;
-    $('rerun').addEventListener('click', () => run());
-    $('builtin').addEventListener('click', () => replaceRules(forReading(builtinIndoorRules())));
-    $('handset').addEventListener('click', () => replaceRules(handSetIndoorRules()));
-    $('learn').addEventListener('click', () => learn());
-    $('truth').addEventListener('click', async () => {
-      try {
-        const r = await fetch(`samples/${SAMPLE}/truth.json`);
-        if (!r.ok) throw new Error(`samples/${SAMPLE}/truth.json: ${r.status}`);
-        setReference(await r.text(), `${SAMPLE}/truth.json`);
-      } catch (e) {
-        showError(e);
-      }
-    });
-    $('world-file').addEventListener('change', async (e) => {
-      const file = e.target.files[0];
-      e.target.value = '';
-      if (!file) return;
-      try {
-        setReference(await file.text(), file.name);
-      } catch (err) {
-        showError(err);
-      }
-    });
+    makeEditors();
+    wireButtons();
     run();
-    window.__rules = {
-      snapshot: () => ({
-        runs: state.runs,
-        iteration: state.stats?.iteration ?? 0,
-        error: state.error,
-        goodKb: state.goodKb,
-        kbUsed: state.kbUsed,
-        worldUnits: state.worldUnits,
-        inferred: state.inferred,
-        inferError: state.inferError,
-        rows: ui.marginals.rows.length,
-        badGutterLine: Number(document.querySelector('#gutter .bad')?.textContent ?? 0),
-        underlined: document.querySelector('.rules-marks .err')?.textContent ?? null,
-        errorText: ui.error.textContent,
-        reference: state.referenceName,
-        learning: state.learning,
-        learned: state.learned,
-        frontierError: state.frontierError,
-        goodFrontier: state.goodFrontier,
-        frontierUsed: state.frontierUsed,
-        frontierErrorText: ui.frontierError.textContent,
-        placeholders: state.placeholders,
-        placeholderRows: ui.placeholders.rows.length,
-      }),
-    };
+    window.__rules = { snapshot };
     document.documentElement.dataset.state = 'ready';
     requestAnimationFrame(frame);
   } catch (e) {

@@ -47,19 +47,10 @@ export function errorText(err) {
 }
 
 /**
- * Turns `textarea` into the knowledge-base editor and checks its text on every edit.
- *
- * @param {HTMLTextAreaElement} textarea  keeps its id, label and attributes
- * @param {object} options
- * @param {(text: string) => RuleError | null} options.check  null when the text is good
- * @param {HTMLElement} options.status  where the message goes (a `role="status"` element)
- * @param {string} [options.okText]  shown in `status` when the text is good
- * @param {string} [options.gutterId]  id for the line-number gutter
- * @param {(text: string, err: RuleError | null) => void} [options.onCheck]  after each check
- * @param {number} [options.delayMs]  wait this long after typing before checking (0: at once)
- * @returns {{ check(): RuleError | null, readonly error: RuleError | null, readonly badLine: number }}
+ * Wraps `textarea` in the editor's boxes: the line-number gutter beside it and the marks (the
+ * same text, with the underline) behind it. Returns the gutter and the marks.
  */
-export function rulesEditor(textarea, { check, status, okText = '', gutterId, onCheck, delayMs = 0 }) {
+function wrapTextarea(textarea, status, gutterId) {
   const doc = textarea.ownerDocument;
   const box = doc.createElement('div');
   box.className = 'rules-editor';
@@ -78,6 +69,52 @@ export function rulesEditor(textarea, { check, status, okText = '', gutterId, on
   textarea.classList.add('rules-input');
   textarea.spellcheck = false;
   if (status.id) textarea.setAttribute('aria-describedby', status.id);
+  return { gutter, marks };
+}
+
+/** Numbers the gutter's `lines` lines, the 1-based `badLine` (0: none) marked bad. */
+function drawGutter(gutter, lines, badLine) {
+  const doc = gutter.ownerDocument;
+  gutter.replaceChildren(
+    ...Array.from({ length: lines }, (_, i) => {
+      const s = doc.createElement('span');
+      s.textContent = `${i + 1}\n`;
+      if (i + 1 === badLine) s.className = 'bad';
+      return s;
+    }),
+  );
+}
+
+/** Puts `value` into the marks behind the textarea, the span of `error` (if any) underlined. */
+function drawMarks(marks, value, error) {
+  const span = error ? errorSpan(value, error.line, error.column) : null;
+  if (span) {
+    const mark = marks.ownerDocument.createElement('span');
+    mark.className = 'err';
+    // An error past the end of a line still gets something to underline.
+    mark.textContent = span.end > span.start ? value.slice(span.start, span.end) : '\u00a0';
+    mark.title = error.message;
+    marks.replaceChildren(value.slice(0, span.start), mark, value.slice(span.end), '\n');
+  } else {
+    marks.replaceChildren(value, '\n');
+  }
+}
+
+/**
+ * Turns `textarea` into the knowledge-base editor and checks its text on every edit.
+ *
+ * @param {HTMLTextAreaElement} textarea  keeps its id, label and attributes
+ * @param {object} options
+ * @param {(text: string) => RuleError | null} options.check  null when the text is good
+ * @param {HTMLElement} options.status  where the message goes (a `role="status"` element)
+ * @param {string} [options.okText]  shown in `status` when the text is good
+ * @param {string} [options.gutterId]  id for the line-number gutter
+ * @param {(text: string, err: RuleError | null) => void} [options.onCheck]  after each check
+ * @param {number} [options.delayMs]  wait this long after typing before checking (0: at once)
+ * @returns {{ check(): RuleError | null, readonly error: RuleError | null, readonly badLine: number }}
+ */
+export function rulesEditor(textarea, { check, status, okText = '', gutterId, onCheck, delayMs = 0 }) {
+  const { gutter, marks } = wrapTextarea(textarea, status, gutterId);
 
   let error = null;
   let badLine = 0;
@@ -89,26 +126,8 @@ export function rulesEditor(textarea, { check, status, okText = '', gutterId, on
   };
 
   const draw = (value) => {
-    const lines = value.split('\n').length;
-    gutter.replaceChildren(
-      ...Array.from({ length: lines }, (_, i) => {
-        const s = doc.createElement('span');
-        s.textContent = `${i + 1}\n`;
-        if (i + 1 === badLine) s.className = 'bad';
-        return s;
-      }),
-    );
-    const span = error ? errorSpan(value, error.line, error.column) : null;
-    if (span) {
-      const mark = doc.createElement('span');
-      mark.className = 'err';
-      // An error past the end of a line still gets something to underline.
-      mark.textContent = span.end > span.start ? value.slice(span.start, span.end) : '\u00a0';
-      mark.title = error.message;
-      marks.replaceChildren(value.slice(0, span.start), mark, value.slice(span.end), '\n');
-    } else {
-      marks.replaceChildren(value, '\n');
-    }
+    drawGutter(gutter, value.split('\n').length, badLine);
+    drawMarks(marks, value, error);
     syncScroll();
   };
 

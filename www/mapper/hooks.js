@@ -47,75 +47,92 @@ export function expose() {
     get map() {
       return state.map;
     },
-    /** What the page waits for (for tests that time out waiting for idle()). */
-    waits() {
-      const w = state.weak;
-      const r = (f) => ({ inFlight: f.inFlight, again: f.again, generation: f.generation, readAt: f.readAt });
-      return {
-        running: state.running,
-        dataRunning: document.documentElement.dataset.running,
-        inFlight: state.inFlight,
-        redrawPending: state.redrawPending,
-        picture: Boolean(state.picture),
-        busy: state.chain.busy,
-        generation: state.stats?.generation,
-        iteration: state.stats?.iteration,
-        rooms: r(state.rooms),
-        weak: w && { iteration: w.stats?.iteration, generation: w.stats?.generation, inFlight: w.inFlight, redrawPending: w.redrawPending, picture: Boolean(w.picture), busy: w.chain.busy, rooms: r(w.rooms) },
-      };
-    },
-    /** Resolves once the page has drawn the chain's latest state and waits for nothing. */
-    idle() {
-      return new Promise((resolve) => {
-        const check = () => {
-          const paused = !state.running && document.documentElement.dataset.running === 'false';
-          const w = state.weak;
-          const weakIdle = !w || (w.stats && w.stats.iteration === state.stats?.iteration && !w.inFlight && !w.redrawPending && !w.picture && w.chain.busy === 0 && w.rooms.current(w.stats));
-          if (paused && !state.inFlight && !state.redrawPending && !state.picture && state.chain.busy === 0 && state.rooms.current(state.stats) && weakIdle) resolve();
-          else requestAnimationFrame(check);
-        };
-        requestAnimationFrame(check);
-      });
-    },
-    snapshot() {
-      const m = state.stats;
-      return {
-        ready: state.ready,
-        running: state.running,
-        name: state.name,
-        sample: state.sample,
-        width: m?.width ?? 0,
-        height: m?.height ?? 0,
-        seed: m ? String(m.seed) : null,
-        iteration: m?.iteration ?? 0,
-        logPosterior: m?.logPosterior ?? NaN,
-        bestLogPosterior: m?.bestLogPosterior ?? NaN,
-        initialLogPosterior: state.initialLogPosterior,
-        units: m?.units ?? 0,
-        bestUnits: m?.bestUnits ?? 0,
-        acceptance: m?.acceptance ?? NaN,
-        frames: state.frames,
-        traceLength: state.trace.iteration.length,
-        hasReference: Boolean(m?.hasReference),
-        settledAt: m?.settledAt ?? null,
-        improvedAt: m?.improvedAt ?? null,
-        settleWindow: m?.settleWindow ?? 0,
-        wings: m?.wings ?? null,
-        wingsDone: m?.wingsDone ?? 0,
-        wingsPredictionRate: m?.wingsPredictionRate ?? null,
-        stopWhenSettled: ui.stopSettled.checked,
-        show: state.show,
-        cloud: state.cloud,
-        scale: state.scale,
-        drawScale: state.drawScale,
-        view: state.viewport.view.state(),
-        room: state.hover.id,
-        roomPinned: state.hover.pinned,
-        ipf: state.ipf,
-        drawMs: state.drawMs,
-        painting: state.painting,
-        error: ui.message.hidden ? null : ui.messageText.textContent,
-      };
-    },
+    // What the page waits for, whether it is idle, and its numbers: below.
+    waits,
+    idle,
+    snapshot,
+  };
+}
+
+/** A rooms feed's waits, for `waits()`. */
+function feedWaits(f) {
+  return { inFlight: f.inFlight, again: f.again, generation: f.generation, readAt: f.readAt };
+}
+
+/** What the page waits for (for tests that time out waiting for idle()). */
+function waits() {
+  const w = state.weak;
+  return {
+    running: state.running,
+    dataRunning: document.documentElement.dataset.running,
+    inFlight: state.inFlight,
+    redrawPending: state.redrawPending,
+    picture: Boolean(state.picture),
+    busy: state.chain.busy,
+    generation: state.stats?.generation,
+    iteration: state.stats?.iteration,
+    rooms: feedWaits(state.rooms),
+    weak: w && { iteration: w.stats?.iteration, generation: w.stats?.generation, inFlight: w.inFlight, redrawPending: w.redrawPending, picture: Boolean(w.picture), busy: w.chain.busy, rooms: feedWaits(w.rooms) },
+  };
+}
+
+/** Whether the chain is paused and its latest state (and the weak prior's, if any) drawn. */
+function isIdle() {
+  const paused = !state.running && document.documentElement.dataset.running === 'false';
+  const w = state.weak;
+  const weakIdle = !w || (w.stats && w.stats.iteration === state.stats?.iteration && !w.inFlight && !w.redrawPending && !w.picture && w.chain.busy === 0 && w.rooms.current(w.stats));
+  return paused && !state.inFlight && !state.redrawPending && !state.picture && state.chain.busy === 0 && state.rooms.current(state.stats) && weakIdle;
+}
+
+/** Resolves once the page has drawn the chain's latest state and waits for nothing. */
+function idle() {
+  return new Promise((resolve) => {
+    const check = () => {
+      if (isIdle()) resolve();
+      else requestAnimationFrame(check);
+    };
+    requestAnimationFrame(check);
+  });
+}
+
+/** The page's numbers and settings, as plain data. */
+function snapshot() {
+  const m = state.stats;
+  return {
+    ready: state.ready,
+    running: state.running,
+    name: state.name,
+    sample: state.sample,
+    width: m?.width ?? 0,
+    height: m?.height ?? 0,
+    seed: m ? String(m.seed) : null,
+    iteration: m?.iteration ?? 0,
+    logPosterior: m?.logPosterior ?? NaN,
+    bestLogPosterior: m?.bestLogPosterior ?? NaN,
+    initialLogPosterior: state.initialLogPosterior,
+    units: m?.units ?? 0,
+    bestUnits: m?.bestUnits ?? 0,
+    acceptance: m?.acceptance ?? NaN,
+    frames: state.frames,
+    traceLength: state.trace.iteration.length,
+    hasReference: Boolean(m?.hasReference),
+    settledAt: m?.settledAt ?? null,
+    improvedAt: m?.improvedAt ?? null,
+    settleWindow: m?.settleWindow ?? 0,
+    wings: m?.wings ?? null,
+    wingsDone: m?.wingsDone ?? 0,
+    wingsPredictionRate: m?.wingsPredictionRate ?? null,
+    stopWhenSettled: ui.stopSettled.checked,
+    show: state.show,
+    cloud: state.cloud,
+    scale: state.scale,
+    drawScale: state.drawScale,
+    view: state.viewport.view.state(),
+    room: state.hover.id,
+    roomPinned: state.hover.pinned,
+    ipf: state.ipf,
+    drawMs: state.drawMs,
+    painting: state.painting,
+    error: ui.message.hidden ? null : ui.messageText.textContent,
   };
 }

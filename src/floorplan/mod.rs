@@ -5,16 +5,18 @@
 //!
 //! * [`world`]: the world (units, doors, rooms, the frame), `world.json`, a person's edits,
 //!   and what is measured of a world (K(W,M), contacts between regions);
+//! * [`frontier`]: placeholders, the frontiers between free and unknown space, and what the
+//!   rules say lies beyond them;
 //! * [`knowledge`]: the Markov logic that types units and shapes the prior (a service to the
 //!   chain and the rooms);
+//! * [`rooms`]: the room layer, units grouped into rooms and typed;
 //! * [`chain`]: the Markov chain (its state over an incremental [`Explanation`], the kernels
 //!   and their schedule, the posterior, the trace and the settle rule), and the chain that
-//!   follows a growing map ([`online`]);
-//! * [`rooms`]: the room layer, units grouped into rooms and typed;
+//!   follows a growing map ([`online`]); its best world's rooms come from [`rooms`];
 //! * [`wings`]: a building whose walls run several ways, a chain per wing;
-//! * [`route`]: routes through the rooms and doors;
 //! * [`export`]: a finished run and its files (`world.json`, labels, the scene graph, GeoJSON,
 //!   SVG, the report), the same for the command line, the browser and Python ([`run`]);
+//! * [`route`]: routes through the rooms and doors of a finished run;
 //! * [`synth`]: generated floors with their truth.
 //!
 //! A [`World`] is what the chain samples and what every exporter writes; `world.json` is its

@@ -21,6 +21,7 @@
 //! natively and in wasm.
 
 use super::orientation::{wall_surface, WallDirection, WallProfile};
+use crate::grid::flood::{Flood, Neighbours};
 use crate::grid::{Cell, Grid};
 
 /// How the regions are found, in cells.
@@ -214,39 +215,26 @@ impl Sums {
 fn absorb_small_pieces(region: &mut Grid<u8>, min_area: usize) {
     let (w, h) = (region.width(), region.height());
     let mut seen = vec![false; w * h];
-    let mut piece = Vec::new();
+    let (mut flood, mut piece) = (Flood::default(), Vec::new());
     for start in 0..w * h {
         let k = region.cells()[start];
         if k == NO_REGION || seen[start] {
             continue;
         }
         piece.clear();
-        piece.push(start);
-        seen[start] = true;
         let mut around = std::collections::BTreeMap::<u8, usize>::new();
-        let mut i = 0;
-        while i < piece.len() {
-            let c = piece[i];
-            i += 1;
+        let cells = region.cells();
+        let mut enter = |n: usize| cells[n] == k && !std::mem::replace(&mut seen[n], true);
+        flood.fill(w, h, [start], Neighbours::Four, &mut enter, |c| {
+            piece.push(c);
             let (x, y) = (c % w, c / w);
-            let neighbours = [
-                (x > 0).then(|| c - 1),
-                (x + 1 < w).then(|| c + 1),
-                (y > 0).then(|| c - w),
-                (y + 1 < h).then(|| c + w),
-            ];
-            for n in neighbours.into_iter().flatten() {
-                let l = region.cells()[n];
-                if l == k {
-                    if !seen[n] {
-                        seen[n] = true;
-                        piece.push(n);
-                    }
-                } else if l != NO_REGION {
+            for (nx, ny) in [(x.wrapping_sub(1), y), (x + 1, y), (x, y.wrapping_sub(1)), (x, y + 1)] {
+                let l = if nx < w && ny < h { cells[ny * w + nx] } else { NO_REGION };
+                if l != k && l != NO_REGION {
                     *around.entry(l).or_default() += 1;
                 }
             }
-        }
+        });
         if piece.len() >= min_area {
             continue;
         }

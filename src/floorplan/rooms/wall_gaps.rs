@@ -32,6 +32,7 @@ use super::config::RoomCells;
 use super::frame::frame_cell;
 use crate::floorplan::world::World;
 use crate::geometry::Frame;
+use crate::grid::flood::{Flood, Neighbours};
 use crate::grid::{Cell, Grid};
 
 /// Cells of the world frame (row-major, `world_map`'s size) that close a wall gap. `depth` is
@@ -111,29 +112,20 @@ pub(crate) fn each_part(
     mut f: impl FnMut(&[usize], usize),
 ) {
     let mut seen = vec![false; w * h];
-    let (mut stack, mut part) = (Vec::new(), Vec::new());
+    let (mut flood, mut part) = (Flood::default(), Vec::new());
     for first in 0..w * h {
         if seen[first] || !start(first) {
             continue;
         }
-        seen[first] = true;
-        stack.push(first);
         part.clear();
         let (mut x0, mut y0, mut x1, mut y1) = (usize::MAX, usize::MAX, 0, 0);
-        while let Some(i) = stack.pop() {
+        // `start` implies `member`: the first cell enters as the others do.
+        let mut enter = |j: usize| !seen[j] && member(j) && !std::mem::replace(&mut seen[j], true);
+        flood.fill(w, h, [first], Neighbours::Eight, &mut enter, |i| {
             part.push(i);
             let (x, y) = (i % w, i / w);
             (x0, y0, x1, y1) = (x0.min(x), y0.min(y), x1.max(x), y1.max(y));
-            for ny in y.saturating_sub(1)..=(y + 1).min(h - 1) {
-                for nx in x.saturating_sub(1)..=(x + 1).min(w - 1) {
-                    let j = ny * w + nx;
-                    if !seen[j] && member(j) {
-                        seen[j] = true;
-                        stack.push(j);
-                    }
-                }
-            }
-        }
+        });
         f(&part, (x1 - x0 + 1).max(y1 - y0 + 1));
     }
 }

@@ -22,6 +22,7 @@
 //! recall the share of true links predicted.
 
 use super::metrics::MIN_SEGMENT_CELLS;
+use crate::grid::flood::{Flood, Neighbours};
 use crate::grid::Grid;
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -67,34 +68,22 @@ pub fn truth_links(truth: &Grid<u32>, free: &Grid<bool>) -> BTreeSet<Link> {
     let line = |i: usize| truth.cells()[i] == 0 && free.cells()[i];
     let mut seen = vec![false; w * h];
     let mut links = BTreeSet::new();
-    let mut stack = Vec::new();
+    let mut flood = Flood::default();
     for start in 0..w * h {
         if seen[start] || !line(start) {
             continue;
         }
-        seen[start] = true;
-        stack.push(start);
+        // The line's 8-connected part, and the big truth rooms beside its cells (4-neighbours).
         let mut touched = BTreeSet::new();
-        while let Some(i) = stack.pop() {
-            let (x, y) = ((i % w) as i64, (i / w) as i64);
-            for dy in -1..=1i64 {
-                for dx in -1..=1i64 {
-                    let (nx, ny) = (x + dx, y + dy);
-                    if (dx, dy) == (0, 0) || nx < 0 || ny < 0 || nx >= w as i64 || ny >= h as i64 {
-                        continue;
-                    }
-                    let j = ny as usize * w + nx as usize;
-                    let l = truth.cells()[j];
-                    if (dx == 0 || dy == 0) && big.contains(&l) {
-                        touched.insert(l);
-                    }
-                    if !seen[j] && line(j) {
-                        seen[j] = true;
-                        stack.push(j);
-                    }
+        let mut enter = |j: usize| !seen[j] && line(j) && !std::mem::replace(&mut seen[j], true);
+        flood.fill(w, h, [start], Neighbours::Eight, &mut enter, |i| {
+            let (x, y) = (i % w, i / w);
+            for (nx, ny) in [(x.wrapping_sub(1), y), (x + 1, y), (x, y.wrapping_sub(1)), (x, y + 1)] {
+                if nx < w && ny < h && big.contains(&truth.cells()[ny * w + nx]) {
+                    touched.insert(truth.cells()[ny * w + nx]);
                 }
             }
-        }
+        });
         let touched: Vec<u32> = touched.into_iter().collect();
         for (k, &a) in touched.iter().enumerate() {
             for &b in &touched[k + 1..] {

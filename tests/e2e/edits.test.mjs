@@ -79,15 +79,8 @@ async function expectAlert(page, pattern) {
   await page.waitForFunction(([src]) => !document.getElementById('message').hidden && new RegExp(src).test(document.getElementById('message-text').textContent), [pattern.source], { timeout: 10_000 });
 }
 
-test('edit rooms: retype, name, merge, undo, export/import, Reset, bad imports', async () => {
-  const page = await openPage(env, 'mapper.html?sample=office-small&seed=3&ipf=1000');
-  await page.waitForFunction(() => window.__ksmcmc.snapshot().width > 0);
-  await idle(page);
-  await steps(page, 6);
-  let w = await world(page);
-  assert.ok(w.rooms.length >= 3, `the chain found rooms: ${w.rooms.length}`);
-
-  // Select a room on the map, retype it to hall and name it.
+/** Selects a room on the map, retypes it to hall and names it: the edit list shows both edits. */
+async function retypeAndName(page, w) {
   const target = w.rooms.find((r) => r.type !== 'hall') ?? w.rooms[0];
   const p = inside(w, target.id);
   await clickCell(page, p);
@@ -106,9 +99,13 @@ test('edit rooms: retype, name, merge, undo, export/import, Reset, bad imports',
   ];
   assert.deepEqual(await editsJson(page), two);
   assert.equal(await page.locator('#edit-list li').count(), 2);
+  return { p, two };
+}
 
+/** After more steps the room at `p` is a hall named Kitchen, in the world and its Rooms row. */
+async function checkNamed(page, p) {
   await steps(page, 3);
-  w = await world(page);
+  const w = await world(page);
   const named = w.rooms.find((r) => r.id === at(w, p));
   assert.ok(named, `a room at ${p}`);
   assert.equal(named.type, 'hall');
@@ -116,8 +113,11 @@ test('edit rooms: retype, name, merge, undo, export/import, Reset, bad imports',
   const row = page.locator(`#rooms tr[data-room="${named.id}"]`);
   assert.equal(await row.getAttribute('data-type'), 'hall');
   assert.match(await row.textContent(), /Kitchen/);
+  return w;
+}
 
-  // Merge two neighbouring rooms: select one by its Rooms row, then click the other on the map.
+/** Merges two neighbouring rooms (one selected by its Rooms row, the other clicked on the map): one room fewer. */
+async function mergeOnMap(page, w, two) {
   const a = w.rooms.find((r) => r.opens_to.length > 0);
   assert.ok(a, 'a room with a neighbour');
   const b = a.opens_to[0];
@@ -139,8 +139,11 @@ test('edit rooms: retype, name, merge, undo, export/import, Reset, bad imports',
   assert.ok(w.rooms.length < before, `merging drops the room count: ${before} → ${w.rooms.length}`);
   assert.equal(at(w, pa), at(w, pb), 'both points lie in one room');
   assert.ok(at(w, pa) > 0);
+  return { w, three };
+}
 
-  // Merge from the keyboard: Enter on a Rooms row selects it, Merge with…, Enter on another row.
+/** Merges from the keyboard (Enter on a Rooms row, Merge with…, Enter on another row): the fourth edit merges them. */
+async function mergeByKeyboard(page, w) {
   const c = w.rooms.find((r) => r.opens_to.length > 0);
   assert.ok(c, 'a room with a neighbour after the merge');
   await page.focus(`#rooms tr[data-room="${c.id}"]`);
@@ -155,8 +158,10 @@ test('edit rooms: retype, name, merge, undo, export/import, Reset, bad imports',
   assert.equal(four[3].op, 'merge');
   assert.equal(at(w, four[3].at[0]), c.id);
   assert.equal(at(w, four[3].at[1]), c.opens_to[0]);
+}
 
-  // Undo (button, then Ctrl+Z) takes off the last edit each time.
+/** Undo (button, then Ctrl+Z) takes off the last edit each time. */
+async function undoThrice(page, two, three) {
   await page.click('#edit-undo');
   await page.waitForFunction(() => window.__ksmcmc.edits.length === 3);
   assert.deepEqual(await editsJson(page), three);
@@ -166,8 +171,10 @@ test('edit rooms: retype, name, merge, undo, export/import, Reset, bad imports',
   await key(page, 'Control+z');
   await page.waitForFunction(() => window.__ksmcmc.edits.length === 1);
   assert.deepEqual(await editsJson(page), two.slice(0, 1));
+}
 
-  // Split by dragging a line on the map.
+/** Splits by dragging a line on the map through `p`: the line shows while dragging and goes once the split is made. */
+async function splitByDragging(page, p, two) {
   await page.click('#edit-split');
   await page.locator('#map').scrollIntoViewIfNeeded();
   const box = await page.locator('#map').boundingBox();
@@ -184,8 +191,10 @@ test('edit rooms: retype, name, merge, undo, export/import, Reset, bad imports',
   await page.waitForFunction(() => window.__ksmcmc.edits.length === 2);
   assert.deepEqual(await editsJson(page), [two[0], { op: 'split', line: [from, to] }]);
   assert.equal(await page.getAttribute('.edit-line', 'data-split'), '', 'the line goes once the split is made');
+}
 
-  // Export, clear, import: the same list.
+/** Export, clear, import: the same list. */
+async function exportClearImport(page) {
   const exported = await download(page, '#edit-export');
   assert.equal(exported.name, 'edits.json');
   const kept = await editsJson(page);
@@ -196,6 +205,35 @@ test('edit rooms: retype, name, merge, undo, export/import, Reset, bad imports',
   await page.setInputFiles('#edit-import', { name: 'edits.json', mimeType: 'application/json', buffer: exported.bytes });
   await page.waitForFunction((n) => window.__ksmcmc.edits.length === n, kept.length);
   assert.deepEqual(await editsJson(page), kept);
+  return kept;
+}
+
+/** Bad imports show an alert and change nothing. */
+async function badImports(page, kept) {
+  await page.setInputFiles('#edit-import', { name: 'bad.json', mimeType: 'application/json', buffer: Buffer.from('not json') });
+  await expectAlert(page, /not JSON/);
+  await page.setInputFiles('#edit-import', { name: 'off.json', mimeType: 'application/json', buffer: Buffer.from('[{"op":"type","at":[99999,5],"type":"hall"}]') });
+  await expectAlert(page, /\S/);
+  await page.waitForFunction(() => !/not JSON/.test(document.getElementById('message-text').textContent));
+  assert.deepEqual(await editsJson(page), kept);
+  await page.click('#message-close');
+}
+
+test('edit rooms: retype, name, merge, undo, export/import, Reset, bad imports', async () => {
+  const page = await openPage(env, 'mapper.html?sample=office-small&seed=3&ipf=1000');
+  await page.waitForFunction(() => window.__ksmcmc.snapshot().width > 0);
+  await idle(page);
+  await steps(page, 6);
+  let w = await world(page);
+  assert.ok(w.rooms.length >= 3, `the chain found rooms: ${w.rooms.length}`);
+
+  const { p, two } = await retypeAndName(page, w);
+  w = await checkNamed(page, p);
+  const merged = await mergeOnMap(page, w, two);
+  await mergeByKeyboard(page, merged.w);
+  await undoThrice(page, two, merged.three);
+  await splitByDragging(page, p, two);
+  const kept = await exportClearImport(page);
 
   // Reset keeps the edits.
   await key(page, 'r');
@@ -204,14 +242,7 @@ test('edit rooms: retype, name, merge, undo, export/import, Reset, bad imports',
   assert.deepEqual(await editsJson(page), kept);
   assert.equal(await page.locator('#edit-list li').count(), kept.length);
 
-  // Bad imports show an alert and change nothing.
-  await page.setInputFiles('#edit-import', { name: 'bad.json', mimeType: 'application/json', buffer: Buffer.from('not json') });
-  await expectAlert(page, /not JSON/);
-  await page.setInputFiles('#edit-import', { name: 'off.json', mimeType: 'application/json', buffer: Buffer.from('[{"op":"type","at":[99999,5],"type":"hall"}]') });
-  await expectAlert(page, /\S/);
-  await page.waitForFunction(() => !/not JSON/.test(document.getElementById('message-text').textContent));
-  assert.deepEqual(await editsJson(page), kept);
-  await page.click('#message-close');
+  await badImports(page, kept);
 
   // The section fits a 390 px phone.
   await page.setViewportSize({ width: 390, height: 800 });

@@ -116,6 +116,98 @@ async function openMapper(query = '') {
   return page;
 }
 
+/** A map with no free space, a map of one cell, a map far over the cell limit, a PNG: an alert each, and the first map stays shown. */
+async function badMapsChangeNothing(page, before, shown) {
+  await page.setInputFiles('#file', { name: 'walls.pgm', mimeType: 'image/x-portable-graymap', buffer: pgm(30, 30, new Array(900).fill(0)) });
+  await expectAlert(page, /no free cells/);
+  await page.setInputFiles('#file', { name: 'one.pgm', mimeType: 'image/x-portable-graymap', buffer: pgm(1, 1, [254]) });
+  await expectAlert(page, /1x1 cells, smaller than the smallest unit/);
+  await page.setInputFiles('#file', { name: 'huge.pgm', mimeType: 'image/x-portable-graymap', buffer: Buffer.from('P5\n100000 100000\n255\n') });
+  await expectAlert(page, /over the limit/);
+  await page.setInputFiles('#file', { name: 'notes.png', mimeType: 'image/png', buffer: Buffer.from('hello') });
+  await expectAlert(page, /not an occupancy map/);
+  const now = await snap(page);
+  assert.deepEqual([now.name, now.width, now.height], [before.name, before.width, before.height], 'still the first map');
+  assert.deepEqual(await pixels(page, '#map'), shown, 'still showing it');
+}
+
+/** NaN and negative settings (seed, iterations per frame, chain config JSON) each show their alert. */
+async function badSettings(page) {
+  for (const [field, value, pattern] of [
+    ['#seed', '-3', /Seed: "-3" is not a whole number/],
+    ['#seed', 'NaN', /Seed: "NaN" is not a whole number/],
+  ]) {
+    await page.fill(field, value);
+    await page.click('#reset');
+    await expectAlert(page, pattern);
+    await dismiss(page);
+  }
+  await page.fill('#seed', '1');
+  for (const value of ['-5', 'NaN', '2.5', '0']) {
+    await page.fill('#ipf', value);
+    await page.click('#step');
+    await expectAlert(page, /Iterations per frame: .* is not allowed/);
+    await dismiss(page);
+  }
+  await page.fill('#ipf', 'auto');
+  await page.click('summary');
+  for (const [config, pattern] of [
+    ['{"posterior": {"temperature": NaN}}', /NaN and Infinity are not numbers in JSON/],
+    ['{"posterior": {"temperature": -1}}', /temperature -1 must be a positive number/],
+    ['{"output": {"samples": -10}}', /invalid value: integer `-10`/],
+    ['{"posterior": {"temprature": 2}}', /unknown field `posterior.temprature`/],
+    ['{"posterior": ', /chain config/],
+  ]) {
+    await page.fill('#config', config);
+    await page.click('#reset');
+    await expectAlert(page, pattern);
+  }
+  await page.fill('#config', '');
+}
+
+/** World files that do not parse, or name units outside the map, show an alert and give no reference. */
+async function badWorlds(page) {
+  const world = (w) => ({ name: 'world.json', mimeType: 'application/json', buffer: Buffer.from(w) });
+  await page.setInputFiles('#world-file', world('{"format": "ksmcmc-world/1", "units": ['));
+  await expectAlert(page, /world\.json: /);
+  const truth = JSON.parse(readFileSync(join(SAMPLE, 'truth.json'), 'utf8'));
+  const x = truth.units[0].x;
+  truth.units[0].x = 395;
+  await page.setInputFiles('#world-file', world(JSON.stringify(truth)));
+  await expectAlert(page, /lies outside the 400x300 world/);
+  const rotated = readFileSync(join(REPO, 'samples/office-rotated/truth.json'), 'utf8');
+  await page.setInputFiles('#world-file', world(rotated));
+  await expectAlert(page, /explains a 479x419 map, but the map is 400x300/);
+  truth.doors[0].units = [1, 99];
+  truth.units[0].x = x;
+  await page.setInputFiles('#world-file', world(JSON.stringify(truth)));
+  await expectAlert(page, /names unit 99, which does not exist/);
+  assert.equal((await snap(page)).hasReference, false);
+  assert.equal(await page.isDisabled('#show-reference'), true);
+}
+
+/** Still working after the alerts: the chain steps, a good world shows, a good map clears the message. */
+async function stillWorking(page) {
+  await page.fill('#ipf', '300');
+  await page.click('#step');
+  await until(page, (s, v) => s.iteration === v, 300);
+  await page.setInputFiles('#world-file', { name: 'truth.json', mimeType: 'application/json', buffer: readFileSync(join(SAMPLE, 'truth.json')) });
+  await page.waitForSelector('#message', { state: 'hidden' });
+  const now = await snap(page);
+  assert.equal(now.hasReference, true);
+  assert.equal(now.show, 'reference');
+  await settled(page);
+  assert.ok((await pixels(page, '#map')).blue > 1000, 'the reference world is drawn');
+  await page.setInputFiles('#file', [join(REPO, 'samples/two-corridors/map.yaml'), join(REPO, 'samples/two-corridors/map.pgm')]);
+  await until(page, (s, v) => s.width === v, 520);
+  assert.equal(await page.isVisible('#message'), false);
+  assert.match(await page.textContent('#map-name'), /map\.yaml \+ map\.pgm/);
+  // The sample list no longer claims the sample.
+  assert.equal(await page.inputValue('#sample'), '');
+  assert.match(await page.$eval('#sample', (s) => s.selectedOptions[0].textContent), /opened or painted map/);
+  assert.equal((await snap(page)).hasReference, false, 'a 400x300 reference does not fit the new map');
+}
+
 describe('Live mapper', () => {
   test('runs a sample for two seconds: the log posterior rises, units appear, the page stays responsive', async () => {
     const page = await openMapper();
@@ -312,90 +404,10 @@ describe('Live mapper', () => {
     const page = await openMapper();
     const before = await snap(page);
     const shown = await pixels(page, '#map');
-
-    // A map with no free space, a map of one cell, a map far over the cell limit.
-    await page.setInputFiles('#file', { name: 'walls.pgm', mimeType: 'image/x-portable-graymap', buffer: pgm(30, 30, new Array(900).fill(0)) });
-    await expectAlert(page, /no free cells/);
-    await page.setInputFiles('#file', { name: 'one.pgm', mimeType: 'image/x-portable-graymap', buffer: pgm(1, 1, [254]) });
-    await expectAlert(page, /1x1 cells, smaller than the smallest unit/);
-    await page.setInputFiles('#file', { name: 'huge.pgm', mimeType: 'image/x-portable-graymap', buffer: Buffer.from('P5\n100000 100000\n255\n') });
-    await expectAlert(page, /over the limit/);
-    await page.setInputFiles('#file', { name: 'notes.png', mimeType: 'image/png', buffer: Buffer.from('hello') });
-    await expectAlert(page, /not an occupancy map/);
-    let now = await snap(page);
-    assert.deepEqual([now.name, now.width, now.height], [before.name, before.width, before.height], 'still the first map');
-    assert.deepEqual(await pixels(page, '#map'), shown, 'still showing it');
-
-    // NaN and negative settings.
-    for (const [field, value, pattern] of [
-      ['#seed', '-3', /Seed: "-3" is not a whole number/],
-      ['#seed', 'NaN', /Seed: "NaN" is not a whole number/],
-    ]) {
-      await page.fill(field, value);
-      await page.click('#reset');
-      await expectAlert(page, pattern);
-      await dismiss(page);
-    }
-    await page.fill('#seed', '1');
-    for (const value of ['-5', 'NaN', '2.5', '0']) {
-      await page.fill('#ipf', value);
-      await page.click('#step');
-      await expectAlert(page, /Iterations per frame: .* is not allowed/);
-      await dismiss(page);
-    }
-    await page.fill('#ipf', 'auto');
-    await page.click('summary');
-    for (const [config, pattern] of [
-      ['{"posterior": {"temperature": NaN}}', /NaN and Infinity are not numbers in JSON/],
-      ['{"posterior": {"temperature": -1}}', /temperature -1 must be a positive number/],
-      ['{"output": {"samples": -10}}', /invalid value: integer `-10`/],
-      ['{"posterior": {"temprature": 2}}', /unknown field `posterior.temprature`/],
-      ['{"posterior": ', /chain config/],
-    ]) {
-      await page.fill('#config', config);
-      await page.click('#reset');
-      await expectAlert(page, pattern);
-    }
-    await page.fill('#config', '');
-
-    // World files that do not parse, or name units outside the map.
-    const world = (w) => ({ name: 'world.json', mimeType: 'application/json', buffer: Buffer.from(w) });
-    await page.setInputFiles('#world-file', world('{"format": "ksmcmc-world/1", "units": ['));
-    await expectAlert(page, /world\.json: /);
-    const truth = JSON.parse(readFileSync(join(SAMPLE, 'truth.json'), 'utf8'));
-    const x = truth.units[0].x;
-    truth.units[0].x = 395;
-    await page.setInputFiles('#world-file', world(JSON.stringify(truth)));
-    await expectAlert(page, /lies outside the 400x300 world/);
-    const rotated = readFileSync(join(REPO, 'samples/office-rotated/truth.json'), 'utf8');
-    await page.setInputFiles('#world-file', world(rotated));
-    await expectAlert(page, /explains a 479x419 map, but the map is 400x300/);
-    truth.doors[0].units = [1, 99];
-    truth.units[0].x = x;
-    await page.setInputFiles('#world-file', world(JSON.stringify(truth)));
-    await expectAlert(page, /names unit 99, which does not exist/);
-    assert.equal((await snap(page)).hasReference, false);
-    assert.equal(await page.isDisabled('#show-reference'), true);
-
-    // Still working: the chain steps, a good world shows, a good map clears the message.
-    await page.fill('#ipf', '300');
-    await page.click('#step');
-    await until(page, (s, v) => s.iteration === v, 300);
-    await page.setInputFiles('#world-file', { name: 'truth.json', mimeType: 'application/json', buffer: readFileSync(join(SAMPLE, 'truth.json')) });
-    await page.waitForSelector('#message', { state: 'hidden' });
-    now = await snap(page);
-    assert.equal(now.hasReference, true);
-    assert.equal(now.show, 'reference');
-    await settled(page);
-    assert.ok((await pixels(page, '#map')).blue > 1000, 'the reference world is drawn');
-    await page.setInputFiles('#file', [join(REPO, 'samples/two-corridors/map.yaml'), join(REPO, 'samples/two-corridors/map.pgm')]);
-    await until(page, (s, v) => s.width === v, 520);
-    assert.equal(await page.isVisible('#message'), false);
-    assert.match(await page.textContent('#map-name'), /map\.yaml \+ map\.pgm/);
-    // The sample list no longer claims the sample.
-    assert.equal(await page.inputValue('#sample'), '');
-    assert.match(await page.$eval('#sample', (s) => s.selectedOptions[0].textContent), /opened or painted map/);
-    assert.equal((await snap(page)).hasReference, false, 'a 400x300 reference does not fit the new map');
+    await badMapsChangeNothing(page, before, shown);
+    await badSettings(page);
+    await badWorlds(page);
+    await stillWorking(page);
     await done(page);
   });
 

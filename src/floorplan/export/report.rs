@@ -45,7 +45,8 @@ pub fn add_rooms(r: &mut serde_json::Value, world: &World, labels: &Grid<u16>) {
 
 /// [`report`] without `rooms`, which needs the room labels: a caller short of memory can
 /// drop the chain before computing them ([`crate::floorplan::export::RoomInput`]) and then
-/// [`add_rooms`].
+/// [`add_rooms`]. `map` is the map the chain was made for: the wall directions are read off
+/// the chain's own Hough profile ([`Chain::wall_profile`]) when it has one.
 pub fn summary(chain: &Chain, map: &OccupancyMap, world: &World, seconds: f64) -> serde_json::Value {
     report_of(&ChainSummary::of(chain, seconds), map, world, chain.wall_profile())
 }

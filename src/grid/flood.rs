@@ -91,6 +91,19 @@ impl Flood {
     }
 }
 
+/// The neighbours of cell `i` (by index) of a `width` x `height` grid that lie inside it: left,
+/// right, up, down.
+///
+/// ```
+/// use ksmcmc::grid::flood::neighbours4;
+/// // Cell 0 of a 3x2 grid (its top-left corner) has a right and a lower neighbour.
+/// assert_eq!(neighbours4(0, 3, 2).collect::<Vec<_>>(), [1, 3]);
+/// assert_eq!(neighbours4(4, 3, 2).collect::<Vec<_>>(), [3, 5, 1]);
+/// ```
+pub fn neighbours4(i: usize, width: usize, height: usize) -> impl Iterator<Item = usize> {
+    steps4(i, width, height).into_iter().filter(|s| s.0).map(|s| s.1)
+}
+
 /// The four neighbours of cell `i` of a `width` x `height` grid, left, right, up, down, each
 /// with whether it lies inside the grid (the index of one outside is meaningless).
 fn steps4(i: usize, width: usize, height: usize) -> [(bool, usize); 4] {

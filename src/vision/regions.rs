@@ -21,7 +21,7 @@
 //! natively and in wasm.
 
 use super::orientation::{wall_surface, WallDirection, WallProfile};
-use crate::grid::flood::{Flood, Neighbours};
+use crate::grid::flood::{neighbours4, Flood, Neighbours};
 use crate::grid::{Cell, Grid};
 
 /// How the regions are found, in cells.
@@ -227,9 +227,7 @@ fn absorb_small_pieces(region: &mut Grid<u8>, min_area: usize) {
         let mut enter = |n: usize| cells[n] == k && !std::mem::replace(&mut seen[n], true);
         flood.fill(w, h, [start], Neighbours::Four, &mut enter, |c| {
             piece.push(c);
-            let (x, y) = (c % w, c / w);
-            for (nx, ny) in [(x.wrapping_sub(1), y), (x + 1, y), (x, y.wrapping_sub(1)), (x, y + 1)] {
-                let l = if nx < w && ny < h { cells[ny * w + nx] } else { NO_REGION };
+            for l in neighbours4(c, w, h).map(|n| cells[n]) {
                 if l != k && l != NO_REGION {
                     *around.entry(l).or_default() += 1;
                 }

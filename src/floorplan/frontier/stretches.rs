@@ -17,7 +17,7 @@
 //! turned into cells with the map's resolution.
 
 use crate::floorplan::world::{Door, World};
-use crate::grid::flood::{wavefront, Flood, Neighbours};
+use crate::grid::flood::{neighbours4, wavefront, Flood, Neighbours};
 use crate::grid::morphology::{dilate, erode};
 use crate::grid::{Cell, Grid};
 
@@ -142,14 +142,6 @@ fn unseen_space(map: &Grid<Cell>, resolution: f64) -> Vec<bool> {
         }
     }
     unseen
-}
-
-/// The cells left, right, above and below cell `i` of a `w` x `h` grid.
-fn neighbours4(i: usize, w: usize, h: usize) -> impl Iterator<Item = usize> {
-    let (x, y) = (i % w, i / w);
-    [(x > 0).then(|| i - 1), (x + 1 < w).then(|| i + 1), (y > 0).then(|| i - w), (y + 1 < h).then(|| i + w)]
-        .into_iter()
-        .flatten()
 }
 
 /// `[x0, y0, x1, y1]` (inclusive) of the map's occupied cells; `None` if it has none.

@@ -12,7 +12,7 @@ use super::frame::world_cell;
 use super::wall_gaps::WallReading;
 use crate::floorplan::world::World;
 
-use crate::grid::flood::{labelled_wavefront, Flood, Neighbours};
+use crate::grid::flood::{labelled_wavefront, neighbours4, Flood, Neighbours};
 use crate::grid::{Cell, Grid};
 use std::collections::VecDeque;
 
@@ -169,8 +169,7 @@ fn part_surroundings(labels: &Grid<u16>, map: &Grid<Cell>, part: &[u32], n: usiz
         }
         let b = &mut border[part[i] as usize];
         let mut inside = 0;
-        for (nx, ny) in neighbours4(i % w, i / w, w, h) {
-            let j = ny * w + nx;
+        for j in neighbours4(i, w, h) {
             let lj = labels.cells()[j];
             inside += u32::from(lj == l);
             b.0 |= lj != 0 && lj != l;
@@ -444,13 +443,6 @@ pub fn split_at_wall_gaps(labels: &mut Grid<u16>, closed: &Grid<Cell>, c: &RoomC
     }
     let (seed, cores) = find_cores(labels, |i| closed.cells()[i] == Cell::Free);
     divide_among_cores(labels, &seed, &cores, c.min_core_cells);
-}
-
-/// The 4-neighbours of `(x, y)` within a `w` x `h` grid.
-fn neighbours4(x: usize, y: usize, w: usize, h: usize) -> impl Iterator<Item = (usize, usize)> {
-    [(x.wrapping_sub(1), y), (x + 1, y), (x, y.wrapping_sub(1)), (x, y + 1)]
-        .into_iter()
-        .filter(move |&(nx, ny)| nx < w && ny < h)
 }
 
 /// Cores: the 4-connected parts of labelled cells with `is_core` and one label. Returns each

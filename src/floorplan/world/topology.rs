@@ -22,7 +22,7 @@
 //! recall the share of true links predicted.
 
 use super::metrics::MIN_SEGMENT_CELLS;
-use crate::grid::flood::{Flood, Neighbours};
+use crate::grid::flood::{neighbours4, Flood, Neighbours};
 use crate::grid::Grid;
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -77,12 +77,7 @@ pub fn truth_links(truth: &Grid<u32>, free: &Grid<bool>) -> BTreeSet<Link> {
         let mut touched = BTreeSet::new();
         let mut enter = |j: usize| !seen[j] && line(j) && !std::mem::replace(&mut seen[j], true);
         flood.fill(w, h, [start], Neighbours::Eight, &mut enter, |i| {
-            let (x, y) = (i % w, i / w);
-            for (nx, ny) in [(x.wrapping_sub(1), y), (x + 1, y), (x, y.wrapping_sub(1)), (x, y + 1)] {
-                if nx < w && ny < h && big.contains(&truth.cells()[ny * w + nx]) {
-                    touched.insert(truth.cells()[ny * w + nx]);
-                }
-            }
+            touched.extend(neighbours4(i, w, h).map(|j| truth.cells()[j]).filter(|l| big.contains(l)));
         });
         let touched: Vec<u32> = touched.into_iter().collect();
         for (k, &a) in touched.iter().enumerate() {

@@ -466,10 +466,10 @@ impl Chain {
         }
         // The walls' Hough profile, kept for the wings and the report (the same map's).
         let walls = config.detectors.rotation_deg.is_none().then(|| vision::orientation::WallProfile::of(classified));
-        let angle = match (config.detectors.rotation_deg, &walls) {
-            (Some(deg), _) => deg.to_radians(),
-            (None, walls) => {
-                let a = walls.as_ref().map_or(0.0, |w| w.dominant_angle());
+        let angle = match config.detectors.rotation_deg {
+            Some(deg) => deg.to_radians(),
+            None => {
+                let a = walls.as_ref().map_or(0.0, vision::orientation::WallProfile::dominant_angle);
                 // Below half a degree the resampling would only blur the map.
                 if a.abs() < 0.5f64.to_radians() {
                     0.0

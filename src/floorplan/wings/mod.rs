@@ -108,11 +108,12 @@ impl Wings {
         let mut first = Chain::new(map, config.clone(), seed)?;
         first.step(iterations);
         let (mut world, mut labels) = first.best_world_with_rooms(rooms)?;
-        let layout = match first.wall_profile() {
-            Some(profile) => WingLayout::find_from(map.classified(), profile, &labels, first.frame().angle, wing),
-            None => WingLayout::find(map.classified(), &labels, first.frame().angle, wing),
-        };
-        let Some(layout) = layout.filter(|_| config.detectors.rotation_deg.is_none()) else {
+        // A given rotation keeps one chain; otherwise the chain has the walls' profile.
+        let layout = first
+            .wall_profile()
+            .filter(|_| config.detectors.rotation_deg.is_none())
+            .and_then(|profile| WingLayout::find_from(map.classified(), profile, &labels, first.frame().angle, wing));
+        let Some(layout) = layout else {
             let wing_of = labels.map(|&l| if l > 0 { 0 } else { NO_REGION });
             return Ok(Wings { chains: vec![first], wing_of, world, labels });
         };

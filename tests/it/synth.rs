@@ -539,6 +539,76 @@ fn clutter_and_wall_gaps_follow_the_config() {
 }
 
 #[test]
+fn glass_lets_rays_through_and_out_and_leaves_the_truth() {
+    // Quiet maps with a margin of 1.5 m outside the building, so rays have room to fan out.
+    let base = SynthConfig { margin: 30, ..quiet() };
+    let glazed = SynthConfig { glass: 0.5, ..base.clone() };
+    let (mut outside_free, mut ring_free, mut ring) = (0usize, 0usize, 0usize);
+    for seed in 0..4 {
+        let (plain, glass) = (gen(&base, seed), gen(&glazed, seed));
+        // The layout is drawn before the scan: the truth is the same, only the map differs.
+        assert_eq!(plain.truth, glass.truth, "seed {seed}");
+        let inside = |s: &Synthetic, x: i32, y: i32| s.truth.units.iter().any(|u| u.rect().contains(x, y));
+        let building = glass.truth.units.iter().fold(glass.truth.units[0].rect(), |a, u| {
+            let r = u.rect();
+            let (x0, y0) = (a.x.min(r.x), a.y.min(r.y));
+            Rect::new(x0, y0, a.right().max(r.right()) - x0, a.bottom().max(r.bottom()) - y0)
+        });
+        for y in 0..glass.labels.height() as i32 {
+            for x in 0..glass.labels.width() as i32 {
+                let beyond =
+                    x < building.x - 2 || y < building.y - 2 || x > building.right() + 1 || y > building.bottom() + 1;
+                if beyond {
+                    assert_ne!(map_cell(&plain, x, y), Some(Cell::Free), "seed {seed}: free outside without glass");
+                    outside_free += usize::from(map_cell(&glass, x, y) == Some(Cell::Free));
+                }
+            }
+        }
+        // Wall cells next to a unit's ring (one cell outwards): free only where glass is,
+        // or a door.
+        for u in &glass.truth.units {
+            let r = u.rect();
+            for x in r.x..r.right() {
+                for y in [r.y - 1, r.bottom()] {
+                    if !inside(&glass, x, y) {
+                        ring += 1;
+                        ring_free += usize::from(map_cell(&glass, x, y) == Some(Cell::Free));
+                    }
+                }
+            }
+        }
+    }
+    assert!(outside_free > 200, "glass let {outside_free} cells outside read free");
+    let f = ring_free as f64 / ring as f64;
+    // Doors alone free a few per cent of the walls; half a pane per metre of 1 - 3 m, every
+    // other column crossed, frees far more.
+    assert!(f > 0.2 && f < 0.95, "glass freed {f:.3} of the wall cells beside the units");
+}
+
+#[test]
+fn open_hubs_are_arches_as_wide_as_the_shared_wall() {
+    let c = SynthConfig { width: 600, halls: 1, ..quiet() };
+    let arches = SynthConfig { open_hubs: 1.0, ..c.clone() };
+    for seed in 0..4 {
+        let (doors, open) = (gen(&c, seed), gen(&arches, seed));
+        let hubs = |s: &Synthetic, d: &ksmcmc::floorplan::Door| {
+            d.units.iter().all(|&u| matches!(s.truth.units[u as usize - 1].kind, UnitType::Corridor | UnitType::Hall))
+        };
+        let len = |d: &ksmcmc::floorplan::Door| (d.x1 - d.x0).abs().max((d.y1 - d.y0).abs()) + 1;
+        let mut seen = 0;
+        for (a, b) in doors.truth.doors.iter().zip(&open.truth.doors).filter(|(a, _)| hubs(&doors, a)) {
+            assert_eq!(a.units, b.units);
+            // A door is at most 1.2 m (24 cells); the arch spans the corridor's width (at least
+            // 1.5 m) but the two cells kept at either end.
+            assert!(len(a) <= 24, "seed {seed}: door {a:?}");
+            assert!(len(b) >= 30 - 4 && len(b) > len(a), "seed {seed}: arch {b:?} against door {a:?}");
+            seen += 1;
+        }
+        assert!(seen >= 1, "seed {seed}: no opening between hubs");
+    }
+}
+
+#[test]
 fn outputs_have_the_promised_formats() {
     let c = SynthConfig { resolution: 0.1, ..SynthConfig::default() };
     let s = gen(&c, 4);

@@ -12,6 +12,7 @@ mod frontier_eval;
 mod goals_eval;
 mod info;
 mod mln;
+mod realistic_eval;
 mod render;
 mod route;
 mod score;

@@ -36,6 +36,10 @@ Options (override the config file, whose fields are documented in the library's 
   --wall-roughness P    probability of a free cell beside an occupied one reading
                         occupied (default 0.05)
   --wall-gaps P         probability per wall cell of a gap starting (default 0.004)
+  --glass F             glass panes per metre of wall the laser sees through, rays fanning
+                        out of the building through outer ones (default 0)
+  --open-hubs P         probability of an open arch, not a door, between two corridors or a
+                        corridor and a hall (default 0)
   --print-config        print the effective config as JSON and exit
   -h, --help            this text
 ";
@@ -107,7 +111,7 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
 }
 
 /// The options that override one config field.
-const OVERRIDES: [&str; 14] = [
+const OVERRIDES: [&str; 16] = [
     "width",
     "height",
     "resolution",
@@ -122,6 +126,8 @@ const OVERRIDES: [&str; 14] = [
     "speckle",
     "wall-roughness",
     "wall-gaps",
+    "glass",
+    "open-hubs",
 ];
 
 /// The override of option `--name` (one of [`OVERRIDES`]) with value `v`.
@@ -186,6 +192,14 @@ fn field_override(name: &str, v: OsString) -> Result<Override, CliError> {
         "wall-gaps" => {
             let v = args::value(&flag, v)?;
             Box::new(move |c| c.wall_gaps = v)
+        }
+        "glass" => {
+            let v = args::value(&flag, v)?;
+            Box::new(move |c| c.glass = v)
+        }
+        "open-hubs" => {
+            let v = args::value(&flag, v)?;
+            Box::new(move |c| c.open_hubs = v)
         }
         other => unreachable!("--{other} is not in OVERRIDES"),
     })

@@ -87,6 +87,16 @@ pub struct SynthConfig {
     /// Probability, per door of an unexplored unit into an explored one, that the robot looked
     /// in through it, leaving a fan of free cells (default 0.5).
     pub peek: f64,
+    /// Glass panes per metre of the walls of explored units, 0 to 1 (default 0). A pane is 1 to
+    /// 3 m of wall the laser sees through: half its wall columns read free, as rays crossed
+    /// them, and where the pane is in the building's outer wall the rays fan out into the
+    /// outside for 1 to 4 m, now and then ending on an occupied cell (a tree, a car). Panes
+    /// between an explored and an unexplored unit stay opaque. The truth keeps the wall.
+    pub glass: f64,
+    /// Probability, per opening between two hubs (a corridor and a hall, or two corridors),
+    /// that it is an open arch as wide as their shared wall allows rather than a door, 0 to 1
+    /// (default 0).
+    pub open_hubs: f64,
 }
 
 impl Default for SynthConfig {
@@ -117,6 +127,8 @@ impl Default for SynthConfig {
             clutter: 0.03,
             unexplored: 0.0,
             peek: 0.5,
+            glass: 0.0,
+            open_hubs: 0.0,
         }
     }
 }
@@ -161,6 +173,7 @@ pub(super) struct Cells {
     pub hall: Span,
     pub other: Span,
     pub door: Span,
+    pub open_hubs: f64,
 }
 
 impl SynthConfig {
@@ -286,6 +299,7 @@ impl SynthConfig {
             hall,
             other,
             door,
+            open_hubs: self.open_hubs,
         })
     }
 
@@ -369,6 +383,8 @@ impl SynthConfig {
             ("clutter", self.clutter, 0.5),
             ("unexplored", self.unexplored, 1.0),
             ("peek", self.peek, 1.0),
+            ("glass", self.glass, 1.0),
+            ("open_hubs", self.open_hubs, 1.0),
         ] {
             if !p.is_finite() || !(0.0..=hi).contains(&p) {
                 return err(name, format!("is {p}; accepted: 0 to {hi}"));

@@ -534,7 +534,11 @@ fn doors(spaces: &[Space], c: &Cells, extra_doors: f64, rng: &mut Rng) -> Result
     let mut openings = Vec::new();
     for (ct, _) in contacts.iter().zip(&chosen).filter(|(_, &ch)| ch) {
         let room = ct.hi - ct.lo - 2 * DOOR_CLEARANCE;
-        let len = rng.between(c.door.lo, c.door.hi).min(room);
+        // An open arch between two hubs; the draw is skipped when arches are off, so that
+        // configs without them keep their bytes.
+        let arch =
+            c.open_hubs > 0.0 && is_hub(spaces[ct.a].kind) && is_hub(spaces[ct.b].kind) && rng.chance(c.open_hubs);
+        let len = if arch { room } else { rng.between(c.door.lo, c.door.hi).min(room) };
         let along = rng.between(ct.lo + DOOR_CLEARANCE, ct.hi - DOOR_CLEARANCE - len);
         openings.push(Opening { a: ct.a, b: ct.b, vertical: ct.vertical, wall: ct.wall, along, len });
     }

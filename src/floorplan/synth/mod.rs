@@ -183,6 +183,8 @@ fn noise_of(config: &SynthConfig) -> scan::Noise {
         wall_gaps: config.wall_gaps,
         clutter: config.clutter,
         peek: config.peek,
+        glass: config.glass * config.resolution,
+        resolution: config.resolution,
     }
 }
 

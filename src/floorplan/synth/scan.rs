@@ -31,6 +31,11 @@ pub(super) struct Noise {
     pub wall_gaps: f64,
     pub clutter: f64,
     pub peek: f64,
+    /// Chance per wall cell that a glass pane starts there (panes per metre times metres per
+    /// cell).
+    pub glass: f64,
+    /// Metres per cell, for the panes' and rays' lengths.
+    pub resolution: f64,
 }
 
 /// A world-frame observation.
@@ -65,6 +70,9 @@ pub(super) fn observe(plan: &Plan, explored: &[bool], c: &Cells, noise: &Noise, 
     mark_seen_walls(&mut cells, &kind, t);
     if noise.wall_gaps > 0.0 {
         cut_wall_gaps(&mut cells, &kind, plan, noise.wall_gaps, t, rng);
+    }
+    if noise.glass > 0.0 {
+        glaze(&mut cells, &kind, &labels, plan, explored, noise, t, rng);
     }
 
     // Furniture in explored rooms and halls.
@@ -150,19 +158,121 @@ fn mark_seen_walls(cells: &mut Grid<Cell>, kind: &Grid<u8>, t: i32) {
     }
 }
 
+/// The four sides of a unit's interior `r` as (first wall cell, step along, step across
+/// outwards, length).
+type Side = ((i32, i32), (i32, i32), (i32, i32), i32);
+
+fn sides(r: Rect) -> [Side; 4] {
+    [
+        ((r.x, r.y - 1), (1, 0), (0, -1), r.w),
+        ((r.x, r.bottom()), (1, 0), (0, 1), r.w),
+        ((r.x - 1, r.y), (0, 1), (-1, 0), r.h),
+        ((r.right(), r.y), (0, 1), (1, 0), r.h),
+    ]
+}
+
+/// Glass panes in the walls of explored units ([`SynthConfig::glass`](super::SynthConfig)):
+/// a pane is 1 to 3 m of wall; across it, each wall column a ray crossed (one in two: glass
+/// reflects the rays that meet it head-on and lets the slanting ones through) reads
+/// free. Where the pane is in the outer wall, each such ray runs on from the unit's centre
+/// through the column into the outside for 1 to 4 m, reading free, and half of them end on an
+/// occupied cell. A pane whose far side is an unexplored unit stays as it was: the robot never
+/// looked through it from there, and its rays would reveal a room the truth calls unseen.
+#[allow(clippy::too_many_arguments)]
+fn glaze(
+    cells: &mut Grid<Cell>,
+    kind: &Grid<u8>,
+    labels: &Grid<u16>,
+    plan: &Plan,
+    explored: &[bool],
+    noise: &Noise,
+    t: i32,
+    rng: &mut Rng,
+) {
+    let to_cells = |m: f64| (libm::round(m / noise.resolution) as i32).max(1);
+    let (pane, reach) = ((to_cells(1.0), to_cells(3.0)), (to_cells(1.0), to_cells(4.0)));
+    for (s, _) in plan.spaces.iter().zip(explored).filter(|(_, &e)| e) {
+        let r = s.inner;
+        let centre = (r.x as f64 + r.w as f64 / 2.0, r.y as f64 + r.h as f64 / 2.0);
+        for ((x0, y0), (dx, dy), (ox, oy), len) in sides(r) {
+            let mut i = 0;
+            while i < len {
+                if !rng.chance(noise.glass) {
+                    i += 1;
+                    continue;
+                }
+                let n = rng.between(pane.0, pane.1);
+                for j in i..(i + n).min(len) {
+                    let (x, y) = (x0 + dx * j, y0 + dy * j);
+                    let beyond = (x + ox * t, y + oy * t);
+                    let outer = match kind.get(beyond.0 as i64, beyond.1 as i64) {
+                        None | Some(&OUTSIDE) => true,
+                        Some(&INTERIOR) => {
+                            let l = *labels.at(beyond.0 as usize, beyond.1 as usize);
+                            if !explored[l as usize - 1] {
+                                continue;
+                            }
+                            false
+                        }
+                        Some(_) => continue,
+                    };
+                    if !rng.chance(0.5) {
+                        continue;
+                    }
+                    for k in 0..t {
+                        let (wx, wy) = (x + ox * k, y + oy * k);
+                        if kind.get(wx as i64, wy as i64) == Some(&WALL) {
+                            *cells.at_mut(wx as usize, wy as usize) = Cell::Free;
+                        }
+                    }
+                    if outer {
+                        let length = rng.between(reach.0, reach.1) as f64;
+                        let ends_on_something = rng.chance(0.5);
+                        ray_outside(cells, kind, centre, beyond, length, ends_on_something);
+                    }
+                }
+                i += n;
+            }
+        }
+    }
+}
+
+/// A ray from `centre` through cell `from` (just outside the wall), marking the outside
+/// cells it crosses free for `length` cells past `from`; the last one occupied when
+/// `ends_on_something`. It stops at the canvas edge or at anything that is not outside.
+fn ray_outside(
+    cells: &mut Grid<Cell>,
+    kind: &Grid<u8>,
+    centre: (f64, f64),
+    from: (i32, i32),
+    length: f64,
+    ends_on_something: bool,
+) {
+    let (fx, fy) = (from.0 as f64 + 0.5, from.1 as f64 + 0.5);
+    let (vx, vy) = (fx - centre.0, fy - centre.1);
+    let norm = libm::sqrt(vx * vx + vy * vy).max(1e-9);
+    let (ux, uy) = (vx / norm, vy / norm);
+    let mut last = None;
+    let mut d = 0.0;
+    while d <= length {
+        let (x, y) = (libm::floor(fx + ux * d) as i64, libm::floor(fy + uy * d) as i64);
+        if kind.get(x, y) != Some(&OUTSIDE) {
+            break;
+        }
+        *cells.at_mut(x as usize, y as usize) = Cell::Free;
+        last = Some((x as usize, y as usize));
+        d += 0.5;
+    }
+    if let (Some((x, y)), true) = (last, ends_on_something) {
+        *cells.at_mut(x, y) = Cell::Occupied;
+    }
+}
+
 /// Gaps (glass, dark surfaces): runs of 2 to 8 cells along each unit side, starting at each
 /// cell with chance `rate`, read unknown across the whole wall.
 fn cut_wall_gaps(cells: &mut Grid<Cell>, kind: &Grid<u8>, plan: &Plan, rate: f64, t: i32, rng: &mut Rng) {
     for s in &plan.spaces {
-        let r = s.inner;
-        // (start, step along, offset across outwards, length)
-        let sides = [
-            ((r.x, r.y - 1), (1, 0), (0, -1), r.w),
-            ((r.x, r.bottom()), (1, 0), (0, 1), r.w),
-            ((r.x - 1, r.y), (0, 1), (-1, 0), r.h),
-            ((r.right(), r.y), (0, 1), (1, 0), r.h),
-        ];
-        for ((x0, y0), (dx, dy), (ox, oy), len) in sides {
+        for ((x0, y0), (dx, dy), (ox, oy), len) in sides(s.inner) {
             let mut i = 0;
             while i < len {
                 if !rng.chance(rate) {

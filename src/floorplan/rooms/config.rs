@@ -86,6 +86,14 @@ impl Default for RoomConfig {
 /// stray half a cell), 6 at 2.5 cm.
 pub const STUB_NOISE_M: f64 = 0.15;
 
+/// The thickest a piece of wall shorter than [`RoomConfig::min_wall_len_m`] may be, m: 0.2 m,
+/// an office wall (10 - 15 cm) with its scanned faces. Such a piece, three times as long as
+/// this or more, is a wall ([`super::wall_gaps::walls`]): the wall between a door and a corner,
+/// or between a door and a glass pane, is often under 2 m, and read as clutter it left the
+/// wall open there (rooms merged with the corridor on generated offices with glass and
+/// arches). Chairs, desks and cupboards are blobs, not lines.
+pub const WALL_PIECE_THICK_M: f64 = 0.2;
+
 /// The room layer's settings in cells of one map: [`RoomConfig`] turned into cells once, from
 /// the map's resolution ([`RoomConfig::cells`]). The stages of the room layer read these.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -138,6 +146,8 @@ pub(crate) struct RoomCells {
     /// walls only, a doorway is a narrowing between walls ([`super::segments::split_open_at_doorways`]), and only
     /// walls close the boundary between two units ([`open_pairs`]). ([`RoomConfig::min_wall_len_m`])
     pub min_wall_len: u32,
+    /// The thickest a piece of wall may be, in cells ([`WALL_PIECE_THICK_M`], rounded down).
+    pub wall_piece_thick: u32,
     /// Whether the clutter inside a room (occupied parts that are no walls, and unseen specks:
     /// [`RoomCells::min_wall_len`]) gets the room's label, as a person colours a room on a
     /// floor plan under its furniture. Only parts that one room's cells enclose are labelled,
@@ -243,6 +253,7 @@ impl RoomConfig {
             min_wall_stub: len(self.min_wall_stub_m),
             stub_noise: libm::floor(STUB_NOISE_M / r + 1e-9) as u32,
             min_wall_len: len(self.min_wall_len_m),
+            wall_piece_thick: libm::floor(WALL_PIECE_THICK_M / r + 1e-9) as u32,
             clutter_in_rooms: self.clutter_in_rooms,
         }
     }

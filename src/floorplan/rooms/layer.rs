@@ -179,7 +179,8 @@ impl RoomLayer {
     /// [`crate::floorplan::wings::WingLayout::compose`]) that are openings within one room, on
     /// `map` (the classified map in its own frame) at `resolution` metres per cell.
     pub fn mark_openings(&self, world: &mut World, map: &Grid<Cell>, resolution: f64) {
-        let walls = without_clutter(map, self.config.cells(resolution).min_wall_len);
+        let c = self.config.cells(resolution);
+        let walls = without_clutter(map, c.min_wall_len, c.wall_piece_thick);
         super::openings::mark_openings(world, &walls, resolution);
     }
 }

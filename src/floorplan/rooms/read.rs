@@ -40,7 +40,7 @@ pub(crate) fn mark_unexplored(rooms: &mut [Room], labels: &Grid<u16>, map: &Grid
     // Parts of at most SPECK_M drawn free ([`super::wall_gaps::without_clutter`] with parts
     // shorter than one cell more).
     let speck = (SPECK_M / resolution).floor().min(u32::MAX as f64) as u32 + 1;
-    let depth = super::segments::free_depth(&super::wall_gaps::without_clutter(map, speck));
+    let depth = super::segments::free_depth(&super::wall_gaps::without_clutter(map, speck, 0));
     let mut counts = vec![(0u64, 0u64); usize::from(u16::MAX) + 1];
     for (i, (&l, c)) in labels.cells().iter().zip(map.cells()).enumerate() {
         if l != 0 && *c == Cell::Free {

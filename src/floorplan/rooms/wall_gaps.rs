@@ -45,7 +45,7 @@ pub fn wall_gaps(world_map: &Grid<Cell>, c: &RoomCells, depth: usize) -> Vec<boo
         return gaps;
     }
     let cells = world_map.cells();
-    let wall = walls(world_map, c.min_wall_len as usize);
+    let wall = walls(world_map, c.min_wall_len as usize, c.wall_piece_thick as usize);
     for y in 0..h {
         let line = Line {
             len: w,
@@ -74,12 +74,13 @@ pub fn wall_gaps(world_map: &Grid<Cell>, c: &RoomCells, depth: usize) -> Vec<boo
 }
 
 /// Which cells are walls: occupied cells of a connected part at least `min_len` cells long or
-/// wide. Parts are 8-connected through occupied cells and unknown cells next to them (within
+/// wide, or a piece of wall: a line, straight or bent, no thicker than `piece_thick` cells and
+/// at least three times that long ([`line_like`]; 0 turns pieces off). Parts are 8-connected through occupied cells and unknown cells next to them (within
 /// [`HOLE_REACH`]), so a wall that a scan saw in pieces, with unseen cells in it, is one part;
 /// smaller parts (chairs, the dots of a drawn table, specks amid free space) are no wall a gap
 /// could close onto, no jamb of a doorway and no wall between two units (see
 /// [`RoomCells::min_wall_len`]).
-pub(crate) fn walls(map: &Grid<Cell>, min_len: usize) -> Vec<bool> {
+pub(crate) fn walls(map: &Grid<Cell>, min_len: usize, piece_thick: usize) -> Vec<bool> {
     let (w, h) = (map.width(), map.height());
     let cells = map.cells();
     let mut wall = vec![false; w * h];
@@ -93,7 +94,7 @@ pub(crate) fn walls(map: &Grid<Cell>, min_len: usize) -> Vec<bool> {
         |i| cells[i] == Cell::Occupied,
         joins,
         |part, extent| {
-            if extent >= min_len {
+            if extent >= min_len || (piece_thick > 0 && line_like(part, w, extent, piece_thick)) {
                 part.iter().filter(|&&i| cells[i] == Cell::Occupied).for_each(|&i| wall[i] = true);
             }
         },
@@ -128,6 +129,25 @@ pub(crate) fn each_part(
         });
         f(&part, (x1 - x0 + 1).max(y1 - y0 + 1));
     }
+}
+
+/// Whether a part (cell indices of a `w`-wide grid, `extent` its longer side) is a piece of
+/// wall: a line, straight or bent, no thicker than `thick` cells (no more cells than its
+/// bounding box's two sides times that) and at least three times as long as that. A piece of
+/// wall between a door and a corner, or between a door and a glass pane, is; a chair, a desk
+/// or a cupboard is a blob (a filled shape whose sides both reach twice `thick` has more
+/// cells than the bound).
+fn line_like(part: &[usize], w: usize, extent: usize, thick: usize) -> bool {
+    let thick = thick.max(1);
+    if extent < 3 * thick {
+        return false;
+    }
+    let (mut x0, mut y0, mut x1, mut y1) = (usize::MAX, usize::MAX, 0, 0);
+    for &i in part {
+        let (x, y) = (i % w, i / w);
+        (x0, y0, x1, y1) = (x0.min(x), y0.min(y), x1.max(x), y1.max(y));
+    }
+    part.len() <= thick * (x1 - x0 + 1 + y1 - y0 + 1)
 }
 
 /// How far, in cells, an unknown cell may lie from an occupied one and still join the parts of
@@ -331,7 +351,7 @@ impl WallReading {
     /// Reads the walls of `map` (in its own frame) and `world_map` (the same map in the
     /// world's frame), with the wall gaps along `angles` too.
     pub(crate) fn new(world: &World, map: &Grid<Cell>, world_map: &Grid<Cell>, c: &RoomCells, angles: &[f64]) -> Self {
-        let open = without_clutter(map, c.min_wall_len);
+        let open = without_clutter(map, c.min_wall_len, c.wall_piece_thick);
         let closed = close_wall_gaps_along(world, map, world_map, c, angles);
         WallReading { open, closed }
     }
@@ -348,7 +368,7 @@ impl WallReading {
         if world_map == map {
             std::borrow::Cow::Borrowed(&self.open)
         } else {
-            std::borrow::Cow::Owned(without_clutter(world_map, c.min_wall_len))
+            std::borrow::Cow::Owned(without_clutter(world_map, c.min_wall_len, c.wall_piece_thick))
         }
     }
 }
@@ -358,8 +378,8 @@ impl WallReading {
 /// drawn free: chairs, the dots of a drawn table, a bin, cells a scan missed. A doorway
 /// is a narrowing between walls; the gaps between the chairs round a table are none, and
 /// the free space they ring is part of the room, not a room behind a door.
-pub(crate) fn without_clutter(map: &Grid<Cell>, min_wall_len: u32) -> Grid<Cell> {
-    let wall = super::wall_gaps::walls(map, min_wall_len as usize);
+pub(crate) fn without_clutter(map: &Grid<Cell>, min_wall_len: u32, piece_thick: u32) -> Grid<Cell> {
+    let wall = super::wall_gaps::walls(map, min_wall_len as usize, piece_thick as usize);
     let specks = unknown_specks(map, min_wall_len as usize);
     let mut out = map.clone();
     for ((cell, &is_wall), &speck) in out.cells_mut().iter_mut().zip(&wall).zip(&specks) {
@@ -512,6 +532,38 @@ mod tests {
         let c = RoomCells { door_half_width: 3, ..c };
         let gaps = wall_gaps(&map, &c, 3);
         assert!((11..30).all(|y| gaps[y * 60 + 20]));
+    }
+
+    #[test]
+    fn a_short_piece_of_wall_is_a_wall_a_chair_is_not() {
+        // An L-shaped piece of wall (a 30-cell arm and a 10-cell arm, 3 cells thick) under
+        // `min_wall_len` (40), a filled disc of 10 cells across (a chair) and a filled 30 x 12
+        // block (a desk); pieces up to 4 cells thick.
+        let mut map = Grid::new(100, 60, Cell::Free);
+        fill(&mut map, 10..40, 10..13, Cell::Occupied);
+        fill(&mut map, 10..13, 13..23, Cell::Occupied);
+        for y in 40..50 {
+            for x in 10..20 {
+                let (dx, dy) = (x as f64 - 14.5, y as f64 - 44.5);
+                if dx * dx + dy * dy <= 25.0 {
+                    *map.at_mut(x, y) = Cell::Occupied;
+                }
+            }
+        }
+        fill(&mut map, 50..80, 40..52, Cell::Occupied);
+        let at = |w: &[bool], x: usize, y: usize| w[y * 100 + x];
+        let pieces = walls(&map, 40, 4);
+        assert!(at(&pieces, 20, 11) && at(&pieces, 11, 20), "the piece of wall");
+        assert!(!at(&pieces, 14, 44), "the chair");
+        assert!(!at(&pieces, 60, 45), "the desk");
+        // Without pieces only parts of `min_wall_len` are walls.
+        assert!(!walls(&map, 40, 0).contains(&true));
+        // A piece shorter than three times the thickness (11 cells) is none: a speck.
+        let mut short = Grid::new(40, 20, Cell::Free);
+        fill(&mut short, 5..15, 5..8, Cell::Occupied);
+        assert!(!walls(&short, 40, 4).contains(&true));
+        fill(&mut short, 15..17, 5..8, Cell::Occupied);
+        assert!(walls(&short, 40, 4).contains(&true));
     }
 
     #[test]

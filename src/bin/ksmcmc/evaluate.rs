@@ -939,30 +939,11 @@ fn room_kinds() -> Vec<(&'static str, SynthConfig)> {
 /// Room count and types of one explained synthetic floor against its truth: (rooms, truth
 /// units, truth units matched, matched units whose room has their type).
 fn room_truth(s: &ksmcmc::floorplan::synth::Synthetic, o: &Opts, seed: u64) -> Result<[usize; 4], CliError> {
-    use std::collections::BTreeMap;
     let mut chain = explain(&s.map, o, seed)?;
     let (world, labels) = chain.best_world_with_rooms(&o.rooms).map_err(rooms_failed)?;
-    // Cells of each (truth unit index + 1, predicted room) pair.
-    let mut overlap: BTreeMap<(u16, u16), u64> = BTreeMap::new();
-    for (&t, &p) in s.labels.cells().iter().zip(labels.cells()) {
-        if t != 0 && p != 0 {
-            *overlap.entry((t, p)).or_default() += 1;
-        }
-    }
-    let mut best: BTreeMap<u16, (u64, u16)> = BTreeMap::new();
-    for (&(t, p), &n) in &overlap {
-        let b = best.entry(t).or_insert((0, p));
-        if n > b.0 {
-            *b = (n, p);
-        }
-    }
-    let mut right = 0;
-    for (&t, &(_, p)) in &best {
-        let truth_kind = s.truth.units.get(t as usize - 1).map(|u| u.kind);
-        let room_kind = world.rooms.iter().find(|r| r.id == p as u32).map(|r| r.kind);
-        right += (truth_kind.is_some() && truth_kind == room_kind) as usize;
-    }
-    Ok([world.rooms.len(), s.truth.units.len(), best.len(), right])
+    let (truth, labels) = (s.labels.map(|&l| l as u32), labels.map(|&l| l as u32));
+    let (matched, right) = crate::realistic_eval::units_typed_right(&world, &labels, &truth, &s.truth.units);
+    Ok([world.rooms.len(), s.truth.units.len(), matched, right])
 }
 
 /// The room layer against synthetic truth, knowledge against weak prior on the same floors

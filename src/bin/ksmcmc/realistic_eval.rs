@@ -22,9 +22,9 @@ use crate::args::{self, CliError};
 use ksmcmc::floorplan::metrics::score_segmentation;
 use ksmcmc::floorplan::rooms::{doors_in_one_room, RoomConfig};
 use ksmcmc::floorplan::synth::{generate, SynthConfig, Synthetic};
-use ksmcmc::floorplan::topology::{best_truth, contacts, Link};
+use ksmcmc::floorplan::topology::{predicted_links_along, Link};
 use ksmcmc::floorplan::wings::{WingConfig, Wings};
-use ksmcmc::floorplan::{ChainConfig, World};
+use ksmcmc::floorplan::{ChainConfig, Unit, World};
 use ksmcmc::grid::Grid;
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -97,22 +97,15 @@ fn truth_links(s: &Synthetic) -> BTreeSet<Link> {
         .collect()
 }
 
-/// Links between truth units whose standing segments touch along `min_contact` cell pairs.
-fn predicted_links(labels: &Grid<u32>, truth: &Grid<u32>, min_contact: usize) -> BTreeSet<Link> {
-    let stand_for = best_truth(labels, truth);
-    let mut by_unit: BTreeMap<Link, usize> = BTreeMap::new();
-    for ((a, b), n) in contacts(labels) {
-        if let (Some(&ta), Some(&tb)) = (stand_for.get(&a), stand_for.get(&b)) {
-            if ta != tb {
-                *by_unit.entry((ta.min(tb), ta.max(tb))).or_default() += n;
-            }
-        }
-    }
-    by_unit.into_iter().filter(|&(_, n)| n >= min_contact).map(|(l, _)| l).collect()
-}
-
-/// Matched truth units and those whose room has their type.
-fn types(world: &World, labels: &Grid<u32>, truth: &Grid<u32>, s: &Synthetic) -> (usize, usize) {
+/// Truth units matched to the predicted room overlapping them most (`labels` against `truth`,
+/// both non-zero, ties to the smaller room id), and of those the units whose room has their
+/// type (`units[t - 1]` is truth label `t`'s unit).
+pub(crate) fn units_typed_right(
+    world: &World,
+    labels: &Grid<u32>,
+    truth: &Grid<u32>,
+    units: &[Unit],
+) -> (usize, usize) {
     let mut overlap: BTreeMap<(u32, u32), usize> = BTreeMap::new();
     for (&t, &p) in truth.cells().iter().zip(labels.cells()) {
         if t != 0 && p != 0 {
@@ -129,8 +122,8 @@ fn types(world: &World, labels: &Grid<u32>, truth: &Grid<u32>, s: &Synthetic) ->
     let right = best
         .iter()
         .filter(|(&t, &(_, p))| {
-            let kind = s.truth.units[t as usize - 1].kind;
-            world.rooms.iter().any(|r| r.id == p && r.kind == kind)
+            let kind = units.get(t as usize - 1).map(|u| u.kind);
+            world.rooms.iter().any(|r| r.id == p && Some(r.kind) == kind)
         })
         .count();
     (best.len(), right)
@@ -146,11 +139,11 @@ fn floor(s: &Synthetic, config: &ChainConfig, rooms: &RoomConfig, iterations: u6
     let seg = score_segmentation(&labels, &truth);
     let resolution = s.map.yaml().resolution;
     let min_contact = libm::round(MIN_CONTACT_M / resolution).max(1.0) as usize;
-    let (t, p) = (truth_links(s), predicted_links(&labels, &truth, min_contact));
+    let (t, p) = (truth_links(s), predicted_links_along(&labels, &truth, min_contact));
     let hits = p.intersection(&t).count() as f64;
     let w = &wings.world;
     let doors = w.doors.iter().filter(|d| !d.opening).count();
-    let (units, typed_right) = types(w, &labels, &truth, s);
+    let (units, typed_right) = units_typed_right(w, &labels, &truth, &s.truth.units);
     Ok(Figures {
         precision: seg.precision,
         recall: seg.recall,

@@ -142,6 +142,12 @@ pub fn touching(labels: &Grid<u32>, min_contact: usize) -> BTreeSet<Link> {
 /// ([`best_truth`]) that touch, along at least [`MIN_CONTACT_CELLS`] counted over all the
 /// segments standing for the two rooms.
 pub fn predicted_links(predicted: &Grid<u32>, truth: &Grid<u32>) -> BTreeSet<Link> {
+    predicted_links_along(predicted, truth, MIN_CONTACT_CELLS)
+}
+
+/// [`predicted_links`] touching along at least `min_contact` pairs of 4-neighbours: half a
+/// metre at another map's resolution.
+pub fn predicted_links_along(predicted: &Grid<u32>, truth: &Grid<u32>, min_contact: usize) -> BTreeSet<Link> {
     let stand_for = best_truth(predicted, truth);
     let mut by_room: BTreeMap<Link, usize> = BTreeMap::new();
     for ((a, b), n) in contacts(predicted) {
@@ -151,7 +157,7 @@ pub fn predicted_links(predicted: &Grid<u32>, truth: &Grid<u32>) -> BTreeSet<Lin
             }
         }
     }
-    by_room.into_iter().filter(|&(_, n)| n >= MIN_CONTACT_CELLS).map(|(l, _)| l).collect()
+    by_room.into_iter().filter(|&(_, n)| n >= min_contact).map(|(l, _)| l).collect()
 }
 
 /// Scores the predicted segmentation's links against the truth's (see the module docs).

@@ -97,22 +97,22 @@ fn pin_dataset(relative: &str, pinned: u64) {
 #[test]
 fn pinned_synthetic() {
     let s = generate(&SynthConfig::default(), 7).expect("synth");
-    check("synth seed 7", &world_json(s.map, false), 0x40ab_0155_6631_3ef2);
+    check("synth seed 7", &world_json(s.map, false), 0x5781_f1a5_14d7_ebae);
 }
 
 #[test]
 fn pinned_cartesium() {
-    pin_dataset("radish/ubremen-cartesium.png", 0xad36_ab52_258f_f4e6);
+    pin_dataset("radish/ubremen-cartesium.png", 0x37da_8fb4_2261_c1d6);
 }
 
 #[test]
 fn pinned_lab_a() {
-    pin_dataset("bormann2016/lab_a_scan.png", 0xee49_8e7f_3ec3_f419);
+    pin_dataset("bormann2016/lab_a_scan.png", 0xbb9c_a441_fdf7_f1bf);
 }
 
 #[test]
 fn pinned_office_e() {
-    pin_dataset("bormann2016/office_e.png", 0xb9df_b5b3_e6d4_e8d9);
+    pin_dataset("bormann2016/office_e.png", 0x93cb_ae9f_2dcf_ec91);
 }
 
 #[test]

@@ -69,8 +69,9 @@ Prints the quality tables of BENCHMARKS.md:
   realistic  the room layer on generated floors drawn like real maps (open arches between
              hall and corridors, glass panes with rays fanning out, furniture along walls,
              wall gaps, rooms never entered) at 0.025, 0.05 and 0.10 m and rotated, K seeds
-             from 500 (held out from every choice): segmentation, door links, doors in one
-             room, room types and time, as `ksmcmc floorplan` at seed 1
+             from --synth-from (default 500: held out from every choice; 600 on are the
+             floors to look at): segmentation, door links, doors in one room, room types
+             and time, as `ksmcmc floorplan` at seed 1
 bormann also scores door topology: a truth link is a drawn doorway line on free map cells
 between two truth rooms; a predicted link is two segments, standing for the truth rooms they
 overlap most, touching along at least 10 free cells (see floorplan::topology).
@@ -119,11 +120,17 @@ struct Opts {
     /// Where `frontier` writes the frontier rules it learns.
     learn: Option<PathBuf>,
     /// The first generated floor's seed of the `rooms` set (300: the test floors; 310 - 321
-    /// were kept aside to choose the rules' evidence on).
-    synth_from: u64,
+    /// were kept aside to choose the rules' evidence on) and of the `realistic` set (500: held
+    /// out; 600 on for looking at failures), when given.
+    synth_from: Option<u64>,
 }
 
 impl Opts {
+    /// The `rooms` set's first seed: 300 unless given.
+    fn rooms_from(&self) -> u64 {
+        self.synth_from.unwrap_or(300)
+    }
+
     /// The same options with knowledge supervision switched on or off.
     fn with_knowledge(&self, enabled: bool) -> Opts {
         let mut config = self.config.clone();
@@ -951,7 +958,9 @@ fn room_truth(s: &ksmcmc::floorplan::synth::Synthetic, o: &Opts, seed: u64) -> R
 fn rooms(o: &Opts) -> Result<(), CliError> {
     println!(
         "\n### Rooms against synthetic truth ({} iterations, {} seeds per kind from {})\n",
-        o.iterations, o.seeds, o.synth_from
+        o.iterations,
+        o.seeds,
+        o.rooms_from()
     );
     println!("| kind | mode | rooms (truth units) | type accuracy (matched units) |");
     println!("|---|---|---|---|");
@@ -961,7 +970,7 @@ fn rooms(o: &Opts) -> Result<(), CliError> {
         for (m, enabled) in [true, false].into_iter().enumerate() {
             let mut sum = [0usize; 4];
             for seed in 0..o.seeds {
-                let s = generate(&synth, o.synth_from + seed).map_err(|e| args::failed(name, e))?;
+                let s = generate(&synth, o.rooms_from() + seed).map_err(|e| args::failed(name, e))?;
                 let r = room_truth(&s, &o.with_knowledge(enabled), seed + 1)?;
                 for (a, b) in sum.iter_mut().zip(r) {
                     *a += b;
@@ -1095,7 +1104,7 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
         rooms: RoomConfig::default(),
         more_rooms: Vec::new(),
         learn: None,
-        synth_from: 300,
+        synth_from: None,
     };
     let mut only: Option<String> = None;
     let mut rules: Option<String> = None;
@@ -1121,7 +1130,7 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
                 o.more_rooms.push((p.display().to_string(), room_config(&p)?));
             }
             Long("learn") => o.learn = Some(args::path(parser.value()?)),
-            Long("synth-from") => o.synth_from = args::value("--synth-from", parser.value()?)?,
+            Long("synth-from") => o.synth_from = Some(args::value("--synth-from", parser.value()?)?),
             Long("help") | Short('h') => {
                 print!("{HELP}");
                 return Ok(());
@@ -1202,7 +1211,7 @@ fn run_sets(dir: &Path, o: &Opts, only: Option<&str>) -> Result<(), CliError> {
         crate::settle_eval::settle(dir, &o.config, &o.rooms, o.seeds)?;
     }
     if want("realistic") {
-        crate::realistic_eval::realistic(&o.config, &o.rooms, o.iterations, o.seeds)?;
+        crate::realistic_eval::realistic(&o.config, &o.rooms, o.iterations, o.seeds, o.synth_from)?;
     }
 
     Ok(())

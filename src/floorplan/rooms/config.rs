@@ -148,6 +148,12 @@ pub(crate) struct RoomCells {
     pub min_wall_len: u32,
     /// The thickest a piece of wall may be, in cells ([`WALL_PIECE_THICK_M`], rounded down).
     pub wall_piece_thick: u32,
+    /// The longest part of a map, in cells, that is a speck ([`super::read::SPECK_M`], one
+    /// cell more than fits): the standing test and the passages look past it.
+    pub speck: u32,
+    /// How deep (chamfer units, 3 per cell) free space must be somewhere along a stretch where
+    /// two rooms touch for it to be a passage ([`super::passages::MIN_PASSAGE_M`]).
+    pub passage_depth: u32,
     /// Whether the clutter inside a room (occupied parts that are no walls, and unseen specks:
     /// [`RoomCells::min_wall_len`]) gets the room's label, as a person colours a room on a
     /// floor plan under its furniture. Only parts that one room's cells enclose are labelled,
@@ -254,6 +260,8 @@ impl RoomConfig {
             stub_noise: libm::floor(STUB_NOISE_M / r + 1e-9) as u32,
             min_wall_len: len(self.min_wall_len_m),
             wall_piece_thick: libm::floor(WALL_PIECE_THICK_M / r + 1e-9) as u32,
+            speck: super::read::speck_cells(r),
+            passage_depth: super::passages::passage_depth(r),
             clutter_in_rooms: self.clutter_in_rooms,
         }
     }

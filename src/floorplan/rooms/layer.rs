@@ -33,7 +33,7 @@ use super::config::{RoomCells, RoomConfig};
 use super::error::RoomError;
 use super::knowledge::RoomKnowledge;
 use super::pairs::{group_units, join, open_pairs_among, OpenPair};
-use super::read::{mark_unexplored, rooms_of_labels, unit_rooms};
+use super::read::{mark_unexplored_on, rooms_of_labels, unit_rooms};
 use super::segments::{labels_of_groups, labels_read};
 use super::wall_gaps::{without_clutter, WallReading};
 use crate::floorplan::edits::Edits;
@@ -163,7 +163,7 @@ impl RoomLayer {
             Grouping::Walls(_) => {
                 let groups: Vec<u16> = join(world, maps.world_map, []).into_iter().map(|g| u16::from(g > 0)).collect();
                 let labels = labels_read(world, &groups, maps.map, maps.world_map, c, &walls);
-                rooms_of_segments(world, &labels, maps, kb)?;
+                rooms_of_segments(world, &labels, maps, kb, &walls)?;
                 labels
             }
         };
@@ -217,26 +217,28 @@ fn by_units(
     let groups = join(world, world_map, joined);
     let mut labels = labels_read(world, &groups, map, world_map, c, read);
     edits.apply_to_labels(&mut labels, map);
-    rooms_of_segments(world, &labels, maps, knowledge)?;
+    rooms_of_segments(world, &labels, maps, knowledge, read)?;
     edits.apply_to_rooms(&mut world.rooms, &labels);
     Ok(labels)
 }
 
 /// Fills in `world.rooms` from the room `labels`: the rooms read off the labels
 /// ([`rooms_of_labels`]), typed by the indoor rules when `knowledge` is on
-/// ([`super::types::type_rooms`]), rays typed unknown ([`mark_unexplored`]).
+/// ([`super::types::type_rooms`]), rays typed unknown ([`mark_unexplored_on`], on the walls
+/// read already).
 fn rooms_of_segments(
     world: &mut World,
     labels: &Grid<u16>,
     maps: RoomMaps,
     knowledge: Option<&RoomKnowledge>,
+    walls: &WallReading,
 ) -> Result<(), RoomError> {
     world.rooms = rooms_of_labels(world, labels, maps.resolution);
     if let Some(k) = knowledge {
         super::types::type_rooms(world, labels, maps.resolution, k.types())
             .map_err(|e| RoomError::rules("typing the rooms", e))?;
     }
-    mark_unexplored(&mut world.rooms, labels, maps.map, maps.resolution);
+    mark_unexplored_on(&mut world.rooms, labels, maps.map, &walls.standing, maps.resolution);
     Ok(())
 }
 

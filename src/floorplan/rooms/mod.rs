@@ -16,6 +16,7 @@
 //! * `segments`: the label image: units' cells, a wavefront through free space, free regions
 //!   beyond every unit, splits at doorways and wall gaps, small segments joined;
 //! * `wall_gaps`: where a person closes a room whose wall stops short;
+//! * `passages`: rooms touch only where a person can pass, not through the holes of a wall;
 //! * `knowledge`: the room rules (`SameRoom`) and the evidence they are given;
 //! * `frame`: cells between the map's frame and the world's;
 //! * `layer`: the entry point, the grouping and the order of the stages;
@@ -36,6 +37,7 @@ mod knowledge;
 mod layer;
 mod openings;
 mod pairs;
+mod passages;
 mod read;
 mod segments;
 mod training;
@@ -47,7 +49,8 @@ pub use error::RoomError;
 pub use knowledge::{RoomKnowledge, BUILTIN_ROOM_RULES};
 pub use layer::{Grouping, RoomLayer, RoomMaps};
 pub use openings::doors_in_one_room;
-pub use read::STANDING_CLEARANCE_M;
+pub use passages::MIN_PASSAGE_M;
+pub use read::{SPECK_M, STANDING_CLEARANCE_M};
 pub use training::{room_training, truth_labels_from_pgm, RoomTraining};
 pub use types::{room_marginals, room_types, RoomTypes, TypeMarginals, UnitTypes};
 

@@ -1,10 +1,11 @@
 //! The rooms read off the label image: each unit belongs to the room that holds most of its
 //! free cells, a room's type is the type covering most of its cells, its doors are those whose
 //! cells it touches, it opens to every room it touches along a passable stretch
-//! ([`MIN_CONTACT_CELLS`]) or through a door, and rooms that are mostly rays are unexplored.
+//! ([`MIN_PASSAGE_M`]) or through a door, and rooms that are mostly rays are unexplored.
 
 use super::frame::world_cell;
-use crate::floorplan::topology::{touching, MIN_CONTACT_CELLS};
+use super::passages::MIN_PASSAGE_M;
+use crate::floorplan::topology::touching;
 use crate::floorplan::world::{Room, UnitType, World};
 use crate::grid::{Cell, Grid};
 use std::collections::{BTreeMap, BTreeSet};
@@ -19,9 +20,32 @@ pub const STANDING_CLEARANCE_M: f64 = 0.2;
 /// many per square metre as at 0.05 m, and no cell of a room lay 0.2 m from every speck.
 pub const SPECK_M: f64 = 0.1;
 
+/// [`mark_unexplored_on`] working out the map's [`standing_depth`] itself.
+#[cfg(test)]
+pub(crate) fn mark_unexplored(rooms: &mut [Room], labels: &Grid<u16>, map: &Grid<Cell>, resolution: f64) {
+    if (labels.width(), labels.height()) != (map.width(), map.height()) || resolution.is_nan() || resolution <= 0.0 {
+        return;
+    }
+    mark_unexplored_on(rooms, labels, map, &standing_depth(map, speck_cells(resolution)), resolution);
+}
+
+/// The longest part, in cells, that is a speck at `resolution` m per cell: [`SPECK_M`] in
+/// whole cells, one more than fits.
+pub(crate) fn speck_cells(resolution: f64) -> u32 {
+    (SPECK_M / resolution).floor().min(u32::MAX as f64) as u32 + 1
+}
+
+/// The free depth of `map` (a chamfer distance, [`super::segments::free_depth`]) with its
+/// specks of [`SPECK_M`] or less drawn free ([`super::wall_gaps::without_clutter`] with parts
+/// shorter than `speck` cells, [`speck_cells`]): how far a person standing on each cell is
+/// from what they would not stand beside.
+pub(crate) fn standing_depth(map: &Grid<Cell>, speck: u32) -> Vec<u32> {
+    super::segments::free_depth(&super::wall_gaps::without_clutter(map, speck, 0))
+}
+
 /// Types `unknown` the rooms that are mostly rays, not floor: fewer than a third of their
 /// free cells lie [`STANDING_CLEARANCE_M`] or more from every non-free cell of `map` (at
-/// `resolution` m per cell), specks of [`SPECK_M`] or less looked past. A range sensor looking through a window or an open door into
+/// `resolution` m per cell, `depth` its [`standing_depth`]), specks of [`SPECK_M`] or less looked past. A range sensor looking through a window or an open door into
 /// space nobody entered leaves a fan of one-cell rays with unseen cells between them; the
 /// room layer labels the fan (a segmentation labels every free cell, and the benchmark's
 /// truth draws such fans as regions too), but a person draws no room there and cannot say
@@ -31,16 +55,22 @@ pub const SPECK_M: f64 = 0.1;
 /// by their deep cells too, but deeper (6 cells) and by count, to decide whether they are
 /// rooms at all; at that depth several rooms of floor on Cartesium (half-seen offices, a
 /// junction) keep only 0.23 - 0.30 of their cells, so the two are not one test.
-pub(crate) fn mark_unexplored(rooms: &mut [Room], labels: &Grid<u16>, map: &Grid<Cell>, resolution: f64) {
-    if (labels.width(), labels.height()) != (map.width(), map.height()) || resolution.is_nan() || resolution <= 0.0 {
+pub(crate) fn mark_unexplored_on(
+    rooms: &mut [Room],
+    labels: &Grid<u16>,
+    map: &Grid<Cell>,
+    depth: &[u32],
+    resolution: f64,
+) {
+    if (labels.width(), labels.height()) != (map.width(), map.height())
+        || depth.len() != map.cells().len()
+        || resolution.is_nan()
+        || resolution <= 0.0
+    {
         return;
     }
     // Chamfer units: 3 per cell.
     let clearance = (3.0 * (STANDING_CLEARANCE_M / resolution).round()).min(u32::MAX as f64) as u32;
-    // Parts of at most SPECK_M drawn free ([`super::wall_gaps::without_clutter`] with parts
-    // shorter than one cell more).
-    let speck = (SPECK_M / resolution).floor().min(u32::MAX as f64) as u32 + 1;
-    let depth = super::segments::free_depth(&super::wall_gaps::without_clutter(map, speck, 0));
     let mut counts = vec![(0u64, 0u64); usize::from(u16::MAX) + 1];
     for (i, (&l, c)) in labels.cells().iter().zip(map.cells()).enumerate() {
         if l != 0 && *c == Cell::Free {
@@ -155,7 +185,10 @@ pub(crate) fn rooms_of_labels(world: &World, labels: &Grid<u16>, resolution: f64
         }
     }
     let door_rooms = door_rooms(world, labels);
-    let mut links: BTreeSet<(u32, u32)> = touching(&labels.map(|&l| l as u32), MIN_CONTACT_CELLS).into_iter().collect();
+    // Touching along a passage's width, [`MIN_PASSAGE_M`] (ten cells at 5 cm, as the link
+    // score's [`MIN_CONTACT_CELLS`](crate::floorplan::topology::MIN_CONTACT_CELLS)), at any resolution.
+    let min_contact = libm::round(MIN_PASSAGE_M / crate::grid::cell_size_m(resolution)).max(1.0) as usize;
+    let mut links: BTreeSet<(u32, u32)> = touching(&labels.map(|&l| l as u32), min_contact).into_iter().collect();
     for rooms in door_rooms.values() {
         for (i, &a) in rooms.iter().enumerate() {
             for &b in &rooms[i + 1..] {

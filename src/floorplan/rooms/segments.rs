@@ -5,7 +5,8 @@
 //! (door openings, corners the units miss, scan rays) join the nearest room by a wavefront
 //! through free space, as room-segmentation tools do; free regions beyond every unit's reach
 //! become rooms of their own when they are deep enough; then rooms are split at doorways and
-//! at wall gaps, and small segments join their neighbours.
+//! at wall gaps, small segments join their neighbours, and rooms touch only along passages
+//! ([`super::passages`]).
 
 use super::config::RoomCells;
 use super::frame::world_cell;
@@ -65,6 +66,7 @@ pub(crate) fn labels_read(
     if c.clutter_in_rooms {
         label_clutter(&mut labels, map, &walls.open);
     }
+    super::passages::seal_narrow_contacts(&mut labels, &walls.standing, c.passage_depth);
     labels
 }
 

@@ -345,6 +345,9 @@ pub(crate) struct WallReading {
     pub(crate) open: Grid<Cell>,
     /// The map with its wall gaps closed ([`close_wall_gaps_along`]).
     pub(crate) closed: Option<Grid<Cell>>,
+    /// The map's free depth with its specks looked past ([`super::read::standing_depth`]),
+    /// in the map's frame: where a person stands, and how wide a passage is.
+    pub(crate) standing: Vec<u32>,
 }
 
 impl WallReading {
@@ -353,7 +356,8 @@ impl WallReading {
     pub(crate) fn new(world: &World, map: &Grid<Cell>, world_map: &Grid<Cell>, c: &RoomCells, angles: &[f64]) -> Self {
         let open = without_clutter(map, c.min_wall_len, c.wall_piece_thick);
         let closed = close_wall_gaps_along(world, map, world_map, c, angles);
-        WallReading { open, closed }
+        let standing = super::read::standing_depth(map, c.speck);
+        WallReading { open, closed, standing }
     }
 
     /// `world_map` (the map these walls were read from, in the world's frame) with its clutter

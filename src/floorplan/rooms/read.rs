@@ -279,6 +279,30 @@ mod tests {
     use super::*;
 
     #[test]
+    fn rooms_open_onto_each_other_along_half_a_metre_at_any_resolution() {
+        // Two rooms, labels 1 and 2, side by side in a 40 x 20 grid, touching along 12 rows
+        // (rows 4..16) and parted by unlabelled cells elsewhere: 0.6 m at 5 cm cells, which
+        // opens one onto the other, 0.3 m at 2.5 cm, which does not.
+        let mut labels = Grid::new(40, 20, 0u16);
+        for y in 0..20 {
+            for x in 0..40 {
+                let open = (4..16).contains(&y);
+                *labels.at_mut(x, y) = match x {
+                    20 if !open => 0,
+                    x if x < 20 => 1,
+                    _ => 2,
+                };
+            }
+        }
+        let world = World::empty(40, 20);
+        let opens = |resolution: f64| {
+            rooms_of_labels(&world, &labels, resolution).iter().map(|r| r.opens_to.clone()).collect::<Vec<_>>()
+        };
+        assert_eq!(opens(0.05), [vec![2], vec![1]]);
+        assert_eq!(opens(0.025), [Vec::<u32>::new(), vec![]]);
+    }
+
+    #[test]
     fn rooms_of_rays_are_unexplored_rooms_of_floor_are_not() {
         // Room 1: 2 x 2 m of floor. Room 2: rays, every other column free, unseen between.
         let mut map = Grid::new(80, 40, Cell::Unknown);

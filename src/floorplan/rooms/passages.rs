@@ -54,8 +54,9 @@ pub(crate) fn seal_narrow_contacts(labels: &mut Grid<u16>, depth: &[u32], min_de
     }
     beside.sort_unstable();
     beside.dedup();
-    // `mark[i]` is 1 + the index of the pair whose cells are being parted, so no clearing.
-    let (mut mark, mut seen) = (vec![0usize; w * h], vec![0usize; w * h]);
+    // `mark[i]` is 1 + the index of the pair whose cells are being parted while cell i is one
+    // of them not yet in a stretch, and 0 once it is: no clearing between pairs.
+    let mut mark = vec![0usize; w * h];
     let (mut flood, mut part, mut sealed) = (Flood::default(), Vec::new(), Vec::new());
     for (k, run) in beside.chunk_by(|a, b| a.0 == b.0).enumerate() {
         let stamp = k + 1;
@@ -63,11 +64,11 @@ pub(crate) fn seal_narrow_contacts(labels: &mut Grid<u16>, depth: &[u32], min_de
             mark[i] = stamp;
         }
         for &(_, first) in run {
-            if seen[first] == stamp {
+            if mark[first] != stamp {
                 continue;
             }
             part.clear();
-            let mut enter = |j: usize| mark[j] == stamp && std::mem::replace(&mut seen[j], stamp) != stamp;
+            let mut enter = |j: usize| mark[j] == stamp && std::mem::replace(&mut mark[j], 0) == stamp;
             flood.fill(w, h, [first], Neighbours::Eight, &mut enter, |i| part.push(i));
             if part.iter().all(|&i| depth[i] < min_depth) {
                 sealed.extend_from_slice(&part);

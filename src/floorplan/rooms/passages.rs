@@ -21,6 +21,13 @@ use crate::grid::Grid;
 /// building codes allow (0.6 m and more). The link score counts the same half metre.
 pub const MIN_PASSAGE_M: f64 = 0.5;
 
+/// A passage of [`MIN_PASSAGE_M`] in whole cells of `resolution` m, at least one: how far two
+/// rooms touch to open onto each other (ten cells at 5 cm, as the link score's
+/// [`MIN_CONTACT_CELLS`](crate::floorplan::topology::MIN_CONTACT_CELLS)).
+pub(crate) fn passage_cells(resolution: f64) -> usize {
+    libm::round(MIN_PASSAGE_M / crate::grid::cell_size_m(resolution)).max(1.0) as usize
+}
+
 /// The depth (chamfer units, 3 per cell) the middle of a passage of [`MIN_PASSAGE_M`] reaches
 /// at `resolution` m per cell: half the passage in whole cells, at least one.
 pub(crate) fn passage_depth(resolution: f64) -> u32 {
@@ -174,5 +181,8 @@ mod tests {
         // Half of 0.5 m in whole cells: 5 at 5 cm, 3 at 10 cm (2.5 rounded up), 10 at 2.5 cm.
         let depths: Vec<u32> = [0.05, 0.1, 0.025].iter().map(|&r| passage_depth(r) / 3).collect();
         assert_eq!(depths, [5, 3, 10]);
+        // The whole passage: 10, 5 and 20 cells.
+        let cells: Vec<usize> = [0.05, 0.1, 0.025].iter().map(|&r| passage_cells(r)).collect();
+        assert_eq!(cells, [10, 5, 20]);
     }
 }

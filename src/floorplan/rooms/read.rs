@@ -1,10 +1,9 @@
 //! The rooms read off the label image: each unit belongs to the room that holds most of its
 //! free cells, a room's type is the type covering most of its cells, its doors are those whose
 //! cells it touches, it opens to every room it touches along a passable stretch
-//! ([`MIN_PASSAGE_M`]) or through a door, and rooms that are mostly rays are unexplored.
+//! ([`MIN_PASSAGE_M`](super::MIN_PASSAGE_M)) or through a door, and rooms that are mostly rays are unexplored.
 
 use super::frame::world_cell;
-use super::passages::MIN_PASSAGE_M;
 use crate::floorplan::topology::touching;
 use crate::floorplan::world::{Room, UnitType, World};
 use crate::grid::{Cell, Grid};
@@ -185,9 +184,8 @@ pub(crate) fn rooms_of_labels(world: &World, labels: &Grid<u16>, resolution: f64
         }
     }
     let door_rooms = door_rooms(world, labels);
-    // Touching along a passage's width, [`MIN_PASSAGE_M`] (ten cells at 5 cm, as the link
-    // score's [`MIN_CONTACT_CELLS`](crate::floorplan::topology::MIN_CONTACT_CELLS)), at any resolution.
-    let min_contact = libm::round(MIN_PASSAGE_M / crate::grid::cell_size_m(resolution)).max(1.0) as usize;
+    // Touching along a passage's width, at any resolution.
+    let min_contact = super::passages::passage_cells(resolution);
     let mut links: BTreeSet<(u32, u32)> = touching(&labels.map(|&l| l as u32), min_contact).into_iter().collect();
     for rooms in door_rooms.values() {
         for (i, &a) in rooms.iter().enumerate() {

@@ -102,12 +102,12 @@ fn pinned_synthetic() {
 
 #[test]
 fn pinned_cartesium() {
-    pin_dataset("radish/ubremen-cartesium.png", 0xb885_4bac_e042_13e5);
+    pin_dataset("radish/ubremen-cartesium.png", 0x8f60_5374_6096_6a61);
 }
 
 #[test]
 fn pinned_lab_a() {
-    pin_dataset("bormann2016/lab_a_scan.png", 0xbb9c_a441_fdf7_f1bf);
+    pin_dataset("bormann2016/lab_a_scan.png", 0xcfee_5093_95dc_27b9);
 }
 
 #[test]

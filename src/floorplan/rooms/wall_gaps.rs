@@ -7,11 +7,12 @@
 //! into the room, and the room layer then labels room and corridor as one segment.
 //!
 //! This module finds those gaps. In the world frame, where walls run along the axes, a *gap*
-//! is a run of free cells along a row or a column, at most [`RoomCells::max_wall_gap`] cells
-//! long, between two ends of walls of that line, at least one of them a *stub*: a wall lying
+//! is a run of free cells along a row or a column (unseen cells on it too: the tip of a wall
+//! a scan missed), at most [`RoomCells::max_wall_gap`] cells long, between two ends of walls of that line, at least one of them a *stub*: a wall lying
 //! along the line for [`RoomCells::min_wall_stub`] cells or more and somewhere no deeper
 //! across it than a wall (a desk is deep all along). The other end may be a stub or a
-//! *corner*, a wall meeting the line from one side. Three things a person would not close
+//! *corner*, a wall meeting the line from one side anywhere along its short run (a
+//! corridor's wall leaving a hall's). Three things a person would not close
 //! stay open:
 //!
 //! * a corridor seen from the tip of a wall pointing at its far wall (that wall runs on
@@ -53,7 +54,7 @@ pub fn wall_gaps(world_map: &Grid<Cell>, c: &RoomCells, depth: usize) -> Vec<boo
                 let yy = y as isize + off;
                 yy >= 0 && (yy as usize) < h && wall[yy as usize * w + x]
             },
-            free: |x: usize| cells[y * w + x] == Cell::Free,
+            cell: |x: usize| cells[y * w + x],
             depth,
         };
         line.mark(c, |x| gaps[y * w + x] = true);
@@ -65,7 +66,7 @@ pub fn wall_gaps(world_map: &Grid<Cell>, c: &RoomCells, depth: usize) -> Vec<boo
                 let xx = x as isize + off;
                 xx >= 0 && (xx as usize) < w && wall[y * w + xx as usize]
             },
-            free: |y: usize| cells[y * w + x] == Cell::Free,
+            cell: |y: usize| cells[y * w + x],
             depth,
         };
         line.mark(c, |y| gaps[y * w + x] = true);
@@ -155,16 +156,16 @@ fn line_like(part: &[usize], w: usize, extent: usize, thick: usize) -> bool {
 const HOLE_REACH: usize = 2;
 
 /// One row or column of the world frame: `wall(i, off)` is whether a wall holds the cell at
-/// position `i` along the line and `off` cells across it, `free(i)` whether the line's own
-/// cell at `i` is free. `depth` is the thickest a wall stub may be across the line.
+/// position `i` along the line and `off` cells across it, `cell(i)` the line's own cell at
+/// `i`. `depth` is the thickest a wall stub may be across the line.
 struct Line<W, F> {
     len: usize,
     wall: W,
-    free: F,
+    cell: F,
     depth: usize,
 }
 
-impl<W: Fn(usize, isize) -> bool, F: Fn(usize) -> bool> Line<W, F> {
+impl<W: Fn(usize, isize) -> bool, F: Fn(usize) -> Cell> Line<W, F> {
     /// Whether a wall of the line holds position `i`.
     fn band(&self, i: usize) -> bool {
         (self.wall)(i, 0)
@@ -203,11 +204,10 @@ impl<W: Fn(usize, isize) -> bool, F: Fn(usize) -> bool> Line<W, F> {
     /// across the line (the wall resumes beyond the tip within a doorway's width, `door`
     /// cells). Closing onto either would cut a corridor.
     fn end(&self, (s, e): (usize, usize), c: &RoomCells, door: usize) -> bool {
-        let mid = (s + e) / 2;
         if self.stub((s, e), c) {
             return true;
         }
-        let corner = e - s <= self.depth && self.across(mid) >= 2 * self.depth && !self.crossed(mid);
+        let corner = e - s <= self.depth && (s..e).any(|k| self.across(k) >= 2 * self.depth && !self.crossed(k));
         corner && !(s..e).any(|k| self.jamb(k, door))
     }
 
@@ -228,6 +228,14 @@ impl<W: Fn(usize, isize) -> bool, F: Fn(usize) -> bool> Line<W, F> {
             k += 1;
         }
         false
+    }
+
+    /// Whether the cells `gap` between two runs of wall are an opening: nothing occupied on
+    /// it and something free. Unseen cells on it (the tip of a wall the scan missed, a speck
+    /// in the doorway, a turned wall's anti-aliased edge) say nothing about where a wall
+    /// ends, and a person draws the line through them; clutter in the opening keeps it open.
+    fn opening(&self, gap: std::ops::Range<usize>) -> bool {
+        gap.clone().all(|k| (self.cell)(k) != Cell::Occupied) && gap.into_iter().any(|k| (self.cell)(k) == Cell::Free)
     }
 
     /// Whether walls cross the line at both ends of the gap between runs `p` and `next`
@@ -259,7 +267,7 @@ impl<W: Fn(usize, isize) -> bool, F: Fn(usize) -> bool> Line<W, F> {
                 let gap = p.1..start;
                 let next = (start, i);
                 if gap.len() <= max_gap
-                    && gap.clone().all(|k| (self.free)(k))
+                    && self.opening(gap.clone())
                     && ((self.stub(p, c) && self.end(next, c, door)) || (self.end(p, c, door) && self.stub(next, c)))
                     && !self.passage(p, next)
                 {
@@ -519,6 +527,35 @@ mod tests {
     }
 
     #[test]
+    fn a_corridor_ending_in_a_hall_closes_along_the_halls_wall() {
+        // A hall's wall along column 20 (3 thick, x = 19..22) with the corridor's two walls
+        // (rows 10..13 and 30..33) leaving it to the right: the corridor opens onto the hall
+        // over rows 13..30. Above the corridor the hall's wall is three cells long before an
+        // unseen stretch, so its run at the corridor is a corner whose wall leaves at its first
+        // row, not its middle; below, the wall's tip at the gap is unseen.
+        let mut map = Grid::new(40, 50, Cell::Free);
+        fill(&mut map, 19..22, 0..4, Cell::Occupied);
+        fill(&mut map, 19..22, 4..10, Cell::Unknown);
+        fill(&mut map, 19..22, 10..13, Cell::Occupied);
+        fill(&mut map, 22..40, 10..11, Cell::Occupied);
+        fill(&mut map, 19..22, 29..30, Cell::Unknown);
+        fill(&mut map, 19..22, 30..50, Cell::Occupied);
+        fill(&mut map, 22..40, 30..31, Cell::Occupied);
+        let c = RoomCells { door_half_width: 3, ..config(25, 5) };
+        let gaps = wall_gaps(&map, &c, 3);
+        assert!((13..29).all(|y| gaps[y * 40 + 20]), "{:?}", marked(&gaps, 40));
+        // With the tip seen free instead, the run is the same gap of free cells; so with a
+        // speck the scan missed amid the opening.
+        fill(&mut map, 19..22, 29..30, Cell::Free);
+        fill(&mut map, 20..21, 20..21, Cell::Unknown);
+        assert!((13..30).all(|y| wall_gaps(&map, &c, 3)[y * 40 + 20]));
+        // Clutter in the opening (an occupied cell that is no wall) still keeps it open.
+        let c = RoomCells { min_wall_len: 2, ..c };
+        fill(&mut map, 20..21, 20..21, Cell::Occupied);
+        assert!(!(13..30).any(|y| wall_gaps(&map, &c, 3)[y * 40 + 20]));
+    }
+
+    #[test]
     fn a_door_jamb_across_the_line_is_no_corner() {
         // A stub along column 20 (y = 30..50) points up at a horizontal wall (row 10) that
         // ends at x = 21: a corner, so the column closes between them.
@@ -592,17 +629,23 @@ mod tests {
     }
 
     #[test]
-    fn long_gaps_unknown_gaps_and_off_stay_open() {
+    fn long_gaps_and_off_stay_open_unseen_cells_close() {
         let mut map = Grid::new(40, 5, Cell::Free);
         fill(&mut map, 0..10, 2..3, Cell::Occupied);
         fill(&mut map, 20..30, 2..3, Cell::Occupied);
         fill(&mut map, 33..40, 2..3, Cell::Occupied);
         *map.at_mut(31, 2) = Cell::Unknown;
-        // 10 cells is over the longest gap; the second gap holds an unknown cell on its line.
-        assert!(!wall_gaps(&map, &config(9, 5), 3).iter().enumerate().any(|(i, &g)| g && i / 40 == 2));
+        // 10 cells is over the longest gap; the second gap, with an unseen cell on its line,
+        // closes at both lengths (its free cells; the unseen one stays unseen in the map).
+        let gaps = wall_gaps(&map, &config(9, 5), 3);
+        assert!(!(10..20).any(|x| gaps[2 * 40 + x]));
+        assert!((30..33).all(|x| gaps[2 * 40 + x]));
         let gaps = wall_gaps(&map, &config(10, 5), 3);
         assert!((10..20).all(|x| gaps[2 * 40 + x]));
-        assert!(!(30..33).any(|x| gaps[2 * 40 + x]));
+        // A line unseen all along between the two wall ends holds nothing to close.
+        *map.at_mut(30, 2) = Cell::Unknown;
+        *map.at_mut(32, 2) = Cell::Unknown;
+        assert!(!(30..33).any(|x| wall_gaps(&map, &config(10, 5), 3)[2 * 40 + x]));
         assert!(!wall_gaps(&map, &config(0, 5), 3).contains(&true));
     }
 

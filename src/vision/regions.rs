@@ -7,46 +7,71 @@
 //! votes:
 //!
 //! 1. every wall face cell (an occupied cell beside free space) votes for the direction along
-//!    which the faces around it run straightest: the most face cells within `run` cells on
+//!    which the faces around it run straightest: the most face cells within `run_m` on
 //!    either side along the direction or at right angles to it, when that count beats every
 //!    other direction's clearly (corners and furniture outlines, which fit several, stay
 //!    silent);
-//! 2. every free cell takes the direction with the most votes within `radius` cells (a square
+//! 2. every free cell takes the direction with the most votes within `radius_m` (a square
 //!    window, counted with one summed-area table per direction), the first (strongest)
 //!    direction where no face voted;
-//! 3. pieces of one direction smaller than `min_area` cells take the direction of most of the
+//! 3. pieces of one direction smaller than `min_area_m2` take the direction of most of the
 //!    free cells around them, so that a desk at an angle in a room does not make a region.
 //!
-//! Everything is integer counting over the grid in a fixed order, so the result is the same
-//! natively and in wasm.
+//! Lengths and areas are in metres, turned into cells once from the map's resolution, so the
+//! same building has the same regions at any cell size. Everything is integer counting over
+//! the grid in a fixed order, so the result is the same natively and in wasm.
 
 use super::orientation::{wall_surface, WallDirection, WallProfile};
 use crate::grid::flood::{neighbours4, Flood, Neighbours};
 use crate::grid::{Cell, Grid};
 
-/// How the regions are found, in cells.
+/// How the regions are found: lengths in metres and areas in square metres, each default
+/// with its physical reason, turned into cells from the map's resolution.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RegionConfig {
     /// Directions weaker than this share of the strongest are left out (as in
     /// [`wall_directions`](super::orientation::wall_directions)).
     pub min_strength: f64,
-    /// Face cells counted on either side of a face cell along a direction (default 12).
-    pub run: i32,
+    /// How far along a direction, m, wall faces are counted on either side of a face cell
+    /// (default 0.6 m: a wall face runs straight over a metre and more, a door leaf's width
+    /// either side; corners and furniture outlines bend within that).
+    pub run_m: f64,
     /// A face votes when its best direction's count is at least this share of the longest
-    /// possible run, `2 run + 1` (default 0.7)...
+    /// possible run, `2 run + 1` cells (default 0.7)...
     pub min_straight: f64,
     /// ...and at least this many times every other direction's (default 1.5).
     pub margin: f64,
-    /// Half side of the square window over which free cells count votes (default 40).
-    pub radius: i32,
-    /// Connected pieces of one direction smaller than this many free cells are absorbed by
-    /// their surroundings (default 1600, 4 m² at 5 cm).
-    pub min_area: usize,
+    /// Half side of the square window over which free cells count votes, m (default 2 m: about
+    /// half a room's width, so a free cell follows the walls of the room it stands in).
+    pub radius_m: f64,
+    /// Connected pieces of one direction smaller than this, m², are absorbed by their
+    /// surroundings (default 4 m²: under half of the smallest office, more than a desk or a
+    /// cupboard standing at an angle).
+    pub min_area_m2: f64,
 }
 
 impl Default for RegionConfig {
     fn default() -> Self {
-        RegionConfig { min_strength: 0.3, run: 12, min_straight: 0.7, margin: 1.5, radius: 40, min_area: 1600 }
+        RegionConfig { min_strength: 0.3, run_m: 0.6, min_straight: 0.7, margin: 1.5, radius_m: 2.0, min_area_m2: 4.0 }
+    }
+}
+
+/// [`RegionConfig`]'s lengths in cells of one map: 12, 40 and 1,600 at 5 cm.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct RegionCells {
+    run: i32,
+    radius: i32,
+    min_area: usize,
+}
+
+impl RegionConfig {
+    /// These lengths in whole cells of `resolution` metres (read as 0.05 m if it is no
+    /// positive number), each at least one cell.
+    fn cells(&self, resolution: f64) -> RegionCells {
+        let r = crate::grid::cell_size_m(resolution);
+        let len = |m: f64| libm::round(m.max(0.0) / r).clamp(1.0, i32::MAX as f64 / 4.0) as i32;
+        let area = libm::round(self.min_area_m2.max(0.0) / (r * r)).clamp(1.0, u32::MAX as f64) as usize;
+        RegionCells { run: len(self.run_m), radius: len(self.radius_m), min_area: area }
     }
 }
 
@@ -77,27 +102,34 @@ impl DirectionRegions {
     }
 }
 
-/// Finds the wall directions of `grid` and the region of free cells each holds (module docs).
+/// Finds the wall directions of `grid` (a map of `resolution` metres a cell) and the region of
+/// free cells each holds (module docs).
 ///
 /// ```
 /// use ksmcmc::floorplan::synth::{generate, SynthConfig};
 /// use ksmcmc::vision::regions::{direction_regions, RegionConfig};
 /// // Two buildings, the second turned 30 degrees against the first.
 /// let s = generate(&SynthConfig { wing_deg: 30.0, ..SynthConfig::default() }, 1)?;
-/// let found = direction_regions(s.map.classified(), &RegionConfig::default());
+/// let found = direction_regions(s.map.classified(), &RegionConfig::default(), 0.05);
 /// let degrees: Vec<i64> = found.directions.iter().map(|d| d.angle.to_degrees().round() as i64).collect();
 /// assert!(degrees.contains(&0) && degrees.contains(&30), "{degrees:?}");
 /// let shares = found.shares();
 /// assert!(shares.iter().filter(|&&s| s > 0.3).count() == 2, "{shares:?}");
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
-pub fn direction_regions(grid: &Grid<Cell>, config: &RegionConfig) -> DirectionRegions {
-    direction_regions_from(grid, &WallProfile::of(grid), config)
+pub fn direction_regions(grid: &Grid<Cell>, config: &RegionConfig, resolution: f64) -> DirectionRegions {
+    direction_regions_from(grid, &WallProfile::of(grid), config, resolution)
 }
 
 /// [`direction_regions`] with the wall directions read off `profile`, the [`WallProfile`] of
 /// `grid` a caller has already built (the Hough transform is most of the cost).
-pub fn direction_regions_from(grid: &Grid<Cell>, profile: &WallProfile, config: &RegionConfig) -> DirectionRegions {
+pub fn direction_regions_from(
+    grid: &Grid<Cell>,
+    profile: &WallProfile,
+    config: &RegionConfig,
+    resolution: f64,
+) -> DirectionRegions {
+    let cells = config.cells(resolution);
     let mut directions = profile.directions(config.min_strength);
     directions.truncate(NO_REGION as usize);
     let (w, h) = (grid.width(), grid.height());
@@ -107,9 +139,9 @@ pub fn direction_regions_from(grid: &Grid<Cell>, profile: &WallProfile, config: 
     if directions.len() < 2 {
         return DirectionRegions { directions, region };
     }
-    let votes = face_votes(grid, &directions, config);
+    let votes = face_votes(grid, &directions, config, cells.run);
     let sums: Vec<Sums> = (0..directions.len()).map(|k| Sums::new(&votes, w, h, k as u8)).collect();
-    let r = config.radius.max(0) as usize;
+    let r = cells.radius.max(0) as usize;
     for y in 0..h {
         for x in 0..w {
             if !free(y * w + x) {
@@ -126,12 +158,13 @@ pub fn direction_regions_from(grid: &Grid<Cell>, profile: &WallProfile, config: 
             *region.at_mut(x, y) = best.1;
         }
     }
-    absorb_small_pieces(&mut region, config.min_area);
+    absorb_small_pieces(&mut region, cells.min_area);
     DirectionRegions { directions, region }
 }
 
 /// Per cell: the index of the direction a wall face cell votes for, [`NO_REGION`] elsewhere.
-fn face_votes(grid: &Grid<Cell>, directions: &[WallDirection], c: &RegionConfig) -> Vec<u8> {
+/// `run` is [`RegionConfig::run_m`] in cells.
+fn face_votes(grid: &Grid<Cell>, directions: &[WallDirection], c: &RegionConfig, run: i32) -> Vec<u8> {
     let surface = wall_surface(grid);
     let (w, h) = (grid.width(), grid.height());
     let face = |x: i64, y: i64| {
@@ -145,7 +178,7 @@ fn face_votes(grid: &Grid<Cell>, directions: &[WallDirection], c: &RegionConfig)
             [(co, s), (-s, co)]
         })
         .collect();
-    let longest = (2 * c.run + 1) as f64;
+    let longest = (2 * run + 1) as f64;
     let mut votes = vec![NO_REGION; w * h];
     let mut counts = vec![0u32; directions.len()];
     for y in 0..h {
@@ -157,7 +190,7 @@ fn face_votes(grid: &Grid<Cell>, directions: &[WallDirection], c: &RegionConfig)
                 counts[k] = pair
                     .iter()
                     .map(|&(dx, dy)| {
-                        (-c.run..=c.run)
+                        (-run..=run)
                             .filter(|&i| {
                                 let (px, py) = (x as f64 + 0.5 + dx * i as f64, y as f64 + 0.5 + dy * i as f64);
                                 face(libm::floor(px) as i64, libm::floor(py) as i64)
@@ -247,6 +280,19 @@ fn absorb_small_pieces(region: &mut Grid<u8>, min_area: usize) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn lengths_become_cells_of_the_maps_resolution() {
+        let c = RegionConfig::default();
+        // At 5 cm, the numbers these settings had in cells.
+        assert_eq!(c.cells(0.05), RegionCells { run: 12, radius: 40, min_area: 1600 });
+        assert_eq!(c.cells(0.1), RegionCells { run: 6, radius: 20, min_area: 400 });
+        assert_eq!(c.cells(0.025), RegionCells { run: 24, radius: 80, min_area: 6400 });
+        // No resolution reads as 5 cm; a setting of 0 is still one cell.
+        assert_eq!(c.cells(f64::NAN), c.cells(0.05));
+        let none = RegionConfig { run_m: 0.0, radius_m: 0.0, min_area_m2: 0.0, ..c };
+        assert_eq!(none.cells(0.05), RegionCells { run: 1, radius: 1, min_area: 1 });
+    }
 
     #[test]
     fn small_pieces_take_their_surroundings() {

@@ -144,7 +144,7 @@ fn each_wing_of_a_building_is_a_region_of_its_direction() {
     };
     for (wing, seed) in [(30.0, 1), (-45.0, 2), (60.0, 3), (20.0, 4)] {
         let s = generate(&SynthConfig { wing_deg: wing, ..SynthConfig::default() }, seed).unwrap();
-        let found = direction_regions(s.map.classified(), &RegionConfig::default());
+        let found = direction_regions(s.map.classified(), &RegionConfig::default(), s.map.yaml().resolution);
         let index_of = |a: f64| found.directions.iter().position(|d| apart(d.angle, a) < 1.0);
         let first =
             index_of(0.0).unwrap_or_else(|| panic!("wing {wing}: no upright direction in {:?}", found.directions));
@@ -162,7 +162,7 @@ fn each_wing_of_a_building_is_a_region_of_its_direction() {
         assert!(rate > 0.95, "wing {wing}: {rate:.3} of the floor in its wing's region");
     }
     let s = generate(&SynthConfig { rotation_deg: 20.0, ..SynthConfig::default() }, 5).unwrap();
-    let found = direction_regions(s.map.classified(), &RegionConfig::default());
+    let found = direction_regions(s.map.classified(), &RegionConfig::default(), s.map.yaml().resolution);
     let shares = found.shares();
     assert!(shares[0] > 0.99, "one building, {shares:?}");
 }

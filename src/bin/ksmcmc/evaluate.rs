@@ -234,7 +234,7 @@ fn floorplan_labels(
 ) -> Result<Grid<u32>, CliError> {
     use ksmcmc::floorplan::wings::{WingConfig, WingLayout};
     let (world, labels) = input.clone().explain(rooms).map_err(rooms_failed)?;
-    let layout = WingLayout::find(map.classified(), &labels, world.frame.angle, &WingConfig::default());
+    let layout = WingLayout::find(map, &labels, world.frame.angle, &WingConfig::default());
     let labels = match layout.as_ref().and_then(WingLayout::by_walls) {
         Some(angles) => input.by_walls(angles).explain(rooms).map_err(rooms_failed)?.1,
         None => labels,

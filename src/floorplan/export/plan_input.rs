@@ -199,7 +199,7 @@ impl PlanInput {
         if !self.edits().is_ok_and(|e| e.is_empty()) {
             return None;
         }
-        WingLayout::find(map.classified(), labels, self.world.frame.angle, &WingConfig::default())
+        WingLayout::find(map, labels, self.world.frame.angle, &WingConfig::default())
     }
 
     /// The world of a building's wings and its room labels ([`WingLayout::compose`]), as

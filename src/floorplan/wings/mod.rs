@@ -112,7 +112,7 @@ impl Wings {
         let layout = first
             .wall_profile()
             .filter(|_| config.detectors.rotation_deg.is_none())
-            .and_then(|profile| WingLayout::find_from(map.classified(), profile, &labels, first.frame().angle, wing));
+            .and_then(|profile| WingLayout::find_from(map, profile, &labels, first.frame().angle, wing));
         let Some(layout) = layout else {
             let wing_of = labels.map(|&l| if l > 0 { 0 } else { NO_REGION });
             return Ok(Wings { chains: vec![first], wing_of, world, labels });
@@ -159,21 +159,21 @@ pub struct WingLayout {
 impl WingLayout {
     /// The wings of `map` (module docs, steps 2 and 3) given the room `labels` of a chain
     /// turned by `first_angle`; `None` for a building of one wing.
-    pub fn find(map: &Grid<Cell>, labels: &Grid<u16>, first_angle: f64, wing: &WingConfig) -> Option<WingLayout> {
-        WingLayout::find_from(map, &WallProfile::of(map), labels, first_angle, wing)
+    pub fn find(map: &OccupancyMap, labels: &Grid<u16>, first_angle: f64, wing: &WingConfig) -> Option<WingLayout> {
+        WingLayout::find_from(map, &WallProfile::of(map.classified()), labels, first_angle, wing)
     }
 
     /// [`WingLayout::find`] with the wall directions read off `profile`, the
     /// [`WallProfile`] of `map` a caller has already built (the first chain's,
     /// [`Chain::wall_profile`]).
     pub fn find_from(
-        map: &Grid<Cell>,
+        map: &OccupancyMap,
         profile: &WallProfile,
         labels: &Grid<u16>,
         first_angle: f64,
         wing: &WingConfig,
     ) -> Option<WingLayout> {
-        let found = direction_regions_from(map, profile, &wing.regions);
+        let found = direction_regions_from(map.classified(), profile, &wing.regions, map.yaml().resolution);
         let (wing_of, angles) = wings_by_room(&found, labels, first_angle, wing.min_share)?;
         Some(WingLayout { wing_of, angles })
     }

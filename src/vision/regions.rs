@@ -60,7 +60,7 @@ impl Default for RegionConfig {
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct RegionCells {
     run: i32,
-    radius: i32,
+    radius: usize,
     min_area: usize,
 }
 
@@ -71,7 +71,7 @@ impl RegionConfig {
         let r = crate::grid::cell_size_m(resolution);
         let len = |m: f64| libm::round(m.max(0.0) / r).clamp(1.0, i32::MAX as f64 / 4.0) as i32;
         let area = libm::round(self.min_area_m2.max(0.0) / (r * r)).clamp(1.0, u32::MAX as f64) as usize;
-        RegionCells { run: len(self.run_m), radius: len(self.radius_m), min_area: area }
+        RegionCells { run: len(self.run_m), radius: len(self.radius_m) as usize, min_area: area }
     }
 }
 
@@ -141,7 +141,7 @@ pub fn direction_regions_from(
     }
     let votes = face_votes(grid, &directions, config, cells.run);
     let sums: Vec<Sums> = (0..directions.len()).map(|k| Sums::new(&votes, w, h, k as u8)).collect();
-    let r = cells.radius.max(0) as usize;
+    let r = cells.radius;
     for y in 0..h {
         for x in 0..w {
             if !free(y * w + x) {

@@ -1,7 +1,8 @@
 //! The rooms read off the label image: each unit belongs to the room that holds most of its
 //! free cells, a room's type is the type covering most of its cells, its doors are those whose
 //! cells it touches, it opens to every room it touches along a passable stretch
-//! ([`MIN_PASSAGE_M`](super::MIN_PASSAGE_M)) or through a door, and rooms that are mostly rays are unexplored.
+//! ([`MIN_PASSAGE_M`](super::MIN_PASSAGE_M)) or through a door, and rooms that are mostly
+//! rays are unexplored.
 
 use super::frame::world_cell;
 use crate::floorplan::topology::touching;

@@ -8,12 +8,12 @@
 //!
 //! This module finds those gaps. In the world frame, where walls run along the axes, a *gap*
 //! is a run of free cells along a row or a column (unseen cells on it too: the tip of a wall
-//! a scan missed), at most [`RoomCells::max_wall_gap`] cells long, between two ends of walls of that line, at least one of them a *stub*: a wall lying
-//! along the line for [`RoomCells::min_wall_stub`] cells or more and somewhere no deeper
-//! across it than a wall (a desk is deep all along). The other end may be a stub or a
-//! *corner*, a wall meeting the line from one side anywhere along its short run (a
-//! corridor's wall leaving a hall's). Three things a person would not close
-//! stay open:
+//! a scan missed), at most [`RoomCells::max_wall_gap`] cells long, between two ends of walls
+//! of that line, at least one of them a *stub*: a wall lying along the line for
+//! [`RoomCells::min_wall_stub`] cells or more and somewhere no deeper across it than a wall (a
+//! desk is deep all along). The other end may be a stub or a *corner*, a wall meeting the line
+//! from one side anywhere along its short run (a corridor's wall leaving a hall's). Three
+//! things a person would not close stay open:
 //!
 //! * a corridor seen from the tip of a wall pointing at its far wall (that wall runs on
 //!   through the line on both sides, or is the jamb of a door in it: no corner);

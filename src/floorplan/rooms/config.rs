@@ -94,6 +94,13 @@ pub const STUB_NOISE_M: f64 = 0.15;
 /// arches). Chairs, desks and cupboards are blobs, not lines.
 pub const WALL_PIECE_THICK_M: f64 = 0.2;
 
+/// How far a hole a scan left in a wall may reach from the wall's seen cells, m, for the
+/// wall's pieces on either side of it to be one wall ([`super::wall_gaps::walls`]): 0.1 m, a
+/// shiny or dark patch, a pipe or a cable in front of the wall, a laser's miss along a face it
+/// grazes; the two 5 cm cells it was set as. Farther, the unseen space is no hole of a wall but
+/// space beside it, and clutter would join the unexplored space around the building.
+pub const HOLE_REACH_M: f64 = 0.1;
+
 /// The room layer's settings in cells of one map: [`RoomConfig`] turned into cells once, from
 /// the map's resolution ([`RoomConfig::cells`]). The stages of the room layer read these.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -148,6 +155,9 @@ pub(crate) struct RoomCells {
     pub min_wall_len: u32,
     /// The thickest a piece of wall may be, in cells ([`WALL_PIECE_THICK_M`], rounded down).
     pub wall_piece_thick: u32,
+    /// How far, in cells, an unknown cell may lie from an occupied one and still join the
+    /// parts of a wall ([`HOLE_REACH_M`], at least one cell).
+    pub hole_reach: u32,
     /// The longest part of a map, in cells, that is a speck ([`super::read::SPECK_M`], one
     /// cell more than fits): the standing test and the passages look past it.
     pub speck: u32,
@@ -260,6 +270,7 @@ impl RoomConfig {
             stub_noise: libm::floor(STUB_NOISE_M / r + 1e-9) as u32,
             min_wall_len: len(self.min_wall_len_m),
             wall_piece_thick: libm::floor(WALL_PIECE_THICK_M / r + 1e-9) as u32,
+            hole_reach: len(HOLE_REACH_M),
             speck: super::read::speck_cells(r),
             passage_depth: super::passages::passage_depth(r),
             clutter_in_rooms: self.clutter_in_rooms,

@@ -180,7 +180,7 @@ impl RoomLayer {
     /// `map` (the classified map in its own frame) at `resolution` metres per cell.
     pub fn mark_openings(&self, world: &mut World, map: &Grid<Cell>, resolution: f64) {
         let c = self.config.cells(resolution);
-        let walls = without_clutter(map, c.min_wall_len, c.wall_piece_thick);
+        let walls = without_clutter(map, c.min_wall_len, c.wall_piece_thick, c.hole_reach);
         super::openings::mark_openings(world, &walls, resolution);
     }
 }

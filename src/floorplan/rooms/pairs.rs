@@ -130,7 +130,7 @@ fn wide_door(world: &World, a: usize, b: usize, c: &RoomCells) -> Option<bool> {
 /// Every pair of space-enclosing units ([`encloses_space`]) with an open boundary, or joined
 /// by a door as wide as their shared stretch ([`RoomCells::wide_door_share`]).
 pub fn open_pairs(world: &World, world_map: &Grid<Cell>, c: &RoomCells) -> Vec<OpenPair> {
-    open_pairs_among(world, world_map, c, &without_clutter(world_map, c.min_wall_len, c.wall_piece_thick))
+    open_pairs_among(world, world_map, c, &without_clutter(world_map, c.min_wall_len, c.wall_piece_thick, c.hole_reach))
 }
 
 /// [`open_pairs`] with `world_map`'s walls read already (`walls`, [`without_clutter`]).

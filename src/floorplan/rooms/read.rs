@@ -26,7 +26,8 @@ pub(crate) fn mark_unexplored(rooms: &mut [Room], labels: &Grid<u16>, map: &Grid
     if (labels.width(), labels.height()) != (map.width(), map.height()) || resolution.is_nan() || resolution <= 0.0 {
         return;
     }
-    mark_unexplored_on(rooms, labels, map, &standing_depth(map, speck_cells(resolution)), resolution);
+    let hole_reach = super::config::RoomConfig::default().cells(resolution).hole_reach;
+    mark_unexplored_on(rooms, labels, map, &standing_depth(map, speck_cells(resolution), hole_reach), resolution);
 }
 
 /// The longest part, in cells, that is a speck at `resolution` m per cell: [`SPECK_M`] in
@@ -39,8 +40,8 @@ pub(crate) fn speck_cells(resolution: f64) -> u32 {
 /// specks of [`SPECK_M`] or less drawn free ([`super::wall_gaps::without_clutter`] with parts
 /// shorter than `speck` cells, [`speck_cells`]): how far a person standing on each cell is
 /// from what they would not stand beside.
-pub(crate) fn standing_depth(map: &Grid<Cell>, speck: u32) -> Vec<u32> {
-    super::segments::free_depth(&super::wall_gaps::without_clutter(map, speck, 0))
+pub(crate) fn standing_depth(map: &Grid<Cell>, speck: u32, hole_reach: u32) -> Vec<u32> {
+    super::segments::free_depth(&super::wall_gaps::without_clutter(map, speck, 0, hole_reach))
 }
 
 /// Types `unknown` the rooms that are mostly rays, not floor: fewer than a third of their

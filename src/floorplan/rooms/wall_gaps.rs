@@ -46,7 +46,7 @@ pub fn wall_gaps(world_map: &Grid<Cell>, c: &RoomCells, depth: usize) -> Vec<boo
         return gaps;
     }
     let cells = world_map.cells();
-    let wall = walls(world_map, c.min_wall_len as usize, c.wall_piece_thick as usize);
+    let wall = walls(world_map, c.min_wall_len as usize, c.wall_piece_thick as usize, c.hole_reach);
     for y in 0..h {
         let line = Line {
             len: w,
@@ -76,17 +76,18 @@ pub fn wall_gaps(world_map: &Grid<Cell>, c: &RoomCells, depth: usize) -> Vec<boo
 
 /// Which cells are walls: occupied cells of a connected part at least `min_len` cells long or
 /// wide, or a piece of wall: a line, straight or bent, no thicker than `piece_thick` cells and
-/// at least three times that long ([`line_like`]; 0 turns pieces off). Parts are 8-connected through occupied cells and unknown cells next to them (within
-/// [`HOLE_REACH`]), so a wall that a scan saw in pieces, with unseen cells in it, is one part;
+/// at least three times that long ([`line_like`]; 0 turns pieces off). Parts are 8-connected
+/// through occupied cells and unknown cells within `hole_reach` cells of one
+/// ([`super::config::HOLE_REACH_M`]), so a wall that a scan saw in pieces, with unseen cells in it, is one part;
 /// smaller parts (chairs, the dots of a drawn table, specks amid free space) are no wall a gap
 /// could close onto, no jamb of a doorway and no wall between two units (see
 /// [`RoomCells::min_wall_len`]).
-pub(crate) fn walls(map: &Grid<Cell>, min_len: usize, piece_thick: usize) -> Vec<bool> {
+pub(crate) fn walls(map: &Grid<Cell>, min_len: usize, piece_thick: usize, hole_reach: u32) -> Vec<bool> {
     let (w, h) = (map.width(), map.height());
     let cells = map.cells();
     let mut wall = vec![false; w * h];
     // Unknown cells within the reach of an occupied one: the map grown by it.
-    let near = crate::vision::walls::dilate(map, HOLE_REACH as i32);
+    let near = crate::vision::walls::dilate(map, hole_reach.min(i32::MAX as u32) as i32);
     let joins =
         |j: usize| cells[j] == Cell::Occupied || (cells[j] == Cell::Unknown && near.cells()[j] == Cell::Occupied);
     each_part(
@@ -150,10 +151,6 @@ fn line_like(part: &[usize], w: usize, extent: usize, thick: usize) -> bool {
     }
     part.len() <= thick * (x1 - x0 + 1 + y1 - y0 + 1)
 }
-
-/// How far, in cells, an unknown cell may lie from an occupied one and still join the parts of
-/// a wall (a hole a scan left in it), without joining clutter to the unexplored space around.
-const HOLE_REACH: usize = 2;
 
 /// One row or column of the world frame: `wall(i, off)` is whether a wall holds the cell at
 /// position `i` along the line and `off` cells across it, `cell(i)` the line's own cell at
@@ -362,9 +359,9 @@ impl WallReading {
     /// Reads the walls of `map` (in its own frame) and `world_map` (the same map in the
     /// world's frame), with the wall gaps along `angles` too.
     pub(crate) fn new(world: &World, map: &Grid<Cell>, world_map: &Grid<Cell>, c: &RoomCells, angles: &[f64]) -> Self {
-        let open = without_clutter(map, c.min_wall_len, c.wall_piece_thick);
+        let open = without_clutter(map, c.min_wall_len, c.wall_piece_thick, c.hole_reach);
         let closed = close_wall_gaps_along(world, map, world_map, c, angles);
-        let standing = super::read::standing_depth(map, c.speck);
+        let standing = super::read::standing_depth(map, c.speck, c.hole_reach);
         WallReading { open, closed, standing }
     }
 
@@ -380,7 +377,7 @@ impl WallReading {
         if world_map == map {
             std::borrow::Cow::Borrowed(&self.open)
         } else {
-            std::borrow::Cow::Owned(without_clutter(world_map, c.min_wall_len, c.wall_piece_thick))
+            std::borrow::Cow::Owned(without_clutter(world_map, c.min_wall_len, c.wall_piece_thick, c.hole_reach))
         }
     }
 }
@@ -390,8 +387,8 @@ impl WallReading {
 /// drawn free: chairs, the dots of a drawn table, a bin, cells a scan missed. A doorway
 /// is a narrowing between walls; the gaps between the chairs round a table are none, and
 /// the free space they ring is part of the room, not a room behind a door.
-pub(crate) fn without_clutter(map: &Grid<Cell>, min_wall_len: u32, piece_thick: u32) -> Grid<Cell> {
-    let wall = super::wall_gaps::walls(map, min_wall_len as usize, piece_thick as usize);
+pub(crate) fn without_clutter(map: &Grid<Cell>, min_wall_len: u32, piece_thick: u32, hole_reach: u32) -> Grid<Cell> {
+    let wall = super::wall_gaps::walls(map, min_wall_len as usize, piece_thick as usize, hole_reach);
     let specks = unknown_specks(map, min_wall_len as usize);
     let mut out = map.clone();
     for ((cell, &is_wall), &speck) in out.cells_mut().iter_mut().zip(&wall).zip(&specks) {
@@ -425,6 +422,7 @@ fn unknown_specks(map: &Grid<Cell>, min_len: usize) -> Vec<bool> {
 
 #[cfg(test)]
 mod tests {
+    use super::super::config::RoomConfig;
     use super::super::segments::{labels_of_groups, labels_of_groups_along};
     use super::*;
     use crate::floorplan::{Unit, UnitType};
@@ -593,18 +591,18 @@ mod tests {
         }
         fill(&mut map, 50..80, 40..52, Cell::Occupied);
         let at = |w: &[bool], x: usize, y: usize| w[y * 100 + x];
-        let pieces = walls(&map, 40, 4);
+        let pieces = walls(&map, 40, 4, 2);
         assert!(at(&pieces, 20, 11) && at(&pieces, 11, 20), "the piece of wall");
         assert!(!at(&pieces, 14, 44), "the chair");
         assert!(!at(&pieces, 60, 45), "the desk");
         // Without pieces only parts of `min_wall_len` are walls.
-        assert!(!walls(&map, 40, 0).contains(&true));
+        assert!(!walls(&map, 40, 0, 2).contains(&true));
         // A piece shorter than three times the thickness (11 cells) is none: a speck.
         let mut short = Grid::new(40, 20, Cell::Free);
         fill(&mut short, 5..15, 5..8, Cell::Occupied);
-        assert!(!walls(&short, 40, 4).contains(&true));
+        assert!(!walls(&short, 40, 4, 2).contains(&true));
         fill(&mut short, 15..17, 5..8, Cell::Occupied);
-        assert!(walls(&short, 40, 4).contains(&true));
+        assert!(walls(&short, 40, 4, 2).contains(&true));
     }
 
     #[test]
@@ -626,6 +624,27 @@ mod tests {
         fill(&mut map, 31..37, 10..11, Cell::Unknown);
         let gaps = wall_gaps(&map, &c, 3);
         assert!((11..25).all(|y| gaps[y * 40 + 20]));
+    }
+
+    #[test]
+    fn a_hole_in_a_wall_reaches_as_far_in_metres_at_any_cell_size() {
+        // A wall 3 m long with a 0.15 m hole a scan left in its middle, its pieces each under
+        // the 2 m of a wall: at 5 cm cells (a 3-cell hole) and at 2.5 cm (6 cells) the hole
+        // joins them into one wall; a hole of 0.5 m (a doorway's width) joins nothing.
+        let wall_with_hole = |resolution: f64, hole_m: f64| {
+            let cells = |m: f64| libm::round(m / resolution) as usize;
+            let (len, hole) = (cells(3.0), cells(hole_m));
+            let mut map = Grid::new(len + 4, 5, Cell::Free);
+            fill(&mut map, 2..len + 2, 2..3, Cell::Occupied);
+            let from = 2 + (len - hole) / 2;
+            fill(&mut map, from..from + hole, 2..3, Cell::Unknown);
+            let c = RoomConfig::default().cells(resolution);
+            walls(&map, c.min_wall_len as usize, 0, c.hole_reach).contains(&true)
+        };
+        for resolution in [0.025, 0.05, 0.1] {
+            assert!(wall_with_hole(resolution, 0.15), "at {resolution} m a cell");
+            assert!(!wall_with_hole(resolution, 0.5), "at {resolution} m a cell");
+        }
     }
 
     #[test]

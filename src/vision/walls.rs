@@ -328,15 +328,23 @@ pub fn dilate(grid: &Grid<Cell>, r: i32) -> Grid<Cell> {
     out
 }
 
-/// The deepest unit wall ring in cells, measured ([`ring_depth`]) or configured
-/// (`ChainConfig::wall_thickness_m`).
-pub const MAX_RING_DEPTH: i32 = 10;
+/// The deepest unit wall ring, metres, measured ([`ring_depth`]) or configured
+/// (`ChainConfig::wall_thickness_m`): 0.5 m, an old outer wall of brick or stone; a thicker run
+/// of occupied cells is furniture against a wall or unexplored space drawn dark. Ten cells at
+/// 5 cm, as it was set in cells.
+pub const MAX_RING_M: f64 = 0.5;
+
+/// [`MAX_RING_M`] in whole cells of `resolution` metres (at least one).
+pub fn max_ring_cells(resolution: f64) -> i32 {
+    let r = crate::grid::cell_size_m(resolution);
+    (libm::round(MAX_RING_M / r + 1e-9) as i32).max(1)
+}
 
 /// The depth of unit wall rings that best explains this map's walls: the typical wall
 /// thickness, measured on the original map along the two wall directions of its dominant
 /// orientation `angle` (radians): for each occupied cell, the shorter of the two runs of
 /// occupied cells through it along those axes; the median `d` over cells, clamped to 1 ..=
-/// [`MAX_RING_DEPTH`].
+/// [`MAX_RING_M`] in cells of the map's `resolution` (metres a cell).
 ///
 /// Why the whole thickness: a ring as deep as the wall predicts every cell of an outer wall,
 /// and two units sharing an inner wall both lay their rings on it (a shared wall costs no
@@ -344,14 +352,14 @@ pub const MAX_RING_DEPTH: i32 = 10;
 /// 2; the dissertation's model is 1. Measured on the original map, not the rotated world
 /// frame, so that resampling does not double thin walls. On our maps this rule picked the
 /// best or nearly the best depth for K(W, M) (see BENCHMARKS.md).
-pub fn ring_depth(grid: &Grid<Cell>, angle: f64) -> i32 {
-    depth_bridging(grid, angle, 0)
+pub fn ring_depth(grid: &Grid<Cell>, angle: f64, resolution: f64) -> i32 {
+    depth_bridging(grid, angle, 0, max_ring_cells(resolution))
 }
 
 /// [`ring_depth`] of a map whose walls a robot saw from inside the rooms either side of them
 /// (a map growing while it explores): a range sensor sees only a wall's two faces, and the
 /// cells between them stay unknown. A run of occupied cells here goes on across up to
-/// [`MAX_UNSEEN_WALL_CORE`] unknown cells to occupied cells beyond, so a wall seen from both
+/// [`MAX_UNSEEN_WALL_CORE_M`] of unknown cells to occupied cells beyond, so a wall seen from both
 /// sides (face, unseen core, face) counts as one wall as thick as all three. Walls seen from
 /// one side only (outer walls, walls of rooms not yet entered) still count as their face.
 ///
@@ -368,20 +376,25 @@ pub fn ring_depth(grid: &Grid<Cell>, angle: f64) -> i32 {
 ///         *g.at_mut(x + 2, y) = Cell::Occupied;
 ///     }
 /// }
-/// assert_eq!(ring_depth(&g, 0.0), 1);
-/// assert_eq!(ring_depth_seen_from_both_sides(&g, 0.0), 3);
+/// assert_eq!(ring_depth(&g, 0.0, 0.05), 1);
+/// assert_eq!(ring_depth_seen_from_both_sides(&g, 0.0, 0.05), 3);
 /// ```
-pub fn ring_depth_seen_from_both_sides(grid: &Grid<Cell>, angle: f64) -> i32 {
-    depth_bridging(grid, angle, MAX_UNSEEN_WALL_CORE)
+pub fn ring_depth_seen_from_both_sides(grid: &Grid<Cell>, angle: f64, resolution: f64) -> i32 {
+    let r = crate::grid::cell_size_m(resolution);
+    let core = libm::round(MAX_UNSEEN_WALL_CORE_M / r + 1e-9).max(1.0) as usize;
+    depth_bridging(grid, angle, core, max_ring_cells(resolution))
 }
 
-/// The most unknown cells between two occupied faces that [`ring_depth_seen_from_both_sides`]
-/// takes for the unseen core of one wall (the thickest wall ring is 10 cells).
-pub const MAX_UNSEEN_WALL_CORE: usize = 8;
+/// The widest unseen core between two occupied faces, metres, that
+/// [`ring_depth_seen_from_both_sides`] takes for the inside of one wall: 0.4 m, the thickest
+/// wall ([`MAX_RING_M`]) less its two faces; eight cells at 5 cm, as it was set in cells.
+pub const MAX_UNSEEN_WALL_CORE_M: f64 = 0.4;
 
 /// [`ring_depth`], with runs of occupied cells going on across up to `bridge` unknown cells to
-/// an occupied one.
-fn depth_bridging(grid: &Grid<Cell>, angle: f64, bridge: usize) -> i32 {
+/// an occupied one, clamped to `max` cells (runs are counted up to `max`: the median of the
+/// clamped runs is the clamped median).
+fn depth_bridging(grid: &Grid<Cell>, angle: f64, bridge: usize, max: i32) -> i32 {
+    let max = max.max(1) as usize;
     let (w, h) = (grid.width() as i64, grid.height() as i64);
     let class = |x: f64, y: f64| {
         let (cx, cy) = (libm::floor(x) as i64, libm::floor(y) as i64);
@@ -408,7 +421,7 @@ fn depth_bridging(grid: &Grid<Cell>, angle: f64, bridge: usize) -> i32 {
         let mut n = 1;
         for sign in [1.0, -1.0] {
             let mut k = 1.0;
-            while n < 16 {
+            while n < max {
                 if occ(x + sign * k * dx, y + sign * k * dy) {
                     n += 1;
                     k += 1.0;
@@ -426,7 +439,7 @@ fn depth_bridging(grid: &Grid<Cell>, angle: f64, bridge: usize) -> i32 {
     };
     let total_occ = grid.cells().iter().filter(|&&c| c == Cell::Occupied).count();
     let stride = (total_occ / 20_000).max(1);
-    let mut hist = [0u64; 17];
+    let mut hist = vec![0u64; max + 1];
     let mut k = 0;
     for y in 0..h {
         for x in 0..w {
@@ -439,7 +452,7 @@ fn depth_bridging(grid: &Grid<Cell>, angle: f64, bridge: usize) -> i32 {
             }
             let (fx, fy) = (x as f64 + 0.5, y as f64 + 0.5);
             let d = run(fx, fy, axes[0]).min(run(fx, fy, axes[1]));
-            hist[d.min(16)] += 1;
+            hist[d.min(max)] += 1;
         }
     }
     let total: u64 = hist.iter().sum();
@@ -451,7 +464,7 @@ fn depth_bridging(grid: &Grid<Cell>, angle: f64, bridge: usize) -> i32 {
         acc += hist[d];
         2 * acc >= total
     });
-    (median.unwrap_or(1) as i32).clamp(1, MAX_RING_DEPTH)
+    (median.unwrap_or(1) as i32).clamp(1, max as i32)
 }
 
 #[cfg(test)]
@@ -484,9 +497,32 @@ mod tests {
                     }
                 }
             }
-            assert_eq!(ring_depth(&g, 0.0), d as i32);
+            assert_eq!(ring_depth(&g, 0.0, 0.05), d as i32);
         }
-        assert_eq!(ring_depth(&Grid::new(5, 5, Cell::Free), 0.0), 1);
+        assert_eq!(ring_depth(&Grid::new(5, 5, Cell::Free), 0.0, 0.05), 1);
+    }
+
+    #[test]
+    fn the_thickest_ring_is_half_a_metre_at_any_cell_size() {
+        // A room outlined by walls 0.3 m and 0.6 m thick: 0.3 m is measured as it is, 0.6 m
+        // is clamped to 0.5 m, in cells of 2.5, 5 and 10 cm.
+        for resolution in [0.025, 0.05, 0.1] {
+            let ring = |m: f64| {
+                let d = libm::round(m / resolution) as usize;
+                let (w, h) = (12 * d, 10 * d);
+                let mut g = Grid::new(w, h, Cell::Free);
+                for y in 0..h {
+                    for x in 0..w {
+                        if x < d || y < d || x >= w - d || y >= h - d || (x >= w / 2 && x < w / 2 + d) {
+                            *g.at_mut(x, y) = Cell::Occupied;
+                        }
+                    }
+                }
+                ring_depth(&g, 0.0, resolution) as f64 * resolution
+            };
+            assert!((ring(0.3) - 0.3).abs() < 1e-9, "{resolution}: {}", ring(0.3));
+            assert!((ring(0.6) - 0.5).abs() < 1e-9, "{resolution}: {}", ring(0.6));
+        }
     }
 
     #[test]

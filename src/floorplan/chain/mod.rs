@@ -106,9 +106,9 @@ pub const MAX_WALL_THICKNESS_M: f64 = 1.0;
 
 /// `m` metres of wall in whole cells of `r` metres: the nearest whole number (halves up, with
 /// the quotient's float noise forgiven: 0.15 m is two 10 cm cells), at least one cell and at
-/// most [`vision::walls::MAX_RING_DEPTH`].
+/// most [`vision::walls::MAX_RING_M`].
 fn wall_cells(m: f64, r: f64) -> i32 {
-    (libm::round(m / r + 1e-9) as i32).clamp(1, vision::walls::MAX_RING_DEPTH)
+    (libm::round(m / r + 1e-9) as i32).clamp(1, vision::walls::max_ring_cells(r))
 }
 
 impl ChainConfig {
@@ -141,7 +141,8 @@ pub struct ChainConfig {
     /// Detectors.
     pub detectors: DetectorConfig,
     /// Depth of every unit's wall ring, metres (issue 31: lengths in metres), turned into the
-    /// nearest whole number of cells from the map's resolution (1 to 10 cells); `None`, the
+    /// nearest whole number of cells from the map's resolution (one cell to
+    /// [`vision::walls::MAX_RING_M`]); `None`, the
     /// default, estimates it from the map's walls ([`vision::walls::ring_depth`]). The
     /// dissertation's model is one cell; thicker rings let units predict thick walls. At most
     /// [`MAX_WALL_THICKNESS_M`].
@@ -479,7 +480,7 @@ impl Chain {
             }
         };
         let (world_map, frame) = vision::orientation::to_world_frame(classified, angle);
-        let wall = cells.wall.unwrap_or_else(|| vision::walls::ring_depth(classified, angle));
+        let wall = cells.wall.unwrap_or_else(|| vision::walls::ring_depth(classified, angle, resolution));
         let candidates = wall_candidates(&world_map, &cells, wall);
         let faces = vision::walls::faces_of(&world_map, &cells.walls);
         let mut chain =

@@ -97,7 +97,7 @@ impl Chain {
             .config
             .wall_thickness_m
             .is_none()
-            .then(|| vision::walls::ring_depth_seen_from_both_sides(&self.map, self.frame.angle));
+            .then(|| vision::walls::ring_depth_seen_from_both_sides(&self.map, self.frame.angle, self.resolution));
         self.map = map.classified().clone();
         self.walls = None;
         self.go_to_best();
@@ -211,7 +211,7 @@ impl Chain {
     /// person's paint stroke on a whole map does not change how thick its walls look, so the
     /// live mapper's strokes leave the rings alone.
     fn thicken_walls(&mut self, before: i32) -> bool {
-        let measured = vision::walls::ring_depth_seen_from_both_sides(&self.map, self.frame.angle);
+        let measured = vision::walls::ring_depth_seen_from_both_sides(&self.map, self.frame.angle, self.resolution);
         if measured <= before || measured <= self.state.wall {
             return false;
         }

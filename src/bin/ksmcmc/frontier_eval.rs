@@ -95,7 +95,7 @@ fn explain_partial(
     assert_eq!(again, r.world.placeholders, "the run's placeholders are the layer's");
     let (map, truth) = (partial.classified(), s.map.classified());
     let cases = frontier_truth(&r.world, map, &r.labels, resolution, &s.truth, truth, &s.labels);
-    let doors = unentered_doors(&s.truth, map, &s.labels);
+    let doors = unentered_doors(&s.truth, map, &s.labels, resolution);
     Ok(Explained { kind, world: r.world, cases, doors, resolution, run_s: r.seconds, placeholders_s })
 }
 

@@ -11,7 +11,7 @@
 //! placeholder leads nowhere (the outside, or a pocket).
 
 use super::rules::{place, FrontierRules, FRONTIER_QUERY};
-use super::stretches::{door_centre, stretches, wave_behind, Stretch};
+use super::stretches::{door_centre, stretches, wave_behind, Stretch, AT_DOOR_M};
 use crate::floorplan::world::{UnitType, World};
 use crate::grid::{Cell, Grid};
 use crate::mln::{Database, Evidence, MlnError};
@@ -128,9 +128,16 @@ impl FrontierRules {
 }
 
 /// The map centres of the truth doors into units the robot never entered (less than a tenth
-/// of their floor seen) from units it has explored (at least half seen): where a placeholder
-/// should stand.
-pub fn unentered_doors(truth: &World, partial: &Grid<Cell>, truth_labels: &Grid<u16>) -> Vec<(f64, f64)> {
+/// of their floor seen) from units it has explored (at least half seen), in front of which it
+/// has seen free floor within [`AT_DOOR_M`] (a door leaf's width) of the door's centre: where a
+/// placeholder should stand. A unit half seen may have the door in its other half, and a door
+/// the robot never came near opens onto no explored space. `resolution`: metres a cell.
+pub fn unentered_doors(
+    truth: &World,
+    partial: &Grid<Cell>,
+    truth_labels: &Grid<u16>,
+    resolution: f64,
+) -> Vec<(f64, f64)> {
     let (seen, total) = seen_cells(partial, truth_labels, truth.units.len());
     let share = |id: u32| {
         let l = truth.units.iter().position(|u| u.id == id).map_or(0, |k| k + 1);
@@ -139,6 +146,7 @@ pub fn unentered_doors(truth: &World, partial: &Grid<Cell>, truth_labels: &Grid<
         }
         Some(seen[l] as f64 / total[l] as f64)
     };
+    let reach = AT_DOOR_M / crate::grid::cell_size_m(resolution);
     truth
         .doors
         .iter()
@@ -148,7 +156,20 @@ pub fn unentered_doors(truth: &World, partial: &Grid<Cell>, truth_labels: &Grid<
             (a < 0.1 && b >= 0.5) || (b < 0.1 && a >= 0.5)
         })
         .map(|d| door_centre(truth, d))
+        .filter(|&centre| free_within(partial, centre, reach))
         .collect()
+}
+
+/// Whether a free cell of `map` has its centre within `reach` cells of `(cx, cy)` (map
+/// coordinates).
+fn free_within(map: &Grid<Cell>, (cx, cy): (f64, f64), reach: f64) -> bool {
+    let r = libm::ceil(reach) as i64 + 1;
+    let (x0, y0) = (libm::floor(cx) as i64, libm::floor(cy) as i64);
+    (y0 - r..=y0 + r).any(|y| {
+        (x0 - r..=x0 + r).any(|x| {
+            map.get(x, y) == Some(&Cell::Free) && libm::hypot(x as f64 + 0.5 - cx, y as f64 + 0.5 - cy) <= reach
+        })
+    })
 }
 
 /// Per truth label `0..=units` (a larger label counts as `units`), the cells of
@@ -169,4 +190,21 @@ fn seen_cells(partial: &Grid<Cell>, truth_labels: &Grid<u16>, units: usize) -> (
         seen[l] += usize::from(c == Cell::Free);
     }
     (seen, total)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_door_is_onto_explored_space_only_where_floor_was_seen_before_it() {
+        // Unknown space with free floor seen at (10, 10) only; 5 cm cells, so 1 m is 20 cells.
+        let mut map = Grid::new(80, 40, Cell::Unknown);
+        *map.at_mut(10, 10) = Cell::Free;
+        assert!(free_within(&map, (10.5, 29.0), 20.0), "18.5 cells away");
+        assert!(!free_within(&map, (10.5, 31.0), 20.0), "20.5 cells away");
+        assert!(!free_within(&map, (40.0, 10.5), 20.0));
+        *map.at_mut(10, 10) = Cell::Occupied;
+        assert!(!free_within(&map, (10.5, 10.5), 20.0), "a wall is no floor");
+    }
 }

@@ -1,6 +1,6 @@
 //! Square dilation and erosion of a grid of flags, separable: a window of `2r + 1` cells along
-//! each row (prefix counts), then along each column (a running count per column, the rows read
-//! in order), so that each costs two passes over the grid whatever the radius.
+//! each row, then along each column, with prefix counts, so that each costs two passes over
+//! the grid whatever the radius.
 //!
 //! The generator grows the cells a robot saw around free space; the frontier stage opens
 //! unknown space (an erosion, then a dilation) so that the streaks rays leave between them at
@@ -20,33 +20,24 @@ use super::Grid;
 /// ```
 pub fn dilate(g: &Grid<bool>, r: usize) -> Grid<bool> {
     let (w, h) = (g.width(), g.height());
-    // Along each row: prefix counts, then a window of 2r + 1.
+    let pass = |src: &[bool], n: usize, stride: usize, out: &mut [bool]| {
+        // Prefix counts along one line, then a window of 2r + 1.
+        let mut prefix = vec![0u32; n + 1];
+        for i in 0..n {
+            prefix[i + 1] = prefix[i] + u32::from(src[i * stride]);
+        }
+        for i in 0..n {
+            let (a, b) = (i.saturating_sub(r), (i + r + 1).min(n));
+            out[i * stride] = prefix[b] > prefix[a];
+        }
+    };
     let mut mid = vec![false; w * h];
-    let mut prefix = vec![0u32; w + 1];
-    for (src, out) in g.cells().chunks_exact(w.max(1)).zip(mid.chunks_exact_mut(w.max(1))) {
-        for (i, &v) in src.iter().enumerate() {
-            prefix[i + 1] = prefix[i] + u32::from(v);
-        }
-        for (i, o) in out.iter_mut().enumerate() {
-            *o = prefix[(i + r + 1).min(w)] > prefix[i.saturating_sub(r)];
-        }
-    }
-    // Down the columns, a row at a time (the grid is row-major, so this reads it in order):
-    // each column's count of true cells in the window of 2r + 1 rows around the current one.
-    let mut count = vec![0u32; w];
-    let row = |y: usize| &mid[y * w..(y + 1) * w];
-    for y in 0..r.min(h) {
-        count.iter_mut().zip(row(y)).for_each(|(c, &v)| *c += u32::from(v));
+    for y in 0..h {
+        pass(&g.cells()[y * w..], w, 1, &mut mid[y * w..]);
     }
     let mut out = vec![false; w * h];
-    for y in 0..h {
-        if y + r < h {
-            count.iter_mut().zip(row(y + r)).for_each(|(c, &v)| *c += u32::from(v));
-        }
-        if y > r {
-            count.iter_mut().zip(row(y - r - 1)).for_each(|(c, &v)| *c -= u32::from(v));
-        }
-        out[y * w..(y + 1) * w].iter_mut().zip(&count).for_each(|(o, &c)| *o = c > 0);
+    for x in 0..w {
+        pass(&mid[x..], h, w, &mut out[x..]);
     }
     Grid::from_vec(w, h, out).expect("same size")
 }

@@ -109,60 +109,34 @@ fn components(e: &impl FreeSpace, min_cells: usize, scratch: &mut Scratch) -> Ve
     seen.clear();
     seen.resize((w * h).div_ceil(64), 0);
     let mut out = Vec::new();
-    // A word of 64 cells at a time: which are unexplained and not yet seen, in order. Most
-    // of the map is explained once the chain has run a while, and this scan, a cell at a time,
-    // was most of a refresh's cost.
-    for k in 0..seen.len() {
-        let base = 64 * k;
-        let mut fresh = 0u64;
-        for i in base..(base + 64).min(w * h) {
-            fresh |= u64::from(e.is_unexplained(i)) << (i - base);
-        }
-        loop {
-            fresh &= !seen[k];
-            if fresh == 0 {
-                break;
-            }
-            let start = base + fresh.trailing_zeros() as usize;
-            component(e, start, min_cells, seen, flood, &mut out);
-        }
-    }
-    out
-}
-
-/// The component of `start` (unexplained, not yet seen), flooded and marked seen; its box
-/// grown by one cell onto `out` if it holds at least `min_cells` cells.
-fn component(
-    e: &impl FreeSpace,
-    start: usize,
-    min_cells: usize,
-    seen: &mut [u64],
-    flood: &mut Flood,
-    out: &mut Vec<Rect>,
-) {
-    let (w, h) = (e.width(), e.height());
     // Marks cell `i` seen; false if it already was.
-    let mark = |seen: &mut [u64], i: usize| {
+    let mark = |seen: &mut Vec<u64>, i: usize| {
         let (word, bit) = (i / 64, 1u64 << (i % 64));
         let fresh = seen[word] & bit == 0;
         seen[word] |= bit;
         fresh
     };
-    let (sx, sy) = (start % w, start / w);
-    let (mut x0, mut y0, mut x1, mut y1, mut n) = (sx, sy, sx, sy, 0usize);
-    let enter = |j: usize| e.is_unexplained(j) && mark(seen, j);
-    flood.fill(w, h, [start], Neighbours::Four, enter, |i| {
-        let (x, y) = (i % w, i / w);
-        n += 1;
-        (x0, y0, x1, y1) = (x0.min(x), y0.min(y), x1.max(x), y1.max(y));
-    });
-    if n >= min_cells {
-        let gx0 = x0.saturating_sub(1);
-        let gy0 = y0.saturating_sub(1);
-        let gx1 = (x1 + 1).min(w - 1);
-        let gy1 = (y1 + 1).min(h - 1);
-        out.push(Rect::new(gx0 as i32, gy0 as i32, (gx1 - gx0 + 1) as i32, (gy1 - gy0 + 1) as i32));
+    for start in 0..w * h {
+        if seen[start / 64] & (1 << (start % 64)) != 0 || !e.is_unexplained(start) {
+            continue;
+        }
+        let (sx, sy) = (start % w, start / w);
+        let (mut x0, mut y0, mut x1, mut y1, mut n) = (sx, sy, sx, sy, 0usize);
+        let enter = |j: usize| e.is_unexplained(j) && mark(seen, j);
+        flood.fill(w, h, [start], Neighbours::Four, enter, |i| {
+            let (x, y) = (i % w, i / w);
+            n += 1;
+            (x0, y0, x1, y1) = (x0.min(x), y0.min(y), x1.max(x), y1.max(y));
+        });
+        if n >= min_cells {
+            let gx0 = x0.saturating_sub(1);
+            let gy0 = y0.saturating_sub(1);
+            let gx1 = (x1 + 1).min(w - 1);
+            let gy1 = (y1 + 1).min(h - 1);
+            out.push(Rect::new(gx0 as i32, gy0 as i32, (gx1 - gx0 + 1) as i32, (gy1 - gy0 + 1) as i32));
+        }
     }
+    out
 }
 
 #[cfg(test)]

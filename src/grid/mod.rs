@@ -47,6 +47,12 @@ pub fn cell_size_m(resolution: f64) -> f64 {
         BENCHMARK_CELL_M
     }
 }
+
+/// `m` metres in whole cells of `resolution` metres ([`cell_size_m`]): the nearest whole
+/// number, halves up, with the quotient's float noise forgiven (0.15 m is two 10 cm cells).
+pub(crate) fn whole_cells(m: f64, resolution: f64) -> f64 {
+    libm::round(m / cell_size_m(resolution) + 1e-9)
+}
 pub use error::MapError;
 pub use raster::{Grid, Raster};
 pub use ros::{MapYaml, Mode, MAX_YAML_BYTES};

@@ -336,8 +336,7 @@ pub const MAX_RING_M: f64 = 0.5;
 
 /// [`MAX_RING_M`] in whole cells of `resolution` metres (at least one).
 pub fn max_ring_cells(resolution: f64) -> i32 {
-    let r = crate::grid::cell_size_m(resolution);
-    (libm::round(MAX_RING_M / r + 1e-9) as i32).max(1)
+    (crate::grid::whole_cells(MAX_RING_M, resolution) as i32).max(1)
 }
 
 /// The depth of unit wall rings that best explains this map's walls: the typical wall
@@ -380,8 +379,7 @@ pub fn ring_depth(grid: &Grid<Cell>, angle: f64, resolution: f64) -> i32 {
 /// assert_eq!(ring_depth_seen_from_both_sides(&g, 0.0, 0.05), 3);
 /// ```
 pub fn ring_depth_seen_from_both_sides(grid: &Grid<Cell>, angle: f64, resolution: f64) -> i32 {
-    let r = crate::grid::cell_size_m(resolution);
-    let core = libm::round(MAX_UNSEEN_WALL_CORE_M / r + 1e-9).max(1.0) as usize;
+    let core = crate::grid::whole_cells(MAX_UNSEEN_WALL_CORE_M, resolution).max(1.0) as usize;
     depth_bridging(grid, angle, core, max_ring_cells(resolution))
 }
 

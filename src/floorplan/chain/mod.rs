@@ -104,11 +104,10 @@ pub(crate) struct ChainCells {
 /// wall a map shows.
 pub const MAX_WALL_THICKNESS_M: f64 = 1.0;
 
-/// `m` metres of wall in whole cells of `r` metres: the nearest whole number (halves up, with
-/// the quotient's float noise forgiven: 0.15 m is two 10 cm cells), at least one cell and at
-/// most [`vision::walls::MAX_RING_M`].
+/// `m` metres of wall in whole cells of `r` metres ([`crate::grid::whole_cells`]), at least
+/// one cell and at most [`vision::walls::MAX_RING_M`].
 fn wall_cells(m: f64, r: f64) -> i32 {
-    (libm::round(m / r + 1e-9) as i32).clamp(1, vision::walls::max_ring_cells(r))
+    (crate::grid::whole_cells(m, r) as i32).clamp(1, vision::walls::max_ring_cells(r))
 }
 
 impl ChainConfig {

@@ -26,8 +26,8 @@ pub(crate) fn mark_unexplored(rooms: &mut [Room], labels: &Grid<u16>, map: &Grid
     if (labels.width(), labels.height()) != (map.width(), map.height()) || resolution.is_nan() || resolution <= 0.0 {
         return;
     }
-    let hole_reach = super::config::RoomConfig::default().cells(resolution).hole_reach;
-    mark_unexplored_on(rooms, labels, map, &standing_depth(map, speck_cells(resolution), hole_reach), resolution);
+    let c = super::config::RoomConfig::default().cells(resolution);
+    mark_unexplored_on(rooms, labels, map, &standing_depth(map, c.speck, c.hole_reach), resolution);
 }
 
 /// The longest part, in cells, that is a speck at `resolution` m per cell: [`SPECK_M`] in

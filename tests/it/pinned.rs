@@ -102,7 +102,7 @@ fn pinned_synthetic() {
 
 #[test]
 fn pinned_cartesium() {
-    pin_dataset("radish/ubremen-cartesium.png", 0x8f60_5374_6096_6a61);
+    pin_dataset("radish/ubremen-cartesium.png", 0x63fa_9e80_cf90_e69e);
 }
 
 #[test]

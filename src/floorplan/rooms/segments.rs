@@ -893,12 +893,13 @@ pub(crate) mod tests {
 
     #[test]
     fn chairs_along_an_open_boundary_are_no_wall() {
-        // Two units side by side in one room, with a row of chairs (3 x 3, 2 apart) down the
-        // line between them, clear of the room's walls: over half of the band is occupied, but by
-        // no wall.
+        // Two units side by side in one room, with a row of chairs (0.45 m square, 9 x 9
+        // cells, 2 apart) down the line between them, clear of the room's walls: over half of
+        // the band is occupied, but by no wall. (Pieces a wall's thickness across, 0.1 m
+        // apart, would be a glass pane, `wall_gaps::walls`; a chair is deeper than a wall.)
         let mut map = walled_room(90, 40);
-        for y in (4..36).filter(|y| (y - 4) % 5 < 3) {
-            for x in 44..47 {
+        for y in (4..36).filter(|y| (y - 4) % 11 < 9) {
+            for x in 41..50 {
                 *map.at_mut(x, y) = Cell::Occupied;
             }
         }

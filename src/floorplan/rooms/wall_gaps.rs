@@ -77,8 +77,10 @@ pub fn wall_gaps(world_map: &Grid<Cell>, c: &RoomCells, depth: usize) -> Vec<boo
 /// Which cells are walls: occupied cells of a connected part at least `min_len` cells long or
 /// wide, or a piece of wall: a line, straight or bent, no thicker than `piece_thick` cells and
 /// at least three times that long ([`line_like`]; 0 turns pieces off). Parts are 8-connected
-/// through occupied cells and unknown cells within `hole_reach` cells of one
-/// ([`super::config::HOLE_REACH_M`]), so a wall that a scan saw in pieces, with unseen cells in it, is one part;
+/// through occupied cells, unknown cells within `hole_reach` cells of one
+/// ([`super::config::HOLE_REACH_M`]) and free cells between two pieces of wall as thick as a
+/// wall within `hole_reach` along a row or column ([`seen_through`]), so a wall that a scan
+/// saw in pieces, with unseen cells in it or seen through as a glass pane, is one part;
 /// smaller parts (chairs, the dots of a drawn table, specks amid free space) are no wall a gap
 /// could close onto, no jamb of a doorway and no wall between two units (see
 /// [`RoomCells::min_wall_len`]).
@@ -88,8 +90,12 @@ pub(crate) fn walls(map: &Grid<Cell>, min_len: usize, piece_thick: usize, hole_r
     let mut wall = vec![false; w * h];
     // Unknown cells within the reach of an occupied one: the map grown by it.
     let near = crate::vision::walls::dilate(map, hole_reach.min(i32::MAX as u32) as i32);
-    let joins =
-        |j: usize| cells[j] == Cell::Occupied || (cells[j] == Cell::Unknown && near.cells()[j] == Cell::Occupied);
+    let seen_through = seen_through(map, hole_reach as usize, piece_thick);
+    let joins = |j: usize| {
+        cells[j] == Cell::Occupied
+            || (cells[j] == Cell::Unknown && near.cells()[j] == Cell::Occupied)
+            || seen_through[j]
+    };
     each_part(
         w,
         h,
@@ -102,6 +108,75 @@ pub(crate) fn walls(map: &Grid<Cell>, min_len: usize, piece_thick: usize, hole_r
         },
     );
     wall
+}
+
+/// Free cells of `map` between two pieces of wall within `reach` cells on either side along
+/// their row or along their column: the gaps of a wall a scan saw through (a glass pane,
+/// whose rays pass between its reflections), no wider than twice the reach less one cell.
+/// A piece of wall is an occupied cell whose run of occupied cells across the line is a
+/// wall's thickness: two cells to `thick`. A lone speck is thinner, the edge of a desk or a
+/// shelf running along the line is longer, and neither joins anything.
+fn seen_through(map: &Grid<Cell>, reach: usize, thick: usize) -> Vec<bool> {
+    let (w, h) = (map.width(), map.height());
+    let cells = map.cells();
+    let mut out = vec![false; w * h];
+    if reach == 0 || thick < 2 || w == 0 || h == 0 {
+        return out;
+    }
+    let across_rows = runs(cells, w, h, true);
+    let across_columns = runs(cells, w, h, false);
+    let mut line = |at: &dyn Fn(usize) -> usize, len: usize, run: &[u32]| {
+        let piece = |i: usize| (2..=thick).contains(&(run[i] as usize));
+        // Distance back to the last piece of wall, then forward to the next.
+        let mut back = vec![usize::MAX; len];
+        let mut last = None;
+        for (k, b) in back.iter_mut().enumerate() {
+            if piece(at(k)) {
+                last = Some(k);
+            }
+            *b = last.map_or(usize::MAX, |l| k - l);
+        }
+        let mut next = None;
+        for k in (0..len).rev() {
+            let i = at(k);
+            if piece(i) {
+                next = Some(k);
+            } else if cells[i] == Cell::Free && back[k] <= reach && next.is_some_and(|n| n - k <= reach) {
+                out[i] = true;
+            }
+        }
+    };
+    // Along a row, a piece of wall is thick down its column; along a column, across its row.
+    for y in 0..h {
+        line(&|k| y * w + k, w, &across_columns);
+    }
+    for x in 0..w {
+        line(&|k| k * w + x, h, &across_rows);
+    }
+    out
+}
+
+/// Per cell, the length of the run of occupied cells through it along its row (`along_rows`)
+/// or its column; 0 for cells that are not occupied.
+fn runs(cells: &[Cell], w: usize, h: usize, along_rows: bool) -> Vec<u32> {
+    let mut run = vec![0u32; w * h];
+    let (lines, len) = if along_rows { (h, w) } else { (w, h) };
+    let at = |line: usize, k: usize| if along_rows { line * w + k } else { k * w + line };
+    for line in 0..lines {
+        let mut k = 0;
+        while k < len {
+            if cells[at(line, k)] != Cell::Occupied {
+                k += 1;
+                continue;
+            }
+            let start = k;
+            while k < len && cells[at(line, k)] == Cell::Occupied {
+                k += 1;
+            }
+            (start..k).for_each(|j| run[at(line, j)] = (k - start) as u32);
+        }
+    }
+    run
 }
 
 /// Calls `f(part, extent)` for every 8-connected part of the cells of a `w` x `h` grid that
@@ -571,6 +646,39 @@ mod tests {
         let c = RoomCells { door_half_width: 3, ..c };
         let gaps = wall_gaps(&map, &c, 3);
         assert!((11..30).all(|y| gaps[y * 60 + 20]));
+    }
+
+    #[test]
+    fn a_glass_pane_is_a_wall_a_row_of_specks_or_desks_is_not() {
+        // A 3-cell thick wall along rows 10..13, 60 cells long, seen through in one column of
+        // every three (a glass pane: its rays pass between the reflections): pieces 2 cells
+        // long, each shorter than a wall and thinner than three times its thickness.
+        let mut map = Grid::new(70, 40, Cell::Free);
+        for x in (5..65).filter(|x| x % 3 != 0) {
+            fill(&mut map, x..x + 1, 10..13, Cell::Occupied);
+        }
+        let at = |w: &[bool], x: usize, y: usize| w[y * 70 + x];
+        let glass = walls(&map, 40, 4, 2);
+        assert!(at(&glass, 7, 11) && at(&glass, 62, 11), "the pane is one wall");
+        // Without the reach, nothing joins its pieces.
+        assert!(!walls(&map, 40, 4, 0).contains(&true));
+        // Seen through in gaps of three cells out of five, wider than the reach spans (twice
+        // two, less one), its pieces stay apart.
+        let mut wide = Grid::new(70, 40, Cell::Free);
+        for x in (5..65).filter(|x| x % 5 >= 3) {
+            fill(&mut wide, x..x + 1, 10..13, Cell::Occupied);
+        }
+        assert!(walls(&wide, 40, 4, 1).iter().all(|&w| !w));
+        // Specks two cells apart along a row are no wall: a speck is no wall's thickness.
+        let mut specks = Grid::new(70, 40, Cell::Free);
+        (5..65).step_by(2).for_each(|x| *specks.at_mut(x, 20) = Cell::Occupied);
+        assert!(!walls(&specks, 40, 4, 2).contains(&true));
+        // Nor desks side by side: each is 10 cells deep across the row, no wall's thickness.
+        let mut desks = Grid::new(70, 40, Cell::Free);
+        for x0 in (5..60).step_by(12) {
+            fill(&mut desks, x0..x0 + 10, 15..25, Cell::Occupied);
+        }
+        assert!(!walls(&desks, 40, 4, 2).contains(&true));
     }
 
     #[test]

@@ -114,19 +114,22 @@ pub(crate) fn walls(map: &Grid<Cell>, min_len: usize, piece_thick: usize, hole_r
 /// their row or along their column: the gaps of a wall a scan saw through (a glass pane,
 /// whose rays pass between its reflections), no wider than twice the reach less one cell.
 /// A piece of wall is an occupied cell whose run of occupied cells across the line is a
-/// wall's thickness: two cells to `thick`. A lone speck is thinner, the edge of a desk or a
-/// shelf running along the line is longer, and neither joins anything.
+/// wall's thickness: from the reach (the hole's 0.1 m, [`super::config::HOLE_REACH_M`], is
+/// also the thinnest partition wall: 2 cells at 5 cm, 4 at 2.5 cm, 1 at 10 cm, where a wall
+/// is one cell thick) to `thick`. A speck is thinner than a wall at 5 cm and finer cells, the
+/// edge of a desk or a shelf running along the line is longer, and neither joins anything.
 fn seen_through(map: &Grid<Cell>, reach: usize, thick: usize) -> Vec<bool> {
     let (w, h) = (map.width(), map.height());
     let cells = map.cells();
     let mut out = vec![false; w * h];
-    if reach == 0 || thick < 2 || w == 0 || h == 0 {
+    let thinnest = reach.max(1);
+    if reach == 0 || thick < thinnest || w == 0 || h == 0 {
         return out;
     }
     let across_rows = runs(cells, w, h, true);
     let across_columns = runs(cells, w, h, false);
     let mut line = |at: &dyn Fn(usize) -> usize, len: usize, run: &[u32]| {
-        let piece = |i: usize| (2..=thick).contains(&(run[i] as usize));
+        let piece = |i: usize| (thinnest..=thick).contains(&(run[i] as usize));
         // Distance back to the last piece of wall, then forward to the next.
         let mut back = vec![usize::MAX; len];
         let mut last = None;
@@ -669,6 +672,11 @@ mod tests {
             fill(&mut wide, x..x + 1, 10..13, Cell::Occupied);
         }
         assert!(walls(&wide, 40, 4, 1).iter().all(|&w| !w));
+        // At 10 cm a wall is one cell thick and the reach one cell: a pane seen through in
+        // every other cell is a wall there.
+        let mut thin = Grid::new(70, 40, Cell::Free);
+        (5..65).step_by(2).for_each(|x| *thin.at_mut(x, 20) = Cell::Occupied);
+        assert!(at(&walls(&thin, 40, 2, 1), 33, 20));
         // Specks two cells apart along a row are no wall: a speck is no wall's thickness.
         let mut specks = Grid::new(70, 40, Cell::Free);
         (5..65).step_by(2).for_each(|x| *specks.at_mut(x, 20) = Cell::Occupied);

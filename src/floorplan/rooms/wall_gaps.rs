@@ -130,23 +130,17 @@ fn seen_through(map: &Grid<Cell>, reach: usize, thick: usize) -> Vec<bool> {
     let across_columns = runs(cells, w, h, false);
     let mut line = |at: &dyn Fn(usize) -> usize, len: usize, run: &[u32]| {
         let piece = |i: usize| (thinnest..=thick).contains(&(run[i] as usize));
-        // Distance back to the last piece of wall, then forward to the next.
-        let mut back = vec![usize::MAX; len];
-        let mut last = None;
-        for (k, b) in back.iter_mut().enumerate() {
-            if piece(at(k)) {
-                last = Some(k);
+        // Between each two pieces of wall in a row, the free cells within the reach of both.
+        let mut last: Option<usize> = None;
+        for n in (0..len).filter(|&k| piece(at(k))) {
+            if let Some(l) = last {
+                for j in (l + 1).max(n.saturating_sub(reach))..n.min(l + reach + 1) {
+                    if cells[at(j)] == Cell::Free {
+                        out[at(j)] = true;
+                    }
+                }
             }
-            *b = last.map_or(usize::MAX, |l| k - l);
-        }
-        let mut next = None;
-        for k in (0..len).rev() {
-            let i = at(k);
-            if piece(i) {
-                next = Some(k);
-            } else if cells[i] == Cell::Free && back[k] <= reach && next.is_some_and(|n| n - k <= reach) {
-                out[i] = true;
-            }
+            last = Some(n);
         }
     };
     // Along a row, a piece of wall is thick down its column; along a column, across its row.

@@ -36,9 +36,8 @@ const FIRST_SEED: u64 = 500;
 const MIN_CONTACT_M: f64 = 0.5;
 
 /// The realistic office floor at `resolution` metres per cell: 40 x 20 m with a hall of 6 to
-/// 10 m, every length in metres and every per-cell rate turned into a per-metre one.
+/// 10 m, every length in metres (the generator turns its rates per 5 cm into rates per cell).
 fn office(resolution: f64) -> SynthConfig {
-    let per_cell = resolution / 0.05;
     let cells = |m: f64| libm::round(m / resolution) as u32;
     SynthConfig {
         width: cells(40.0),
@@ -54,8 +53,8 @@ fn office(resolution: f64) -> SynthConfig {
         glass: 0.05,
         open_hubs: 0.7,
         extra_doors: 0.2,
-        // The default rates per 5 cm cell, per metre the same at every resolution.
-        wall_gaps: 0.006 * per_cell,
+        // A chance per 5 cm of wall: the generator turns it into one per cell.
+        wall_gaps: 0.006,
         ..SynthConfig::default()
     }
 }

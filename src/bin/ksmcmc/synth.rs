@@ -35,7 +35,7 @@ Options (override the config file, whose fields are documented in the library's 
                         unknown (default 0.002)
   --wall-roughness P    probability of a free cell beside an occupied one reading
                         occupied (default 0.05)
-  --wall-gaps P         probability per wall cell of a gap starting (default 0.004)
+  --wall-gaps P         probability per 5 cm of wall of a gap starting (default 0.004)
   --glass F             glass panes per metre of wall the laser sees through, rays fanning
                         out of the building through outer ones (default 0)
   --open-hubs P         probability of an open arch, not a door, between two corridors or a

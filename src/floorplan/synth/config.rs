@@ -75,8 +75,9 @@ pub struct SynthConfig {
     /// Probability that a free map cell next to an occupied one reads occupied, which makes wall
     /// faces and furniture outlines ragged as in real scans, 0 to 1 (default 0.05).
     pub wall_roughness: f64,
-    /// Probability, per cell along each side of each unit, that a gap (2 to 8 cells of the wall
-    /// read as unknown, across its whole thickness) starts there, 0 to 1 (default 0.004).
+    /// Probability, per 5 cm along each side of each unit (a cell at 5 cm, scaled at other
+    /// resolutions), that a gap (0.1 to 0.4 m of the wall read as unknown, across its whole
+    /// thickness) starts there, 0 to 1 (default 0.004).
     pub wall_gaps: f64,
     /// Fraction of the free area of explored rooms and halls covered by furniture blobs, 0 to
     /// 0.5 (default 0.03).

@@ -180,7 +180,8 @@ fn noise_of(config: &SynthConfig) -> scan::Noise {
         speckle_occupied: config.speckle_occupied,
         speckle_unknown: config.speckle_unknown,
         wall_roughness: config.wall_roughness,
-        wall_gaps: config.wall_gaps,
+        // A chance per 5 cm of wall, so per cell at 5 cm (`resolution / GAP_STEP_M` is exactly 1).
+        wall_gaps: config.wall_gaps * (config.resolution / scan::GAP_STEP_M),
         clutter: config.clutter,
         peek: config.peek,
         glass: config.glass * config.resolution,

@@ -28,6 +28,8 @@ pub(super) struct Noise {
     pub speckle_occupied: f64,
     pub speckle_unknown: f64,
     pub wall_roughness: f64,
+    /// Chance per wall cell that a gap starts there (gaps per [`GAP_STEP_M`] of wall, scaled
+    /// to the cell).
     pub wall_gaps: f64,
     pub clutter: f64,
     pub peek: f64,
@@ -37,6 +39,22 @@ pub(super) struct Noise {
     /// Metres per cell, for the panes' and rays' lengths.
     pub resolution: f64,
 }
+
+/// The length of wall per draw of [`SynthConfig::wall_gaps`](super::SynthConfig): the
+/// generator's gap rate was set as a chance per cell at 5 cm, so it is a chance per 5 cm of
+/// wall at every resolution, and a building has as many gaps per metre at 2.5 or 10 cm.
+pub(super) const GAP_STEP_M: f64 = 0.05;
+
+/// A wall gap's length, shortest and longest: a strip of dark paint or a narrow window, 0.1 to
+/// 0.4 m, whatever the cell.
+const GAP_LEN_M: (f64, f64) = (0.1, 0.4);
+
+/// The width of wall a ray through a glass pane frees ([`glaze`]): a laser's beams are spaced
+/// about 5 cm apart at a few metres, so one draw decides a 5 cm column of the pane, however
+/// many cells that is. At cells coarser than that, a cell reads free only where every one of
+/// its columns' rays passed: a beam that ends in a cell marks it occupied, and a mapper weighs
+/// a hit above a pass.
+const PANE_COLUMN_M: f64 = 0.05;
 
 /// A world-frame observation.
 pub(super) struct Observed {
@@ -69,7 +87,7 @@ pub(super) fn observe(plan: &Plan, explored: &[bool], c: &Cells, noise: &Noise, 
     let mut cells = seen_free(plan, explored, noise, (w, h), t, rng);
     mark_seen_walls(&mut cells, &kind, t);
     if noise.wall_gaps > 0.0 {
-        cut_wall_gaps(&mut cells, &kind, plan, noise.wall_gaps, t, rng);
+        cut_wall_gaps(&mut cells, &kind, plan, noise, t, rng);
     }
     if noise.glass > 0.0 {
         glaze(&mut cells, &kind, &labels, plan, explored, noise, t, rng);
@@ -172,9 +190,9 @@ fn sides(r: Rect) -> [Side; 4] {
 }
 
 /// Glass panes in the walls of explored units ([`SynthConfig::glass`](super::SynthConfig)):
-/// a pane is 1 to 3 m of wall; across it, each wall column a ray crossed (one in two: glass
-/// reflects the rays that meet it head-on and lets the slanting ones through) reads
-/// free. Where the pane is in the outer wall, each such ray runs on from the unit's centre
+/// a pane is 1 to 3 m of wall; across it, each wall column ([`PANE_COLUMN_M`]) a ray
+/// crossed (one in two: glass reflects the rays that meet it head-on and lets the slanting
+/// ones through) reads free. Where the pane is in the outer wall, each such ray runs on from the unit's centre
 /// through the column into the outside for 1 to 4 m, reading free, and half of them end on an
 /// occupied cell. A pane whose far side is an unexplored unit stays as it was: the robot never
 /// looked through it from there, and its rays would reveal a room the truth calls unseen.
@@ -191,6 +209,10 @@ fn glaze(
 ) {
     let to_cells = |m: f64| (libm::round(m / noise.resolution) as i32).max(1);
     let (pane, reach) = ((to_cells(1.0), to_cells(3.0)), (to_cells(1.0), to_cells(4.0)));
+    // Cells per column of the pane (fine cells), or the chance a coarse cell is crossed by
+    // every one of its columns' rays, each crossing with chance one half.
+    let per_column = (libm::round(PANE_COLUMN_M / noise.resolution) as i32).max(1);
+    let crossed = libm::pow(0.5, (noise.resolution / PANE_COLUMN_M).max(1.0));
     for (s, _) in plan.spaces.iter().zip(explored).filter(|(_, &e)| e) {
         let r = s.inner;
         let centre = (r.x as f64 + r.w as f64 / 2.0, r.y as f64 + r.h as f64 / 2.0);
@@ -202,6 +224,7 @@ fn glaze(
                     continue;
                 }
                 let n = rng.between(pane.0, pane.1);
+                let mut column: Option<(i32, bool)> = None;
                 for j in i..(i + n).min(len) {
                     let (x, y) = (x0 + dx * j, y0 + dy * j);
                     let beyond = (x + ox * t, y + oy * t);
@@ -216,7 +239,18 @@ fn glaze(
                         }
                         Some(_) => continue,
                     };
-                    if !rng.chance(0.5) {
+                    // Drawn where a cell of the column is first reached, so a pane at 5 cm
+                    // draws once per cell as it always did.
+                    let c = (j - i) / per_column;
+                    let crossed_here = match column {
+                        Some((at, was)) if at == c => was,
+                        _ => {
+                            let was = rng.chance(crossed);
+                            column = Some((c, was));
+                            was
+                        }
+                    };
+                    if !crossed_here {
                         continue;
                     }
                     for k in 0..t {
@@ -268,9 +302,11 @@ fn ray_outside(
     }
 }
 
-/// Gaps (glass, dark surfaces): runs of 2 to 8 cells along each unit side, starting at each
-/// cell with chance `rate`, read unknown across the whole wall.
-fn cut_wall_gaps(cells: &mut Grid<Cell>, kind: &Grid<u8>, plan: &Plan, rate: f64, t: i32, rng: &mut Rng) {
+/// Gaps (glass, dark surfaces): runs of [`GAP_LEN_M`] along each unit side, starting at each
+/// cell with chance `noise.wall_gaps`, read unknown across the whole wall.
+fn cut_wall_gaps(cells: &mut Grid<Cell>, kind: &Grid<u8>, plan: &Plan, noise: &Noise, t: i32, rng: &mut Rng) {
+    let to_cells = |m: f64| (libm::round(m / noise.resolution) as i32).max(1);
+    let (rate, gap) = (noise.wall_gaps, (to_cells(GAP_LEN_M.0), to_cells(GAP_LEN_M.1)));
     for s in &plan.spaces {
         for ((x0, y0), (dx, dy), (ox, oy), len) in sides(s.inner) {
             let mut i = 0;
@@ -279,7 +315,7 @@ fn cut_wall_gaps(cells: &mut Grid<Cell>, kind: &Grid<u8>, plan: &Plan, rate: f64
                     i += 1;
                     continue;
                 }
-                let g = rng.between(2, 8);
+                let g = rng.between(gap.0, gap.1);
                 for j in i..(i + g).min(len) {
                     for k in 0..t {
                         let (x, y) = (x0 + dx * j + ox * k, y0 + dy * j + oy * k);

@@ -40,6 +40,13 @@ pub(super) struct Noise {
     pub resolution: f64,
 }
 
+impl Noise {
+    /// `m` metres in whole cells of this map, at least one.
+    fn cells(&self, m: f64) -> i32 {
+        (libm::round(m / self.resolution) as i32).max(1)
+    }
+}
+
 /// The length of wall per draw of [`SynthConfig::wall_gaps`](super::SynthConfig): the
 /// generator's gap rate was set as a chance per cell at 5 cm, so it is a chance per 5 cm of
 /// wall at every resolution, and a building has as many gaps per metre at 2.5 or 10 cm.
@@ -192,9 +199,9 @@ fn sides(r: Rect) -> [Side; 4] {
 /// Glass panes in the walls of explored units ([`SynthConfig::glass`](super::SynthConfig)):
 /// a pane is 1 to 3 m of wall; across it, each wall column ([`PANE_COLUMN_M`]) a ray
 /// crossed (one in two: glass reflects the rays that meet it head-on and lets the slanting
-/// ones through) reads free. Where the pane is in the outer wall, each such ray runs on from the unit's centre
-/// through the column into the outside for 1 to 4 m, reading free, and half of them end on an
-/// occupied cell. A pane whose far side is an unexplored unit stays as it was: the robot never
+/// ones through) reads free. Where the pane is in the outer wall, each such ray runs on from
+/// the unit's centre through the column into the outside for 1 to 4 m, reading free, and half
+/// of them end on an occupied cell. A pane whose far side is an unexplored unit stays as it was: the robot never
 /// looked through it from there, and its rays would reveal a room the truth calls unseen.
 #[allow(clippy::too_many_arguments)]
 fn glaze(
@@ -207,11 +214,10 @@ fn glaze(
     t: i32,
     rng: &mut Rng,
 ) {
-    let to_cells = |m: f64| (libm::round(m / noise.resolution) as i32).max(1);
-    let (pane, reach) = ((to_cells(1.0), to_cells(3.0)), (to_cells(1.0), to_cells(4.0)));
+    let (pane, reach) = ((noise.cells(1.0), noise.cells(3.0)), (noise.cells(1.0), noise.cells(4.0)));
     // Cells per column of the pane (fine cells), or the chance a coarse cell is crossed by
     // every one of its columns' rays, each crossing with chance one half.
-    let per_column = (libm::round(PANE_COLUMN_M / noise.resolution) as i32).max(1);
+    let per_column = noise.cells(PANE_COLUMN_M);
     let crossed = libm::pow(0.5, (noise.resolution / PANE_COLUMN_M).max(1.0));
     for (s, _) in plan.spaces.iter().zip(explored).filter(|(_, &e)| e) {
         let r = s.inner;
@@ -305,8 +311,7 @@ fn ray_outside(
 /// Gaps (glass, dark surfaces): runs of [`GAP_LEN_M`] along each unit side, starting at each
 /// cell with chance `noise.wall_gaps`, read unknown across the whole wall.
 fn cut_wall_gaps(cells: &mut Grid<Cell>, kind: &Grid<u8>, plan: &Plan, noise: &Noise, t: i32, rng: &mut Rng) {
-    let to_cells = |m: f64| (libm::round(m / noise.resolution) as i32).max(1);
-    let (rate, gap) = (noise.wall_gaps, (to_cells(GAP_LEN_M.0), to_cells(GAP_LEN_M.1)));
+    let (rate, gap) = (noise.wall_gaps, (noise.cells(GAP_LEN_M.0), noise.cells(GAP_LEN_M.1)));
     for s in &plan.spaces {
         for ((x0, y0), (dx, dy), (ox, oy), len) in sides(s.inner) {
             let mut i = 0;

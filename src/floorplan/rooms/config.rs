@@ -101,6 +101,13 @@ pub const WALL_PIECE_THICK_M: f64 = 0.2;
 /// space beside it, and clutter would join the unexplored space around the building.
 pub const HOLE_REACH_M: f64 = 0.1;
 
+/// How far past its wall ring a unit may run over a seen wall and still be parted by it from
+/// the unit beyond, m: 0.5 m, the deepest wall a unit's ring stands for
+/// ([`crate::vision::walls::MAX_RING_M`]). The chain may draw a unit's wall in the free space of the
+/// room beside it, over the wall it stands for; the band between the two units' rings is then
+/// free while the seen wall runs just inside one of them ([`super::pairs`]).
+pub const EDGE_STRAY_M: f64 = 0.5;
+
 /// The room layer's settings in cells of one map: [`RoomConfig`] turned into cells once, from
 /// the map's resolution ([`RoomConfig::cells`]). The stages of the room layer read these.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -158,6 +165,8 @@ pub(crate) struct RoomCells {
     /// How far, in cells, an unknown cell may lie from an occupied one and still join the
     /// parts of a wall ([`HOLE_REACH_M`], at least one cell).
     pub hole_reach: u32,
+    /// How far past its wall ring a unit may run over a seen wall, in cells ([`EDGE_STRAY_M`]).
+    pub edge_stray: u32,
     /// The longest part of a map, in cells, that is a speck ([`super::read::SPECK_M`], one
     /// cell more than fits): the standing test and the passages look past it.
     pub speck: u32,
@@ -271,6 +280,7 @@ impl RoomConfig {
             min_wall_len: len(self.min_wall_len_m),
             wall_piece_thick: libm::floor(WALL_PIECE_THICK_M / r + 1e-9) as u32,
             hole_reach: len(HOLE_REACH_M),
+            edge_stray: len(EDGE_STRAY_M),
             speck: super::read::speck_cells(r),
             passage_depth: super::passages::passage_depth(r),
             clutter_in_rooms: self.clutter_in_rooms,

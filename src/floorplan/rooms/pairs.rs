@@ -71,9 +71,88 @@ fn is_flush(lo: Rect, hi: Rect, axis: Axis, (s, e): (i32, i32), t: i32) -> bool 
     share(lo).min(share(hi)) >= FLUSH_SHARE
 }
 
-/// Whether units `a` and `b` (rectangles, walls `t` deep) have an open boundary, and whether
-/// it is flush: `None` if there is none.
-fn open_boundary(a: Rect, b: Rect, t: i32, world_map: &Grid<Cell>, c: &RoomCells) -> Option<bool> {
+/// Whether a seen wall parts `lo` and `hi` just inside one of them, though the band between
+/// their rings is free: a line along their boundary, within [`RoomCells::edge_stray`] past
+/// either ring (and inside the units), that is wall over at least half the stretch `s..=e`
+/// and whose openings are all narrower than an open boundary ([`RoomCells::min_open_len`]):
+/// doors and wall gaps in a wall the chain drew one unit's ring across. Read on the map as
+/// seen (`map`), where the pieces of wall beside a door and the dots of a glass pane are, and
+/// counting only cells a wall's thickness deep across the line ([`wall_thick_at`]): a row of
+/// chairs along an open boundary is deeper.
+fn walled_inside(map: &Grid<Cell>, lo: Rect, hi: Rect, axis: Axis, (s, e): (i32, i32), t: i32, c: &RoomCells) -> bool {
+    let reach = c.edge_stray as i32;
+    let (from, to) = match axis {
+        Axis::Horizontal => ((lo.right() - t - reach).max(lo.x + t), (hi.x + t + reach).min(hi.right() - t)),
+        Axis::Vertical => ((lo.bottom() - t - reach).max(lo.y + t), (hi.y + t + reach).min(hi.bottom() - t)),
+    };
+    let (w, h) = (map.width() as i32, map.height() as i32);
+    let (lines, along) = match axis {
+        Axis::Horizontal => (w, h),
+        Axis::Vertical => (h, w),
+    };
+    let (s, e) = (s.max(0), e.min(along - 1));
+    let len = e - s + 1;
+    if len <= 0 {
+        return false;
+    }
+    (from.max(0)..to.min(lines)).any(|line| {
+        let (mut occ, mut run, mut longest) = (0, 0, 0);
+        for k in s..=e {
+            let (x, y) = match axis {
+                Axis::Horizontal => (line, k),
+                Axis::Vertical => (k, line),
+            };
+            if wall_thick_at(map, (x, y), axis, c.wall_piece_thick) {
+                occ += 1;
+                run = 0;
+            } else {
+                run += 1;
+                longest = longest.max(run);
+            }
+        }
+        2 * occ >= len && longest < c.min_open_len
+    })
+}
+
+/// Whether `(x, y)` is occupied by a run across the line (along `axis`: down its column when
+/// the units face each other across a row) no deeper than `thick` ([`RoomCells::wall_piece_thick`]):
+/// a wall or a glass pane's piece, not a chair or a desk (deeper than a wall is thick).
+fn wall_thick_at(map: &Grid<Cell>, (x, y): (i32, i32), axis: Axis, thick: u32) -> bool {
+    let occupied = |k: i32| {
+        let (x, y) = match axis {
+            Axis::Horizontal => (k, y),
+            Axis::Vertical => (x, k),
+        };
+        x >= 0
+            && y >= 0
+            && (x as usize) < map.width()
+            && (y as usize) < map.height()
+            && *map.at(x as usize, y as usize) == Cell::Occupied
+    };
+    let at = match axis {
+        Axis::Horizontal => x,
+        Axis::Vertical => y,
+    };
+    if !occupied(at) {
+        return false;
+    }
+    let limit = thick as i32;
+    let before = (1..=limit).take_while(|&d| occupied(at - d)).count() as i32;
+    let after = (1..=limit).take_while(|&d| occupied(at + d)).count() as i32;
+    before + after < limit
+}
+
+/// Whether units `a` and `b` (rectangles, walls `t` deep) have an open boundary in
+/// `world_map` (its walls: clutter drawn free), and whether it is flush: `None` if there is
+/// none. `seen` is the classified map itself, for [`walled_inside`]: a wall between a door and
+/// a glass pane may be too short to be read as one, and the pane a dotted line.
+fn open_boundary(
+    a: Rect,
+    b: Rect,
+    t: i32,
+    (world_map, seen): (&Grid<Cell>, &Grid<Cell>),
+    c: &RoomCells,
+) -> Option<bool> {
     let mut found: Option<bool> = None;
     for (lo, hi) in [(a, b), (b, a)] {
         for axis in [Axis::Horizontal, Axis::Vertical] {
@@ -86,7 +165,10 @@ fn open_boundary(a: Rect, b: Rect, t: i32, world_map: &Grid<Cell>, c: &RoomCells
                 Axis::Vertical => Rect::new(s, lo.bottom() - t, e - s + 1, hi.y - lo.bottom() + 2 * t),
             };
             let (occ, total) = occupied(world_map, band);
-            if total > 0 && (occ as f64) <= c.max_wall_share * total as f64 {
+            if total > 0
+                && (occ as f64) <= c.max_wall_share * total as f64
+                && !walled_inside(seen, lo, hi, axis, (s, e), t, c)
+            {
                 found = Some(found.unwrap_or(false) || is_flush(lo, hi, axis, (s, e), t));
             }
         }
@@ -149,7 +231,7 @@ pub(crate) fn open_pairs_among(
                 continue;
             }
             let (ra, rb) = (world.units[a].rect(), world.units[b].rect());
-            let open = open_boundary(ra, rb, t, walls, c).or_else(|| wide_door(world, a, b, c));
+            let open = open_boundary(ra, rb, t, (walls, world_map), c).or_else(|| wide_door(world, a, b, c));
             if let Some(flush) = open {
                 pairs.push(OpenPair { a, b, flush, closed: false });
             }
@@ -192,4 +274,43 @@ pub fn join(world: &World, world_map: &Grid<Cell>, pairs: impl IntoIterator<Item
             id_of_root[r]
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::floorplan::{Unit, UnitType};
+
+    /// An office above a corridor, parted by a wall at rows 40 - 42 with a doorway `door`
+    /// cells wide at columns 40 on, and the chain's two units: the office's ends at row 35, in
+    /// the free space above the wall, and the corridor's starts there too, its ring over the
+    /// office's and the seen wall 5 cells (0.25 m) inside it.
+    fn office_over_corridor(door: usize) -> (World, Grid<Cell>) {
+        let mut map = Grid::new(100, 80, Cell::Free);
+        for y in 40..43 {
+            for x in (0..40).chain(40 + door..100) {
+                *map.at_mut(x, y) = Cell::Occupied;
+            }
+        }
+        let mut world = World::empty(100, 80);
+        world.wall_thickness = 3;
+        world.units =
+            vec![Unit::new(1, 0, 0, 100, 35, UnitType::Room), Unit::new(2, 0, 32, 100, 48, UnitType::Corridor)];
+        (world, map)
+    }
+
+    #[test]
+    fn a_seen_wall_just_inside_a_unit_parts_it_from_its_neighbour() {
+        let c = RoomCells::default();
+        // A 1 m door (20 cells, under the 1.5 m of an open boundary): the wall parts them.
+        let (world, map) = office_over_corridor(20);
+        assert!(open_pairs(&world, &map, &c).is_empty());
+        // A 2 m gap is an opening: the boundary is open.
+        let (world, map) = office_over_corridor(40);
+        assert_eq!(open_pairs(&world, &map, &c), vec![OpenPair { a: 0, b: 1, flush: true, closed: false }]);
+        // A wall deeper inside a unit than it may stray (here 4 cells, 0.2 m) is not looked for.
+        let near = RoomCells { edge_stray: 4, ..c };
+        let (world, map) = office_over_corridor(20);
+        assert_eq!(open_pairs(&world, &map, &near).len(), 1);
+    }
 }

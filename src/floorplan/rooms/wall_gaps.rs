@@ -112,7 +112,8 @@ pub(crate) fn walls(map: &Grid<Cell>, min_len: usize, piece_thick: usize, hole_r
 
 /// Free cells of `map` between two pieces of wall within `reach` cells on either side along
 /// their row or along their column: the gaps of a wall a scan saw through (a glass pane,
-/// whose rays pass between its reflections), no wider than twice the reach less one cell.
+/// whose rays pass between its reflections), no wider than the reach: a cell of a wider gap
+/// lies beyond the reach of the piece on its far side.
 /// A piece of wall is an occupied cell whose run of occupied cells across the line is a
 /// wall's thickness: from the reach (the hole's 0.1 m, [`super::config::HOLE_REACH_M`], is
 /// also the thinnest partition wall: 2 cells at 5 cm, 4 at 2.5 cm, 1 at 10 cm, where a wall
@@ -659,8 +660,8 @@ mod tests {
         assert!(at(&glass, 7, 11) && at(&glass, 62, 11), "the pane is one wall");
         // Without the reach, nothing joins its pieces.
         assert!(!walls(&map, 40, 4, 0).contains(&true));
-        // Seen through in gaps of three cells out of five, wider than the reach spans (twice
-        // two, less one), its pieces stay apart.
+        // Seen through in gaps of three cells out of five, wider than a reach of one cell
+        // spans, its pieces stay apart.
         let mut wide = Grid::new(70, 40, Cell::Free);
         for x in (5..65).filter(|x| x % 5 >= 3) {
             fill(&mut wide, x..x + 1, 10..13, Cell::Occupied);

@@ -123,11 +123,7 @@ fn wall_thick_at(map: &Grid<Cell>, (x, y): (i32, i32), axis: Axis, thick: u32) -
             Axis::Horizontal => (k, y),
             Axis::Vertical => (x, k),
         };
-        x >= 0
-            && y >= 0
-            && (x as usize) < map.width()
-            && (y as usize) < map.height()
-            && *map.at(x as usize, y as usize) == Cell::Occupied
+        map.get(x as i64, y as i64) == Some(&Cell::Occupied)
     };
     let at = match axis {
         Axis::Horizontal => x,

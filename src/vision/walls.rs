@@ -222,28 +222,100 @@ pub fn candidates_where(
     grid: &Grid<Cell>,
     min_side: i32,
     c: &WallConfig,
-    keep: &dyn Fn(Rect) -> bool,
+    keep: &(dyn Fn(Rect) -> bool + Sync),
 ) -> Vec<(Rect, f64)> {
-    let occ = AreaCounts::new(&dilate(grid, c.tolerance), Cell::Occupied);
-    let free = AreaCounts::new(grid, Cell::Free);
-    // Walls crossing a candidate are judged on the raw map: dilation would close doors.
-    let raw = AreaCounts::new(grid, Cell::Occupied);
-    let xs = faces(&wall_lines(grid, false, c));
-    let ys = faces(&wall_lines(grid, true, c));
-    let frac = |r: Rect| occ.count(r) as f64 / r.area().max(1) as f64;
-    let mut out = Vec::new();
-    let mut ok_rows = Vec::with_capacity(ys.len());
-    // Indices into the faces: the first face more than two cells inside a candidate's left
-    // side, and the first at most two cells inside its right side.
-    let mut x_in = 0;
-    for (a, &x0) in xs.iter().enumerate() {
-        while x_in < xs.len() && xs[x_in] <= x0 + 2 {
-            x_in += 1;
+    let faces = Faces {
+        occ: AreaCounts::new(&dilate(grid, c.tolerance), Cell::Occupied),
+        free: AreaCounts::new(grid, Cell::Free),
+        // Walls crossing a candidate are judged on the raw map: dilation would close doors.
+        raw: AreaCounts::new(grid, Cell::Occupied),
+        xs: faces(&wall_lines(grid, false, c)),
+        ys: faces(&wall_lines(grid, true, c)),
+        min_side,
+        c,
+        keep,
+    };
+    let mut out = faces.all();
+    // The standard sort itself: the candidates are many and every chain's setup waits for
+    // them (crate::sort's indirect comparisons cost Cartesium's about 15 ms, for 3 kB). Its
+    // order is total (no two candidates are the same rectangle), so the list is the same
+    // whatever order the left sides were taken in.
+    out.sort_by(|a, b| {
+        b.1.total_cmp(&a.1).then_with(|| (a.0.x, a.0.y, a.0.w, a.0.h).cmp(&(b.0.x, b.0.y, b.0.w, b.0.h)))
+    });
+    out.truncate(c.max_candidates);
+    out
+}
+
+/// What [`candidates_where`] builds its candidates on: the area counts of the map and the wall
+/// faces, each candidate's sides on four of them.
+struct Faces<'a> {
+    /// Occupied cells of the map dilated by the wall tolerance.
+    occ: AreaCounts,
+    /// Free cells.
+    free: AreaCounts,
+    /// Occupied cells of the raw map.
+    raw: AreaCounts,
+    /// The columns and rows of the wall faces, sorted.
+    xs: Vec<i32>,
+    ys: Vec<i32>,
+    min_side: i32,
+    c: &'a WallConfig,
+    keep: &'a (dyn Fn(Rect) -> bool + Sync),
+}
+
+/// Wall faces per thread, at the least: a left side's candidates take milliseconds on a large
+/// map (Cartesium: 78 faces, 0.2 s), a thread starts in tens of microseconds.
+#[cfg(not(target_arch = "wasm32"))]
+const FACES_PER_THREAD: usize = 16;
+
+impl Faces<'_> {
+    /// Every candidate, left side by left side: natively the left sides dealt round the
+    /// machine's cores (at most four; each left side's candidates are independent of the
+    /// others'), in WebAssembly on one thread.
+    fn all(&self) -> Vec<(Rect, f64)> {
+        let n = self.xs.len();
+        #[cfg(not(target_arch = "wasm32"))]
+        {
+            let cores = std::thread::available_parallelism().map_or(1, |p| p.get().min(4));
+            let threads = cores.min(n / FACES_PER_THREAD).max(1);
+            if threads > 1 {
+                return std::thread::scope(|s| {
+                    let handles: Vec<_> =
+                        (0..threads).map(|k| s.spawn(move || self.with_lefts((k..n).step_by(threads)))).collect();
+                    handles
+                        .into_iter()
+                        .flat_map(|h| h.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
+                        .collect()
+                });
+            }
         }
+        self.with_lefts(0..n)
+    }
+
+    /// The candidates whose left side is on the faces `lefts` (indices into `xs`).
+    fn with_lefts(&self, lefts: impl Iterator<Item = usize>) -> Vec<(Rect, f64)> {
+        let mut out = Vec::new();
+        let mut ok_rows = Vec::with_capacity(self.ys.len());
+        for a in lefts {
+            self.with_left(a, &mut ok_rows, &mut out);
+        }
+        out
+    }
+
+    /// The candidates whose left side is on face `xs[a]`, pushed onto `out` (`ok_rows` is
+    /// working memory).
+    fn with_left(&self, a: usize, ok_rows: &mut Vec<(usize, f64)>, out: &mut Vec<(Rect, f64)>) {
+        let (xs, ys, c) = (&self.xs, &self.ys, self.c);
+        let frac = |r: Rect| self.occ.count(r) as f64 / r.area().max(1) as f64;
+        let x0 = xs[a];
+        // Indices into the faces: the first face more than two cells inside a candidate's left
+        // side, and the first at most two cells inside its right side.
+        let x_in = xs.partition_point(|&x| x <= x0 + 2);
         let mut x_out = x_in;
         for &x1 in &xs[a + 1..] {
             let w = x1 - x0 + 1;
-            if w < min_side {
+            if w < self.min_side {
                 continue;
             }
             while x_out < xs.len() && xs[x_out] < x1 - 2 {
@@ -262,7 +334,7 @@ pub fn candidates_where(
                 for &(i1, f1) in &ok_rows[b + 1..] {
                     let y1 = ys[i1];
                     let h = y1 - y0 + 1;
-                    if h < min_side || !keep(Rect::new(x0, y0, w, h)) {
+                    if h < self.min_side || !(self.keep)(Rect::new(x0, y0, w, h)) {
                         continue;
                     }
                     let fl = frac(Rect::new(x0, y0, 1, h));
@@ -275,13 +347,13 @@ pub fn candidates_where(
                         // monotone, so dividing once gives the same bits.
                         while ys[y_out] < y1 - 2 {
                             if ys[y_out] > y0 + 2 {
-                                most_h = most_h.max(raw.count(Rect::new(x0, ys[y_out], w, 1)));
+                                most_h = most_h.max(self.raw.count(Rect::new(x0, ys[y_out], w, 1)));
                             }
                             y_out += 1;
                         }
-                        let most_v = xs[x_in..x_out].iter().map(|&x| raw.count(Rect::new(x, y0, 1, h))).max();
+                        let most_v = xs[x_in..x_out].iter().map(|&x| self.raw.count(Rect::new(x, y0, 1, h))).max();
                         let r = Rect::new(x0, y0, w, h);
-                        let score = candidate_score(r, weight, [most_h, most_v.unwrap_or(0)], &free, c);
+                        let score = candidate_score(r, weight, [most_h, most_v.unwrap_or(0)], &self.free, c);
                         if score > 0.0 {
                             out.push((r, score));
                         }
@@ -290,13 +362,6 @@ pub fn candidates_where(
             }
         }
     }
-    // The standard sort itself: the candidates are many and every chain's setup waits for
-    // them (crate::sort's indirect comparisons cost Cartesium's about 15 ms, for 3 kB).
-    out.sort_by(|a, b| {
-        b.1.total_cmp(&a.1).then_with(|| (a.0.x, a.0.y, a.0.w, a.0.h).cmp(&(b.0.x, b.0.y, b.0.w, b.0.h)))
-    });
-    out.truncate(c.max_candidates);
-    out
 }
 
 /// The score of candidate `r` whose four walls span it with `weight` (eq. 3.11): lowered by

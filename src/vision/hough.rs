@@ -29,6 +29,27 @@ fn round_positive(v: f64) -> usize {
     (t + i64::from(v - t as f64 >= 0.5)) as usize
 }
 
+/// The centres of `grid`'s occupied cells that vote: at most `max_points`, every `stride`-th in
+/// row order.
+fn voters(grid: &Grid<Cell>, max_points: usize) -> Vec<(f64, f64)> {
+    let total = grid.cells().iter().filter(|&&c| c == Cell::Occupied).count();
+    let stride = total.div_ceil(max_points.max(1)).max(1);
+    let mut points = Vec::with_capacity(total / stride + 1);
+    let mut k = 0usize;
+    for y in 0..grid.height() {
+        for x in 0..grid.width() {
+            if *grid.at(x, y) != Cell::Occupied {
+                continue;
+            }
+            k += 1;
+            if k % stride == 0 {
+                points.push((x as f64 + 0.5, y as f64 + 0.5));
+            }
+        }
+    }
+    points
+}
+
 /// Below this many votes the transform runs on one thread: starting threads costs tens of
 /// microseconds, a million votes about a millisecond.
 #[cfg(not(target_arch = "wasm32"))]
@@ -52,8 +73,7 @@ fn vote(votes: &mut [u32], n_rho: usize, trig: &[(f64, f64)], points: &[(f64, f6
 fn vote_all(votes: &mut [u32], n_rho: usize, trig: &[(f64, f64)], points: &[(f64, f64)], diag: f64) {
     #[cfg(not(target_arch = "wasm32"))]
     {
-        let cores = std::thread::available_parallelism().map_or(1, |p| p.get().min(4));
-        let threads = cores.min(points.len().saturating_mul(trig.len()) / VOTES_PER_THREAD).max(1);
+        let threads = super::threads_for(points.len().saturating_mul(trig.len()), VOTES_PER_THREAD);
         if threads > 1 {
             let band = trig.len().div_ceil(threads);
             std::thread::scope(|s| {
@@ -81,21 +101,7 @@ impl Hough {
                 (libm::cos(th), libm::sin(th))
             })
             .collect();
-        let total = grid.cells().iter().filter(|&&c| c == Cell::Occupied).count();
-        let stride = total.div_ceil(max_points.max(1)).max(1);
-        let mut points = Vec::with_capacity(total / stride + 1);
-        let mut k = 0usize;
-        for y in 0..grid.height() {
-            for x in 0..grid.width() {
-                if *grid.at(x, y) != Cell::Occupied {
-                    continue;
-                }
-                k += 1;
-                if k % stride == 0 {
-                    points.push((x as f64 + 0.5, y as f64 + 0.5));
-                }
-            }
-        }
+        let points = voters(grid, max_points);
         vote_all(&mut votes, n_rho, &trig, &points, diag);
         Hough { n_theta, n_rho, rho_offset: diag, votes }
     }
@@ -143,19 +149,7 @@ mod tests {
         assert!(points * 720 >= 2 * VOTES_PER_THREAD, "{points} points are too few to share");
         let mut one = vec![0u32; hough.votes.len()];
         let trig: Vec<(f64, f64)> = (0..720).map(|t| (libm::cos(hough.theta(t)), libm::sin(hough.theta(t)))).collect();
-        let mut pts = Vec::new();
-        let stride = grid.cells().iter().filter(|&&c| c == Cell::Occupied).count().div_ceil(60_000);
-        let mut k = 0;
-        for y in 0..h {
-            for x in 0..w {
-                if *grid.at(x, y) == Cell::Occupied {
-                    k += 1;
-                    if k % stride == 0 {
-                        pts.push((x as f64 + 0.5, y as f64 + 0.5));
-                    }
-                }
-            }
-        }
+        let pts = voters(&grid, 60_000);
         assert_eq!(pts.len(), points, "every point votes once at each angle");
         vote(&mut one, hough.n_rho, &trig, &pts, hough.rho_offset);
         assert_eq!(one, hough.votes);

@@ -277,8 +277,7 @@ impl Faces<'_> {
         let n = self.xs.len();
         #[cfg(not(target_arch = "wasm32"))]
         {
-            let cores = std::thread::available_parallelism().map_or(1, |p| p.get().min(4));
-            let threads = cores.min(n / FACES_PER_THREAD).max(1);
+            let threads = super::threads_for(n, FACES_PER_THREAD);
             if threads > 1 {
                 return std::thread::scope(|s| {
                     let handles: Vec<_> =

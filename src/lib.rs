@@ -70,7 +70,6 @@ pub mod render;
 pub mod setting;
 pub mod sort;
 pub mod tabletop;
-mod threads;
 pub mod union_find;
 pub mod vision;
 

@@ -70,6 +70,7 @@ pub mod render;
 pub mod setting;
 pub mod sort;
 pub mod tabletop;
+mod threads;
 pub mod union_find;
 pub mod vision;
 

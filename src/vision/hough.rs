@@ -73,7 +73,7 @@ fn vote(votes: &mut [u32], n_rho: usize, trig: &[(f64, f64)], points: &[(f64, f6
 fn vote_all(votes: &mut [u32], n_rho: usize, trig: &[(f64, f64)], points: &[(f64, f64)], diag: f64) {
     #[cfg(not(target_arch = "wasm32"))]
     {
-        let threads = super::threads_for(points.len().saturating_mul(trig.len()), VOTES_PER_THREAD);
+        let threads = crate::threads::threads_for(points.len().saturating_mul(trig.len()), VOTES_PER_THREAD);
         if threads > 1 {
             let band = trig.len().div_ceil(threads);
             std::thread::scope(|s| {

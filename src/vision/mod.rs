@@ -12,12 +12,3 @@ pub mod objects;
 pub mod orientation;
 pub mod regions;
 pub mod walls;
-
-/// How many threads a detector shares `work` among, natively: the machine's cores, at most
-/// four, and at least `per_thread` of the work each (starting a thread costs tens of
-/// microseconds); 1 when there is too little to share or one core.
-#[cfg(not(target_arch = "wasm32"))]
-fn threads_for(work: usize, per_thread: usize) -> usize {
-    let cores = std::thread::available_parallelism().map_or(1, |p| p.get().min(4));
-    cores.min(work / per_thread.max(1)).max(1)
-}

@@ -277,7 +277,7 @@ impl Faces<'_> {
         let n = self.xs.len();
         #[cfg(not(target_arch = "wasm32"))]
         {
-            let threads = super::threads_for(n, FACES_PER_THREAD);
+            let threads = crate::threads::threads_for(n, FACES_PER_THREAD);
             if threads > 1 {
                 return std::thread::scope(|s| {
                     let handles: Vec<_> =

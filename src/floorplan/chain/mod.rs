@@ -375,6 +375,25 @@ struct Snapshot {
     doors: Vec<DoorSpec>,
 }
 
+/// `world` typed by `typer` under `edits` (their types and names are evidence), and the
+/// inference that typed it; `None` (the units keep the chain's types) if there is no typer
+/// or it failed on this world.
+fn typed(
+    typer: Option<&mut super::knowledge::Knowledge>,
+    edits: &super::edits::Edits,
+    resolution: f64,
+    mut world: World,
+) -> (World, Option<super::knowledge::Inferred>) {
+    let given = super::knowledge::edit_facts(edits, &world);
+    let inferred = typer.and_then(|k| k.infer_given(&world, resolution, &given).ok());
+    if let Some(inferred) = &inferred {
+        for u in &mut world.units {
+            u.kind = inferred.types.get(&u.id).map_or(u.kind, |t| t.0);
+        }
+    }
+    (world, inferred)
+}
+
 /// The map cells that may be objects, counted for the knowledge terms. Unknown object cells
 /// use up the share of a unit's interior that may be objects even when they earn nothing, so
 /// both classes are counted if either is forgiven (`object_gain` above zero).
@@ -744,20 +763,18 @@ impl Chain {
     /// chain's types). The inference is cached by its evidence, so asking again for the same
     /// best world costs nothing and changes nothing in the chain.
     pub fn best_world_inferred(&mut self) -> (World, Option<super::knowledge::Inferred>) {
-        let mut world = self.best_world();
-        let resolution = self.resolution;
+        let world = self.best_world();
+        self.make_typer();
+        let typer = self.knowledge.as_mut().or(self.typer.as_mut());
+        typed(typer, &self.edits, self.resolution, world)
+    }
+
+    /// Without a knowledge base, the built-in rules type this chain's worlds: made on first
+    /// use.
+    fn make_typer(&mut self) {
         if self.knowledge.is_none() && self.typer.is_none() {
             self.typer = super::knowledge::Knowledge::new(&Default::default()).ok();
         }
-        let given = super::knowledge::edit_facts(&self.edits, &world);
-        let typer = if self.knowledge.is_some() { self.knowledge.as_mut() } else { self.typer.as_mut() };
-        let inferred = typer.and_then(|k| k.infer_given(&world, resolution, &given).ok());
-        if let Some(inferred) = &inferred {
-            for u in &mut world.units {
-                u.kind = inferred.types.get(&u.id).map_or(u.kind, |t| t.0);
-            }
-        }
-        (world, inferred)
     }
 
     /// Takes a person's edits as hard evidence ([`super::edits`]) and goes on from the current
@@ -1115,9 +1132,20 @@ impl Chain {
         &mut self,
         rooms: &super::rooms::RoomConfig,
     ) -> Result<(World, Grid<u16>), super::rooms::RoomError> {
-        let mut world = self.best_world_typed();
         let layer = self.room_layer(rooms)?;
-        let labels = layer.explain(&mut world, self.room_maps(), super::rooms::Grouping::Units(&self.edits))?;
+        let best = self.best_world();
+        self.make_typer();
+        // The walls are read while the world is typed: the room layer's first stage asks only
+        // where the units lie, and typing a large world (MC-SAT over a network the junction
+        // tree cannot take) costs about as much.
+        let typer = self.knowledge.as_mut().or(self.typer.as_mut());
+        let maps = super::rooms::RoomMaps { map: &self.map, world_map: &self.world_map, resolution: self.resolution };
+        let grouping = super::rooms::Grouping::Units(&self.edits);
+        let (walls, (mut world, _)) = crate::threads::join(
+            || layer.read_walls(&best, maps, grouping),
+            || typed(typer, &self.edits, self.resolution, best.clone()),
+        );
+        let labels = layer.explain_read(&mut world, maps, grouping, &walls)?;
         Ok((world, labels))
     }
 

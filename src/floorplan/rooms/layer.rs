@@ -151,19 +151,39 @@ impl RoomLayer {
     /// # Ok::<(), ksmcmc::floorplan::rooms::RoomError>(())
     /// ```
     pub fn explain(&self, world: &mut World, maps: RoomMaps, grouping: Grouping) -> Result<Grid<u16>, RoomError> {
+        let walls = self.read_walls(world, maps, grouping);
+        self.explain_read(world, maps, grouping, &walls)
+    }
+
+    /// The first stage of [`RoomLayer::explain`]: the walls of the maps as the layer reads
+    /// them for `world`. It asks only where the units lie, never their types, so a caller may
+    /// read the walls of a world while the Markov logic engine types it
+    /// ([`crate::floorplan::Chain::best_world_with_rooms`] does).
+    pub(crate) fn read_walls(&self, world: &World, maps: RoomMaps, grouping: Grouping) -> WallReading {
+        let c = &self.config.cells(maps.resolution);
+        match grouping {
+            Grouping::Units(_) => WallReading::with_world_open(world, maps.map, maps.world_map, c),
+            Grouping::Walls(angles) => WallReading::new(world, maps.map, maps.world_map, c, angles),
+        }
+    }
+
+    /// The rest of [`RoomLayer::explain`], on the walls [`RoomLayer::read_walls`] read for a
+    /// world with these units.
+    pub(crate) fn explain_read(
+        &self,
+        world: &mut World,
+        maps: RoomMaps,
+        grouping: Grouping,
+        walls: &WallReading,
+    ) -> Result<Grid<u16>, RoomError> {
         let c = &self.config.cells(maps.resolution);
         let kb = self.knowledge.as_ref();
-        let angles = match grouping {
-            Grouping::Units(_) => &[][..],
-            Grouping::Walls(angles) => angles,
-        };
-        let walls = WallReading::new(world, maps.map, maps.world_map, c, angles);
         let labels = match grouping {
-            Grouping::Units(edits) => by_units(world, maps, c, kb, edits, &walls)?,
+            Grouping::Units(edits) => by_units(world, maps, c, kb, edits, walls)?,
             Grouping::Walls(_) => {
                 let groups: Vec<u16> = join(world, maps.world_map, []).into_iter().map(|g| u16::from(g > 0)).collect();
-                let labels = labels_read(world, &groups, maps.map, maps.world_map, c, &walls);
-                rooms_of_segments(world, &labels, maps, kb, &walls)?;
+                let labels = labels_read(world, &groups, maps.map, maps.world_map, c, walls);
+                rooms_of_segments(world, &labels, maps, kb, walls)?;
                 labels
             }
         };

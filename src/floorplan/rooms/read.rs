@@ -134,17 +134,18 @@ pub(crate) fn map_cell(world: &World, x: i32, y: i32, w: usize, h: usize) -> Opt
     (mx >= 0.0 && my >= 0.0 && (mx as usize) < w && (my as usize) < h).then_some((mx as usize, my as usize))
 }
 
-/// Index of the first unit whose interior covers each world cell (`usize::MAX` for none).
-fn interior_owner(world: &World) -> (Vec<usize>, usize) {
+/// Index of the first unit whose interior covers each world cell (`u32::MAX` for none): four
+/// bytes a cell, not eight, as this is the room layer's largest table.
+fn interior_owner(world: &World) -> (Vec<u32>, usize) {
     let [ww, wh] = world.frame.world_size.map(|v| v as usize);
-    let mut owner = vec![usize::MAX; ww * wh];
+    let mut owner = vec![u32::MAX; ww * wh];
     let t = world.wall_thickness;
     for (k, u) in world.units.iter().enumerate() {
         for y in (u.y + t).max(0)..(u.y + u.h - t).min(wh as i32) {
             for x in (u.x + t).max(0)..(u.x + u.w - t).min(ww as i32) {
                 let o = &mut owner[y as usize * ww + x as usize];
-                if *o == usize::MAX {
-                    *o = k;
+                if *o == u32::MAX {
+                    *o = k as u32;
                 }
             }
         }
@@ -169,8 +170,8 @@ pub(crate) fn rooms_of_labels(world: &World, labels: &Grid<u16>, resolution: f64
             t.cells += 1;
             if let Some((x, y)) = world_cell(world, &rotation, mx, my, size) {
                 let k = owner[y * ww + x];
-                if k != usize::MAX {
-                    *t.units.entry(k).or_default() += 1;
+                if k != u32::MAX {
+                    *t.units.entry(k as usize).or_default() += 1;
                 }
             }
         }

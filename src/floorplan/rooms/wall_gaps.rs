@@ -35,6 +35,7 @@ use crate::floorplan::world::World;
 use crate::geometry::Frame;
 use crate::grid::flood::{Flood, Neighbours};
 use crate::grid::{Cell, Grid};
+use std::ops::RangeInclusive;
 
 /// Cells of the world frame (row-major, `world_map`'s size) that close a wall gap. `depth` is
 /// the thickest a wall stub may be across its line, in cells (furniture along a line is
@@ -127,10 +128,10 @@ fn seen_through(map: &Grid<Cell>, reach: usize, thick: usize) -> Vec<bool> {
     if reach == 0 || thick < thinnest || w == 0 || h == 0 {
         return out;
     }
-    let across_rows = runs(cells, w, h, true);
-    let across_columns = runs(cells, w, h, false);
-    let mut line = |at: &dyn Fn(usize) -> usize, len: usize, run: &[u32]| {
-        let piece = |i: usize| (thinnest..=thick).contains(&(run[i] as usize));
+    let across_rows = pieces(cells, w, h, true, thinnest..=thick);
+    let across_columns = pieces(cells, w, h, false, thinnest..=thick);
+    let mut line = |at: &dyn Fn(usize) -> usize, len: usize, piece: &[bool]| {
+        let piece = |i: usize| piece[i];
         // Between each two pieces of wall in a row, the free cells within the reach of both.
         let mut last: Option<usize> = None;
         for n in (0..len).filter(|&k| piece(at(k))) {
@@ -154,10 +155,10 @@ fn seen_through(map: &Grid<Cell>, reach: usize, thick: usize) -> Vec<bool> {
     out
 }
 
-/// Per cell, the length of the run of occupied cells through it along its row (`along_rows`)
-/// or its column; 0 for cells that are not occupied.
-fn runs(cells: &[Cell], w: usize, h: usize, along_rows: bool) -> Vec<u32> {
-    let mut run = vec![0u32; w * h];
+/// Per cell, whether it is occupied and the run of occupied cells through it along its row
+/// (`along_rows`) or its column is `thick` long (a byte a cell, not the run's length in four).
+fn pieces(cells: &[Cell], w: usize, h: usize, along_rows: bool, thick: RangeInclusive<usize>) -> Vec<bool> {
+    let mut run = vec![false; w * h];
     let (lines, len) = if along_rows { (h, w) } else { (w, h) };
     let at = |line: usize, k: usize| if along_rows { line * w + k } else { k * w + line };
     for line in 0..lines {
@@ -171,7 +172,9 @@ fn runs(cells: &[Cell], w: usize, h: usize, along_rows: bool) -> Vec<u32> {
             while k < len && cells[at(line, k)] == Cell::Occupied {
                 k += 1;
             }
-            (start..k).for_each(|j| run[at(line, j)] = (k - start) as u32);
+            if thick.contains(&(k - start)) {
+                (start..k).for_each(|j| run[at(line, j)] = true);
+            }
         }
     }
     run
@@ -185,6 +188,20 @@ pub(crate) fn each_part(
     h: usize,
     start: impl Fn(usize) -> bool,
     member: impl Fn(usize) -> bool,
+    f: impl FnMut(&[usize], usize),
+) {
+    each_part_below(w, h, start, member, usize::MAX, f)
+}
+
+/// [`each_part`] for the parts whose extent is below `max_extent` only: a larger part is
+/// flooded (its cells are marked seen) but its cells are not kept, so the unexplored space
+/// around a building (millions of cells) costs no list of them.
+pub(crate) fn each_part_below(
+    w: usize,
+    h: usize,
+    start: impl Fn(usize) -> bool,
+    member: impl Fn(usize) -> bool,
+    max_extent: usize,
     mut f: impl FnMut(&[usize], usize),
 ) {
     let mut seen = vec![false; w * h];
@@ -195,14 +212,26 @@ pub(crate) fn each_part(
         }
         part.clear();
         let (mut x0, mut y0, mut x1, mut y1) = (usize::MAX, usize::MAX, 0, 0);
+        let mut large = false;
         // `start` implies `member`: the first cell enters as the others do.
         let mut enter = |j: usize| !seen[j] && member(j) && !std::mem::replace(&mut seen[j], true);
         flood.fill(w, h, [first], Neighbours::Eight, &mut enter, |i| {
-            part.push(i);
             let (x, y) = (i % w, i / w);
             (x0, y0, x1, y1) = (x0.min(x), y0.min(y), x1.max(x), y1.max(y));
+            if large {
+                return;
+            }
+            large = (x1 - x0 + 1).max(y1 - y0 + 1) >= max_extent;
+            if large {
+                part = Vec::new();
+            } else {
+                part.push(i);
+            }
         });
-        f(&part, (x1 - x0 + 1).max(y1 - y0 + 1));
+        let extent = (x1 - x0 + 1).max(y1 - y0 + 1);
+        if extent < max_extent {
+            f(&part, extent);
+        }
     }
 }
 
@@ -426,16 +455,46 @@ pub(crate) struct WallReading {
     /// The map's free depth with its specks looked past ([`super::read::standing_depth`]),
     /// in the map's frame: where a person stands, and how wide a passage is.
     pub(crate) standing: Vec<u32>,
+    /// The world's map with its clutter drawn free, when it was read up front
+    /// ([`WallReading::with_world_open`]) and is not the map itself.
+    open_world: Option<Grid<Cell>>,
 }
 
 impl WallReading {
     /// Reads the walls of `map` (in its own frame) and `world_map` (the same map in the
     /// world's frame), with the wall gaps along `angles` too.
     pub(crate) fn new(world: &World, map: &Grid<Cell>, world_map: &Grid<Cell>, c: &RoomCells, angles: &[f64]) -> Self {
-        let open = without_clutter(map, c.min_wall_len, c.wall_piece_thick, c.hole_reach);
-        let closed = close_wall_gaps_along(world, map, world_map, c, angles);
-        let standing = super::read::standing_depth(map, c.speck, c.hole_reach);
-        WallReading { open, closed, standing }
+        Self::read(world, map, world_map, c, angles, false)
+    }
+
+    /// [`WallReading::new`], and the world's map with its clutter drawn free too
+    /// ([`WallReading::open_in_world`]), read beside the rest: grouping by units asks for it.
+    pub(crate) fn with_world_open(world: &World, map: &Grid<Cell>, world_map: &Grid<Cell>, c: &RoomCells) -> Self {
+        Self::read(world, map, world_map, c, &[], true)
+    }
+
+    /// The readings are independent of each other, so they share the machine's cores
+    /// ([`crate::threads::join`]); each is what it would be alone.
+    fn read(
+        world: &World,
+        map: &Grid<Cell>,
+        world_map: &Grid<Cell>,
+        c: &RoomCells,
+        angles: &[f64],
+        world_open: bool,
+    ) -> Self {
+        use crate::threads::join;
+        let clear = |m: &Grid<Cell>| without_clutter(m, c.min_wall_len, c.wall_piece_thick, c.hole_reach);
+        let ((open, open_world), (closed, standing)) = join(
+            || join(|| clear(map), || (world_open && world_map != map).then(|| clear(world_map))),
+            || {
+                join(
+                    || close_wall_gaps_along(world, map, world_map, c, angles),
+                    || super::read::standing_depth(map, c.speck, c.hole_reach),
+                )
+            },
+        );
+        WallReading { open, closed, standing, open_world }
     }
 
     /// `world_map` (the map these walls were read from, in the world's frame) with its clutter
@@ -447,7 +506,9 @@ impl WallReading {
         world_map: &Grid<Cell>,
         c: &RoomCells,
     ) -> std::borrow::Cow<'a, Grid<Cell>> {
-        if world_map == map {
+        if let Some(open) = &self.open_world {
+            std::borrow::Cow::Borrowed(open)
+        } else if world_map == map {
             std::borrow::Cow::Borrowed(&self.open)
         } else {
             std::borrow::Cow::Owned(without_clutter(world_map, c.min_wall_len, c.wall_piece_thick, c.hole_reach))
@@ -485,8 +546,8 @@ fn unknown_specks(map: &Grid<Cell>, min_len: usize) -> Vec<bool> {
     };
     let mut speck = vec![false; w * h];
     let unknown = |i: usize| cells[i] == Cell::Unknown;
-    super::wall_gaps::each_part(w, h, unknown, unknown, |part, extent| {
-        if extent < min_len && part.iter().any(|&i| by_free(i)) {
+    each_part_below(w, h, unknown, unknown, min_len, |part, _| {
+        if part.iter().any(|&i| by_free(i)) {
             part.iter().for_each(|&i| speck[i] = true);
         }
     });

@@ -828,7 +828,11 @@ describe('Live mapper: rooms and the weak prior beside the knowledge', () => {
     await page.focus('.table-scroll');
     assert.equal(await page.evaluate(() => document.activeElement.getAttribute('aria-labelledby')), 'rooms-heading');
 
-    // Running on and pausing: the panel follows the best world.
+    // Running on and pausing: the panel follows the best world, keeping the rows of the rooms
+    // it still shows (a reading remakes no row it can keep: no layout of the whole table).
+    await page.evaluate(() => {
+      for (const tr of document.querySelectorAll('#rooms tbody tr')) tr.keptFor = tr.dataset.room;
+    });
     await key(page, 'Space');
     await until(page, (s, v) => s.iteration > v, 8000);
     await key(page, 'Space');
@@ -837,6 +841,13 @@ describe('Live mapper: rooms and the weak prior beside the knowledge', () => {
     const later = JSON.parse(await page.evaluate(() => window.__ksmcmc.mapper.bestWorldJson())).rooms;
     const laterRows = await shownRooms(page);
     assert.deepEqual(laterRows.map((r) => [Number(r[0]), r[1]]), later.map((r) => [r.id, r.type]), 'after a pause: the best world\'s rooms');
+    assert.deepEqual(laterRows.map((r) => r.slice(3)), later.map((r) => [r.units.join(', '), r.opens_to.length ? r.opens_to.join(', ') : '–']), 'their units and doors');
+    const kept = await page.evaluate(() => [...document.querySelectorAll('#rooms tbody tr')].map((tr) => [tr.dataset.room, tr.keptFor ?? null]));
+    const before = new Set(rooms.map((r) => String(r.id)));
+    for (const [id, keptFor] of kept) {
+      assert.equal(keptFor, before.has(id) ? id : null, `room ${id}: its row kept if it was shown before, new otherwise`);
+    }
+    assert.ok(kept.some(([id]) => before.has(id)), 'some rooms were shown before and after');
     await done(page);
   });
 

@@ -102,7 +102,7 @@ test('seeds are whole numbers, bigints above 2^53', () => {
 // ---------------------------------------------------------------- live mapper helpers
 
 import { readFileSync as readText } from 'node:fs';
-import { formatNumber, parseIterationsPerFrame, plotPoints, yRange } from '../../www/lib/plot.js';
+import { cssSize, formatNumber, parseIterationsPerFrame, plotPoints, yRange } from '../../www/lib/plot.js';
 import { SAMPLES, SYNTH_FLAGS, sampleRecipe } from '../../npm/samples.js';
 import { descriptions, pgmSize } from '../../scripts/www-samples.mjs';
 
@@ -138,6 +138,41 @@ test('plots fit the trace into the box and thin out long traces', () => {
   assert.deepEqual(clamped.map((p) => p[1]), [20, 0], 'values outside a fixed range stay on the frame');
   assert.equal(formatNumber(12345.678, 1), '12,345.7');
   assert.equal(formatNumber(NaN), '–');
+});
+
+test('a plot reads its size once, then as its ResizeObserver reports it', () => {
+  // A stand-in observer: it records what it watches; `resize` calls it as a browser would.
+  const watched = [];
+  let callback = null;
+  globalThis.ResizeObserver = class {
+    constructor(cb) {
+      callback = cb;
+    }
+    observe(el) {
+      watched.push(el);
+    }
+  };
+  try {
+    let reads = 0;
+    const el = {
+      w: 300,
+      get clientWidth() {
+        reads++;
+        return this.w;
+      },
+      clientHeight: 110,
+    };
+    assert.deepEqual(cssSize(el), { width: 300, height: 110 });
+    el.w = 320;
+    assert.deepEqual(cssSize(el), { width: 300, height: 110 }, 'no layout read between resizes');
+    assert.equal(reads, 1);
+    assert.deepEqual(watched, [el]);
+    callback([{ target: el }]);
+    assert.deepEqual(cssSize(el), { width: 320, height: 110 }, 'the resize is seen');
+    assert.equal(watched.length, 1, 'observed once');
+  } finally {
+    delete globalThis.ResizeObserver;
+  }
 });
 
 test('the embed\'s sample recipes are the commands in samples/README.md', () => {

@@ -6,7 +6,7 @@
 // drawn the last, and shows the chain's numbers and its trace plots.
 
 import { parseSeed } from '../lib/files.js';
-import { drawPlot, formatNumber, parseIterationsPerFrame } from '../lib/plot.js';
+import { cssSize, drawPlot, formatNumber, parseIterationsPerFrame } from '../lib/plot.js';
 import { attempt, clearError, say, showError, state, ui } from './state.js';
 import { select, syncEdits } from './edits.js';
 import { setPainting } from './painting.js';
@@ -221,7 +221,7 @@ export function chainFailed(message, stats) {
 function view() {
   const s = state.stats;
   const dpr = globalThis.devicePixelRatio || 1;
-  const gw = Math.max(80, Math.round(ui.graph.clientWidth * dpr) || 320);
+  const gw = Math.max(80, Math.round(cssSize(ui.graph).width * dpr) || 320);
   const gh = Math.max(60, Math.round(gw * Math.min(1, Math.max(0.45, s.height / s.width))));
   return {
     generation: s.generation,

@@ -155,10 +155,54 @@ export function roomsByType(rooms) {
   return [...counts].sort(([a], [b]) => order(a) - order(b) || a.localeCompare(b)).map(([t, n]) => `${n} ${t}`).join(', ');
 }
 
-function cell(tr, text) {
-  const td = document.createElement('td');
-  td.textContent = text;
-  tr.append(td);
+/** The texts of a Rooms table row for room `r`, cell by cell. */
+function rowTexts(r) {
+  return [
+    r.name ? `${r.id} ${r.name}` : String(r.id),
+    r.type,
+    formatNumber(r.area_m2, 1),
+    r.units.join(', '),
+    r.opens_to.length ? r.opens_to.join(', ') : '–',
+  ];
+}
+
+/**
+ * The row of room `r`: `tr` (the row it had) with only its changed texts and attributes set,
+ * or a new row. A row left as it was costs the page no layout: the table is read again every
+ * few seconds while the chain runs, and remaking all its rows made each reading a full layout
+ * and paint of the page (25 - 60 ms on a busy 2-core machine, over a frame's budget).
+ */
+function roomRow(r, tr) {
+  const row = tr ?? document.createElement('tr');
+  if (!tr) row.tabIndex = 0;
+  const set = (name, value) => {
+    if (row.dataset[name] !== value) row.dataset[name] = value;
+  };
+  set('room', String(r.id));
+  set('type', r.type);
+  const selected = String(state.selected?.room === r.id);
+  if (row.getAttribute('aria-selected') !== selected) row.setAttribute('aria-selected', selected);
+  rowTexts(r).forEach((text, i) => {
+    const td = row.cells[i] ?? row.appendChild(document.createElement('td'));
+    if (td.textContent !== text) td.textContent = text;
+  });
+  return row;
+}
+
+/**
+ * The Rooms table shows `rooms`, in their order: the rows of rooms it already shows are kept
+ * (their changed cells set), and the children are replaced only if the rows themselves change.
+ */
+function updateRoomRows(rooms) {
+  const old = new Map([...ui.rooms.rows].map((tr) => [tr.dataset.room, tr]));
+  const rows = rooms.map((r) => roomRow(r, old.get(String(r.id))));
+  const same = rows.length === ui.rooms.rows.length && rows.every((tr, i) => ui.rooms.rows[i] === tr);
+  if (same) return;
+  // The row in focus is moved or remade: focus goes back to its room's row, so that the
+  // keyboard stays put.
+  const focused = ui.rooms.contains(document.activeElement) ? document.activeElement.dataset.room : null;
+  ui.rooms.replaceChildren(...rows);
+  if (focused && document.activeElement?.dataset.room !== focused) ui.rooms.querySelector(`tr[data-room="${focused}"]`)?.focus({ preventScroll: true });
 }
 
 /**
@@ -170,24 +214,7 @@ export function showRooms(rooms, details) {
   ui.stats.dataset.rooms = rooms ? String(rooms.length) : '';
   const m = state.map;
   state.roomIndex = rooms && details && m ? new RoomIndex(rooms, details.types, details.labels, m.width, m.height) : null;
-  // The row in focus is remade: focus moves to its successor, so that the keyboard stays put.
-  const focused = ui.rooms.contains(document.activeElement) ? document.activeElement.dataset.room : null;
-  ui.rooms.replaceChildren(
-    ...(rooms ?? []).map((r) => {
-      const tr = document.createElement('tr');
-      tr.dataset.room = String(r.id);
-      tr.dataset.type = r.type;
-      tr.tabIndex = 0;
-      tr.setAttribute('aria-selected', String(state.selected?.room === r.id));
-      cell(tr, r.name ? `${r.id} ${r.name}` : String(r.id));
-      cell(tr, r.type);
-      cell(tr, formatNumber(r.area_m2, 1));
-      cell(tr, r.units.join(', '));
-      cell(tr, r.opens_to.length ? r.opens_to.join(', ') : '–');
-      return tr;
-    }),
-  );
-  if (focused) ui.rooms.querySelector(`tr[data-room="${focused}"]`)?.focus({ preventScroll: true });
+  updateRoomRows(rooms ?? []);
   refreshHover();
   // The details came while the pointer or the focus waited for them.
   if (!state.hover.id && state.roomIndex) {

@@ -16,7 +16,6 @@
 import init, { chainConfigDefaults, legendJson, Map as OccMap, version } from './pkg/ksmcmc.js';
 import { fillMapLegend } from './lib/map-legend.js';
 import { onDroppedFiles, readPickedMap } from './lib/files.js';
-import { buildMap } from './lib/map-source.js';
 import { parseIterationsPerFrame } from './lib/plot.js';
 import { RemoteChain } from './lib/remote-chain.js';
 import { RouteView } from './lib/route-view.js';
@@ -37,13 +36,13 @@ import { setCompare } from './mapper/weak.js';
 async function loadSample(name) {
   state.sampleList.find(name);
   const source = await fetchSampleMap(name);
-  await setMap(buildMap(source, OccMap), source, { name, label: name, sample: name });
+  await setMap(null, source, { name, label: name, sample: name });
 }
 
 /** Loads a map from the picked files: one image, or a map.yaml with the image it names. */
 async function openFiles(fileList) {
   const { source, name, label } = await readPickedMap(fileList, ui.classify.value);
-  await setMap(buildMap(source, OccMap), source, { name, label, uploaded: true });
+  await setMap(null, source, { name, label, uploaded: true });
 }
 
 /** A blank map to paint on: one free room inside a two-cell wall, which the chain explains at once. */

@@ -5,6 +5,7 @@
 // picture the worker sent, at most one per animation frame, asks for the next one when it has
 // drawn the last, and shows the chain's numbers and its trace plots.
 
+import { Map as OccMap } from '../pkg/ksmcmc.js';
 import { parseSeed } from '../lib/files.js';
 import { cssSize, drawPlot, formatNumber, parseIterationsPerFrame } from '../lib/plot.js';
 import { attempt, clearError, say, showError, state, ui } from './state.js';
@@ -94,19 +95,22 @@ function adopt({ stats, referenceDropped }, args, source) {
 }
 
 /**
- * Shows a new map and starts a chain on it; `source` says how the worker makes the same map.
- * If the chain cannot start, nothing changes (and `map` is freed).
+ * Shows a new map and starts a chain on it; `source` says how the worker makes the map. The
+ * page's own copy is `map`, or, if null, made from the cells the worker read: the bytes of a
+ * file are decoded in the worker only, not a second time on the page's thread. If the map is
+ * refused or the chain cannot start, nothing changes (and `map` is freed).
  */
 export async function setMap(map, source, { name, label, sample = null, uploaded = false }) {
   let reply;
   let args;
   try {
     args = chainArgs();
-    reply = await state.chain.call('load', { source, ...args });
+    reply = await state.chain.call('load', { source, withCells: !map, ...args });
   } catch (err) {
-    map.free();
+    map?.free();
     throw err;
   }
+  map ??= OccMap.fromCells(reply.cells.width, reply.cells.height, reply.cells.codes);
   const old = state.map;
   state.map = map;
   state.name = name;

@@ -52,7 +52,7 @@ export function plotPoints(xs, ys, width, height, { pad = 4, range = null } = {}
   return out;
 }
 
-/** Elements' CSS content sizes as their ResizeObserver last saw them. */
+/** Elements' client sizes (clientWidth, clientHeight) as their ResizeObserver last saw them. */
 const sizes = new WeakMap();
 let observer = null;
 

@@ -131,10 +131,9 @@ fn seen_through(map: &Grid<Cell>, reach: usize, thick: usize) -> Vec<bool> {
     let across_rows = pieces(cells, w, h, true, thinnest..=thick);
     let across_columns = pieces(cells, w, h, false, thinnest..=thick);
     let mut line = |at: &dyn Fn(usize) -> usize, len: usize, piece: &[bool]| {
-        let piece = |i: usize| piece[i];
         // Between each two pieces of wall in a row, the free cells within the reach of both.
         let mut last: Option<usize> = None;
-        for n in (0..len).filter(|&k| piece(at(k))) {
+        for n in (0..len).filter(|&k| piece[at(k)]) {
             if let Some(l) = last {
                 for j in (l + 1).max(n.saturating_sub(reach))..n.min(l + reach + 1) {
                     if cells[at(j)] == Cell::Free {
@@ -158,7 +157,7 @@ fn seen_through(map: &Grid<Cell>, reach: usize, thick: usize) -> Vec<bool> {
 /// Per cell, whether it is occupied and the run of occupied cells through it along its row
 /// (`along_rows`) or its column is `thick` long (a byte a cell, not the run's length in four).
 fn pieces(cells: &[Cell], w: usize, h: usize, along_rows: bool, thick: RangeInclusive<usize>) -> Vec<bool> {
-    let mut run = vec![false; w * h];
+    let mut piece = vec![false; w * h];
     let (lines, len) = if along_rows { (h, w) } else { (w, h) };
     let at = |line: usize, k: usize| if along_rows { line * w + k } else { k * w + line };
     for line in 0..lines {
@@ -173,11 +172,11 @@ fn pieces(cells: &[Cell], w: usize, h: usize, along_rows: bool, thick: RangeIncl
                 k += 1;
             }
             if thick.contains(&(k - start)) {
-                (start..k).for_each(|j| run[at(line, j)] = true);
+                (start..k).for_each(|j| piece[at(line, j)] = true);
             }
         }
     }
-    run
+    piece
 }
 
 /// Calls `f(part, extent)` for every 8-connected part of the cells of a `w` x `h` grid that

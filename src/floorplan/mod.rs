@@ -43,7 +43,7 @@ pub use world::{edits, metrics, topology, unexplained};
 // The chain's internals, for the rest of the crate.
 pub(crate) use chain::{explain, kernels, schedule, state, trace};
 
-pub use chain::{Chain, ChainConfig, ChainError, DetectorConfig, OutputConfig};
+pub use chain::{Chain, ChainConfig, ChainError, DetectorConfig, OutputConfig, RunRecord, Stopped};
 pub use explain::Explanation;
 pub use kernels::KernelConfig;
 pub use schedule::{Kernel, KernelWeights, Phase, Schedule};

@@ -200,3 +200,30 @@ fn rooms_by_the_walls_are_the_same_from_a_chain_and_from_its_room_input() {
     assert!(other == world && other_labels == labels);
     assert!(world.rooms.len() > 3, "{} rooms", world.rooms.len());
 }
+
+/// A stopped chain (`Chain::stop`, which frees the sampling tables before the rooms are read)
+/// reports, types and groups its best world exactly as the running chain did, by units and by
+/// the walls, with or without knowledge supervision.
+#[test]
+fn a_stopped_chain_keeps_its_record_its_types_and_its_rooms() {
+    use ksmcmc::floorplan::report::ChainSummary;
+    use ksmcmc::floorplan::rooms::RoomConfig;
+    let s = generate(&SynthConfig { wing_deg: 30.0, width: 240, height: 160, ..Default::default() }, 4).unwrap();
+    let (rooms, angles) = (RoomConfig::default(), [30f64.to_radians()]);
+    for knowledge in [true, false] {
+        let mut config = ChainConfig::default();
+        config.knowledge.enabled = knowledge;
+        let mut chain = Chain::new(&s.map, config, 1).unwrap();
+        chain.step(1500);
+        let typed = chain.best_world_typed();
+        let (mut world, labels) = chain.best_world_with_rooms(&rooms).unwrap();
+        let by_walls = chain.rooms_by_walls(&mut world.clone(), &rooms, &angles).unwrap();
+        let (summary, untyped) = (ChainSummary::of(&chain, 1.0), chain.best_world());
+        let mut stopped = chain.stop();
+        assert_eq!(ChainSummary::of(&stopped, 1.0), summary, "knowledge {knowledge}");
+        assert!(*stopped.best_world() == untyped && stopped.best_world_typed() == typed);
+        assert!(stopped.best_world_with_rooms(&rooms).unwrap() == (world.clone(), labels));
+        assert_eq!(stopped.rooms_by_walls(&mut world, &rooms, &angles).unwrap(), by_walls);
+        assert!(world.rooms.len() > 3, "{} rooms", world.rooms.len());
+    }
+}

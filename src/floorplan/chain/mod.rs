@@ -35,6 +35,7 @@ pub mod posterior;
 pub(crate) mod schedule;
 pub mod settled;
 pub(crate) mod state;
+mod stopped;
 pub(crate) mod trace;
 
 use self::explain::Explanation;
@@ -52,6 +53,7 @@ use serde::{Deserialize, Serialize};
 
 mod guide;
 mod update;
+pub use stopped::{RunRecord, Stopped};
 pub use update::MapUpdate;
 
 /// Bottom-up detectors feeding the chain.
@@ -392,6 +394,24 @@ fn typed(
         }
     }
     (world, inferred)
+}
+
+/// The typed `best` world with its room layer filled in by `layer`, and the room labels,
+/// grouped by units under `edits` ([`Chain::best_world_with_rooms`], [`Stopped`]).
+fn world_with_rooms(
+    layer: &super::rooms::RoomLayer,
+    best: World,
+    typer: Option<&mut super::knowledge::Knowledge>,
+    edits: &super::edits::Edits,
+    maps: super::rooms::RoomMaps<'_>,
+) -> Result<(World, Grid<u16>), super::rooms::RoomError> {
+    let grouping = super::rooms::Grouping::Units(edits);
+    let (walls, (mut world, _)) = crate::threads::join(
+        || layer.read_walls(&best, maps, grouping),
+        || typed(typer, edits, maps.resolution, best.clone()),
+    );
+    let labels = layer.explain_read(&mut world, maps, grouping, &walls)?;
+    Ok((world, labels))
 }
 
 /// The map cells that may be objects, counted for the knowledge terms. Unknown object cells
@@ -1140,13 +1160,7 @@ impl Chain {
         // tree cannot take) costs about as much.
         let typer = self.knowledge.as_mut().or(self.typer.as_mut());
         let maps = super::rooms::RoomMaps { map: &self.map, world_map: &self.world_map, resolution: self.resolution };
-        let grouping = super::rooms::Grouping::Units(&self.edits);
-        let (walls, (mut world, _)) = crate::threads::join(
-            || layer.read_walls(&best, maps, grouping),
-            || typed(typer, &self.edits, self.resolution, best.clone()),
-        );
-        let labels = layer.explain_read(&mut world, maps, grouping, &walls)?;
-        Ok((world, labels))
+        world_with_rooms(&layer, best, typer, &self.edits, maps)
     }
 
     /// Finds the rooms of `world` again (a typed world of this chain, such as the one

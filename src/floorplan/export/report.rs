@@ -5,7 +5,7 @@ use crate::floorplan::metrics;
 use crate::floorplan::metrics::defects;
 use crate::floorplan::schedule::Kernel;
 use crate::floorplan::world::World;
-use crate::floorplan::Chain;
+use crate::floorplan::{Chain, RunRecord};
 use crate::grid::{Grid, OccupancyMap};
 use crate::vision::orientation::WallProfile;
 use serde::{Deserialize, Serialize};
@@ -47,7 +47,7 @@ pub fn add_rooms(r: &mut serde_json::Value, world: &World, labels: &Grid<u16>) {
 /// drop the chain before computing them ([`crate::floorplan::export::RoomInput`]) and then
 /// [`add_rooms`]. `map` is the map the chain was made for: the wall directions are read off
 /// the chain's own Hough profile ([`Chain::wall_profile`]) when it has one.
-pub fn summary(chain: &Chain, map: &OccupancyMap, world: &World, seconds: f64) -> serde_json::Value {
+pub fn summary(chain: &impl RunRecord, map: &OccupancyMap, world: &World, seconds: f64) -> serde_json::Value {
     report_of(&ChainSummary::of(chain, seconds), map, world, chain.wall_profile())
 }
 
@@ -90,7 +90,7 @@ pub struct ChainSummary {
 
 impl ChainSummary {
     /// The summary of `chain` with `seconds` spent iterating.
-    pub fn of(chain: &Chain, seconds: f64) -> ChainSummary {
+    pub fn of(chain: &impl RunRecord, seconds: f64) -> ChainSummary {
         let t = chain.trace();
         ChainSummary {
             iterations: chain.iteration(),

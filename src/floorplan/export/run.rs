@@ -12,7 +12,7 @@
 //! plan comes through [`super::plan_input`]).
 
 use super::report::{self, ChainSummary};
-use crate::floorplan::chain::{Chain, ChainConfig, ChainError};
+use crate::floorplan::chain::{Chain, ChainConfig, ChainError, RunRecord};
 use crate::floorplan::edits::Edits;
 use crate::floorplan::export::{trace_csv, RoomInput};
 use crate::floorplan::rooms::RoomConfig;

@@ -42,7 +42,7 @@ pub mod wing_doors;
 
 use super::rooms::{RoomConfig, RoomLayer};
 use super::world::{Door, Unit, World};
-use super::{Chain, ChainConfig, ChainError, DoorLimits};
+use super::{Chain, ChainConfig, ChainError, DoorLimits, RunRecord, Stopped};
 use crate::grid::{Cell, Grid, OccupancyMap};
 use crate::vision::orientation::WallProfile;
 use crate::vision::regions::{direction_regions_from, DirectionRegions, RegionConfig, NO_REGION};
@@ -67,8 +67,8 @@ impl Default for WingConfig {
 /// The chains of a building's wings and the world they compose (module docs).
 pub struct Wings {
     /// The first chain, which explains the whole map in its dominant direction, then one
-    /// chain per wing (none when the map is one wing).
-    pub chains: Vec<Chain>,
+    /// chain per wing (none when the map is one wing), each stopped as soon as it has run.
+    pub chains: Vec<Stopped>,
     /// Per map cell: the wing whose chain explains it (free cells), [`NO_REGION`] elsewhere.
     pub wing_of: Grid<u8>,
     /// The composed world, with its rooms.
@@ -107,6 +107,8 @@ impl Wings {
     ) -> Result<Wings, ChainError> {
         let mut first = Chain::new(map, config.clone(), seed)?;
         first.step(iterations);
+        // Its tables are freed before the rooms are read ([`Stopped`]).
+        let mut first = first.stop();
         let (mut world, mut labels) = first.best_world_with_rooms(rooms)?;
         // A given rotation keeps one chain; otherwise the chain has the walls' profile.
         let layout = first
@@ -117,7 +119,7 @@ impl Wings {
             let wing_of = labels.map(|&l| if l > 0 { 0 } else { NO_REGION });
             return Ok(Wings { chains: vec![first], wing_of, world, labels });
         };
-        let (mut chains, units): (Vec<Chain>, Vec<World>) =
+        let (mut chains, units): (Vec<Stopped>, Vec<World>) =
             wing_chains(&layout, map, config, seed, iterations)?.into_iter().unzip();
         let by_walls = |world: &mut World, others: &[f64]| first.rooms_by_walls(world, rooms, others);
         let doors = config.doors.cells(map.yaml().resolution);
@@ -387,10 +389,11 @@ fn wing_chains(
     config: &ChainConfig,
     seed: u64,
     iterations: u64,
-) -> Result<Vec<(Chain, World)>, ChainError> {
-    let one = |k: usize| -> Result<(Chain, World), ChainError> {
+) -> Result<Vec<(Stopped, World)>, ChainError> {
+    let one = |k: usize| -> Result<(Stopped, World), ChainError> {
         let mut chain = Chain::new(&layout.wing_map(map, k), layout.wing_config(config, k), seed)?;
         chain.step(iterations);
+        let mut chain = chain.stop();
         let world = chain.best_world_typed();
         Ok((chain, world))
     };

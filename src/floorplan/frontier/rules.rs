@@ -37,6 +37,29 @@ const SMALL_FROM_M2: f64 = 6.0;
 /// as inside it (`Inside`): most of it, 3 in 4.
 const INSIDE_SHARE: f64 = 0.75;
 
+/// Frontier narrower than this is a sliver (`Sliver`), m: 0.8 m, the narrowest door leaf
+/// building codes allow into a room; narrower is a gap between furniture or a ray's slit.
+const SLIVER_M: f64 = 0.8;
+/// Frontier at least this wide is broader than any door (`Broad`), m: 2 m, a double door
+/// (1.8 m) with its frame.
+const BROAD_M: f64 = 2.0;
+/// Unseen floor behind a stretch that holds an office (`Deep`), m²: 10 m², an office of
+/// 3 m x 3.3 m.
+const DEEP_M2: f64 = 10.0;
+/// The room it opens from is more than a small office (`MidFrom`), m²: 15 m², an office for
+/// two.
+const MID_FROM_M2: f64 = 15.0;
+/// The room it opens from is larger than any office (`LargeFrom`), m²: 40 m², a seminar room
+/// or 20 m of corridor.
+const LARGE_FROM_M2: f64 = 40.0;
+/// The room it opens from is a hall's floor (`HugeFrom`), m²: 100 m², a lobby or a lecture
+/// hall.
+const HUGE_FROM_M2: f64 = 100.0;
+/// Placeholders of the same room at which it is seen only in part (`TwoWays`, `FourWays`,
+/// `EightWays`): another one, one on each side of a box, and twice that, a room seen in
+/// stretches along its length.
+const WAYS: [(usize, &str); 3] = [(2, "TwoWays"), (4, "FourWays"), (8, "EightWays")];
+
 /// Share of the unseen space behind a stretch inside the plan's units (`Planned`), or inside
 /// the units of the room it opens from (`Own`), at which the plan reaches past the frontier:
 /// a twentieth, more than the sliver a unit's edge leaves behind a frontier drawn a cell or
@@ -125,7 +148,7 @@ impl FrontierRules {
 }
 
 /// Every evidence predicate the frontier rules may use.
-pub const FRONTIER_EVIDENCE: [&str; 17] = [
+pub const FRONTIER_EVIDENCE: [&str; 26] = [
     "Narrow",
     "Wide",
     "AtDoor",
@@ -143,6 +166,15 @@ pub const FRONTIER_EVIDENCE: [&str; 17] = [
     "Jambs",
     "Planned",
     "Own",
+    "Sliver",
+    "Broad",
+    "Deep",
+    "MidFrom",
+    "LargeFrom",
+    "HugeFrom",
+    "TwoWays",
+    "FourWays",
+    "EightWays",
 ];
 use FRONTIER_EVIDENCE as EVIDENCE;
 
@@ -169,6 +201,12 @@ pub fn evidence(world: &World, s: &Stretch) -> Vec<&'static str> {
     say(s.inside >= INSIDE_SHARE, "Inside");
     say(s.planned >= PLANNED_SHARE, "Planned");
     say(s.own >= PLANNED_SHARE, "Own");
+    say(s.width_m < SLIVER_M, "Sliver");
+    say(s.width_m >= BROAD_M, "Broad");
+    say(s.behind_m2 >= DEEP_M2, "Deep");
+    for (least, pred) in WAYS {
+        say(s.ways >= least, pred);
+    }
     let room = world.rooms.iter().find(|r| r.id == s.room);
     let kind = room.map(|r| r.kind);
     let from = [
@@ -183,12 +221,16 @@ pub fn evidence(world: &World, s: &Stretch) -> Vec<&'static str> {
     say(kind == Some(UnitType::Unknown), "FromRays");
     say(room.is_none(), "FromNone");
     say(room.is_some_and(|r| r.area_m2 < SMALL_FROM_M2), "SmallFrom");
+    say(room.is_some_and(|r| r.area_m2 >= MID_FROM_M2), "MidFrom");
+    say(room.is_some_and(|r| r.area_m2 >= LARGE_FROM_M2), "LargeFrom");
+    say(room.is_some_and(|r| r.area_m2 >= HUGE_FROM_M2), "HugeFrom");
     out
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::floorplan::world::Room;
 
     fn stretch(width_m: f64, behind_m2: f64, pocket: bool, at_door: bool) -> Stretch {
         Stretch {
@@ -203,6 +245,43 @@ mod tests {
             jambs: false,
             planned: 0.0,
             own: 0.0,
+            ways: 0,
+        }
+    }
+
+    #[test]
+    fn evidence_reads_widths_room_sizes_and_ways_in_metres_and_counts() {
+        let mut world = World::empty(10, 10);
+        let room = |id, area_m2| Room {
+            id,
+            kind: UnitType::Corridor,
+            units: vec![],
+            area_m2,
+            doors: vec![],
+            opens_to: vec![],
+            name: None,
+        };
+        world.rooms = vec![room(1, 50.0), room(2, 120.0)];
+        let sliver = Stretch { room: 1, ways: 4, ..stretch(0.6, 12.0, false, false) };
+        let e = evidence(&world, &sliver);
+        for yes in ["Sliver", "Narrow", "Space", "Deep", "FromCorr", "MidFrom", "LargeFrom", "TwoWays", "FourWays"] {
+            assert!(e.contains(&yes), "{yes}: {e:?}");
+        }
+        for no in ["Broad", "Wide", "BigSpace", "HugeFrom", "EightWays", "SmallFrom"] {
+            assert!(!e.contains(&no), "{no}: {e:?}");
+        }
+        let broad = Stretch { room: 2, ways: 8, ..stretch(2.5, 8.0, false, false) };
+        let e = evidence(&world, &broad);
+        for yes in ["Broad", "Space", "HugeFrom", "EightWays"] {
+            assert!(e.contains(&yes), "{yes}: {e:?}");
+        }
+        for no in ["Sliver", "Narrow", "Wide", "Deep"] {
+            assert!(!e.contains(&no), "{no}: {e:?}");
+        }
+        // Every predicate evidence gives is one the rules may use, and the rules declare it.
+        let rules = FrontierRules::builtin();
+        for pred in evidence(&world, &sliver).into_iter().chain(evidence(&world, &broad)) {
+            assert!(FRONTIER_EVIDENCE.contains(&pred) && rules.mln().predicate(pred).is_some(), "{pred}");
         }
     }
 

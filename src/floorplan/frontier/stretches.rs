@@ -68,6 +68,10 @@ pub struct Stretch {
     /// Share of the unseen space behind it inside the interiors of the units of the room it
     /// opens from: that room's own unseen part (a cell under units of two rooms counts).
     pub own: f64,
+    /// How many placeholders of the map open from the same room, this one included (0 when
+    /// it opens from no room): a room seen whole has none, one the robot has only glimpsed
+    /// has a frontier on every side it has not seen past.
+    pub ways: usize,
 }
 
 /// An end of a stretch this close to an occupied cell stands at a wall, m: 0.15 m, a wall's
@@ -112,6 +116,13 @@ pub fn stretches(world: &World, map: &Grid<Cell>, labels: &Grid<u16>, resolution
         }
     }
     out.sort_by_key(|s| (s.at.1, s.at.0));
+    let mut ways = std::collections::BTreeMap::<u32, usize>::new();
+    for s in out.iter().filter(|s| s.room > 0) {
+        *ways.entry(s.room).or_default() += 1;
+    }
+    for s in &mut out {
+        s.ways = ways.get(&s.room).copied().unwrap_or(0);
+    }
     out
 }
 
@@ -230,6 +241,7 @@ fn describe(cells: Vec<usize>, [x0, y0, x1, y1]: [usize; 4], width_m: f64, a: &A
     let Behind { area_m2: behind_m2, pocket, inside, planned, own } = behind(&cells, a, room);
     let jambs = jambs(&cells, map, [x0, y0, x1, y1], resolution);
     Stretch {
+        ways: 0,
         jambs,
         planned,
         own,
@@ -430,6 +442,18 @@ mod tests {
                 assert!((3.5..=4.1).contains(&p.width_m), "{} at {res}", p.width_m);
             }
         }
+    }
+
+    #[test]
+    fn each_stretch_counts_the_placeholders_of_its_room() {
+        // The 12 m high room's three stretches open from room 1 if the seen half is labelled:
+        // each counts three ways; unlabelled, none.
+        let map = half_seen(120, 240, 60);
+        let labels = map.map(|&c| u16::from(c == Cell::Free));
+        let s = stretches(&World::empty(120, 240), &map, &labels, 0.05);
+        assert_eq!(s.iter().map(|p| (p.room, p.ways)).collect::<Vec<_>>(), [(1, 3); 3]);
+        let none = stretches(&World::empty(120, 240), &map, &Grid::new(120, 240, 0), 0.05);
+        assert!(none.iter().all(|p| p.room == 0 && p.ways == 0) && none.len() == 3);
     }
 
     #[test]

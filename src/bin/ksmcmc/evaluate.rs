@@ -13,7 +13,8 @@ use std::path::{Path, PathBuf};
 
 const HELP: &str = "\
 Usage: ksmcmc evaluate [--datasets DIR] [--iterations N] [--seeds K] [--config FILE] [--only SET]
-                       [--room-rules FILE] [--room-config FILE] [--learn FILE] [--synth-from SEED]
+                       [--room-rules FILE] [--room-config FILE] [--learn FILE] [--cases FILE]
+                       [--synth-from SEED]
 
 Prints the quality tables of BENCHMARKS.md:
   bormann    room-segmentation precision and recall on the Bormann et al. maps in DIR/bormann2016
@@ -58,7 +59,8 @@ Prints the quality tables of BENCHMARKS.md:
              Brier score of P(NewRoom), type accuracy and log loss against what truly lies
              behind, and the doors of unentered rooms with a placeholder (P >= 0.5) within
              1.5 m; weights learned on seeds 4001-4018, scored on 4101-4103, beside the
-             hand-set and built-in rules. --learn FILE writes the learned rules
+             hand-set and built-in rules. --learn FILE writes the learned rules, --cases
+             FILE every placeholder's measures and what lies behind it (CSV)
   goals      metres the simulated robot drives to find a new hall (generated floors with
              one and two halls) or any new room (four kinds), following the nearest
              frontier and driving to the placeholder with the most probability of the goal
@@ -119,6 +121,8 @@ struct Opts {
     more_rooms: Vec<(String, RoomConfig)>,
     /// Where `frontier` writes the frontier rules it learns.
     learn: Option<PathBuf>,
+    /// Where `frontier` writes its placeholders' measures and truth (CSV).
+    cases: Option<PathBuf>,
     /// The first generated floor's seed of the `rooms` set (300: the test floors; 310 - 321
     /// were kept aside to choose the rules' evidence on) and of the `realistic` set (500: held
     /// out; 600 on for looking at failures), when given.
@@ -140,6 +144,7 @@ impl Opts {
             more_rules: self.more_rules.clone(),
             more_rooms: self.more_rooms.clone(),
             learn: self.learn.clone(),
+            cases: self.cases.clone(),
             ..*self
         }
     }
@@ -1104,6 +1109,7 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
         rooms: RoomConfig::default(),
         more_rooms: Vec::new(),
         learn: None,
+        cases: None,
         synth_from: None,
     };
     let mut only: Option<String> = None;
@@ -1130,6 +1136,7 @@ pub fn run(argv: Vec<OsString>) -> Result<(), CliError> {
                 o.more_rooms.push((p.display().to_string(), room_config(&p)?));
             }
             Long("learn") => o.learn = Some(args::path(parser.value()?)),
+            Long("cases") => o.cases = Some(args::path(parser.value()?)),
             Long("synth-from") => o.synth_from = Some(args::value("--synth-from", parser.value()?)?),
             Long("help") | Short('h') => {
                 print!("{HELP}");
@@ -1202,6 +1209,7 @@ fn run_sets(dir: &Path, o: &Opts, only: Option<&str>) -> Result<(), CliError> {
             iterations: o.iterations,
             config,
             learn: o.learn.as_deref(),
+            cases: o.cases.as_deref(),
         })?;
     }
     if want("goals") {

@@ -20,6 +20,7 @@ use ksmcmc::floorplan::synth::{generate, SynthConfig, Synthetic};
 use ksmcmc::floorplan::{ChainConfig, World};
 use ksmcmc::grid::{Cell, OccupancyMap};
 use ksmcmc::mln::{learn_weights, LearnConfig, LearnMethod};
+use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Instant;
 
@@ -114,6 +115,8 @@ pub struct Options<'a> {
     pub config: ChainConfig,
     /// Where to write the learned rules, if anywhere.
     pub learn: Option<&'a Path>,
+    /// Where to write every placeholder's measures and truth ([`cases_csv`]), if anywhere.
+    pub cases: Option<&'a Path>,
 }
 
 /// The frontier set (module docs).
@@ -127,6 +130,9 @@ pub fn frontier(o: &Options) -> Result<(), CliError> {
         for seed in TEST_SEEDS {
             test.extend(explain(kind, &synth, seed, o)?);
         }
+    }
+    if let Some(path) = o.cases {
+        args::write(path, cases_csv(&train, &test).as_bytes())?;
     }
     let hand = FrontierRules::parse(FRONTIER_RULES).map_err(|e| args::failed("frontier.mln", e))?;
     let learned_text = learn(&hand, &train)?;
@@ -188,6 +194,45 @@ fn evidence_table(train: &[Explained]) {
         let [a, b, c, d] = kinds.map(share);
         println!("| {pred} | {n} | {:.2} | {:.2} | {a:.2} / {b:.2} / {c:.2} / {d:.2} |", share(new), share(nothing));
     }
+}
+
+/// Every placeholder of the training and test maps as a line of CSV, for looking at the
+/// evidence outside the project: which set, the floor's kind and seed, the stretch's measures
+/// ([`Stretch`]; lengths in m, areas in m²), the room it opens from (area, type), whether a new
+/// room lies behind and the kind of space behind (0 - 3: room, corridor, hall, other; -1:
+/// nothing).
+fn cases_csv(train: &[Explained], test: &[Explained]) -> String {
+    let mut csv = String::from(
+        "set,kind,seed,width_m,behind_m2,pocket,inside,at_door,jambs,planned,own,ways,room_m2,room_type,new,beyond\n",
+    );
+    for (set, maps) in [("train", train), ("test", test)] {
+        for e in maps {
+            for c in &e.cases {
+                let s = &c.stretch;
+                let room = e.world.rooms.iter().find(|r| r.id == s.room);
+                let beyond = c.beyond.kind_index().map_or(-1, |k| k as i64);
+                let _ = writeln!(
+                    csv,
+                    "{set},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{beyond}",
+                    e.kind,
+                    e.seed,
+                    s.width_m,
+                    s.behind_m2,
+                    u8::from(s.pocket),
+                    s.inside,
+                    u8::from(s.at_door),
+                    u8::from(s.jambs),
+                    s.planned,
+                    s.own,
+                    s.ways,
+                    room.map_or(0.0, |r| r.area_m2),
+                    room.map_or("none", |r| r.kind.name()),
+                    u8::from(c.beyond.is_new()),
+                );
+            }
+        }
+    }
+    csv
 }
 
 /// Widths of the weights' Gaussian prior tried: each is learned on one half of the training
@@ -356,7 +401,59 @@ fn auc(p: &[f64], y: &[bool]) -> f64 {
 
 #[cfg(test)]
 mod tests {
-    use super::auc;
+    use super::{auc, cases_csv, Explained};
+    use ksmcmc::floorplan::frontier::{Beyond, FrontierCase, Stretch};
+    use ksmcmc::floorplan::{Room, UnitType, World};
+
+    #[test]
+    fn cases_are_one_line_each_with_the_room_and_the_truth() {
+        let mut world = World::empty(10, 10);
+        let room = Room {
+            id: 2,
+            kind: UnitType::Hall,
+            units: vec![],
+            area_m2: 120.0,
+            doors: vec![],
+            opens_to: vec![],
+            name: None,
+        };
+        world.rooms = vec![room];
+        let stretch = Stretch {
+            cells: vec![0],
+            at: (0, 0),
+            width_m: 1.25,
+            behind_m2: 6.0,
+            pocket: true,
+            inside: 0.5,
+            room: 2,
+            at_door: false,
+            jambs: true,
+            planned: 0.0,
+            own: 0.25,
+            ways: 3,
+        };
+        let beyond = Beyond::Space { kind: UnitType::Room, new: true };
+        let cases = vec![
+            FrontierCase { stretch: stretch.clone(), beyond },
+            FrontierCase { stretch: Stretch { room: 0, ..stretch }, beyond: Beyond::Nothing },
+        ];
+        let e = Explained {
+            kind: "hall",
+            seed: 4001,
+            world,
+            cases,
+            doors: vec![],
+            resolution: 0.05,
+            run_s: 1.0,
+            placeholders_s: 0.1,
+        };
+        let csv = cases_csv(&[e], &[]);
+        let lines: Vec<&str> = csv.lines().collect();
+        assert_eq!(lines.len(), 3, "{csv}");
+        assert_eq!(lines[0].split(',').count(), lines[1].split(',').count());
+        assert_eq!(lines[1], "train,hall,4001,1.25,6,1,0.5,0,1,0,0.25,3,120,hall,1,0");
+        assert_eq!(lines[2], "train,hall,4001,1.25,6,1,0.5,0,1,0,0.25,3,0,none,0,-1");
+    }
 
     #[test]
     fn auc_counts_ordered_pairs_and_half_ties() {

@@ -301,8 +301,7 @@ fn learn_with(hand: &FrontierRules, train: &[&Explained], sigma: f64) -> Result<
 fn p_new_room(rules: &FrontierRules, maps: &[&Explained]) -> Result<(Vec<f64>, Vec<bool>), CliError> {
     let (mut p, mut y) = (Vec::new(), Vec::new());
     for e in maps {
-        let stretches: Vec<Stretch> = e.cases.iter().map(|c| c.stretch.clone()).collect();
-        let answers = rules.weigh(&e.world, &stretches).map_err(|err| args::failed(e.kind, err))?;
+        let (_, answers) = weigh(rules, e)?;
         for (c, (pn, _)) in e.cases.iter().zip(&answers) {
             p.push(*pn);
             y.push(c.beyond.is_new());
@@ -327,14 +326,21 @@ fn base_rates(train: &[Explained]) -> (f64, [f64; 4]) {
     (new as f64 / n.max(1) as f64, kinds.map(|k| k as f64 / total as f64))
 }
 
+/// The stretches of `e`'s cases and what `rules` say of each ([`FrontierRules::weigh`]).
+type Weighed = (Vec<Stretch>, Vec<(f64, [f64; 4])>);
+fn weigh(rules: &FrontierRules, e: &Explained) -> Result<Weighed, CliError> {
+    let stretches: Vec<Stretch> = e.cases.iter().map(|c| c.stretch.clone()).collect();
+    let answers = rules.weigh(&e.world, &stretches).map_err(|err| args::failed(e.kind, err))?;
+    Ok((stretches, answers))
+}
+
 /// One table row's figures for `rules` on `maps`.
 fn score(rules: &FrontierRules, maps: &[&Explained], base: &(f64, [f64; 4])) -> Result<String, CliError> {
     let (mut p_new, mut is_new) = (Vec::new(), Vec::new());
     let (mut typed, mut right, mut loss, mut base_loss) = (0usize, 0usize, 0.0, 0.0);
     let (mut doors, mut covered, mut any) = (0usize, 0usize, 0usize);
     for e in maps {
-        let stretches: Vec<Stretch> = e.cases.iter().map(|c| c.stretch.clone()).collect();
-        let answers = rules.weigh(&e.world, &stretches).map_err(|err| args::failed(e.kind, err))?;
+        let (stretches, answers) = weigh(rules, e)?;
         for (c, (p, types)) in e.cases.iter().zip(&answers) {
             p_new.push(*p);
             is_new.push(c.beyond.is_new());

@@ -169,6 +169,7 @@ impl Stopped {
     pub fn best_world_with_rooms(&mut self, rooms: &RoomConfig) -> Result<(World, Grid<u16>), RoomError> {
         let layer = RoomLayer::new(*rooms, &self.config.knowledge)?;
         let maps = RoomMaps { map: &self.map, world_map: &self.world_map, resolution: self.resolution };
+        // The fields one by one: the typer is borrowed mutably beside the maps and the edits.
         let typer = self.knowledge.as_mut().or(self.typer.as_mut());
         world_with_rooms(&layer, self.best.clone(), typer, &self.edits, maps)
     }
@@ -180,8 +181,12 @@ impl Stopped {
         rooms: &RoomConfig,
         angles: &[f64],
     ) -> Result<Grid<u16>, RoomError> {
-        let maps = RoomMaps { map: &self.map, world_map: &self.world_map, resolution: self.resolution };
-        RoomLayer::new(*rooms, &self.config.knowledge)?.explain(world, maps, Grouping::Walls(angles))
+        RoomLayer::new(*rooms, &self.config.knowledge)?.explain(world, self.room_maps(), Grouping::Walls(angles))
+    }
+
+    /// The maps the room layer reads for this chain's worlds.
+    fn room_maps(&self) -> RoomMaps<'_> {
+        RoomMaps { map: &self.map, world_map: &self.world_map, resolution: self.resolution }
     }
 
     /// The classified map the chain explained, in the map's own frame.

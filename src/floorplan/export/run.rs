@@ -14,7 +14,7 @@
 use super::report::{self, ChainSummary};
 use crate::floorplan::chain::{Chain, ChainConfig, ChainError, RunRecord};
 use crate::floorplan::edits::Edits;
-use crate::floorplan::export::{trace_csv, RoomInput};
+use crate::floorplan::export::trace_csv;
 use crate::floorplan::rooms::RoomConfig;
 use crate::floorplan::wings::{WingConfig, Wings};
 use crate::floorplan::world::World;
@@ -82,15 +82,16 @@ pub fn run(map: &OccupancyMap, options: &RunOptions) -> Result<Run, ChainError> 
 
 impl Run {
     /// The result of a chain the caller has stepped, `seconds` after it started: its best
-    /// world's rooms under its edits. The chain is dropped before the rooms are found, to keep
-    /// the peak memory of a large map down (its tables are tens of MB).
-    pub fn of_chain(mut chain: Chain, map: &OccupancyMap, seconds: f64) -> Result<Run, ChainError> {
+    /// world's rooms under its edits. The chain stops before the rooms are found
+    /// ([`Chain::stop`]), to keep the peak memory of a large map down (its tables are tens of
+    /// MB), as the wings' chains do.
+    pub fn of_chain(chain: Chain, map: &OccupancyMap, seconds: f64) -> Result<Run, ChainError> {
+        let mut chain = chain.stop();
         let trace = trace_csv(chain.trace());
-        let input = RoomInput::of(&mut chain);
-        let mut report = report::summary(&chain, map, input.world(), seconds);
+        let typed = chain.best_world_typed();
+        let mut report = report::summary(&chain, map, &typed, seconds);
         let iterations = chain.iteration();
-        drop(chain);
-        let (world, labels) = input.explain(&RoomConfig::default())?;
+        let (world, labels) = chain.best_world_with_rooms(&RoomConfig::default())?;
         report::add_rooms(&mut report, &world, &labels);
         Ok(Run { world, labels, report, trace, iterations, seconds, wings: None })
     }

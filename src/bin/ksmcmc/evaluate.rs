@@ -58,7 +58,7 @@ Prints the quality tables of BENCHMARKS.md:
              part by the simulated robot (30, 55 and 80 % of the free space seen): AUC and
              Brier score of P(NewRoom), type accuracy and log loss against what truly lies
              behind, and the doors of unentered rooms with a placeholder (P >= 0.5) within
-             1.5 m; weights learned on seeds 4001-4018, scored on 4101-4103, beside the
+             1.5 m; weights learned on seeds 4001-4036, scored on 4101-4103, beside the
              hand-set and built-in rules. --learn FILE writes the learned rules, --cases
              FILE every placeholder's measures and what lies behind it (CSV)
   goals      metres the simulated robot drives to find a new hall (generated floors with

@@ -1,6 +1,7 @@
 //! Square dilation and erosion of a grid of flags, separable: a window of `2r + 1` cells along
-//! each row, then along each column, with prefix counts, so that each costs two passes over
-//! the grid whatever the radius.
+//! each row, then along each column, with running counts, so that each costs two passes over
+//! the grid whatever the radius. The column pass slides a row of counts down the grid rather
+//! than walking each column, so both passes read memory in order.
 //!
 //! The generator grows the cells a robot saw around free space; the frontier stage opens
 //! unknown space (an erosion, then a dilation) so that the streaks rays leave between them at
@@ -20,24 +21,44 @@ use super::Grid;
 /// ```
 pub fn dilate(g: &Grid<bool>, r: usize) -> Grid<bool> {
     let (w, h) = (g.width(), g.height());
-    let pass = |src: &[bool], n: usize, stride: usize, out: &mut [bool]| {
-        // Prefix counts along one line, then a window of 2r + 1.
-        let mut prefix = vec![0u32; n + 1];
-        for i in 0..n {
-            prefix[i + 1] = prefix[i] + u32::from(src[i * stride]);
+    // Along each row, a running count of the true cells in the window [x - r, x + r].
+    let mut mid = vec![false; w * h];
+    for (src, out) in g.cells().chunks_exact(w.max(1)).zip(mid.chunks_exact_mut(w.max(1))) {
+        let mut count: u32 = src[..r.min(w)].iter().map(|&v| u32::from(v)).sum();
+        for x in 0..w {
+            if let Some(&v) = src.get(x + r) {
+                count += u32::from(v);
+            }
+            out[x] = count > 0;
+            if x >= r {
+                count -= u32::from(src[x - r]);
+            }
         }
-        for i in 0..n {
-            let (a, b) = (i.saturating_sub(r), (i + r + 1).min(n));
-            out[i * stride] = prefix[b] > prefix[a];
+    }
+    // Then down the columns, a whole row at a time (the rows stay contiguous in memory): per
+    // column the count of rows [y - r, y + r] whose row pass was true.
+    let row = |y: usize| &mid[y * w..(y + 1) * w];
+    let mut counts = vec![0u32; w];
+    // Adds `step` per true cell of a row: 1, or u32::MAX (wrapping) to take one away.
+    let add = |counts: &mut [u32], cells: &[bool], sign: u32| {
+        for (c, &v) in counts.iter_mut().zip(cells) {
+            *c = c.wrapping_add(sign.wrapping_mul(u32::from(v)));
         }
     };
-    let mut mid = vec![false; w * h];
-    for y in 0..h {
-        pass(&g.cells()[y * w..], w, 1, &mut mid[y * w..]);
+    for y in 0..r.min(h) {
+        add(&mut counts, row(y), 1);
     }
     let mut out = vec![false; w * h];
-    for x in 0..w {
-        pass(&mid[x..], h, w, &mut out[x..]);
+    for y in 0..h {
+        if y + r < h {
+            add(&mut counts, row(y + r), 1);
+        }
+        for (o, &c) in out[y * w..(y + 1) * w].iter_mut().zip(&counts) {
+            *o = c > 0;
+        }
+        if y >= r {
+            add(&mut counts, row(y - r), u32::MAX);
+        }
     }
     Grid::from_vec(w, h, out).expect("same size")
 }
@@ -83,7 +104,7 @@ mod tests {
         for p in [0.05, 0.8] {
             let cells: Vec<bool> = (0..w * h).map(|_| rng.chance(p)).collect();
             let g = Grid::from_vec(w, h, cells).unwrap();
-            for r in [0, 1, 3] {
+            for r in [0, 1, 3, 8, 20] {
                 let (d, e) = (dilate(&g, r), erode(&g, r));
                 for y in 0..h {
                     for x in 0..w {

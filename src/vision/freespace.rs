@@ -109,18 +109,14 @@ fn components(e: &impl FreeSpace, min_cells: usize, scratch: &mut Scratch) -> Ve
     seen.clear();
     seen.resize((w * h).div_ceil(64), 0);
     let mut out = Vec::new();
-    #[cfg(not(target_arch = "wasm32"))]
     scan_words(e, &mut |e, start, seen| component(e, start, min_cells, seen, flood, &mut out), seen);
-    #[cfg(target_arch = "wasm32")]
-    scan_cells(e, &mut |e, start, seen| component(e, start, min_cells, seen, flood, &mut out), seen);
     out
 }
 
 /// Calls `found(e, start, seen)` for each unexplained cell not yet `seen`, in cell order
 /// (`found` marks its component seen), reading a word of 64 cells at a time. Once the chain
 /// has covered most of the floor most of the map is explained, and reading a cell at a time
-/// ([`scan_cells`]) was most of a refresh's cost.
-#[cfg_attr(target_arch = "wasm32", allow(dead_code))]
+/// (`scan_cells`) was most of a refresh's cost.
 fn scan_words<E: FreeSpace>(e: &E, found: &mut dyn FnMut(&E, usize, &mut [u64]), seen: &mut [u64]) {
     let cells = e.width() * e.height();
     for k in 0..seen.len() {
@@ -139,10 +135,9 @@ fn scan_words<E: FreeSpace>(e: &E, found: &mut dyn FnMut(&E, usize, &mut [u64]),
     }
 }
 
-/// [`scan_words`] a cell at a time: the same cells in the same order. The mapper module's
-/// build: rustc unrolls the word scan, and the module the live mapper loads first has no room
-/// for the 515 bytes that costs (issue 36; a test holds the two to the same answers).
-#[cfg_attr(not(any(test, target_arch = "wasm32")), allow(dead_code))]
+/// [`scan_words`] a cell at a time: the same cells in the same order, which a test holds the
+/// word scan to.
+#[cfg(test)]
 fn scan_cells<E: FreeSpace>(e: &E, found: &mut dyn FnMut(&E, usize, &mut [u64]), seen: &mut [u64]) {
     for start in 0..e.width() * e.height() {
         if seen[start / 64] & (1 << (start % 64)) == 0 && e.is_unexplained(start) {

@@ -51,8 +51,8 @@ pub const MAX_EXTENSION_CELLS: i64 = 12;
 pub const NEAR_CELLS: i64 = 6;
 
 /// One edit (see the module docs).
-#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(tag = "op", rename_all = "lowercase", deny_unknown_fields)]
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+#[serde(tag = "op", rename_all = "lowercase")]
 pub enum Edit {
     /// The rooms at the two points are one room.
     Merge {
@@ -91,6 +91,46 @@ impl Edit {
         }
     }
 
+    /// The edit `raw` reads as, once its op has the fields it needs and no other's.
+    fn read(raw: RawEdit) -> Result<Edit, String> {
+        let RawEdit { op, at, line, kind, name } = raw;
+        let stray = match op {
+            Op::Merge | Op::Type | Op::Name => line.is_some().then_some("line"),
+            Op::Split => at.is_some().then_some("at"),
+        }
+        .or_else(|| (kind.is_some() && op != Op::Type).then_some("type"))
+        .or_else(|| (name.is_some() && op != Op::Name).then_some("name"));
+        if let Some(field) = stray {
+            return Err(format!("`{field}` belongs to another op"));
+        }
+        let missing = |field: &str| format!("missing field `{field}`");
+        let point = |v: &serde_json::Value| -> Option<[i64; 2]> {
+            match v.as_array()?.as_slice() {
+                [x, y] => Some([x.as_i64()?, y.as_i64()?]),
+                _ => None,
+            }
+        };
+        let two = |v: &serde_json::Value| -> Option<[[i64; 2]; 2]> {
+            match v.as_array()?.as_slice() {
+                [a, b] => Some([point(a)?, point(b)?]),
+                _ => None,
+            }
+        };
+        let at = at.ok_or_else(|| missing("at"));
+        Ok(match op {
+            Op::Merge => Edit::Merge { at: two(&at?).ok_or("`at` must be two points, [[x1, y1], [x2, y2]]")? },
+            Op::Split => Edit::Split { line: line.ok_or_else(|| missing("line"))? },
+            Op::Type => Edit::Type {
+                at: point(&at?).ok_or("`at` must be a point, [x, y]")?,
+                kind: kind.ok_or_else(|| missing("type"))?,
+            },
+            Op::Name => Edit::Name {
+                at: point(&at?).ok_or("`at` must be a point, [x, y]")?,
+                name: name.ok_or_else(|| missing("name"))?,
+            },
+        })
+    }
+
     fn points(&self) -> Vec<[i64; 2]> {
         match self {
             Edit::Merge { at } => at.to_vec(),
@@ -98,6 +138,43 @@ impl Edit {
             Edit::Type { at, .. } | Edit::Name { at, .. } => vec![*at],
         }
     }
+}
+
+/// The ops an edit can have.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+enum Op {
+    Merge,
+    Split,
+    Type,
+    Name,
+}
+
+impl Op {
+    fn name(self) -> &'static str {
+        match self {
+            Op::Merge => "merge",
+            Op::Split => "split",
+            Op::Type => "type",
+            Op::Name => "name",
+        }
+    }
+}
+
+/// An edit as its JSON has it: its op and every field any op takes, which [`Edit::read`]
+/// then checks against the op. A plain struct rather than serde's internally tagged enum,
+/// which reads each object twice through a buffer: that reader was 17 kB of the live
+/// mapper's module, whose size the first frame waits for.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawEdit {
+    op: Op,
+    /// One point, or two for a merge (read by [`Edit::read`]).
+    at: Option<serde_json::Value>,
+    line: Option<[[i64; 2]; 2]>,
+    #[serde(rename = "type")]
+    kind: Option<UnitType>,
+    name: Option<String>,
 }
 
 /// Why edits were refused.
@@ -156,7 +233,15 @@ impl Edits {
                 text.len()
             )));
         }
-        let list: Vec<Edit> = serde_json::from_str(text).map_err(|e| EditError::Json(e.to_string()))?;
+        let raw: Vec<RawEdit> = serde_json::from_str(text).map_err(|e| EditError::Json(e.to_string()))?;
+        if raw.len() > MAX_EDITS {
+            return Err(EditError::TooLarge(format!("{} edits, over the cap of {MAX_EDITS}", raw.len())));
+        }
+        let mut list = Vec::with_capacity(raw.len());
+        for (i, r) in raw.into_iter().enumerate() {
+            let op = r.op.name();
+            list.push(Edit::read(r).map_err(|message| EditError::Edit { index: i + 1, op, message })?);
+        }
         let edits = Edits { list };
         edits.check_values()?;
         Ok(edits)
@@ -665,8 +750,27 @@ mod tests {
         assert!(err(r#"[{"op": "type", "at": [1, 1], "type": "kitchen"}]"#).contains("unknown variant"));
         assert!(err(r#"[{"op": "name", "at": [1, 1], "name": " "}]"#).contains("1 to 200 characters"));
         assert!(err(r#"[{"op": "split", "line": [[1, 1], [2, 2]]}]"#).contains("at least 2 cells"));
-        assert!(err(r#"[{"op": "merge", "at": [[1, 1]]}]"#).contains("invalid length"));
-        assert!(err(r#"[{"op": "merge", "at": [[1, 1], [2, 2]], "extra": 1}]"#).contains("unknown field"));
+        assert_eq!(
+            err(r#"[{"op": "merge", "at": [[1, 1]]}]"#),
+            "edit 1 (merge): `at` must be two points, [[x1, y1], [x2, y2]]"
+        );
+        assert_eq!(
+            err(r#"[{"op": "type", "at": [[1, 1], [2, 2]], "type": "hall"}]"#),
+            "edit 1 (type): `at` must be a point, [x, y]"
+        );
+        assert!(err(r#"[{"op": "split", "line": [[1, 1]]}]"#).contains("invalid length 1"));
+        assert!(err(r#"[{"op": "merge", "at": [[1, 1], [2, 2]], "extra": 1}]"#).contains("unknown field `extra`"));
+        assert!(err(r#"[{"op": "paint", "at": [1, 1]}]"#).contains("unknown variant `paint`"));
+        assert_eq!(err(r#"[{"op": "name", "at": [1, 1]}]"#), "edit 1 (name): missing field `name`");
+        assert_eq!(err(r#"[{"at": [1, 1], "name": "a"}]"#).split(" at line").next(), Some("edits: missing field `op`"));
+        assert_eq!(
+            err(r#"[{"op": "name", "at": [1, 1], "name": "a"}, {"op": "merge", "at": [[1, 1], [2, 2]], "name": "b"}]"#),
+            "edit 2 (merge): `name` belongs to another op"
+        );
+        assert_eq!(
+            err(r#"[{"op": "split", "at": [1, 1], "line": [[1, 1], [5, 1]]}]"#),
+            "edit 1 (split): `at` belongs to another op"
+        );
         let many = format!("[{}]", vec![r#"{"op": "name", "at": [1, 1], "name": "a"}"#; MAX_EDITS + 1].join(","));
         assert!(err(&many).contains("over the cap of 10000"));
         let e =

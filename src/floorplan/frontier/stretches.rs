@@ -17,7 +17,7 @@
 //! turned into cells with the map's resolution.
 
 use crate::floorplan::world::{Door, World};
-use crate::grid::flood::{neighbours4, wavefront, Flood, Neighbours};
+use crate::grid::flood::{neighbours4, Flood, Neighbours};
 use crate::grid::morphology::{dilate, erode};
 use crate::grid::{Cell, Grid};
 
@@ -93,6 +93,7 @@ pub fn stretches(world: &World, map: &Grid<Cell>, labels: &Grid<u16>, resolution
     let cover = unit_rooms(world, w, h);
     let around = Around { map, labels, resolution, building: occupied_box(map), doors: door_centres(world), cover };
     let mut out = Vec::new();
+    let mut waves = Waves::new(w, h);
     let mut taken = vec![false; w * h];
     let mut flood = Flood::default();
     for start in 0..w * h {
@@ -109,7 +110,7 @@ pub fn stretches(world: &World, map: &Grid<Cell>, labels: &Grid<u16>, resolution
             if width_m < MIN_WIDTH_M {
                 continue;
             }
-            let s = describe(piece, bbox, width_m, &around);
+            let s = describe(piece, bbox, width_m, &around, &mut waves);
             if s.behind_m2 >= MIN_BEHIND_M2 {
                 out.push(s);
             }
@@ -226,7 +227,7 @@ fn diagonal_m([x0, y0, x1, y1]: [usize; 4], resolution: f64) -> f64 {
 
 /// The stretch of `cells`, whose bounding box ([`bounds`]) and width ([`diagonal_m`]) the
 /// caller has worked out already.
-fn describe(cells: Vec<usize>, [x0, y0, x1, y1]: [usize; 4], width_m: f64, a: &Around) -> Stretch {
+fn describe(cells: Vec<usize>, [x0, y0, x1, y1]: [usize; 4], width_m: f64, a: &Around, waves: &mut Waves) -> Stretch {
     let (map, resolution) = (a.map, a.resolution);
     let w = map.width();
     let n = cells.len() as f64;
@@ -238,7 +239,7 @@ fn describe(cells: Vec<usize>, [x0, y0, x1, y1]: [usize; 4], width_m: f64, a: &A
         cells.iter().any(|&i| libm::hypot((i % w) as f64 + 0.5 - dx, (i / w) as f64 + 0.5 - dy) <= reach)
     });
     let room = room_of(&cells, a.labels);
-    let Behind { area_m2: behind_m2, pocket, inside, planned, own } = behind(&cells, a, room);
+    let Behind { area_m2: behind_m2, pocket, inside, planned, own } = behind(&cells, a, waves, room);
     let jambs = jambs(&cells, map, [x0, y0, x1, y1], resolution);
     Stretch {
         ways: 0,
@@ -329,11 +330,11 @@ struct Behind {
 /// The unseen space behind `cells`: its area within [`BEHIND_M`] (m²), whether it ends before
 /// that distance, and the shares of it inside the building's seen extent, under the plan's
 /// units and inside the units of room `room`.
-fn behind(cells: &[usize], a: &Around, room: u32) -> Behind {
+fn behind(cells: &[usize], a: &Around, waves: &mut Waves, room: u32) -> Behind {
     let (map, resolution) = (a.map, a.resolution);
     let (w, h) = (map.width(), map.height());
     let limit = libm::ceil(BEHIND_M / resolution) as u32;
-    let reached = wave_behind(cells, w, h, limit, |j| map.cells()[j] == Cell::Unknown);
+    let reached = waves.behind(cells, limit, |j| map.cells()[j] == Cell::Unknown);
     let (mut area, mut within, mut planned, mut own, mut open) = (0usize, 0usize, 0usize, 0usize, false);
     for (j, d) in reached {
         if d > limit {
@@ -361,37 +362,62 @@ fn behind(cells: &[usize], a: &Around, room: u32) -> Behind {
     }
 }
 
-/// A wavefront ([`wavefront`]) from the cells beside `cells` (map indices of a `w` x `h` map)
-/// that `enter` admits, through cells it admits, up to `limit` steps: each cell reached as
-/// `(map index, steps)`, those at `limit + 1` reached but not grown from. It runs in a window
-/// of the map `limit + 1` cells wider than the stretch on every side, so that its cost does
-/// not grow with the map.
-pub(crate) fn wave_behind(
-    cells: &[usize],
+/// Wavefronts behind the stretches of one `w` x `h` map, one after another
+/// ([`Waves::behind`]). Their distances live in one buffer the size of the map, which each
+/// wavefront leaves as it found it, so a wavefront costs the cells it reaches: most stretches
+/// have little unseen space behind them, and a window of the map around each, cleared and
+/// read back whole, was most of the frontier's time.
+pub(crate) struct Waves {
     w: usize,
     h: usize,
-    limit: u32,
-    enter: impl Fn(usize) -> bool,
-) -> Vec<(usize, u32)> {
-    let reach = limit as usize + 1;
-    let [x0, y0, x1, y1] = bounds(cells, w);
-    let (wx0, wy0) = (x0.saturating_sub(reach), y0.saturating_sub(reach));
-    let (wx1, wy1) = ((x1 + reach).min(w - 1), (y1 + reach).min(h - 1));
-    let (ww, wh) = (wx1 - wx0 + 1, wy1 - wy0 + 1);
-    let to_map = |j: usize| (wy0 + j / ww) * w + wx0 + j % ww;
-    let mut dist = vec![u32::MAX; ww * wh];
-    let mut seeds = Vec::new();
-    for &i in cells {
-        for j in neighbours4(i, w, h) {
-            let l = (j / w - wy0) * ww + (j % w - wx0);
-            if enter(j) && dist[l] == u32::MAX {
-                dist[l] = 1;
-                seeds.push(l);
+    dist: Vec<u32>,
+}
+
+impl Waves {
+    /// Wavefronts on a `w` x `h` map.
+    pub(crate) fn new(w: usize, h: usize) -> Waves {
+        Waves { w, h, dist: vec![u32::MAX; w * h] }
+    }
+
+    /// A wavefront ([`crate::grid::flood::wavefront`]) from the cells beside `cells` (map
+    /// indices) that `enter` admits, through cells it admits, up to `limit` steps: each cell
+    /// reached as `(map index, steps)` in the order reached, those at `limit + 1` reached but
+    /// not grown from.
+    pub(crate) fn behind(&mut self, cells: &[usize], limit: u32, enter: impl Fn(usize) -> bool) -> Vec<(usize, u32)> {
+        let (w, h, dist) = (self.w, self.h, &mut self.dist);
+        // Breadth first, as `wavefront`: `reached` lists the cells in the order they are
+        // reached, and is the queue too. A cell is grown from if it is a seed (at 1) or within
+        // `limit`, as `wavefront` grows its seeds and queues only what lies within it.
+        let mut reached = Vec::new();
+        for &i in cells {
+            for j in neighbours4(i, w, h) {
+                if dist[j] == u32::MAX && enter(j) {
+                    dist[j] = 1;
+                    reached.push(j);
+                }
             }
         }
+        let grown = limit.max(1);
+        let mut head = 0;
+        while let Some(&i) = reached.get(head) {
+            head += 1;
+            let d = dist[i];
+            if d > grown {
+                continue;
+            }
+            for j in neighbours4(i, w, h) {
+                if dist[j] == u32::MAX && enter(j) {
+                    dist[j] = d + 1;
+                    reached.push(j);
+                }
+            }
+        }
+        let out = reached.iter().map(|&j| (j, dist[j])).collect();
+        for j in reached {
+            dist[j] = u32::MAX;
+        }
+        out
     }
-    wavefront(ww, wh, &mut dist, seeds, |j| enter(to_map(j)), limit);
-    dist.iter().enumerate().filter(|(_, &d)| d != u32::MAX).map(|(j, &d)| (to_map(j), d)).collect()
 }
 
 #[cfg(test)]
@@ -414,6 +440,38 @@ mod tests {
             }
         }
         map
+    }
+
+    #[test]
+    fn waves_reach_what_the_grid_s_wavefront_reaches_and_leave_no_trace() {
+        use crate::grid::flood::wavefront;
+        let mut rng = crate::mcmc::Rng::seed(11);
+        let (w, h) = (41, 29);
+        let mut waves = Waves::new(w, h);
+        for round in 0..20 {
+            let open: Vec<bool> = (0..w * h).map(|_| rng.chance(0.7)).collect();
+            let x0 = rng.below(w as u32 - 6) as usize;
+            let y = rng.below(h as u32) as usize;
+            let cells: Vec<usize> = (x0..x0 + 5).map(|x| y * w + x).collect();
+            let limit = [1, 3, 8, 40][round % 4];
+            let mut got = waves.behind(&cells, limit, |j| open[j]);
+            got.sort_unstable();
+            // The same by `wavefront` over the whole grid, seeded beside the cells.
+            let mut dist = vec![u32::MAX; w * h];
+            let mut seeds = Vec::new();
+            for &i in &cells {
+                for j in neighbours4(i, w, h) {
+                    if open[j] && dist[j] == u32::MAX {
+                        dist[j] = 1;
+                        seeds.push(j);
+                    }
+                }
+            }
+            wavefront(w, h, &mut dist, seeds, |j| open[j], limit);
+            let want: Vec<(usize, u32)> = (0..w * h).filter(|&j| dist[j] != u32::MAX).map(|j| (j, dist[j])).collect();
+            assert_eq!(got, want, "round {round}");
+            assert!(waves.dist.iter().all(|&d| d == u32::MAX), "round {round}: the buffer is left clear");
+        }
     }
 
     #[test]

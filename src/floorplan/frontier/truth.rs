@@ -11,7 +11,7 @@
 //! placeholder leads nowhere (the outside, or a pocket).
 
 use super::rules::{place, FrontierRules, FRONTIER_QUERY};
-use super::stretches::{door_centre, stretches, wave_behind, Stretch, AT_DOOR_M};
+use super::stretches::{door_centre, stretches, Stretch, Waves, AT_DOOR_M};
 use crate::floorplan::world::{UnitType, World};
 use crate::grid::{Cell, Grid};
 use crate::mln::{Database, Evidence, MlnError};
@@ -84,11 +84,12 @@ pub fn frontier_truth(
     let least = (TRUTH_MIN_M2 / (resolution * resolution)) as usize;
     let open = |j: usize| partial.cells()[j] == Cell::Unknown && truth_map.cells()[j] != Cell::Occupied;
     let found = stretches(world, partial, labels, resolution);
+    let mut waves = Waves::new(w, h);
     found
         .into_iter()
         .map(|stretch| {
             let mut counts = std::collections::BTreeMap::<u16, usize>::new();
-            for (j, d) in wave_behind(&stretch.cells, w, h, limit, open) {
+            for (j, d) in waves.behind(&stretch.cells, limit, open) {
                 let l = truth_labels.cells()[j];
                 if d <= limit && l > 0 && usize::from(l) <= truth.units.len() {
                     *counts.entry(l).or_default() += 1;

@@ -80,10 +80,15 @@ test('each page loads the modules it needs and no other', async (t) => {
     // that the mapper module the other pages load first does not carry the robot.
     'explore.html': ['ksmcmc_explore_bg.wasm'],
   };
+  // What a page may load besides, once its chain has a world: the rules page lists the best
+  // world's placeholders, which the plan module's room layer finds, so on a fast machine the
+  // plan module may come within the half second below.
+  const later = { 'rules.html': ['ksmcmc_plan_bg.wasm'] };
   for (const [path, want] of Object.entries(pages)) {
     const { page, wasm, problems } = await open(path);
     await page.waitForTimeout(500);
-    assert.deepEqual([...wasm].sort(), want.sort(), `${path} fetches`);
+    const fetched = [...wasm].filter((f) => !(later[path] ?? []).includes(f));
+    assert.deepEqual(fetched.sort(), want.sort(), `${path} fetches`);
     const total = want.reduce((sum, f) => sum + gzipped(f), 0);
     t.diagnostic(`${path}: ${want.join(' + ')}, ${total} bytes gzipped`);
     await page.context().close();

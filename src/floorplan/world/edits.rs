@@ -84,11 +84,12 @@ pub enum Edit {
 impl Edit {
     fn op(&self) -> &'static str {
         match self {
-            Edit::Merge { .. } => "merge",
-            Edit::Split { .. } => "split",
-            Edit::Type { .. } => "type",
-            Edit::Name { .. } => "name",
+            Edit::Merge { .. } => Op::Merge,
+            Edit::Split { .. } => Op::Split,
+            Edit::Type { .. } => Op::Type,
+            Edit::Name { .. } => Op::Name,
         }
+        .name()
     }
 
     /// The edit `raw` reads as, once its op has the fields it needs and no other's.
@@ -271,10 +272,8 @@ impl Edits {
         EditError::Edit { index: index + 1, op: self.list[index].op(), message }
     }
 
+    /// The checks of each edit's values (the list's length is checked as it is read).
     fn check_values(&self) -> Result<(), EditError> {
-        if self.list.len() > MAX_EDITS {
-            return Err(EditError::TooLarge(format!("{} edits, over the cap of {MAX_EDITS}", self.list.len())));
-        }
         for (i, e) in self.list.iter().enumerate() {
             match e {
                 Edit::Type { kind: UnitType::Unknown, .. } => {

@@ -53,14 +53,29 @@ impl Projection {
         Projection { bytes }
     }
 
+    /// The part of entry `x`'s index in the sub-table that the bits above `x`'s lowest byte
+    /// give: the same for the 256 entries of a block ([`blocks`]), so a pass over a table in
+    /// order looks up one byte an entry ([`Projection::low`]).
     #[inline]
-    fn at(&self, x: usize) -> usize {
+    fn high(&self, x: usize) -> u32 {
         let mut i = 0;
-        for (k, t) in self.bytes.iter().enumerate() {
+        for (k, t) in self.bytes.iter().enumerate().skip(1) {
             i |= t[(x >> (8 * k)) & 255];
         }
-        i as usize
+        i
     }
+
+    /// The lookup of the lowest byte: entry `x` is entry `low()[x & 255] | high(x)` of the
+    /// sub-table.
+    #[inline]
+    fn low(&self) -> &[u32; 256] {
+        &self.bytes[0]
+    }
+}
+
+/// The entries `0..len` of a table in blocks of (at most) 256 that share their high bits.
+fn blocks(len: usize) -> impl Iterator<Item = std::ops::Range<usize>> {
+    (0..len).step_by(256).map(move |b| b..(b + 256).min(len))
 }
 
 /// Elimination order by least fill-in (ties: fewest neighbours), and the resulting cliques.
@@ -199,8 +214,11 @@ fn attach(net: &Network, cliques: &mut [Clique], order_of: &[usize]) {
         feature_table(net, f, &scope, &mut table);
         let clique = &mut cliques[home];
         let proj = Projection::new(&scope, &clique.vars);
-        for (x, p) in clique.potential.iter_mut().enumerate() {
-            *p *= table[proj.at(x)];
+        for block in blocks(clique.potential.len()) {
+            let hi = proj.high(block.start);
+            for (p, &lo) in clique.potential[block].iter_mut().zip(proj.low()) {
+                *p *= table[(lo | hi) as usize];
+            }
         }
     }
 }
@@ -231,19 +249,14 @@ fn feature_table(net: &Network, f: usize, scope: &[u32], out: &mut Vec<f64>) {
     }
 }
 
-fn normalise(t: &mut [f64]) -> f64 {
-    let s: f64 = t.iter().sum();
-    if s > 0.0 {
-        for v in t.iter_mut() {
-            *v /= s;
-        }
-    }
-    s
-}
-
 /// Marginal probability of every unknown atom with the number of clique-table entries the tree
 /// needed (its work), or the clique size that made the tree too wide. `None` inside `Ok` means
 /// the hard features cannot all be satisfied.
+///
+/// Each clique's table is read in as few passes as the two messages allow, every product and
+/// sum taken in the order of the plain loops (so the marginals are the same bits): the sums
+/// that normalise a table are chains of dependent additions, and run beside the other work of
+/// a pass instead of in a pass of their own.
 pub(crate) fn marginals(net: &Network, max_clique: usize) -> Result<Option<(Vec<f64>, u64)>, TooWide> {
     let mut cliques = eliminate(net, max_clique)?;
     let entries: u64 = cliques.iter().map(|c| 1u64 << c.vars.len()).sum();
@@ -256,17 +269,10 @@ pub(crate) fn marginals(net: &Network, max_clique: usize) -> Result<Option<(Vec<
     let mut full: Vec<Vec<f64>> = vec![Vec::new(); n];
     for i in 0..n {
         let mut t = std::mem::take(&mut cliques[i].potential);
-        for &c in &cliques[i].children {
-            let proj = to_parent[c].as_ref().unwrap();
-            for (x, v) in t.iter_mut().enumerate() {
-                *v *= up[c][proj.at(x)];
-            }
-        }
-        let mut m = vec![0.0; t.len() / 2];
-        for (x, &v) in t.iter().enumerate() {
-            m[x >> 1] += v;
-        }
-        if normalise(&mut m) == 0.0 {
+        let children: Vec<(&Projection, &[f64])> =
+            cliques[i].children.iter().map(|&c| (to_parent[c].as_ref().unwrap(), up[c].as_slice())).collect();
+        let (m, s) = upward(&mut t, &children);
+        if s == 0.0 {
             return Ok(None);
         }
         up[i] = m;
@@ -279,29 +285,85 @@ pub(crate) fn marginals(net: &Network, max_clique: usize) -> Result<Option<(Vec<
     let mut down: Vec<Vec<f64>> = vec![Vec::new(); n];
     for i in (0..n).rev() {
         let mut belief = std::mem::take(&mut full[i]);
+        let from_parent = std::mem::take(&mut down[i]);
+        let mut z = -0.0;
         if cliques[i].parent.is_some() {
             for (x, v) in belief.iter_mut().enumerate() {
-                *v *= down[i][x >> 1];
+                *v *= from_parent[x >> 1];
+                z += *v;
             }
+        } else {
+            z = belief.iter().sum::<f64>();
         }
-        let z = normalise(&mut belief);
         if z == 0.0 {
             return Ok(None);
         }
-        out[cliques[i].vars[0] as usize] = belief.iter().skip(1).step_by(2).sum::<f64>().clamp(0.0, 1.0);
-        for &c in &cliques[i].children {
-            let proj = to_parent[c].as_ref().unwrap();
-            let mut m = vec![0.0; up[c].len()];
-            for (x, &v) in belief.iter().enumerate() {
-                m[proj.at(x)] += v;
+        let children = &cliques[i].children;
+        let mut messages: Vec<Vec<f64>> = children.iter().map(|&c| vec![0.0; up[c].len()]).collect();
+        let projections: Vec<&Projection> = children.iter().map(|&c| to_parent[c].as_ref().unwrap()).collect();
+        let mut yes = -0.0;
+        let mut highs = vec![0u32; children.len()];
+        for block in blocks(belief.len()) {
+            for (h, p) in highs.iter_mut().zip(&projections) {
+                *h = p.high(block.start);
             }
+            for x in block {
+                let b = belief[x] / z;
+                if x & 1 == 1 {
+                    yes += b;
+                }
+                for ((m, p), &h) in messages.iter_mut().zip(&projections).zip(&highs) {
+                    m[(p.low()[x & 255] | h) as usize] += b;
+                }
+            }
+        }
+        out[cliques[i].vars[0] as usize] = f64::clamp(yes, 0.0, 1.0);
+        for (&c, mut m) in children.iter().zip(messages) {
+            let mut s = -0.0;
             for (v, &u) in m.iter_mut().zip(&up[c]) {
                 *v = if u > 0.0 { *v / u } else { 0.0 };
+                s += *v;
             }
-            normalise(&mut m);
+            scale(&mut m, s);
             down[c] = m;
         }
-        down[i] = Vec::new();
     }
     Ok(Some((out, entries)))
+}
+
+/// One clique's upward pass: multiplies its table `t` by each child's message (`(projection,
+/// message)`, in the children's order) and sums it over its eliminated atom (bit 0); returns
+/// that sum normalised and the total it was divided by (0: no entry is possible).
+fn upward(t: &mut [f64], children: &[(&Projection, &[f64])]) -> (Vec<f64>, f64) {
+    let mut m = vec![0.0; t.len() / 2];
+    let mut s = -0.0;
+    let mut highs = vec![0u32; children.len()];
+    for block in blocks(t.len()) {
+        for (h, (p, _)) in highs.iter_mut().zip(children) {
+            *h = p.high(block.start);
+        }
+        for x in block.step_by(2) {
+            let (mut a, mut b) = (t[x], t[x + 1]);
+            for (&(p, u), &h) in children.iter().zip(&highs) {
+                let lo = p.low();
+                a *= u[(lo[x & 255] | h) as usize];
+                b *= u[(lo[(x + 1) & 255] | h) as usize];
+            }
+            (t[x], t[x + 1]) = (a, b);
+            let v = a + b;
+            m[x >> 1] = v;
+            s += v;
+        }
+    }
+    scale(&mut m, s);
+    (m, s)
+}
+
+/// Divides `t` by its total `s` (already summed, in order), unless that is 0.
+fn scale(t: &mut [f64], s: f64) {
+    if s > 0.0 {
+        for v in t.iter_mut() {
+            *v /= s;
+        }
+    }
 }

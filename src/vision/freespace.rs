@@ -16,6 +16,18 @@ pub trait FreeSpace {
     /// Whether cell `i` (row-major, `y * width + x`) is free on the map and covered by no
     /// unit.
     fn is_unexplained(&self, i: usize) -> bool;
+
+    /// Bit `j` set where cell `base + j` is unexplained, for the cells of the map among
+    /// `base..base + 64` ([`FreeSpace::is_unexplained`] a word at a time); `base` is a multiple
+    /// of 64. The chain's explanation keeps these words as its cells change.
+    fn unexplained_word(&self, base: usize) -> u64 {
+        let cells = self.width() * self.height();
+        let mut word = 0u64;
+        for i in base..(base + 64).min(cells) {
+            word |= u64::from(self.is_unexplained(i)) << (i - base);
+        }
+        word
+    }
 }
 
 /// A map explained by the empty world: every free cell is unexplained.
@@ -118,13 +130,9 @@ fn components(e: &impl FreeSpace, min_cells: usize, scratch: &mut Scratch) -> Ve
 /// has covered most of the floor most of the map is explained, and reading a cell at a time
 /// (`scan_cells`) was most of a refresh's cost.
 fn scan_words<E: FreeSpace>(e: &E, found: &mut dyn FnMut(&E, usize, &mut [u64]), seen: &mut [u64]) {
-    let cells = e.width() * e.height();
     for k in 0..seen.len() {
         let base = 64 * k;
-        let mut fresh = 0u64;
-        for i in base..(base + 64).min(cells) {
-            fresh |= u64::from(e.is_unexplained(i)) << (i - base);
-        }
+        let mut fresh = e.unexplained_word(base);
         loop {
             fresh &= !seen[k];
             if fresh == 0 {

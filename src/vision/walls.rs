@@ -206,7 +206,7 @@ fn faces(lines: &[WallLine]) -> Vec<i32> {
 /// fourth power of the free share of the interior, so that rectangles over unexplored space
 /// are proposed less often than rooms.
 pub fn candidates(grid: &Grid<Cell>, min_side: i32, c: &WallConfig) -> Vec<(Rect, f64)> {
-    candidates_where(grid, min_side, c, &|_| true)
+    candidates_where(grid, &faces_of(grid, c), min_side, c, &|_| true)
 }
 
 /// The wall faces the detector builds candidates on: the columns (`.0`) and rows (`.1`) of
@@ -215,36 +215,54 @@ pub fn faces_of(grid: &Grid<Cell>, c: &WallConfig) -> (Vec<i32>, Vec<i32>) {
     (faces(&wall_lines(grid, false, c)), faces(&wall_lines(grid, true, c)))
 }
 
-/// [`candidates`] restricted to the rectangles `keep` accepts, which are the only ones scored:
-/// after a map changes in one place, the online chain rescores only the rectangles the change
-/// can reach (see `Chain::update_map`).
+/// [`candidates`] on the faces `faces` ([`faces_of`] of `grid`, which the chain keeps),
+/// restricted to the rectangles `keep` accepts, which are the only ones scored: after a map
+/// changes in one place, the online chain rescores only the rectangles the change can reach
+/// (see `Chain::update_map`).
 pub fn candidates_where(
     grid: &Grid<Cell>,
+    faces: &(Vec<i32>, Vec<i32>),
     min_side: i32,
     c: &WallConfig,
     keep: &(dyn Fn(Rect) -> bool + Sync),
 ) -> Vec<(Rect, f64)> {
-    let faces = Faces {
-        occ: AreaCounts::new(&dilate(grid, c.tolerance), Cell::Occupied),
-        free: AreaCounts::new(grid, Cell::Free),
+    // Three map-sized tables, two on the other core.
+    let ((occ, free), raw) = crate::threads::join(
+        || (AreaCounts::new(&dilate(grid, c.tolerance), Cell::Occupied), AreaCounts::new(grid, Cell::Free)),
         // Walls crossing a candidate are judged on the raw map: dilation would close doors.
-        raw: AreaCounts::new(grid, Cell::Occupied),
-        xs: faces(&wall_lines(grid, false, c)),
-        ys: faces(&wall_lines(grid, true, c)),
-        min_side,
-        c,
-        keep,
-    };
+        || AreaCounts::new(grid, Cell::Occupied),
+    );
+    let faces = Faces { occ, free, raw, xs: &faces.0, ys: &faces.1, min_side, c, keep };
     let mut out = faces.all();
-    // The standard sort itself: the candidates are many and every chain's setup waits for
-    // them (crate::sort's indirect comparisons cost Cartesium's about 15 ms, for 3 kB). Its
-    // order is total (no two candidates are the same rectangle), so the list is the same
-    // whatever order the left sides were taken in.
-    out.sort_by(|a, b| {
-        b.1.total_cmp(&a.1).then_with(|| (a.0.x, a.0.y, a.0.w, a.0.h).cmp(&(b.0.x, b.0.y, b.0.w, b.0.h)))
-    });
-    out.truncate(c.max_candidates);
+    strongest_first(&mut out, c.max_candidates);
     out
+}
+
+/// Sorts candidates strongest first and keeps the first `max`. The order is total (no two
+/// candidates are the same rectangle), so the list is the same whatever order the left sides
+/// were taken in, and whichever sort makes it.
+fn strongest_first(out: &mut Vec<(Rect, f64)>, max: usize) {
+    let order = |a: &(Rect, f64), b: &(Rect, f64)| {
+        b.1.total_cmp(&a.1).then_with(|| (a.0.x, a.0.y, a.0.w, a.0.h).cmp(&(b.0.x, b.0.y, b.0.w, b.0.h)))
+    };
+    // Natively the strongest `max` are picked first and only they sorted: Cartesium's 321,000
+    // candidates, of which 60,000 are kept, took 13 ms to sort whole, and every chain's setup
+    // waits for them. The mapper module keeps the one sort it has (code size).
+    #[cfg(not(target_arch = "wasm32"))]
+    {
+        if out.len() > max {
+            out.select_nth_unstable_by(max, order);
+            out.truncate(max);
+        }
+        out.sort_unstable_by(order);
+    }
+    // The standard sort itself: crate::sort's indirect comparisons cost Cartesium's about
+    // 15 ms, for 3 kB.
+    #[cfg(target_arch = "wasm32")]
+    {
+        out.sort_by(order);
+        out.truncate(max);
+    }
 }
 
 /// What [`candidates_where`] builds its candidates on: the area counts of the map and the wall
@@ -257,8 +275,8 @@ struct Faces<'a> {
     /// Occupied cells of the raw map.
     raw: AreaCounts,
     /// The columns and rows of the wall faces, sorted.
-    xs: Vec<i32>,
-    ys: Vec<i32>,
+    xs: &'a [i32],
+    ys: &'a [i32],
     min_side: i32,
     c: &'a WallConfig,
     keep: &'a (dyn Fn(Rect) -> bool + Sync),

@@ -154,6 +154,12 @@ pub struct Explanation {
     /// A unit added or taken out whose change the counts hold but the cells do not yet
     /// ([`Explanation::apply_unit`]).
     pending: Option<Pending>,
+    /// A bit a cell, set where the cell is free on the map and covered by no unit: what the
+    /// free-space detector reads at every refresh, a word of 64 cells at a time
+    /// ([`FreeSpace::unexplained_word`](crate::vision::freespace::FreeSpace::unexplained_word)).
+    /// Kept as the cells are written, which the chain does only for the moves it accepts:
+    /// reading every cell at every refresh (33 in a default run) cost Cartesium 1 ms each.
+    unexplained: Vec<u64>,
 }
 
 /// A unit added (`sign = 1`) or taken out (`-1`), `t` cells of wall deep, with the counts
@@ -171,7 +177,7 @@ impl Explanation {
     /// The explanation of an empty world: every cell predicted unknown.
     pub fn new(map: &Grid<Cell>) -> Self {
         let mut confusion = [[0i64; 3]; 3];
-        let cells = map
+        let cells: Vec<CellState> = map
             .cells()
             .iter()
             .map(|&c| {
@@ -179,7 +185,16 @@ impl Explanation {
                 CellState::of_class(c as u8)
             })
             .collect();
-        Explanation { width: map.width(), height: map.height(), cells, confusion, overlap: 0, pending: None }
+        let unexplained = unexplained_bits(&cells);
+        Explanation {
+            width: map.width(),
+            height: map.height(),
+            cells,
+            confusion,
+            overlap: 0,
+            pending: None,
+            unexplained,
+        }
     }
 
     /// Grid width.
@@ -232,6 +247,7 @@ impl Explanation {
         self.confusion[c.cm() as usize][p] -= 1;
         self.cells[i] = CellState(c.0 & !0xff | cm as u32);
         self.confusion[cm as usize][p] += 1;
+        self.mark_unexplained(i..i + 1, false);
     }
 
     /// Changes the counts of the cells `run` (row-major indices, one row's stretch) by the
@@ -251,7 +267,7 @@ impl Explanation {
     fn touch_run(&mut self, run: std::ops::Range<usize>, dcover: i8, dwall: i8, ddoor: i8, write: bool) {
         let delta = packed_delta(dcover, dwall, ddoor);
         let mut counts = (self.confusion, self.overlap);
-        let cells = &mut self.cells[run];
+        let cells = &mut self.cells[run.clone()];
         // Stretches of one cover, wall and door count (they change only at other units'
         // edges), each settled once per map class (which changes wherever the scan is noisy).
         let mut i = 0;
@@ -269,6 +285,26 @@ impl Explanation {
             }
         }
         (self.confusion, self.overlap) = counts;
+        if write && dcover != 0 {
+            self.mark_unexplained(run, dcover > 0);
+        }
+    }
+
+    /// Sets the unexplained bits of the cells `run` from the cells; with `covered` the cells
+    /// are all covered now (a unit came), so their bits are cleared without reading them.
+    /// A word at a time, and only the run's bits in it: a unit's side walls are runs of a
+    /// few cells on every row.
+    fn mark_unexplained(&mut self, run: std::ops::Range<usize>, covered: bool) {
+        let mut i = run.start;
+        while i < run.end {
+            let (k, offset) = (i / 64, i % 64);
+            let end = run.end.min(64 * k + 64);
+            let n = end - i;
+            let mask = if n == 64 { u64::MAX } else { ((1u64 << n) - 1) << offset };
+            let bits = if covered { 0 } else { unexplained_word(&self.cells[i..end]) << offset };
+            self.unexplained[k] = self.unexplained[k] & !mask | bits;
+            i = end;
+        }
     }
 
     /// Writes the change of a unit added or taken out into the cells ([`Explanation::apply_unit`]); its counts are in.
@@ -401,6 +437,7 @@ impl Explanation {
             e.confusion[c.cm() as usize][c.predicted()] += 1;
             e.overlap += c.overlap();
         }
+        e.unexplained = unexplained_bits(&e.cells);
         e
     }
 
@@ -411,6 +448,7 @@ impl Explanation {
             && self.confusion == other.confusion
             && self.overlap == other.overlap
             && self.cells == other.cells
+            && self.unexplained == other.unexplained
     }
 }
 
@@ -427,6 +465,28 @@ impl crate::vision::freespace::FreeSpace for Explanation {
         let c = self.cells[i];
         c.cm() == Cell::Free as u8 && c.cover() == 0
     }
+
+    /// The bits kept as the cells change ([`Explanation::mark_unexplained`]): `base` is a
+    /// multiple of 64, as the detector's scan asks.
+    #[inline]
+    fn unexplained_word(&self, base: usize) -> u64 {
+        debug_assert_eq!(base % 64, 0);
+        self.unexplained.get(base / 64).copied().unwrap_or(0)
+    }
+}
+
+/// Bit `j` set where `cells[j]` (at most 64) is free on the map and covered by no unit
+/// ([`FreeSpace::is_unexplained`](crate::vision::freespace::FreeSpace::is_unexplained)).
+fn unexplained_word(cells: &[CellState]) -> u64 {
+    // Free (class 0) and covered by no unit: the record's two low bytes are zero.
+    const _: () = assert!(Cell::Free as u32 == 0);
+    const LOW: u32 = (1 << WALL) - 1;
+    cells.iter().enumerate().fold(0u64, |w, (j, c)| w | (u64::from(c.0 & LOW == 0) << j))
+}
+
+/// [`unexplained_word`] of every 64 cells.
+fn unexplained_bits(cells: &[CellState]) -> Vec<u64> {
+    cells.chunks(64).map(unexplained_word).collect()
 }
 
 /// Where, along row `y`, what unit `r` (walls `t` deep) contributes to a cell may change: its

@@ -279,9 +279,9 @@ impl ChainConfig {
 
 /// The wall detector's unit candidates on a world-frame map, those that fit a unit with rings
 /// `wall` deep ([`self::state::fits_unit`]).
-fn wall_candidates(world_map: &Grid<Cell>, cells: &ChainCells, wall: i32) -> Candidates {
+fn wall_candidates(world_map: &Grid<Cell>, faces: &(Vec<i32>, Vec<i32>), cells: &ChainCells, wall: i32) -> Candidates {
     let min_side = cells.min_side;
-    let found = vision::walls::candidates(world_map, min_side, &cells.walls);
+    let found = vision::walls::candidates_where(world_map, faces, min_side, &cells.walls, &|_| true);
     Candidates::new(found.into_iter().filter(|&(r, _)| self::state::fits_unit(r, min_side, wall)))
 }
 
@@ -414,6 +414,27 @@ fn world_with_rooms(
     Ok((world, labels))
 }
 
+/// What a chain is made of besides its settings ([`Chain::with_parts`]): the frame, the
+/// world-frame map, the map, the unit candidates and the object cells.
+type Parts = (Frame, Grid<Cell>, Grid<Cell>, Candidates, Option<vision::objects::ObjectCells>);
+
+/// How much the semantic sensor model gains for an unknown and an occupied object cell in a
+/// unit that may hold objects, per cell, so weighted as the likelihood's cells are
+/// ([`self::posterior::cell_weight`]).
+fn object_gain(config: &ChainConfig, resolution: f64) -> [f64; 2] {
+    let (sensor, k) = (config.posterior.sensor.table, &config.knowledge);
+    let w = self::posterior::cell_weight(resolution);
+    [
+        (libm::log(k.object[1]) - libm::log(sensor[0][1])).max(0.0) * w,
+        (libm::log(k.object[2]) - libm::log(sensor[0][2])).max(0.0) * w,
+    ]
+}
+
+/// The object cells the knowledge terms count, when knowledge is on.
+fn objects_for(world_map: &Grid<Cell>, resolution: f64, config: &ChainConfig) -> Option<vision::objects::ObjectCells> {
+    config.knowledge.enabled.then(|| object_cells(world_map, resolution, config, object_gain(config, resolution)))
+}
+
 /// The map cells that may be objects, counted for the knowledge terms. Unknown object cells
 /// use up the share of a unit's interior that may be objects even when they earn nothing, so
 /// both classes are counted if either is forgiven (`object_gain` above zero).
@@ -519,10 +540,14 @@ impl Chain {
         };
         let (world_map, frame) = vision::orientation::to_world_frame(classified, angle);
         let wall = cells.wall.unwrap_or_else(|| vision::walls::ring_depth(classified, angle, resolution));
-        let candidates = wall_candidates(&world_map, &cells, wall);
         let faces = vision::walls::faces_of(&world_map, &cells.walls);
-        let mut chain =
-            Self::with_parts(config, frame, world_map, classified.clone(), candidates, wall, resolution, seed)?;
+        // The object cells do not wait for the candidates: they share the cores with them.
+        let (candidates, objects) = crate::threads::join(
+            || wall_candidates(&world_map, &faces, &cells, wall),
+            || objects_for(&world_map, resolution, &config),
+        );
+        let parts = (frame, world_map, classified.clone(), candidates, objects);
+        let mut chain = Self::with_parts(config, parts, wall, resolution, seed)?;
         chain.faces = Some(faces);
         chain.walls = walls;
         Ok(chain)
@@ -550,34 +575,27 @@ impl Chain {
         let frame = Frame::identity(map.width() as u32, map.height() as u32);
         let resolution = crate::grid::BENCHMARK_CELL_M;
         let wall = config.cells(resolution).wall.unwrap_or(1);
-        Self::with_parts(config, frame, map.clone(), map.clone(), Candidates::new(candidates), wall, resolution, seed)
+        let objects = objects_for(map, resolution, &config);
+        let parts = (frame, map.clone(), map.clone(), Candidates::new(candidates), objects);
+        Self::with_parts(config, parts, wall, resolution, seed)
     }
 
-    #[allow(clippy::too_many_arguments)]
+    /// A chain on `parts`: the frame, the world-frame map, the map, the unit candidates and the
+    /// object cells ([`objects_for`]).
     fn with_parts(
         config: ChainConfig,
-        frame: Frame,
-        world_map: Grid<Cell>,
-        map: Grid<Cell>,
-        candidates: Candidates,
+        parts: Parts,
         wall: i32,
         resolution: f64,
         seed: u64,
     ) -> Result<Chain, ChainError> {
+        let (frame, world_map, map, candidates, objects) = parts;
         let knowledge = if config.knowledge.enabled {
             Some(super::knowledge::Knowledge::new(&config.knowledge).map_err(ChainError::Knowledge)?)
         } else {
             None
         };
-        let sensor = config.posterior.sensor.table;
-        let k = &config.knowledge;
-        // Per cell, so weighted as the likelihood's cells are (posterior::cell_weight).
-        let w = self::posterior::cell_weight(resolution);
-        let object_gain = [
-            (libm::log(k.object[1]) - libm::log(sensor[0][1])).max(0.0) * w,
-            (libm::log(k.object[2]) - libm::log(sensor[0][2])).max(0.0) * w,
-        ];
-        let objects = knowledge.is_some().then(|| object_cells(&world_map, resolution, &config, object_gain));
+        let object_gain = object_gain(&config, resolution);
         let cells = config.cells(resolution);
         let state = State::new(&world_map, cells.doors, wall);
         let proposer = Proposer::new(config.kernels, resolution, candidates, state.width(), state.height(), wall);

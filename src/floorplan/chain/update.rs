@@ -220,8 +220,9 @@ impl Chain {
         self.proposer.set_wall(self.state.wall, self.state.width(), self.state.height());
         // The wall detector's candidates afresh, for rings of the new depth, as a new chain
         // finds them.
-        self.proposer.candidates = super::wall_candidates(&self.world_map, &self.cells, self.state.wall);
-        self.faces = Some(vision::walls::faces_of(&self.world_map, &self.cells.walls));
+        let faces = vision::walls::faces_of(&self.world_map, &self.cells.walls);
+        self.proposer.candidates = super::wall_candidates(&self.world_map, &faces, &self.cells, self.state.wall);
+        self.faces = Some(faces);
         true
     }
 
@@ -269,8 +270,8 @@ impl Chain {
     fn redetect(&mut self, window: Rect) -> (usize, usize) {
         let Some((old_xs, old_ys)) = self.faces.take() else { return (0, 0) };
         let c = self.cells.walls;
-        let (xs, ys) = vision::walls::faces_of(&self.world_map, &c);
-        let (dx, dy) = (symmetric_difference(&old_xs, &xs), symmetric_difference(&old_ys, &ys));
+        let faces = vision::walls::faces_of(&self.world_map, &c);
+        let (dx, dy) = (symmetric_difference(&old_xs, &faces.0), symmetric_difference(&old_ys, &faces.1));
         let g = c.tolerance.max(0) + 1;
         let near = Rect::new(window.x - g, window.y - g, window.w + 2 * g, window.h + 2 * g);
         let reached = |r: Rect| {
@@ -279,12 +280,12 @@ impl Chain {
                 || dy.iter().any(|&y| y >= r.y && y < r.bottom())
         };
         let (min_side, wall) = (self.cells.min_side, self.state.wall);
-        let found = vision::walls::candidates_where(&self.world_map, min_side, &c, &reached);
+        let found = vision::walls::candidates_where(&self.world_map, &faces, min_side, &c, &reached);
         let items: Vec<(Rect, f64)> =
             found.into_iter().filter(|&(r, _)| crate::floorplan::state::fits_unit(r, min_side, wall)).collect();
         let added = items.len();
         let dropped = self.proposer.candidates.replace_where(reached, items);
-        self.faces = Some((xs, ys));
+        self.faces = Some(faces);
         (dropped, added)
     }
 

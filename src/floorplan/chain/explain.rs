@@ -466,7 +466,7 @@ impl crate::vision::freespace::FreeSpace for Explanation {
         c.cm() == Cell::Free as u8 && c.cover() == 0
     }
 
-    /// The bits kept as the cells change ([`Explanation::mark_unexplained`]): `base` is a
+    /// The bits kept as the cells change (`Explanation::mark_unexplained`): `base` is a
     /// multiple of 64, as the detector's scan asks.
     #[inline]
     fn unexplained_word(&self, base: usize) -> u64 {

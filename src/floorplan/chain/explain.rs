@@ -548,6 +548,58 @@ mod tests {
         assert!(e.same_as(&Explanation::recompute(&m, &[], 1, &[Rect::new(5, 3, 2, 1)])));
     }
 
+    /// A noisy map (the class changes every few cells, as a scan's does) and units that
+    /// overlap, come and go and are replaced: the counts stay those of a recount, and the
+    /// unexplained words those read cell by cell, on a map whose rows do not fill whole words.
+    #[test]
+    fn noisy_maps_keep_counts_and_unexplained_words_exact() {
+        use crate::vision::freespace::FreeSpace;
+        let (w, h) = (150, 70);
+        let mut seed = 7u64;
+        let mut next = move |n: u64| {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            ((seed >> 33) % n) as i32
+        };
+        let mut m = Grid::new(w, h, Cell::Free);
+        for c in m.cells_mut() {
+            *c = [Cell::Free, Cell::Free, Cell::Unknown, Cell::Occupied][next(4) as usize];
+        }
+        let word_by_cells = |e: &Explanation, base: usize| -> u64 {
+            (base..(base + 64).min(w * h)).fold(0, |acc, i| acc | (u64::from(e.is_unexplained(i)) << (i - base)))
+        };
+        let mut e = Explanation::new(&m);
+        let mut units: Vec<Rect> = Vec::new();
+        for step in 0..60 {
+            let (rw, rh) = (5 + next(30), 5 + next(20));
+            let r = Rect::new(next(w as u64 - rw as u64), next(h as u64 - rh as u64), rw, rh);
+            match step % 3 {
+                0 => {
+                    e.apply_unit(r, 2, 1);
+                    units.push(r);
+                }
+                1 if !units.is_empty() => {
+                    let old = units.remove(next(units.len() as u64) as usize);
+                    e.replace_units(&[old], &[r], 2);
+                    units.push(r);
+                }
+                _ => {
+                    let i = next((w * h) as u64) as usize;
+                    let cm = [Cell::Free, Cell::Unknown, Cell::Occupied][next(3) as usize];
+                    e.set_map_class(i, cm);
+                    m.cells_mut()[i] = cm;
+                }
+            }
+            e.write_pending();
+            assert!(e.same_as(&Explanation::recompute(&m, &units, 2, &[])), "step {step}");
+            for base in (0..w * h).step_by(64) {
+                assert_eq!(e.unexplained_word(base), word_by_cells(&e, base), "step {step}, word {}", base / 64);
+            }
+        }
+        let unexplained = (0..w * h).filter(|&i| e.is_unexplained(i)).count();
+        let free = m.cells().iter().filter(|&&c| c == Cell::Free).count();
+        assert!(unexplained > 0 && unexplained < free, "both kinds of free cell: {unexplained} of {free}");
+    }
+
     #[test]
     fn incremental_equals_recompute() {
         let m = map();

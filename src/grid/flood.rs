@@ -132,17 +132,44 @@ pub fn wavefront(
     enter: impl Fn(usize) -> bool,
     limit: u32,
 ) {
-    let mut queue: std::collections::VecDeque<u32> = seeds.into_iter().map(|i| i as u32).collect();
-    while let Some(i) = queue.pop_front() {
-        let i = i as usize;
+    let mut reached: Vec<usize> = seeds.into_iter().collect();
+    wavefront_listed(width, height, dist, &mut reached, enter, limit);
+}
+
+/// [`wavefront`] that lists the cells it reaches: `reached` holds the seeds (their `dist`
+/// set) and gets every cell reached after them, in the order reached; it is the queue too,
+/// seeds grown from whatever their distance, the others if within `limit`. A caller that runs
+/// many small wavefronts on one map-sized `dist` puts back only the cells listed
+/// (`frontier::stretches::Waves`), not the whole grid.
+///
+/// ```
+/// use ksmcmc::grid::flood::wavefront_listed;
+///
+/// let mut dist = [0, u32::MAX, u32::MAX, u32::MAX, u32::MAX];
+/// let mut reached = vec![0];
+/// wavefront_listed(5, 1, &mut dist, &mut reached, |_| true, 2);
+/// assert_eq!((reached, dist), (vec![0, 1, 2, 3], [0, 1, 2, 3, u32::MAX]));
+/// ```
+pub fn wavefront_listed(
+    width: usize,
+    height: usize,
+    dist: &mut [u32],
+    reached: &mut Vec<usize>,
+    enter: impl Fn(usize) -> bool,
+    limit: u32,
+) {
+    let seeds = reached.len();
+    let mut head = 0;
+    while let Some(&i) = reached.get(head) {
+        head += 1;
         let d = dist[i];
-        let neighbours = steps4(i, width, height);
-        for (inside, j) in neighbours {
+        if head > seeds && d > limit {
+            continue;
+        }
+        for (inside, j) in steps4(i, width, height) {
             if inside && dist[j] == u32::MAX && enter(j) {
                 dist[j] = d + 1;
-                if d < limit {
-                    queue.push_back(j as u32);
-                }
+                reached.push(j);
             }
         }
     }

@@ -17,7 +17,7 @@
 //! turned into cells with the map's resolution.
 
 use crate::floorplan::world::{Door, World};
-use crate::grid::flood::{neighbours4, Flood, Neighbours};
+use crate::grid::flood::{neighbours4, wavefront_listed, Flood, Neighbours};
 use crate::grid::morphology::{dilate, erode};
 use crate::grid::{Cell, Grid};
 
@@ -385,9 +385,6 @@ impl Waves {
     /// not grown from.
     pub(crate) fn behind(&mut self, cells: &[usize], limit: u32, enter: impl Fn(usize) -> bool) -> Vec<(usize, u32)> {
         let (w, h, dist) = (self.w, self.h, &mut self.dist);
-        // Breadth first, as `wavefront`: `reached` lists the cells in the order they are
-        // reached, and is the queue too. A cell is grown from if it is a seed (at 1) or within
-        // `limit`, as `wavefront` grows its seeds and queues only what lies within it.
         let mut reached = Vec::new();
         for &i in cells {
             for j in neighbours4(i, w, h) {
@@ -397,21 +394,7 @@ impl Waves {
                 }
             }
         }
-        let grown = limit.max(1);
-        let mut head = 0;
-        while let Some(&i) = reached.get(head) {
-            head += 1;
-            let d = dist[i];
-            if d > grown {
-                continue;
-            }
-            for j in neighbours4(i, w, h) {
-                if dist[j] == u32::MAX && enter(j) {
-                    dist[j] = d + 1;
-                    reached.push(j);
-                }
-            }
-        }
+        wavefront_listed(w, h, dist, &mut reached, enter, limit);
         let out = reached.iter().map(|&j| (j, dist[j])).collect();
         for j in reached {
             dist[j] = u32::MAX;

@@ -592,11 +592,7 @@ fn unknown_specks(map: &Grid<Cell>, min_len: usize) -> Vec<bool> {
         let (x0, y0, x1, y1) = boxes[r];
         (x1 - x0 + 1).max(y1 - y0 + 1) < min_len
     };
-    let by_free = |i: usize| {
-        let (x, y) = (i % w, i / w);
-        (y.saturating_sub(1)..=(y + 1).min(h - 1))
-            .any(|ny| (x.saturating_sub(1)..=(x + 1).min(w - 1)).any(|nx| cells[ny * w + nx] == Cell::Free))
-    };
+    let by_free = |i: usize| beside_free(map, i);
     let mut touches_free = vec![false; runs.len()];
     for (&(y, x0, x1), &r) in runs.iter().zip(&root) {
         if small(r) && !touches_free[r] {
@@ -611,16 +607,20 @@ fn unknown_specks(map: &Grid<Cell>, min_len: usize) -> Vec<bool> {
     speck
 }
 
+/// Whether cell `i` of `map` has a free cell among its eight neighbours (or is free itself).
+fn beside_free(map: &Grid<Cell>, i: usize) -> bool {
+    let (w, h, cells) = (map.width(), map.height(), map.cells());
+    let (x, y) = (i % w, i / w);
+    (y.saturating_sub(1)..=(y + 1).min(h - 1))
+        .any(|ny| (x.saturating_sub(1)..=(x + 1).min(w - 1)).any(|nx| cells[ny * w + nx] == Cell::Free))
+}
+
 /// [`unknown_specks`] by flooding each part, as it was: the test holds the runs to it.
 #[cfg(test)]
 fn unknown_specks_flooded(map: &Grid<Cell>, min_len: usize) -> Vec<bool> {
     let (w, h) = (map.width(), map.height());
     let cells = map.cells();
-    let by_free = |i: usize| {
-        let (x, y) = (i % w, i / w);
-        (y.saturating_sub(1)..=(y + 1).min(h - 1))
-            .any(|ny| (x.saturating_sub(1)..=(x + 1).min(w - 1)).any(|nx| cells[ny * w + nx] == Cell::Free))
-    };
+    let by_free = |i: usize| beside_free(map, i);
     let mut speck = vec![false; w * h];
     let unknown = |i: usize| cells[i] == Cell::Unknown;
     each_part_below(w, h, unknown, unknown, min_len, |part, _| {
